@@ -1,0 +1,9 @@
+// Umbrella header of the common library.
+#pragma once
+
+#include "common/config.h"
+#include "common/csv_table.h"
+#include "common/error.h"
+#include "common/hdf5_file.h"
+#include "common/progress.h"
+#include "common/state_measures.h"

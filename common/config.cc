@@ -1,0 +1,254 @@
+#include "common/config.h"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <toml.hpp>
+
+#include "common/error.h"
+
+namespace granasym {
+
+struct ConfigTable::Document {
+  toml::value root;
+  // Keys that a reader asked for, per table prefix.
+  std::map<std::string, std::set<std::string>> known;
+};
+
+namespace {
+const toml::value& AsValue(const void* p) { return *static_cast<const toml::value*>(p); }
+
+std::string FormatNumber(double value) {
+  std::ostringstream out;
+  out.precision(10);
+  out << value;
+  return out.str();
+}
+
+std::string TypeName(const toml::value& value) {
+  std::ostringstream out;
+  out << value.type();
+  return out.str();
+}
+}  // namespace
+
+bool Range::Contains(double value) const {
+  if (std::isnan(value)) return false;
+  const bool above = min_inclusive ? value >= min : value > min;
+  const bool below = max_inclusive ? value <= max : value < max;
+  return above && below;
+}
+
+std::string Range::Describe() const {
+  const bool has_min = std::isfinite(min);
+  const bool has_max = std::isfinite(max);
+  if (has_min && has_max) {
+    return std::string("in ") + (min_inclusive ? "[" : "(") + FormatNumber(min) + ", " +
+           FormatNumber(max) + (max_inclusive ? "]" : ")");
+  }
+  if (has_min) return (min_inclusive ? ">= " : "> ") + FormatNumber(min);
+  if (has_max) return (max_inclusive ? "<= " : "< ") + FormatNumber(max);
+  return "any number";
+}
+
+ConfigTable::ConfigTable(std::shared_ptr<Document> document, const void* table, std::string prefix)
+    : document_(std::move(document)), table_(table), prefix_(std::move(prefix)) {}
+
+ConfigTable::ConfigTable(const ConfigTable&) = default;
+ConfigTable& ConfigTable::operator=(const ConfigTable&) = default;
+ConfigTable::~ConfigTable() = default;
+
+ConfigTable ConfigTable::ParseFile(const std::string& path) {
+  auto document = std::make_shared<Document>();
+  try {
+    document->root = toml::parse(path);
+  } catch (const std::runtime_error& error) {
+    throw InputError("cannot read TOML file '" + path + "': " + error.what());
+  }
+  ConfigTable table(document, &document->root, "");
+  table.origin_ = std::make_shared<const std::string>(path);
+  return table;
+}
+
+ConfigTable ConfigTable::ParseString(const std::string& text, const std::string& origin) {
+  auto document = std::make_shared<Document>();
+  std::istringstream stream(text);
+  try {
+    document->root = toml::parse(stream, origin);
+  } catch (const std::runtime_error& error) {
+    throw InputError("cannot parse TOML '" + origin + "': " + error.what());
+  }
+  ConfigTable table(document, &document->root, "");
+  table.origin_ = std::make_shared<const std::string>(origin);
+  return table;
+}
+
+std::string ConfigTable::KeyName(const std::string& key) const {
+  return prefix_.empty() ? key : prefix_ + "." + key;
+}
+
+void ConfigTable::Fail(const std::string& key, const std::string& explanation) const {
+  throw InputError(*origin_ + ": key '" + KeyName(key) + "' " + explanation);
+}
+
+void ConfigTable::MarkKnown(const std::string& key) const { document_->known[prefix_].insert(key); }
+
+const void* ConfigTable::Find(const std::string& key) const {
+  MarkKnown(key);
+  const toml::value& table = AsValue(table_);
+  if (!table.is_table()) return nullptr;
+  const auto& entries = table.as_table();
+  const auto found = entries.find(key);
+  return found == entries.end() ? nullptr : &found->second;
+}
+
+bool ConfigTable::Has(const std::string& key) const { return Find(key) != nullptr; }
+
+namespace {
+double NumberOf(const ConfigTable& table, const std::string& key, const toml::value& value) {
+  if (value.is_floating()) return value.as_floating();
+  if (value.is_integer()) return static_cast<double>(value.as_integer());
+  table.Fail(key, "has type " + TypeName(value) + ": expected a number");
+}
+}  // namespace
+
+double ConfigTable::GetDouble(const std::string& key, Range range) const {
+  const void* found = Find(key);
+  if (!found) Fail(key, "is missing: expected a number " + range.Describe());
+  const double value = NumberOf(*this, key, AsValue(found));
+  if (!range.Contains(value)) {
+    Fail(key, "= " + FormatNumber(value) + " is out of range: must be " + range.Describe());
+  }
+  return value;
+}
+
+double ConfigTable::GetDouble(const std::string& key, double fallback, Range range) const {
+  return Has(key) ? GetDouble(key, range) : fallback;
+}
+
+int64_t ConfigTable::GetInt(const std::string& key, Range range) const {
+  const void* found = Find(key);
+  if (!found) Fail(key, "is missing: expected an integer " + range.Describe());
+  const toml::value& value = AsValue(found);
+  if (!value.is_integer()) Fail(key, "has type " + TypeName(value) + ": expected an integer");
+  const int64_t number = value.as_integer();
+  if (!range.Contains(static_cast<double>(number))) {
+    Fail(key, "= " + std::to_string(number) + " is out of range: must be " + range.Describe());
+  }
+  return number;
+}
+
+int64_t ConfigTable::GetInt(const std::string& key, int64_t fallback, Range range) const {
+  return Has(key) ? GetInt(key, range) : fallback;
+}
+
+bool ConfigTable::GetBool(const std::string& key) const {
+  const void* found = Find(key);
+  if (!found) Fail(key, "is missing: expected true or false");
+  const toml::value& value = AsValue(found);
+  if (!value.is_boolean()) Fail(key, "has type " + TypeName(value) + ": expected true or false");
+  return value.as_boolean();
+}
+
+bool ConfigTable::GetBool(const std::string& key, bool fallback) const {
+  return Has(key) ? GetBool(key) : fallback;
+}
+
+std::string ConfigTable::GetString(const std::string& key) const {
+  const void* found = Find(key);
+  if (!found) Fail(key, "is missing: expected a string");
+  const toml::value& value = AsValue(found);
+  if (!value.is_string()) Fail(key, "has type " + TypeName(value) + ": expected a string");
+  return value.as_string().str;
+}
+
+std::string ConfigTable::GetString(const std::string& key, const std::string& fallback) const {
+  return Has(key) ? GetString(key) : fallback;
+}
+
+std::string ConfigTable::GetChoice(const std::string& key, const std::vector<std::string>& allowed,
+                                   const std::string& fallback) const {
+  const std::string value = GetString(key, fallback);
+  for (const std::string& choice : allowed) {
+    if (value == choice) return value;
+  }
+  std::string list;
+  for (const std::string& choice : allowed) list += (list.empty() ? "" : ", ") + ("'" + choice + "'");
+  Fail(key, "= '" + value + "' is not valid: expected one of " + list);
+}
+
+std::vector<double> ConfigTable::GetDoubles(const std::string& key, Range range) const {
+  const void* found = Find(key);
+  if (!found) Fail(key, "is missing: expected an array of numbers");
+  const toml::value& value = AsValue(found);
+  if (!value.is_array()) Fail(key, "has type " + TypeName(value) + ": expected an array of numbers");
+  std::vector<double> numbers;
+  for (size_t i = 0; i < value.as_array().size(); ++i) {
+    const toml::value& item = value.as_array()[i];
+    const std::string item_key = key + "[" + std::to_string(i) + "]";
+    const double number = NumberOf(*this, item_key, item);
+    if (!range.Contains(number)) {
+      Fail(item_key, "= " + FormatNumber(number) + " is out of range: must be " + range.Describe());
+    }
+    numbers.push_back(number);
+  }
+  return numbers;
+}
+
+ConfigTable ConfigTable::GetTable(const std::string& key) const {
+  const void* found = Find(key);
+  if (!found) Fail(key, "is missing: expected a table");
+  if (!AsValue(found).is_table()) {
+    Fail(key, "has type " + TypeName(AsValue(found)) + ": expected a table");
+  }
+  ConfigTable child(document_, found, KeyName(key));
+  child.origin_ = origin_;
+  return child;
+}
+
+std::vector<ConfigTable> ConfigTable::GetTableArray(const std::string& key) const {
+  const void* found = Find(key);
+  std::vector<ConfigTable> tables;
+  if (!found) return tables;
+  const toml::value& value = AsValue(found);
+  if (!value.is_array()) Fail(key, "has type " + TypeName(value) + ": expected an array of tables");
+  for (size_t i = 0; i < value.as_array().size(); ++i) {
+    const toml::value& item = value.as_array()[i];
+    const std::string name = key + "[" + std::to_string(i) + "]";
+    if (!item.is_table()) Fail(name, "has type " + TypeName(item) + ": expected a table");
+    ConfigTable child(document_, &item, KeyName(name));
+    child.origin_ = origin_;
+    tables.push_back(child);
+  }
+  return tables;
+}
+
+void ConfigTable::CheckNoUnknownKeys() const {
+  const toml::value& table = AsValue(table_);
+  if (!table.is_table()) return;
+  const std::set<std::string>& known = document_->known[prefix_];
+  for (const auto& [key, value] : table.as_table()) {
+    if (!known.count(key)) {
+      std::string valid;
+      for (const std::string& name : known) valid += (valid.empty() ? "" : ", ") + name;
+      Fail(key, "is not a known key" +
+                    (valid.empty() ? std::string(" (this table takes no keys)")
+                                   : " (valid keys here: " + valid + ")"));
+    }
+    if (value.is_table()) {
+      ConfigTable child(document_, &value, KeyName(key));
+      child.origin_ = origin_;
+      child.CheckNoUnknownKeys();
+    } else if (value.is_array()) {
+      for (size_t i = 0; i < value.as_array().size(); ++i) {
+        const toml::value& item = value.as_array()[i];
+        if (!item.is_table()) continue;
+        ConfigTable child(document_, &item, KeyName(key + "[" + std::to_string(i) + "]"));
+        child.origin_ = origin_;
+        child.CheckNoUnknownKeys();
+      }
+    }
+  }
+}
+
+}  // namespace granasym

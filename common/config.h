@@ -1,0 +1,90 @@
+// Validated access to TOML configuration files (scene, model and calibration
+// files). Every value read names its file and key in errors; keys that no
+// reader asked for are reported as unknown with the valid keys of their table.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace toml {
+template <typename, template <typename...> class, template <typename...> class>
+class basic_value;
+}
+
+namespace granasym {
+
+// An admissible interval for a number, with its own wording for messages.
+struct Range {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_inclusive = true;
+  bool max_inclusive = true;
+
+  static Range Any() { return {}; }
+  static Range Positive() { return {0.0, Range().max, false, true}; }
+  static Range NonNegative() { return {0.0, Range().max, true, true}; }
+  static Range Closed(double lo, double hi) { return {lo, hi, true, true}; }
+  static Range Open(double lo, double hi) { return {lo, hi, false, false}; }
+  static Range AtLeast(double lo) { return {lo, Range().max, true, true}; }
+  bool Contains(double value) const;
+  std::string Describe() const;  // e.g. "> 0", "in [0, 1]"
+};
+
+class ConfigTable {
+ public:
+  // Parses a TOML file; a syntax error becomes an InputError naming the line.
+  static ConfigTable ParseFile(const std::string& path);
+  // Parses TOML text; `origin` names it in messages.
+  static ConfigTable ParseString(const std::string& text, const std::string& origin);
+
+  ConfigTable(const ConfigTable&);
+  ConfigTable& operator=(const ConfigTable&);
+  ~ConfigTable();
+
+  bool Has(const std::string& key) const;
+  // Required values.
+  double GetDouble(const std::string& key, Range range = Range::Any()) const;
+  int64_t GetInt(const std::string& key, Range range = Range::Any()) const;
+  bool GetBool(const std::string& key) const;
+  std::string GetString(const std::string& key) const;
+  // Optional values with defaults (the default is not range-checked).
+  double GetDouble(const std::string& key, double fallback, Range range) const;
+  int64_t GetInt(const std::string& key, int64_t fallback, Range range) const;
+  bool GetBool(const std::string& key, bool fallback) const;
+  std::string GetString(const std::string& key, const std::string& fallback) const;
+  // A string that must be one of `allowed`.
+  std::string GetChoice(const std::string& key, const std::vector<std::string>& allowed,
+                        const std::string& fallback) const;
+  std::vector<double> GetDoubles(const std::string& key, Range range = Range::Any()) const;
+
+  ConfigTable GetTable(const std::string& key) const;
+  std::vector<ConfigTable> GetTableArray(const std::string& key) const;
+
+  // Throws InputError naming the first key of this table (and its subtables)
+  // that no Get/Has call asked for.
+  void CheckNoUnknownKeys() const;
+
+  // Full dotted name of a key of this table, e.g. "stage[2].stop.mean_stress_kpa".
+  std::string KeyName(const std::string& key) const;
+  const std::string& origin() const { return *origin_; }
+  // Raises an InputError about `key` of this table with the given explanation.
+  [[noreturn]] void Fail(const std::string& key, const std::string& explanation) const;
+
+ private:
+  struct Document;
+  ConfigTable(std::shared_ptr<Document> document, const void* table, std::string prefix);
+  const void* Find(const std::string& key) const;
+  void MarkKnown(const std::string& key) const;
+
+  std::shared_ptr<Document> document_;
+  const void* table_;  // toml::value of this table, owned by document_
+  std::string prefix_;
+  std::shared_ptr<const std::string> origin_;
+};
+
+}  // namespace granasym
