@@ -62,7 +62,7 @@ ConfigTable ConfigTable::ParseFile(const std::string& path) {
   auto document = std::make_shared<Document>();
   try {
     document->root = toml::parse(path);
-  } catch (const std::runtime_error& error) {
+  } catch (const std::exception& error) {
     throw InputError("cannot read TOML file '" + path + "': " + error.what());
   }
   ConfigTable table(document, &document->root, "");
@@ -75,7 +75,7 @@ ConfigTable ConfigTable::ParseString(const std::string& text, const std::string&
   std::istringstream stream(text);
   try {
     document->root = toml::parse(stream, origin);
-  } catch (const std::runtime_error& error) {
+  } catch (const std::exception& error) {
     throw InputError("cannot parse TOML '" + origin + "': " + error.what());
   }
   ConfigTable table(document, &document->root, "");

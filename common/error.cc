@@ -2,9 +2,13 @@
 
 namespace granasym::internal {
 
-void FailCheck(const char* file, int line, const char* condition, const std::string& message) {
+CheckFailure::CheckFailure(const char* file, int line, const char* condition)
+    : file_(file), line_(line), condition_(condition) {}
+
+CheckFailure::~CheckFailure() noexcept(false) {
   std::ostringstream out;
-  out << "internal check failed at " << file << ":" << line << ": (" << condition << ")";
+  out << "internal check failed at " << file_ << ":" << line_ << ": (" << condition_ << ")";
+  const std::string message = stream_.str();
   if (!message.empty()) out << ": " << message;
   throw RuntimeError(out.str());
 }

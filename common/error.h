@@ -22,8 +22,20 @@ class RuntimeError : public std::runtime_error {
 };
 
 namespace internal {
-[[noreturn]] void FailCheck(const char* file, int line, const char* condition,
-                            const std::string& message);
+// Collects the message of a failed check and throws RuntimeError when the
+// full statement has been streamed (at the end of the full expression).
+class CheckFailure {
+ public:
+  CheckFailure(const char* file, int line, const char* condition);
+  ~CheckFailure() noexcept(false);
+  std::ostringstream& stream() { return stream_; }
+
+ private:
+  const char* file_;
+  int line_;
+  const char* condition_;
+  std::ostringstream stream_;
+};
 }  // namespace internal
 
 }  // namespace granasym
@@ -31,8 +43,7 @@ namespace internal {
 // Always-on invariant check with a streamed message:
 //   GRANASYM_CHECK(n > 0) << "cell has no particles";
 // The message is built only when the check fails.
-#define GRANASYM_CHECK(condition)                                                  \
-  for (std::ostringstream granasym_check_stream_; !(condition);                    \
-       ::granasym::internal::FailCheck(__FILE__, __LINE__, #condition,             \
-                                       granasym_check_stream_.str()))              \
-  granasym_check_stream_
+#define GRANASYM_CHECK(condition) \
+  if (condition) {                \
+  } else                          \
+    ::granasym::internal::CheckFailure(__FILE__, __LINE__, #condition).stream()

@@ -23,6 +23,7 @@ TEST(ConfigTable, ReadsTypedValuesWithDefaults) {
       ConfigTable::ParseString("a = 2\nb = 1.5\n[t]\nname = 'x'\nflag = true\n", "test.toml");
   EXPECT_DOUBLE_EQ(root.GetDouble("a", Range::Positive()), 2.0);
   EXPECT_EQ(root.GetInt("a"), 2);
+  EXPECT_DOUBLE_EQ(root.GetDouble("b"), 1.5);
   EXPECT_DOUBLE_EQ(root.GetDouble("missing", 7.0, Range::Any()), 7.0);
   const ConfigTable t = root.GetTable("t");
   EXPECT_EQ(t.GetString("name"), "x");

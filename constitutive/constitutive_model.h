@@ -1,0 +1,84 @@
+// The constitutive interface: a pure rate law T̊ = T̊(T, e, q, D) for a material
+// point in full 3D (MFEM HyperelasticModel style: the state goes in, the rate
+// and, where asked, the tangent come out; nothing is hidden in the model).
+//
+// Inside this interface stresses and stretchings are tension positive
+// (continuum convention, SPEC §6); stresses in kPa, stretching in 1/s.
+// The void ratio always follows ė = (1 + e) tr D.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "constitutive/voigt.h"
+
+namespace granasym {
+
+enum class ModelKind { kHypoplasticClay, kModifiedCamClay };
+const char* ToString(ModelKind kind);
+// Returns false for an unknown name.
+bool FromString(const std::string& name, ModelKind* kind);
+
+// The state of a material point. `stress` is tension positive in kPa.
+struct ModelState {
+  Vector6 stress = Vector6::Zero();
+  double void_ratio = 0.0;
+  Eigen::VectorXd internal;  // model specific, see ConstitutiveModel::internal_names()
+};
+
+// Rates of the state for one stretching.
+struct ModelRate {
+  Vector6 stress_rate = Vector6::Zero();  // kPa/s, objective (no spin here)
+  double void_ratio_rate = 0.0;           // 1/s
+  Eigen::VectorXd internal_rate;
+};
+
+// Derivatives of y_dot = [stress_rate; internal_rate] (6 + n rows) with respect
+// to the state x = [stress; ln(1+e); internal] (7 + n columns) and to D (6 columns).
+struct RateJacobian {
+  Eigen::MatrixXd d_state;
+  Eigen::MatrixXd d_stretching;
+};
+
+class ConstitutiveModel {
+ public:
+  virtual ~ConstitutiveModel() = default;
+
+  virtual ModelKind kind() const = 0;
+  virtual int num_internal() const { return 0; }
+  // Names (and units in brackets) of the internal variables, for output.
+  virtual std::vector<std::string> internal_names() const { return {}; }
+
+  // Stress (and internal) rate for the stretching D. When `tangent` is not null
+  // it receives ∂T̊/∂D (6x6). Returns false, with the reason in `why`, when the
+  // state lies outside the model's domain (then the outputs are unspecified).
+  virtual bool Rate(const ModelState& state, const Vector6& stretching, ModelRate* rate,
+                    Matrix6* tangent, std::string* why) const = 0;
+
+  // Exact derivatives of the rates (automatic differentiation of the same code).
+  virtual bool Jacobian(const ModelState& state, const Vector6& stretching,
+                        RateJacobian* jacobian, std::string* why) const = 0;
+
+  // Whether the model is defined at this state (compressive stress, ...).
+  virtual bool IsAdmissible(const ModelState& state, std::string* why) const = 0;
+
+  // Hvorslev equivalent pressure p_e* (kPa): mean stress on the isotropic NCL at e.
+  virtual double EquivalentPressure(double void_ratio) const = 0;
+  // Void ratio at which p_e*/p = ocr for mean stress p (kPa).
+  virtual double VoidRatioForOcr(double mean_stress, double ocr) const = 0;
+  // A complete state for a stress (tension positive) and void ratio; fills the
+  // internal variables consistently (Cam clay: p_c from the elastic line).
+  virtual ModelState MakeState(const Vector6& stress, double void_ratio) const = 0;
+
+  // Critical friction angle φ_c (rad) of the model, for the critical-state ratio.
+  virtual double critical_friction_angle() const = 0;
+  // One line with the parameters, for logs and HDF5 attributes.
+  virtual std::string Describe() const = 0;
+};
+
+// OCR = p_e*/p (paper Eq. 2) of a state.
+double OverconsolidationRatio(const ConstitutiveModel& model, const ModelState& state);
+
+}  // namespace granasym

@@ -1,0 +1,304 @@
+// Modified Cam clay in rate form with the continuum elastoplastic tangent
+// (SPEC §6.2); the same templated code gives the exact Jacobian.
+#include "constitutive/modified_cam_clay.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "common/error.h"
+#include "constitutive/autodiff.h"
+
+namespace granasym {
+
+namespace {
+
+bool Fail(std::string* why, const std::string& message) {
+  if (why != nullptr) *why = message;
+  return false;
+}
+
+// Tension-positive stress rate and ṗ_c of the rate form.
+template <typename S>
+bool CamClayRate(const ModifiedCamClay::Parameters& c, const Vec6<S>& t, const S& log_1pe,
+                 const S& preconsolidation, const Vec6<S>& d, Vec6<S>* stress_rate,
+                 S* preconsolidation_rate, std::string* why) {
+  using std::exp;
+  const double m2 = c.critical_state_ratio * c.critical_state_ratio;
+  const S p = -Trace(t) / 3.0;
+  const Vec6<S> s = Deviator(t);
+  const S q2 = 1.5 * Contract(s, s);
+  S lambda(c.lambda), kappa(c.kappa);
+  if (c.form == ModifiedCamClay::CompressionForm::kSemiLog) {
+    const S one_plus_e = exp(log_1pe);
+    lambda = c.lambda / one_plus_e;
+    kappa = c.kappa / one_plus_e;
+  }
+  const S bulk = p / kappa;
+  const S shear = c.elasticity == ModifiedCamClay::Elasticity::kPoissonRatio
+                      ? S(bulk * (3.0 * (1.0 - 2.0 * c.poisson_ratio) /
+                                  (2.0 * (1.0 + c.poisson_ratio))))
+                      : S(c.shear_modulus);
+  auto elastic = [&](const Vec6<S>& x) -> Vec6<S> {
+    Vec6<S> out = (2.0 * shear) * x;
+    const S volumetric = (bulk - 2.0 * shear / 3.0) * Trace(x);
+    for (int i = 0; i < 3; ++i) out[i] += volumetric;
+    return out;
+  };
+  const Vec6<S> trial = elastic(d);
+  const S f = q2 + m2 * p * (p - preconsolidation);
+  Vec6<S> n = 3.0 * s;
+  for (int i = 0; i < 3; ++i) n[i] -= m2 * (2.0 * p - preconsolidation) / 3.0;
+  const S n_trial = Contract(n, trial);
+  const double scale = m2 * autodiff::Value(preconsolidation) * autodiff::Value(preconsolidation);
+  const bool on_surface = autodiff::Value(f) >= -c.yield_tolerance * scale;
+  if (on_surface && autodiff::Value(n_trial) > 0) {
+    const S hardening = preconsolidation * m2 * (2.0 * p - preconsolidation) / (lambda - kappa);
+    const S denominator = Contract(n, elastic(n)) + m2 * p * hardening;
+    if (!(autodiff::Value(denominator) > 0)) {
+      return Fail(why, "plastic denominator n:𝔼:n + H ≤ 0 (softening beyond the elastic limit)");
+    }
+    const S multiplier = n_trial / denominator;
+    *stress_rate = trial - multiplier * elastic(n);
+    *preconsolidation_rate = multiplier * hardening;
+  } else {
+    *stress_rate = trial;
+    *preconsolidation_rate = S(0.0);
+  }
+  return true;
+}
+
+}  // namespace
+
+const char* ToString(ModifiedCamClay::CompressionForm form) {
+  return form == ModifiedCamClay::CompressionForm::kLogLog ? "log_log" : "semi_log";
+}
+
+bool FromString(const std::string& name, ModifiedCamClay::CompressionForm* form) {
+  if (name == "log_log") {
+    *form = ModifiedCamClay::CompressionForm::kLogLog;
+  } else if (name == "semi_log") {
+    *form = ModifiedCamClay::CompressionForm::kSemiLog;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+bool ModifiedCamClay::Parameters::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& message) { return Fail(why, message); };
+  if (!(critical_state_ratio > 0 && critical_state_ratio < 3.0)) {
+    return fail(fmt::format("critical_state_ratio M = {} must be in (0, 3)", critical_state_ratio));
+  }
+  if (!(lambda > 0)) return fail(fmt::format("lambda = {} must be > 0", lambda));
+  if (!(kappa > 0 && kappa < lambda)) {
+    return fail(fmt::format("kappa = {} must be in (0, lambda = {})", kappa, lambda));
+  }
+  if (!std::isfinite(n_intercept)) return fail("n_intercept must be finite");
+  if (elasticity == Elasticity::kPoissonRatio && !(poisson_ratio > -1.0 && poisson_ratio < 0.5)) {
+    return fail(fmt::format("poisson_ratio = {} must be in (−1, 0.5)", poisson_ratio));
+  }
+  if (elasticity == Elasticity::kConstantShearModulus && !(shear_modulus > 0)) {
+    return fail(fmt::format("shear_modulus = {} kPa must be > 0", shear_modulus));
+  }
+  if (!(reference_pressure > 0)) {
+    return fail(fmt::format("reference_pressure = {} kPa must be > 0", reference_pressure));
+  }
+  if (!(minimum_mean_stress > 0)) {
+    return fail(fmt::format("minimum_mean_stress = {} kPa must be > 0", minimum_mean_stress));
+  }
+  if (!(yield_tolerance > 0 && yield_tolerance < 1e-2)) {
+    return fail(fmt::format("yield_tolerance = {} must be in (0, 0.01)", yield_tolerance));
+  }
+  return true;
+}
+
+ModifiedCamClay::ModifiedCamClay(const Parameters& parameters) : parameters_(parameters) {
+  std::string why;
+  GRANASYM_CHECK(parameters.IsValid(&why)) << why;
+}
+
+bool ModifiedCamClay::IsAdmissible(const ModelState& state, std::string* why) const {
+  if (!state.stress.allFinite()) return Fail(why, "stress is not finite");
+  const double p = MeanStress(state.stress);
+  if (!(p > parameters_.minimum_mean_stress)) {
+    return Fail(why, fmt::format("mean stress p = {:.6g} kPa is not above the minimum {:.3g} kPa",
+                                 p, parameters_.minimum_mean_stress));
+  }
+  if (state.internal.size() != 1 || !(state.internal[0] > 0) || !std::isfinite(state.internal[0])) {
+    return Fail(why, "preconsolidation pressure p_c must be one positive number");
+  }
+  if (!(state.void_ratio > -1.0 && std::isfinite(state.void_ratio))) {
+    return Fail(why, fmt::format("void ratio e = {} must be > −1", state.void_ratio));
+  }
+  return true;
+}
+
+bool ModifiedCamClay::Rate(const ModelState& state, const Vector6& stretching, ModelRate* rate,
+                           Matrix6* tangent, std::string* why) const {
+  if (!IsAdmissible(state, why)) return false;
+  const double log_1pe = std::log1p(state.void_ratio);
+  double preconsolidation_rate = 0.0;
+  if (!CamClayRate<double>(parameters_, state.stress, log_1pe, state.internal[0], stretching,
+                           &rate->stress_rate, &preconsolidation_rate, why)) {
+    return false;
+  }
+  rate->void_ratio_rate = (1.0 + state.void_ratio) * Trace<double>(stretching);
+  rate->internal_rate.resize(1);
+  rate->internal_rate[0] = preconsolidation_rate;
+  if (tangent != nullptr) {
+    const Matrix6 elastic = ElasticStiffness(state.stress, state.void_ratio);
+    *tangent = elastic;
+    const double p_c = state.internal[0];
+    const Vector6 n = YieldGradient(state.stress, p_c);
+    Vector6 weighted_n = n;
+    weighted_n.tail<3>() *= 2.0;
+    const Eigen::Matrix<double, 1, 6> n_elastic = weighted_n.transpose() * elastic;
+    const double n_trial = n_elastic.dot(stretching);
+    if (OnYieldSurface(state.stress, p_c) && n_trial > 0) {
+      double lambda, kappa;
+      CompressionSlopes(state.void_ratio, &lambda, &kappa);
+      const double m2 = parameters_.critical_state_ratio * parameters_.critical_state_ratio;
+      const double p = MeanStress(state.stress);
+      const double hardening = p_c * m2 * (2.0 * p - p_c) / (lambda - kappa);
+      const double denominator = n_elastic.dot(n) + m2 * p * hardening;
+      *tangent -= (elastic * n) * n_elastic / denominator;
+    }
+  }
+  if (!rate->stress_rate.allFinite() || !std::isfinite(preconsolidation_rate)) {
+    return Fail(why, "rate is not finite");
+  }
+  return true;
+}
+
+bool ModifiedCamClay::Jacobian(const ModelState& state, const Vector6& stretching,
+                               RateJacobian* jacobian, std::string* why) const {
+  if (!IsAdmissible(state, why)) return false;
+  constexpr int kSize = 14;  // stress (6), ln(1+e), p_c, stretching (6)
+  using Ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, kSize, 1>>;
+  Vec6<Ad> t, d;
+  for (int i = 0; i < 6; ++i) {
+    t[i] = autodiff::Variable<kSize>(state.stress[i], i);
+    d[i] = autodiff::Variable<kSize>(stretching[i], 8 + i);
+  }
+  const Ad log_1pe = autodiff::Variable<kSize>(std::log1p(state.void_ratio), 6);
+  const Ad preconsolidation = autodiff::Variable<kSize>(state.internal[0], 7);
+  Vec6<Ad> stress_rate;
+  Ad preconsolidation_rate;
+  if (!CamClayRate<Ad>(parameters_, t, log_1pe, preconsolidation, d, &stress_rate,
+                       &preconsolidation_rate, why)) {
+    return false;
+  }
+  jacobian->d_state.resize(7, 8);
+  jacobian->d_stretching.resize(7, 6);
+  for (int i = 0; i < 7; ++i) {
+    const Eigen::Matrix<double, kSize, 1> derivatives =
+        i < 6 ? stress_rate[i].derivatives() : preconsolidation_rate.derivatives();
+    jacobian->d_state.row(i) = derivatives.head<8>().transpose();
+    jacobian->d_stretching.row(i) = derivatives.tail<6>().transpose();
+  }
+  if (!jacobian->d_state.allFinite() || !jacobian->d_stretching.allFinite()) {
+    return Fail(why, "Jacobian is not finite");
+  }
+  return true;
+}
+
+double ModifiedCamClay::YieldFunction(const Vector6& stress, double preconsolidation) const {
+  const double p = MeanStress(stress);
+  const double q = DeviatorStress(stress);
+  const double m = parameters_.critical_state_ratio;
+  return q * q + m * m * p * (p - preconsolidation);
+}
+
+Vector6 ModifiedCamClay::YieldGradient(const Vector6& stress, double preconsolidation) const {
+  const double m2 = parameters_.critical_state_ratio * parameters_.critical_state_ratio;
+  const double p = MeanStress(stress);
+  Vector6 n = 3.0 * Deviator<double>(stress);
+  for (int i = 0; i < 3; ++i) n[i] -= m2 * (2.0 * p - preconsolidation) / 3.0;
+  return n;
+}
+
+double ModifiedCamClay::YieldGradientPreconsolidation(const Vector6& stress) const {
+  const double m = parameters_.critical_state_ratio;
+  return -m * m * MeanStress(stress);
+}
+
+bool ModifiedCamClay::OnYieldSurface(const Vector6& stress, double preconsolidation) const {
+  const double m = parameters_.critical_state_ratio;
+  return YieldFunction(stress, preconsolidation) >=
+         -parameters_.yield_tolerance * m * m * preconsolidation * preconsolidation;
+}
+
+void ModifiedCamClay::CompressionSlopes(double void_ratio, double* lambda_star,
+                                        double* kappa_star) const {
+  const double divisor = parameters_.form == CompressionForm::kSemiLog ? 1.0 + void_ratio : 1.0;
+  *lambda_star = parameters_.lambda / divisor;
+  *kappa_star = parameters_.kappa / divisor;
+}
+
+Matrix6 ModifiedCamClay::ElasticStiffness(const Vector6& stress, double void_ratio) const {
+  double lambda, kappa;
+  CompressionSlopes(void_ratio, &lambda, &kappa);
+  const double bulk = MeanStress(stress) / kappa;
+  const double shear =
+      parameters_.elasticity == Elasticity::kPoissonRatio
+          ? bulk * 3.0 * (1.0 - 2.0 * parameters_.poisson_ratio) /
+                (2.0 * (1.0 + parameters_.poisson_ratio))
+          : parameters_.shear_modulus;
+  return 2.0 * shear * Matrix6::Identity() +
+         (bulk - 2.0 * shear / 3.0) * DyadMatrix<double>(IdentityVoigt(), IdentityVoigt());
+}
+
+double ModifiedCamClay::EquivalentPressure(double void_ratio) const {
+  const double distance = parameters_.form == CompressionForm::kLogLog
+                              ? parameters_.n_intercept - std::log1p(void_ratio)
+                              : parameters_.n_intercept - void_ratio;
+  return parameters_.reference_pressure * std::exp(distance / parameters_.lambda);
+}
+
+double ModifiedCamClay::VoidRatioForOcr(double mean_stress, double ocr) const {
+  const double log_pressure = std::log(ocr * mean_stress / parameters_.reference_pressure);
+  if (parameters_.form == CompressionForm::kLogLog) {
+    return std::expm1(parameters_.n_intercept - parameters_.lambda * log_pressure);
+  }
+  return parameters_.n_intercept - parameters_.lambda * log_pressure;
+}
+
+double ModifiedCamClay::PreconsolidationFromElasticLine(double mean_stress,
+                                                        double void_ratio) const {
+  const double lambda = parameters_.lambda;
+  const double kappa = parameters_.kappa;
+  const double volume = parameters_.form == CompressionForm::kLogLog ? std::log1p(void_ratio)
+                                                                      : void_ratio;
+  const double log_ratio = std::log(mean_stress / parameters_.reference_pressure);
+  // volume = N − λ ln(p_c/p_r) + κ ln(p_c/p_r) − κ ln(p/p_r)
+  return parameters_.reference_pressure *
+         std::exp((parameters_.n_intercept - volume - kappa * log_ratio) / (lambda - kappa));
+}
+
+ModelState ModifiedCamClay::MakeState(const Vector6& stress, double void_ratio) const {
+  ModelState state;
+  state.stress = stress;
+  state.void_ratio = void_ratio;
+  state.internal.resize(1);
+  state.internal[0] = PreconsolidationFromElasticLine(MeanStress(stress), void_ratio);
+  return state;
+}
+
+double ModifiedCamClay::critical_friction_angle() const {
+  const double m = parameters_.critical_state_ratio;
+  return std::asin(3.0 * m / (6.0 + m));
+}
+
+std::string ModifiedCamClay::Describe() const {
+  return fmt::format(
+      "modified_cam_clay form={} M={:.6g} lambda={:.6g} kappa={:.6g} N={:.6g} {} p_r={:.6g} kPa",
+      ToString(parameters_.form), parameters_.critical_state_ratio, parameters_.lambda,
+      parameters_.kappa, parameters_.n_intercept,
+      parameters_.elasticity == Elasticity::kPoissonRatio
+          ? fmt::format("nu={:.6g}", parameters_.poisson_ratio)
+          : fmt::format("G={:.6g} kPa", parameters_.shear_modulus),
+      parameters_.reference_pressure);
+}
+
+}  // namespace granasym

@@ -1,0 +1,81 @@
+// Modified Cam clay, SPEC §6.2, in rate form (compression positive p, q):
+//   f = q² + M² p (p − p_c),  associated flow D^p = λ̇ ∂f/∂T,
+//   K = p/κ*, G = 3K(1 − 2ν)/(2(1 + ν)) or constant G,
+//   ṗ_c/p_c = ε̇_v^p/(λ* − κ*),  NCL ln(1+e) = N − λ* ln(p/p_r),
+// and the classical e–ln p form (λ, κ, e_N) where λ* = λ/(1+e), κ* = κ/(1+e).
+// Both forms are exactly integrable along any path:
+//   ln(1+e) = N − λ* ln(p_c/p_r) + κ* ln(p_c/p)   (or e = e_N − λ ln(p_c/p_r) + κ ln(p_c/p)),
+// which fixes p_c from (p, e); on the CSL p = p_c/2, so OCR_c = 2^((λ−κ)/λ).
+// Source: Roscoe & Burland (1968); Wood, Soil behaviour and critical state soil mechanics (1990).
+#pragma once
+
+#include <string>
+
+#include "constitutive/constitutive_model.h"
+
+namespace granasym {
+
+class ModifiedCamClay : public ConstitutiveModel {
+ public:
+  enum class CompressionForm { kLogLog, kSemiLog };
+  enum class Elasticity { kPoissonRatio, kConstantShearModulus };
+
+  struct Parameters {
+    // kLogLog: lambda = λ*, kappa = κ*, n_intercept = N = ln(1+e) at p_r.
+    // kSemiLog: lambda = λ, kappa = κ, n_intercept = e_N = e at p_r.
+    CompressionForm form = CompressionForm::kLogLog;
+    double critical_state_ratio = 0.0;  // M = q/p at critical state (compression)
+    double lambda = 0.0;
+    double kappa = 0.0;
+    double n_intercept = 0.0;
+    Elasticity elasticity = Elasticity::kPoissonRatio;
+    double poisson_ratio = 0.25;  // ν, used with kPoissonRatio
+    double shear_modulus = 0.0;   // G (kPa), used with kConstantShearModulus
+    double reference_pressure = 1.0;     // p_r (kPa)
+    double minimum_mean_stress = 1e-9;   // kPa; below this the state is inadmissible
+    // A state counts as on the yield surface when f ≥ −yield_tolerance (M p_c)²;
+    // the stress-point algorithms also use it as their drift tolerance.
+    double yield_tolerance = 1e-9;
+    bool IsValid(std::string* why) const;
+  };
+
+  explicit ModifiedCamClay(const Parameters& parameters);
+
+  ModelKind kind() const override { return ModelKind::kModifiedCamClay; }
+  int num_internal() const override { return 1; }
+  std::vector<std::string> internal_names() const override { return {"preconsolidation_kpa"}; }
+  bool Rate(const ModelState& state, const Vector6& stretching, ModelRate* rate, Matrix6* tangent,
+            std::string* why) const override;
+  bool Jacobian(const ModelState& state, const Vector6& stretching, RateJacobian* jacobian,
+                std::string* why) const override;
+  bool IsAdmissible(const ModelState& state, std::string* why) const override;
+  double EquivalentPressure(double void_ratio) const override;
+  double VoidRatioForOcr(double mean_stress, double ocr) const override;
+  ModelState MakeState(const Vector6& stress, double void_ratio) const override;
+  double critical_friction_angle() const override;
+  std::string Describe() const override;
+
+  // Pieces used by the stress-point algorithms (tension-positive stress, kPa).
+  double YieldFunction(const Vector6& stress, double preconsolidation) const;  // kPa²
+  Vector6 YieldGradient(const Vector6& stress, double preconsolidation) const;  // ∂f/∂T
+  // ∂f/∂p_c = −M² p.
+  double YieldGradientPreconsolidation(const Vector6& stress) const;
+  // Tangent elastic stiffness 𝔼 (matrix acting on D) at a stress and void ratio.
+  Matrix6 ElasticStiffness(const Vector6& stress, double void_ratio) const;
+  // Effective λ*, κ* at a void ratio (the semi-log form divides by 1 + e).
+  void CompressionSlopes(double void_ratio, double* lambda_star, double* kappa_star) const;
+  // p_c on the elastic line through (p, e), see the file comment.
+  double PreconsolidationFromElasticLine(double mean_stress, double void_ratio) const;
+  // Whether the state is on or outside the yield surface by the tolerance.
+  bool OnYieldSurface(const Vector6& stress, double preconsolidation) const;
+
+  const Parameters& parameters() const { return parameters_; }
+
+ private:
+  Parameters parameters_;
+};
+
+const char* ToString(ModifiedCamClay::CompressionForm form);
+bool FromString(const std::string& name, ModifiedCamClay::CompressionForm* form);
+
+}  // namespace granasym

@@ -1,0 +1,409 @@
+// RAII wrappers around SUNDIALS 6.4 (context, serial vectors, dense matrix and
+// linear solver, fixed-point nonlinear solver, CVODE and ARKODE memory) and the
+// two integrators built on them.
+#include "constitutive/sundials_integrators.h"
+
+#include <arkode/arkode_arkstep.h>
+#include <arkode/arkode_erkstep.h>
+#include <cvode/cvode.h>
+#include <fmt/format.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "common/error.h"
+#include "common/progress.h"
+
+namespace granasym {
+
+namespace {
+
+void Check(int flag, const char* call) {
+  if (flag < 0) {
+    throw RuntimeError(fmt::format("SUNDIALS call {} failed with flag {}", call, flag));
+  }
+}
+
+template <typename T>
+T* CheckPointer(T* pointer, const char* call) {
+  if (pointer == nullptr) throw RuntimeError(fmt::format("SUNDIALS call {} returned NULL", call));
+  return pointer;
+}
+
+class Context {
+ public:
+  Context() { Check(SUNContext_Create(nullptr, &context_), "SUNContext_Create"); }
+  ~Context() { SUNContext_Free(&context_); }
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+  SUNContext get() const { return context_; }
+
+ private:
+  SUNContext context_ = nullptr;
+};
+
+class SerialVector {
+ public:
+  SerialVector(int size, const Context& context)
+      : vector_(CheckPointer(N_VNew_Serial(size, context.get()), "N_VNew_Serial")) {}
+  ~SerialVector() { N_VDestroy(vector_); }
+  SerialVector(const SerialVector&) = delete;
+  SerialVector& operator=(const SerialVector&) = delete;
+  N_Vector get() const { return vector_; }
+  double* data() const { return N_VGetArrayPointer(vector_); }
+
+ private:
+  N_Vector vector_;
+};
+
+class DenseMatrix {
+ public:
+  DenseMatrix(int size, const Context& context)
+      : matrix_(CheckPointer(SUNDenseMatrix(size, size, context.get()), "SUNDenseMatrix")) {}
+  ~DenseMatrix() { SUNMatDestroy(matrix_); }
+  DenseMatrix(const DenseMatrix&) = delete;
+  DenseMatrix& operator=(const DenseMatrix&) = delete;
+  SUNMatrix get() const { return matrix_; }
+
+ private:
+  SUNMatrix matrix_;
+};
+
+class DenseLinearSolver {
+ public:
+  DenseLinearSolver(const SerialVector& y, const DenseMatrix& matrix, const Context& context)
+      : solver_(CheckPointer(SUNLinSol_Dense(y.get(), matrix.get(), context.get()),
+                             "SUNLinSol_Dense")) {}
+  ~DenseLinearSolver() { SUNLinSolFree(solver_); }
+  DenseLinearSolver(const DenseLinearSolver&) = delete;
+  DenseLinearSolver& operator=(const DenseLinearSolver&) = delete;
+  SUNLinearSolver get() const { return solver_; }
+
+ private:
+  SUNLinearSolver solver_;
+};
+
+class FixedPointSolver {
+ public:
+  FixedPointSolver(const SerialVector& y, const Context& context)
+      : solver_(CheckPointer(SUNNonlinSol_FixedPoint(y.get(), 0, context.get()),
+                             "SUNNonlinSol_FixedPoint")) {}
+  ~FixedPointSolver() { SUNNonlinSolFree(solver_); }
+  FixedPointSolver(const FixedPointSolver&) = delete;
+  FixedPointSolver& operator=(const FixedPointSolver&) = delete;
+  SUNNonlinearSolver get() const { return solver_; }
+
+ private:
+  SUNNonlinearSolver solver_;
+};
+
+// Owns an integrator memory block and frees it with the matching function.
+class IntegratorMemory {
+ public:
+  using Free = void (*)(void**);
+  IntegratorMemory(void* memory, Free free, const char* call)
+      : memory_(CheckPointer(memory, call)), free_(free) {}
+  ~IntegratorMemory() { free_(&memory_); }
+  IntegratorMemory(const IntegratorMemory&) = delete;
+  IntegratorMemory& operator=(const IntegratorMemory&) = delete;
+  void* get() const { return memory_; }
+
+ private:
+  void* memory_;
+  Free free_;
+};
+
+struct CallbackData {
+  OdeSystem* system = nullptr;
+  std::string last_error;
+  std::string last_rhs_failure;
+  long rhs_failures = 0;
+};
+
+int RhsCallback(realtype t, N_Vector y, N_Vector y_dot, void* user_data) {
+  auto* data = static_cast<CallbackData*>(user_data);
+  const int n = data->system->dimension();
+  double* out = N_VGetArrayPointer(y_dot);
+  if (!data->system->Rhs(t, N_VGetArrayPointer(y), out)) {
+    ++data->rhs_failures;
+    data->last_rhs_failure = data->system->last_failure();
+    return 1;  // recoverable: the integrator cuts the step
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(out[i])) {
+      ++data->rhs_failures;
+      data->last_rhs_failure = "right-hand side is not finite";
+      return 1;
+    }
+  }
+  return 0;
+}
+
+int JacobianCallback(realtype t, N_Vector y, N_Vector, SUNMatrix jacobian, void* user_data,
+                     N_Vector, N_Vector, N_Vector) {
+  auto* data = static_cast<CallbackData*>(user_data);
+  double* out = SUNDenseMatrix_Data(jacobian);
+  if (!data->system->Jacobian(t, N_VGetArrayPointer(y), out)) {
+    data->last_rhs_failure = data->system->last_failure();
+    return 1;
+  }
+  return 0;
+}
+
+int RootCallback(realtype t, N_Vector y, realtype* g, void* user_data) {
+  auto* data = static_cast<CallbackData*>(user_data);
+  data->system->Roots(t, N_VGetArrayPointer(y), g);
+  return 0;
+}
+
+void ErrorHandler(int error_code, const char* module, const char* function, char* message,
+                  void* user_data) {
+  if (error_code >= 0) return;  // warnings (e.g. t + h == t) do not end the run
+  auto* data = static_cast<CallbackData*>(user_data);
+  data->last_error = fmt::format("{}::{}: {}", module, function, message);
+}
+
+void FillAbsoluteTolerances(const OdeSystem& system, double absolute_tolerance,
+                            const SerialVector& tolerances) {
+  system.ComponentScales(tolerances.data());
+  for (int i = 0; i < system.dimension(); ++i) tolerances.data()[i] *= absolute_tolerance;
+}
+
+// The common output loop: `evolve(tout, &t)` returns the SUNDIALS flag.
+template <typename Evolve, typename RootInfo>
+void RunOutputLoop(double t0, double t_end, const std::vector<double>& output_times,
+                   const SerialVector& y, int num_roots, Evolve evolve, RootInfo root_info,
+                   const Integrator::Observer& observer, int root_return,
+                   const CallbackData& data, IntegrationSummary* summary) {
+  std::vector<double> stops;
+  for (double t : output_times) {
+    if (t > t0 && t < t_end) stops.push_back(t);
+  }
+  std::sort(stops.begin(), stops.end());
+  stops.push_back(t_end);
+  double t = t0;
+  for (double tout : stops) {
+    const int flag = evolve(tout, &t);
+    summary->final_time = t;
+    if (flag == root_return) {
+      std::vector<int> found(num_roots, 0);
+      root_info(found.data());
+      for (int i = 0; i < num_roots; ++i) {
+        if (found[i] != 0) {
+          summary->root_index = i;
+          break;
+        }
+      }
+      summary->termination = TerminationType::kRootFound;
+      return;
+    }
+    if (flag < 0) {
+      summary->termination = TerminationType::kFailure;
+      summary->message = data.last_error.empty() ? fmt::format("flag {}", flag) : data.last_error;
+      if (!data.last_rhs_failure.empty()) {
+        summary->message += " (last model failure: " + data.last_rhs_failure + ")";
+      }
+      return;
+    }
+    if (observer && tout < t_end) observer(t, y.data());
+  }
+  summary->termination = TerminationType::kReachedEnd;
+}
+
+}  // namespace
+
+IntegrationSummary CvodeIntegrator::Integrate(OdeSystem& system, double t0, double t_end,
+                                              double* y_in, const std::vector<double>& output_times,
+                                              const Observer& observer) {
+  Stopwatch stopwatch;
+  const int n = system.dimension();
+  Context context;
+  SerialVector y(n, context);
+  std::copy(y_in, y_in + n, y.data());
+  SerialVector tolerances(n, context);
+  FillAbsoluteTolerances(system, options_.absolute_tolerance, tolerances);
+  const bool bdf = options_.kind == IntegratorKind::kCvodeBdf;
+  IntegratorMemory memory(CVodeCreate(bdf ? CV_BDF : CV_ADAMS, context.get()), CVodeFree,
+                          "CVodeCreate");
+  void* mem = memory.get();
+  CallbackData data;
+  data.system = &system;
+  Check(CVodeInit(mem, RhsCallback, t0, y.get()), "CVodeInit");
+  Check(CVodeSetUserData(mem, &data), "CVodeSetUserData");
+  Check(CVodeSetErrHandlerFn(mem, ErrorHandler, &data), "CVodeSetErrHandlerFn");
+  Check(CVodeSetMaxNumSteps(mem, options_.max_steps), "CVodeSetMaxNumSteps");
+  Check(CVodeSetMaxOrd(mem, options_.cvode_max_order), "CVodeSetMaxOrd");
+  Check(CVodeSetStopTime(mem, t_end), "CVodeSetStopTime");
+  if (options_.fixed_step > 0) {
+    // Loose tolerances never reject; equal bounds keep the step fixed.
+    for (int i = 0; i < n; ++i) tolerances.data()[i] = 1e3;
+    Check(CVodeSVtolerances(mem, 1e3, tolerances.get()), "CVodeSVtolerances");
+    Check(CVodeSetInitStep(mem, options_.fixed_step), "CVodeSetInitStep");
+    Check(CVodeSetMinStep(mem, options_.fixed_step), "CVodeSetMinStep");
+    Check(CVodeSetMaxStep(mem, options_.fixed_step), "CVodeSetMaxStep");
+  } else {
+    Check(CVodeSVtolerances(mem, options_.relative_tolerance, tolerances.get()),
+          "CVodeSVtolerances");
+    if (options_.initial_step > 0) {
+      Check(CVodeSetInitStep(mem, options_.initial_step), "CVodeSetInitStep");
+    }
+    if (options_.max_step > 0) Check(CVodeSetMaxStep(mem, options_.max_step), "CVodeSetMaxStep");
+  }
+  std::unique_ptr<DenseMatrix> matrix;
+  std::unique_ptr<DenseLinearSolver> linear_solver;
+  std::unique_ptr<FixedPointSolver> fixed_point;
+  if (bdf) {
+    matrix = std::make_unique<DenseMatrix>(n, context);
+    linear_solver = std::make_unique<DenseLinearSolver>(y, *matrix, context);
+    Check(CVodeSetLinearSolver(mem, linear_solver->get(), matrix->get()), "CVodeSetLinearSolver");
+    if (options_.jacobian == JacobianKind::kExact && system.has_jacobian()) {
+      Check(CVodeSetJacFn(mem, JacobianCallback), "CVodeSetJacFn");
+    }
+  } else {
+    fixed_point = std::make_unique<FixedPointSolver>(y, context);
+    Check(CVodeSetNonlinearSolver(mem, fixed_point->get()), "CVodeSetNonlinearSolver");
+  }
+  const int num_roots = system.num_roots();
+  if (num_roots > 0) Check(CVodeRootInit(mem, num_roots, RootCallback), "CVodeRootInit");
+
+  IntegrationSummary summary;
+  RunOutputLoop(
+      t0, t_end, output_times, y, num_roots,
+      [&](double tout, double* t) { return CVode(mem, tout, y.get(), t, CV_NORMAL); },
+      [&](int* found) { Check(CVodeGetRootInfo(mem, found), "CVodeGetRootInfo"); }, observer,
+      CV_ROOT_RETURN, data, &summary);
+
+  long value = 0;
+  Check(CVodeGetNumSteps(mem, &value), "CVodeGetNumSteps");
+  summary.steps = value;
+  Check(CVodeGetNumErrTestFails(mem, &value), "CVodeGetNumErrTestFails");
+  summary.rejected_steps = value;
+  Check(CVodeGetNumRhsEvals(mem, &value), "CVodeGetNumRhsEvals");
+  summary.rhs_evaluations = value;
+  Check(CVodeGetNumNonlinSolvIters(mem, &value), "CVodeGetNumNonlinSolvIters");
+  summary.nonlinear_iterations = value;
+  Check(CVodeGetNumNonlinSolvConvFails(mem, &value), "CVodeGetNumNonlinSolvConvFails");
+  summary.nonlinear_failures = value;
+  if (bdf) {
+    Check(CVodeGetNumJacEvals(mem, &value), "CVodeGetNumJacEvals");
+    summary.jacobian_evaluations = value;
+    Check(CVodeGetNumLinRhsEvals(mem, &value), "CVodeGetNumLinRhsEvals");
+    summary.rhs_evaluations += value;
+  }
+  std::copy(y.data(), y.data() + n, y_in);
+  summary.wall_time_s = stopwatch.Seconds();
+  return summary;
+}
+
+IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, double t_end,
+                                               double* y_in,
+                                               const std::vector<double>& output_times,
+                                               const Observer& observer) {
+  Stopwatch stopwatch;
+  const int n = system.dimension();
+  Context context;
+  SerialVector y(n, context);
+  std::copy(y_in, y_in + n, y.data());
+  SerialVector tolerances(n, context);
+  FillAbsoluteTolerances(system, options_.absolute_tolerance, tolerances);
+  CallbackData data;
+  data.system = &system;
+  const int num_roots = system.num_roots();
+  IntegrationSummary summary;
+
+  if (options_.kind == IntegratorKind::kArkodeErk) {
+    IntegratorMemory memory(ERKStepCreate(RhsCallback, t0, y.get(), context.get()), ERKStepFree,
+                            "ERKStepCreate");
+    void* mem = memory.get();
+    Check(ERKStepSetUserData(mem, &data), "ERKStepSetUserData");
+    Check(ERKStepSetErrHandlerFn(mem, ErrorHandler, &data), "ERKStepSetErrHandlerFn");
+    Check(ERKStepSetOrder(mem, options_.arkode_order), "ERKStepSetOrder");
+    Check(ERKStepSVtolerances(mem, options_.relative_tolerance, tolerances.get()),
+          "ERKStepSVtolerances");
+    Check(ERKStepSetMaxNumSteps(mem, options_.max_steps), "ERKStepSetMaxNumSteps");
+    Check(ERKStepSetStopTime(mem, t_end), "ERKStepSetStopTime");
+    if (options_.fixed_step > 0) {
+      Check(ERKStepSetFixedStep(mem, options_.fixed_step), "ERKStepSetFixedStep");
+    } else {
+      if (options_.initial_step > 0) {
+        Check(ERKStepSetInitStep(mem, options_.initial_step), "ERKStepSetInitStep");
+      }
+      if (options_.max_step > 0) Check(ERKStepSetMaxStep(mem, options_.max_step), "ERKStepSetMaxStep");
+    }
+    if (num_roots > 0) Check(ERKStepRootInit(mem, num_roots, RootCallback), "ERKStepRootInit");
+    RunOutputLoop(
+        t0, t_end, output_times, y, num_roots,
+        [&](double tout, double* t) { return ERKStepEvolve(mem, tout, y.get(), t, ARK_NORMAL); },
+        [&](int* found) { Check(ERKStepGetRootInfo(mem, found), "ERKStepGetRootInfo"); },
+        observer, ARK_ROOT_RETURN, data, &summary);
+    long value = 0;
+    Check(ERKStepGetNumSteps(mem, &value), "ERKStepGetNumSteps");
+    summary.steps = value;
+    Check(ERKStepGetNumErrTestFails(mem, &value), "ERKStepGetNumErrTestFails");
+    summary.rejected_steps = value;
+    Check(ERKStepGetNumRhsEvals(mem, &value), "ERKStepGetNumRhsEvals");
+    summary.rhs_evaluations = value;
+  } else {
+    IntegratorMemory memory(ARKStepCreate(nullptr, RhsCallback, t0, y.get(), context.get()),
+                            ARKStepFree, "ARKStepCreate");
+    void* mem = memory.get();
+    DenseMatrix matrix(n, context);
+    DenseLinearSolver linear_solver(y, matrix, context);
+    Check(ARKStepSetUserData(mem, &data), "ARKStepSetUserData");
+    Check(ARKStepSetErrHandlerFn(mem, ErrorHandler, &data), "ARKStepSetErrHandlerFn");
+    Check(ARKStepSetLinearSolver(mem, linear_solver.get(), matrix.get()),
+          "ARKStepSetLinearSolver");
+    if (options_.jacobian == JacobianKind::kExact && system.has_jacobian()) {
+      Check(ARKStepSetJacFn(mem, JacobianCallback), "ARKStepSetJacFn");
+    }
+    Check(ARKStepSetOrder(mem, options_.arkode_order), "ARKStepSetOrder");
+    Check(ARKStepSVtolerances(mem, options_.relative_tolerance, tolerances.get()),
+          "ARKStepSVtolerances");
+    Check(ARKStepSetMaxNumSteps(mem, options_.max_steps), "ARKStepSetMaxNumSteps");
+    Check(ARKStepSetStopTime(mem, t_end), "ARKStepSetStopTime");
+    if (options_.fixed_step > 0) {
+      Check(ARKStepSetFixedStep(mem, options_.fixed_step), "ARKStepSetFixedStep");
+      // A fixed step needs the nonlinear systems solved well below the method error.
+      Check(ARKStepSetNonlinConvCoef(mem, 1e-6), "ARKStepSetNonlinConvCoef");
+    } else {
+      if (options_.initial_step > 0) {
+        Check(ARKStepSetInitStep(mem, options_.initial_step), "ARKStepSetInitStep");
+      }
+      if (options_.max_step > 0) Check(ARKStepSetMaxStep(mem, options_.max_step), "ARKStepSetMaxStep");
+    }
+    if (num_roots > 0) Check(ARKStepRootInit(mem, num_roots, RootCallback), "ARKStepRootInit");
+    RunOutputLoop(
+        t0, t_end, output_times, y, num_roots,
+        [&](double tout, double* t) { return ARKStepEvolve(mem, tout, y.get(), t, ARK_NORMAL); },
+        [&](int* found) { Check(ARKStepGetRootInfo(mem, found), "ARKStepGetRootInfo"); },
+        observer, ARK_ROOT_RETURN, data, &summary);
+    long value = 0, explicit_evaluations = 0, implicit_evaluations = 0;
+    Check(ARKStepGetNumSteps(mem, &value), "ARKStepGetNumSteps");
+    summary.steps = value;
+    Check(ARKStepGetNumErrTestFails(mem, &value), "ARKStepGetNumErrTestFails");
+    summary.rejected_steps = value;
+    Check(ARKStepGetNumRhsEvals(mem, &explicit_evaluations, &implicit_evaluations),
+          "ARKStepGetNumRhsEvals");
+    summary.rhs_evaluations = explicit_evaluations + implicit_evaluations;
+    Check(ARKStepGetNumNonlinSolvIters(mem, &value), "ARKStepGetNumNonlinSolvIters");
+    summary.nonlinear_iterations = value;
+    Check(ARKStepGetNumNonlinSolvConvFails(mem, &value), "ARKStepGetNumNonlinSolvConvFails");
+    summary.nonlinear_failures = value;
+    Check(ARKStepGetNumJacEvals(mem, &value), "ARKStepGetNumJacEvals");
+    summary.jacobian_evaluations = value;
+    Check(ARKStepGetNumLinRhsEvals(mem, &value), "ARKStepGetNumLinRhsEvals");
+    summary.rhs_evaluations += value;
+  }
+  std::copy(y.data(), y.data() + n, y_in);
+  summary.wall_time_s = stopwatch.Seconds();
+  return summary;
+}
+
+}  // namespace granasym

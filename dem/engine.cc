@@ -1,0 +1,447 @@
+#include "dem/engine.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "common/error.h"
+
+namespace granasym::dem {
+namespace {
+
+enum Flag : unsigned { kFriction = 1, kDamping = 2, kStress = 4, kStiffness = 8 };
+
+// Minimum image of a scaled separation; |delta| < 1.5 holds because scaled
+// positions are wrapped into [0, 1) at every list build and move less than a
+// skin between builds.
+inline double MinimumImage(double delta) {
+  return delta - static_cast<double>((delta > 0.5) - (delta < -0.5));
+}
+
+inline double Sign(double x) { return static_cast<double>((x > 0) - (x < 0)); }
+
+double SphereMass(double radius, double density) {
+  return density * 4.0 / 3.0 * kPi * radius * radius * radius;
+}
+
+}  // namespace
+
+bool Material::IsValid(std::string* why) const {
+  if (!(youngs_modulus > 0)) return *why = "youngs_modulus must be > 0", false;
+  if (!(stiffness_ratio >= 0)) return *why = "stiffness_ratio must be >= 0", false;
+  if (!(friction_angle >= 0 && friction_angle < kPi / 2)) {
+    return *why = "friction_angle must be in [0, pi/2) rad", false;
+  }
+  if (!(density > 0)) return *why = "density must be > 0", false;
+  if (!(local_damping >= 0 && local_damping < 1)) {
+    return *why = "local_damping must be in [0, 1)", false;
+  }
+  return true;
+}
+
+LinearCundallStrack::Params Material::ContactParams() const {
+  return {youngs_modulus, stiffness_ratio, std::tan(friction_angle)};
+}
+
+bool LinearCundallStrack::Params::IsValid(std::string* why) const {
+  if (!(youngs_modulus > 0)) return *why = "youngs_modulus must be > 0", false;
+  if (!(stiffness_ratio >= 0)) return *why = "stiffness_ratio must be >= 0", false;
+  if (!(friction_coefficient >= 0)) return *why = "friction_coefficient must be >= 0", false;
+  return true;
+}
+
+bool Engine::Options::IsValid(std::string* why) const {
+  if (!(time_step > 0)) return *why = "time_step must be > 0", false;
+  if (!(skin_fraction > 0 && skin_fraction <= 2)) return *why = "skin_fraction must be in (0, 2]", false;
+  if (threads < 1) return *why = "threads must be >= 1", false;
+  return true;
+}
+
+ContactDurations ComputeContactDurations(const std::vector<double>& radii,
+                                         const Material& material) {
+  GRANASYM_CHECK(!radii.empty());
+  const auto [smallest, largest] = std::minmax_element(radii.begin(), radii.end());
+  auto duration = [&](double r, bool reduced) {
+    const double k_n = material.youngs_modulus * r;  // 2E r r/(2r)
+    const double m = SphereMass(r, material.density);
+    return kPi / std::sqrt(k_n / (reduced ? 0.5 * m : m));
+  };
+  ContactDurations d;
+  d.smallest_reduced_mass = duration(*smallest, true);
+  d.largest_reduced_mass = duration(*largest, true);
+  d.smallest_single_mass = duration(*smallest, false);
+  d.largest_single_mass = duration(*largest, false);
+  // The two smallest spheres form the stiffest pair relative to their mass.
+  std::vector<double> two(2);
+  std::partial_sort_copy(radii.begin(), radii.end(), two.begin(), two.end());
+  if (radii.size() == 1) two[1] = two[0];
+  const double k_n = 2.0 * material.youngs_modulus * two[0] * two[1] / (two[0] + two[1]);
+  const double inverse_mass =
+      1.0 / SphereMass(two[0], material.density) + 1.0 / SphereMass(two[1], material.density);
+  const double factor =
+      material.friction_angle > 0 ? std::max(1.0, 3.5 * material.stiffness_ratio) : 1.0;
+  d.critical_time_step = 2.0 / std::sqrt(k_n * inverse_mass * factor);
+  return d;
+}
+
+Engine::Engine(const Packing& packing, const Material& material, const Options& options)
+    : material_(material),
+      options_(options),
+      law_(material.ContactParams(), options.time_step),
+      cell_(packing.cell) {
+  std::string why;
+  if (!material.IsValid(&why)) throw InputError("material: " + why);
+  if (!options.IsValid(&why)) throw InputError("engine options: " + why);
+  GRANASYM_CHECK(packing.size() > 0) << "empty packing";
+  GRANASYM_CHECK(packing.size() < (size_t{1} << 31)) << "too many particles for 32-bit indices";
+  friction_ = material.friction_angle > 0 && material.stiffness_ratio > 0;
+  damping_ = material.local_damping > 0;
+  neighbors_.set_track_shear(friction_);
+  const size_t n = packing.size();
+  const double min_radius = *std::min_element(packing.radii.begin(), packing.radii.end());
+  skin_ = options.skin_fraction * 2.0 * min_radius;
+
+  // Order particles along the bins of the first neighbour-list build so that
+  // neighbours are close in memory; ids keep the input order.
+  const double max_radius = *std::max_element(packing.radii.begin(), packing.radii.end());
+  std::array<int, 3> bins;
+  for (int d = 0; d < 3; ++d) bins[d] = std::max(1, static_cast<int>(cell_[d] / (2 * max_radius)));
+  std::vector<int64_t> bin(n);
+  for (size_t i = 0; i < n; ++i) {
+    int64_t index = 0;
+    for (int d = 0; d < 3; ++d) {
+      const double s = packing.positions[i][d] / cell_[d];
+      index = index * bins[d] + std::min(bins[d] - 1, static_cast<int>((s - std::floor(s)) * bins[d]));
+    }
+    bin[i] = index;
+  }
+  std::vector<int64_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int64_t a, int64_t b) { return bin[a] < bin[b]; });
+
+  position_.resize(n);
+  velocity_.resize(n);
+  spin_.resize(n);
+  force_.resize(n);
+  torque_.resize(n);
+  id_.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const int64_t i = order[k];
+    const double r = packing.radii[i];
+    const double mass = SphereMass(r, material.density);
+    Vec4& s = position_[k];
+    s.x = packing.positions[i][0] / cell_[0];
+    s.y = packing.positions[i][1] / cell_[1];
+    s.z = packing.positions[i][2] / cell_[2];
+    s.x -= std::floor(s.x);
+    s.y -= std::floor(s.y);
+    s.z -= std::floor(s.z);
+    s.w = r;
+    velocity_[k].w = 1.0 / mass;
+    spin_[k].w = 1.0 / (0.4 * mass * r * r);
+    id_[k] = i;
+    solid_volume_ += 4.0 / 3.0 * kPi * r * r * r;
+  }
+  const int extra = options.threads - 1;
+  thread_force_.assign(extra, std::vector<Vec4>(n));
+  thread_torque_.assign(friction_ ? extra : 0, std::vector<Vec4>(n));
+  thread_sums_.assign(options.threads, Sums{});
+}
+
+void Engine::SetVelocity(size_t i, Vec3 v) {
+  velocity_[i].x = v.x;
+  velocity_[i].y = v.y;
+  velocity_[i].z = v.z;
+}
+
+void Engine::SetSpin(size_t i, Vec3 w) {
+  spin_[i].x = w.x;
+  spin_[i].y = w.y;
+  spin_[i].z = w.z;
+}
+
+template <unsigned kFlags>
+void Engine::ComputeForcesImpl() {
+  constexpr bool kUseFriction = (kFlags & kFriction) != 0;
+  constexpr bool kSumStress = (kFlags & kStress) != 0;
+  constexpr bool kSumStiffness = (kFlags & kStiffness) != 0;
+  const int64_t n = static_cast<int64_t>(position_.size());
+  const int threads = options_.threads;
+  const double lx = cell_[0], ly = cell_[1], lz = cell_[2];
+  const double gx = gradient_[0], gy = gradient_[1], gz = gradient_[2];
+  const int64_t* offsets = neighbors_.offsets().data();
+  const int32_t* neighbor = neighbors_.neighbors().data();
+  Vec3* shear = kUseFriction ? neighbors_.shear().data() : nullptr;
+  const Vec4* position = position_.data();
+  const Vec4* velocity = velocity_.data();
+  const Vec4* spin = spin_.data();
+
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    const int64_t begin = n * t / threads, end = n * (t + 1) / threads;
+    Vec4* force = t == 0 ? force_.data() : thread_force_[t - 1].data();
+    Vec4* torque = nullptr;
+    if constexpr (kUseFriction) torque = t == 0 ? torque_.data() : thread_torque_[t - 1].data();
+    // Pairs (i, j > i) of this thread touch only particles >= begin.
+    const int64_t zero_from = t == 0 ? 0 : begin;
+    std::fill(force + zero_from, force + n, Vec4{});
+    if constexpr (kUseFriction) std::fill(torque + zero_from, torque + n, Vec4{});
+    Sums local;
+
+    for (int64_t i = begin; i < end; ++i) {
+      const Vec4 pi = position[i];
+      Vec3 force_i{}, torque_i{};
+      for (int64_t p = offsets[i]; p < offsets[i + 1]; ++p) {
+        const int32_t j = neighbor[p];
+        const Vec4 pj = position[j];
+        const Vec3 branch = {lx * MinimumImage(pj.x - pi.x), ly * MinimumImage(pj.y - pi.y),
+                             lz * MinimumImage(pj.z - pi.z)};
+        const double distance2 = Dot(branch, branch);
+        const double reach = pi.w + pj.w;
+        if (distance2 >= reach * reach) {
+          if constexpr (kUseFriction) shear[p] = Vec3{};
+          continue;
+        }
+        LinearCundallStrack::Pair pair;
+        pair.branch = branch;
+        pair.distance = std::sqrt(distance2);
+        pair.radius_i = pi.w;
+        pair.radius_j = pj.w;
+        if constexpr (kUseFriction) {
+          const Vec4 vi = velocity[i], vj = velocity[j];
+          pair.centre_velocity = {vj.x - vi.x + gx * branch.x, vj.y - vi.y + gy * branch.y,
+                                  vj.z - vi.z + gz * branch.z};
+          pair.spin_i = Xyz(spin[i]);
+          pair.spin_j = Xyz(spin[j]);
+        }
+        const LinearCundallStrack::Result r =
+            law_.Evaluate<kUseFriction>(pair, kUseFriction ? &shear[p] : nullptr);
+        force_i = force_i + r.force_i;
+        force[j].x -= r.force_i.x;
+        force[j].y -= r.force_i.y;
+        force[j].z -= r.force_i.z;
+        if constexpr (kUseFriction) {
+          torque_i = torque_i + r.torque_i;
+          torque[j].x += r.torque_j.x;
+          torque[j].y += r.torque_j.y;
+          torque[j].z += r.torque_j.z;
+        }
+        if constexpr (kSumStress) {
+          // σ = (1/V) Σ F_j ⊗ l with F_j = −F_i the force on j (compression
+          // positive for repulsion); symmetric part.
+          const Vec3 f = (-1.0) * r.force_i;
+          local.stress[0] += f.x * branch.x;
+          local.stress[1] += f.y * branch.y;
+          local.stress[2] += f.z * branch.z;
+          local.stress[3] += 0.5 * (f.x * branch.y + f.y * branch.x);
+          local.stress[4] += 0.5 * (f.x * branch.z + f.z * branch.x);
+          local.stress[5] += 0.5 * (f.y * branch.z + f.z * branch.y);
+          local.force_sum += Norm(f);
+          ++local.contacts;
+        }
+        if constexpr (kSumStiffness) {
+          // Affine response of the normal force: dσ_aa/dε_bb = (1/V) Σ k_n l_a² l_b² / |l|².
+          const double k = law_.NormalStiffness(pi.w, pj.w) / distance2;
+          const double xx = branch.x * branch.x, yy = branch.y * branch.y,
+                       zz = branch.z * branch.z;
+          local.stiffness[0] += k * xx * xx;
+          local.stiffness[1] += k * yy * yy;
+          local.stiffness[2] += k * zz * zz;
+          local.stiffness[3] += k * xx * yy;
+          local.stiffness[4] += k * xx * zz;
+          local.stiffness[5] += k * yy * zz;
+        }
+      }
+      force[i].x += force_i.x;
+      force[i].y += force_i.y;
+      force[i].z += force_i.z;
+      if constexpr (kUseFriction) {
+        torque[i].x += torque_i.x;
+        torque[i].y += torque_i.y;
+        torque[i].z += torque_i.z;
+      }
+    }
+    thread_sums_[t] = local;
+#pragma omp barrier
+    // Add the other threads' contributions in a fixed order.
+    if (threads > 1) {
+#pragma omp for schedule(static)
+      for (int64_t i = 0; i < n; ++i) {
+        for (int u = 1; u < threads; ++u) {
+          if (i < n * u / threads) continue;
+          const Vec4& f = thread_force_[u - 1][i];
+          force_[i].x += f.x;
+          force_[i].y += f.y;
+          force_[i].z += f.z;
+          if constexpr (kUseFriction) {
+            const Vec4& m = thread_torque_[u - 1][i];
+            torque_[i].x += m.x;
+            torque_[i].y += m.y;
+            torque_[i].z += m.z;
+          }
+        }
+      }
+    }
+  }
+  if constexpr (kSumStress || kSumStiffness) {
+    Sums total;
+    for (const Sums& s : thread_sums_) {
+      for (int k = 0; k < 6; ++k) {
+        total.stress[k] += s.stress[k];
+        total.stiffness[k] += s.stiffness[k];
+      }
+      total.contacts += s.contacts;
+      total.force_sum += s.force_sum;
+    }
+    const double inverse_volume = 1.0 / volume();
+    for (int k = 0; k < 6; ++k) {
+      total.stress[k] *= inverse_volume;
+      total.stiffness[k] *= inverse_volume;
+    }
+    sums_ = total;
+  }
+}
+
+void Engine::ComputeForces(Request request) {
+  if (neighbors_.NeedsRebuild(max_displacement_, cell_)) {
+    for (Vec4& s : position_) {
+      s.x -= std::floor(s.x);
+      s.y -= std::floor(s.y);
+      s.z -= std::floor(s.z);
+    }
+    neighbors_.Build(position_, cell_, skin_, options_.threads);
+    max_displacement_ = 0.0;
+  }
+  const unsigned flags = (friction_ ? kFriction : 0u) | (request.stress ? kStress : 0u) |
+                         (request.stiffness ? kStiffness : 0u);
+  using Kernel = void (Engine::*)();
+  static constexpr Kernel kKernels[16] = {
+      &Engine::ComputeForcesImpl<0>,  &Engine::ComputeForcesImpl<1>,
+      &Engine::ComputeForcesImpl<2>,  &Engine::ComputeForcesImpl<3>,
+      &Engine::ComputeForcesImpl<4>,  &Engine::ComputeForcesImpl<5>,
+      &Engine::ComputeForcesImpl<6>,  &Engine::ComputeForcesImpl<7>,
+      &Engine::ComputeForcesImpl<8>,  &Engine::ComputeForcesImpl<9>,
+      &Engine::ComputeForcesImpl<10>, &Engine::ComputeForcesImpl<11>,
+      &Engine::ComputeForcesImpl<12>, &Engine::ComputeForcesImpl<13>,
+      &Engine::ComputeForcesImpl<14>, &Engine::ComputeForcesImpl<15>};
+  (this->*kKernels[flags])();
+}
+
+template <unsigned kFlags>
+void Engine::IntegrateImpl() {
+  constexpr bool kUseFriction = (kFlags & kFriction) != 0;
+  constexpr bool kUseDamping = (kFlags & kDamping) != 0;
+  const int64_t n = static_cast<int64_t>(position_.size());
+  const double dt = options_.time_step;
+  const double half_dt = 0.5 * dt;
+  const double chi = material_.local_damping;
+  const double ix = 1.0 / cell_[0], iy = 1.0 / cell_[1], iz = 1.0 / cell_[2];
+  const double lx = cell_[0], ly = cell_[1], lz = cell_[2];
+  const Vec4* reference = neighbors_.build_positions().data();
+  double max2 = 0.0;
+#pragma omp parallel for num_threads(options_.threads) schedule(static) reduction(max : max2)
+  for (int64_t i = 0; i < n; ++i) {
+    Vec4& v = velocity_[i];
+    const Vec4& f = force_[i];
+    double ax = f.x * v.w, ay = f.y * v.w, az = f.z * v.w;
+    if constexpr (kUseDamping) {
+      ax *= 1.0 - chi * Sign(ax * (v.x + half_dt * ax));
+      ay *= 1.0 - chi * Sign(ay * (v.y + half_dt * ay));
+      az *= 1.0 - chi * Sign(az * (v.z + half_dt * az));
+    }
+    v.x += dt * ax;
+    v.y += dt * ay;
+    v.z += dt * az;
+    Vec4& s = position_[i];
+    s.x += dt * v.x * ix;
+    s.y += dt * v.y * iy;
+    s.z += dt * v.z * iz;
+    const double dx = lx * (s.x - reference[i].x), dy = ly * (s.y - reference[i].y),
+                 dz = lz * (s.z - reference[i].z);
+    max2 = std::max(max2, dx * dx + dy * dy + dz * dz);
+    if constexpr (kUseFriction) {
+      Vec4& w = spin_[i];
+      const Vec4& m = torque_[i];
+      double bx = m.x * w.w, by = m.y * w.w, bz = m.z * w.w;
+      if constexpr (kUseDamping) {
+        bx *= 1.0 - chi * Sign(bx * (w.x + half_dt * bx));
+        by *= 1.0 - chi * Sign(by * (w.y + half_dt * by));
+        bz *= 1.0 - chi * Sign(bz * (w.z + half_dt * bz));
+      }
+      w.x += dt * bx;
+      w.y += dt * by;
+      w.z += dt * bz;
+    }
+  }
+  max_displacement_ = std::sqrt(max2);
+  for (int d = 0; d < 3; ++d) cell_[d] += dt * gradient_[d] * cell_[d];
+  time_ += dt;
+  ++step_;
+}
+
+void Engine::Integrate() {
+  using Kernel = void (Engine::*)();
+  static constexpr Kernel kKernels[4] = {&Engine::IntegrateImpl<0>, &Engine::IntegrateImpl<1>,
+                                         &Engine::IntegrateImpl<2>, &Engine::IntegrateImpl<3>};
+  const unsigned flags = (friction_ ? kFriction : 0u) | (damping_ ? kDamping : 0u);
+  (this->*kKernels[flags])();
+}
+
+void Engine::Step(Request request) {
+  ComputeForces(request);
+  Integrate();
+}
+
+void Engine::Step() { Step(Request{}); }
+
+Packing Engine::CurrentPacking() const {
+  Packing packing;
+  packing.cell = cell_;
+  const size_t n = size();
+  packing.positions.resize(n);
+  packing.radii.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const int64_t i = id_[k];
+    const Vec4& s = position_[k];
+    packing.positions[i] = {cell_[0] * (s.x - std::floor(s.x)), cell_[1] * (s.y - std::floor(s.y)),
+                            cell_[2] * (s.z - std::floor(s.z))};
+    packing.radii[i] = s.w;
+  }
+  return packing;
+}
+
+Engine::State Engine::Save() const {
+  State state;
+  state.position = position_;
+  state.velocity = velocity_;
+  state.spin = spin_;
+  state.id = id_;
+  state.cell = cell_;
+  state.gradient = gradient_;
+  state.time = time_;
+  state.step = step_;
+  state.max_displacement = max_displacement_;
+  state.neighbors = neighbors_.Save();
+  return state;
+}
+
+void Engine::Restore(State state) {
+  GRANASYM_CHECK(state.position.size() == position_.size())
+      << "checkpoint has " << state.position.size() << " particles, the engine "
+      << position_.size();
+  position_ = std::move(state.position);
+  velocity_ = std::move(state.velocity);
+  spin_ = std::move(state.spin);
+  id_ = std::move(state.id);
+  cell_ = state.cell;
+  gradient_ = state.gradient;
+  time_ = state.time;
+  step_ = state.step;
+  max_displacement_ = state.max_displacement;
+  neighbors_.Restore(std::move(state.neighbors));
+}
+
+}  // namespace granasym::dem

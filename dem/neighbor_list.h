@@ -1,0 +1,69 @@
+// Verlet neighbour list of a periodic, affinely deforming box, built from a
+// cell list; carries the shear-force history of each pair across rebuilds.
+//
+// Half list in CSR form: for particle i the neighbours j > i lie in
+// neighbors()[offsets()[i] .. offsets()[i+1]), ascending, each with its stored
+// shear force. A pair is listed when its minimum-image gap is below the skin.
+// The list stays valid while (Rebuild criterion, rigorous for a diagonal cell)
+//   2 max_i |δx_i| + ε (2 r_max + skin) < skin,
+// δx_i being the non-affine displacement since the build measured in the
+// current metric and ε the largest relative change of a cell side.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "dem/vec.h"
+
+namespace granasym::dem {
+
+class NeighborList {
+ public:
+  // `scaled_positions` are positions divided by the cell sides (any real
+  // value; periodic images are found by rounding). `radii` in metres.
+  void Build(const std::vector<Vec4>& scaled_positions, const std::array<double, 3>& cell,
+             double skin, int threads);
+
+  // True when the list may miss a contact for the given current state.
+  bool NeedsRebuild(double max_displacement, const std::array<double, 3>& cell) const;
+
+  const std::vector<int64_t>& offsets() const { return offsets_; }
+  const std::vector<int32_t>& neighbors() const { return neighbors_; }
+  std::vector<Vec3>& shear() { return shear_; }
+  const std::vector<Vec3>& shear() const { return shear_; }
+  const std::vector<Vec4>& build_positions() const { return build_positions_; }
+  size_t pair_count() const { return neighbors_.size(); }
+  int64_t builds() const { return builds_; }
+  double skin() const { return skin_; }
+
+  // Keep or drop the shear history (a scene without friction keeps none).
+  void set_track_shear(bool track) { track_shear_ = track; }
+
+  // Complete state for checkpoints, so that a restart continues with the
+  // same pair order (and therefore bit-identical sums).
+  struct State {
+    std::vector<int64_t> offsets;
+    std::vector<int32_t> neighbors;
+    std::vector<Vec3> shear;
+    std::vector<Vec4> build_positions;
+    std::array<double, 3> build_cell{};
+    double skin = 0, max_radius = 0;
+    int64_t builds = 0;
+  };
+  State Save() const;
+  void Restore(State state);
+
+ private:
+  std::vector<int64_t> offsets_;
+  std::vector<int32_t> neighbors_;
+  std::vector<Vec3> shear_;
+  std::vector<Vec4> build_positions_;  // scaled positions and radius at the build
+  std::array<double, 3> build_cell_{};
+  double skin_ = 0;
+  double max_radius_ = 0;
+  int64_t builds_ = 0;
+  bool track_shear_ = true;
+};
+
+}  // namespace granasym::dem

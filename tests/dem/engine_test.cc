@@ -1,0 +1,205 @@
+#include "dem/engine.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dem/contact_statistics.h"
+
+namespace granasym::dem {
+namespace {
+
+Material Elastic(double friction_angle = 0.0) {
+  Material material;
+  material.youngs_modulus = 500e6;
+  material.stiffness_ratio = 0.3;
+  material.friction_angle = friction_angle;
+  material.density = 2650.0;
+  material.local_damping = 0.0;
+  return material;
+}
+
+Packing TwoSpheres(std::array<double, 3> a, std::array<double, 3> b, double radius,
+                   double side = 0.02) {
+  Packing packing;
+  packing.cell = {side, side, side};
+  packing.positions = {a, b};
+  packing.radii = {radius, radius};
+  return packing;
+}
+
+Engine::Options StepOptions(double dt, int threads = 1) {
+  Engine::Options options;
+  options.time_step = dt;
+  options.threads = threads;
+  return options;
+}
+
+// Index in the engine of the sphere with input index `id`.
+size_t Slot(const Engine& engine, int64_t id) {
+  for (size_t k = 0; k < engine.size(); ++k) {
+    if (engine.ids()[k] == id) return k;
+  }
+  return engine.size();
+}
+
+TEST(EngineOptions, DefaultOptionsAreValid) {
+  std::string why;
+  EXPECT_TRUE(Engine::Options{}.IsValid(&why)) << why;
+  EXPECT_TRUE(Material{}.IsValid(&why)) << why;
+}
+
+TEST(Engine, TwoSphereNormalImpactIsElasticWithTheAnalyticContactDuration) {
+  const double r = 0.5e-3, speed = 0.05;
+  const Material material = Elastic(0.5);  // friction present, but the impact is head-on
+  const double mass = material.density * 4.0 / 3.0 * kPi * r * r * r;
+  const double omega = std::sqrt(material.youngs_modulus * r / (0.5 * mass));
+  const double contact_duration = kPi / omega;
+  const double dt = contact_duration / 2000.0;
+  Engine engine(TwoSpheres({0.008, 0.01, 0.01}, {0.008 + 2 * r + 2e-6, 0.01, 0.01}, r), material,
+                StepOptions(dt));
+  engine.SetVelocity(Slot(engine, 0), {speed, 0, 0});
+  engine.SetVelocity(Slot(engine, 1), {-speed, 0, 0});
+  const double energy_before = KineticEnergy(engine);
+  int contact_steps = 0;
+  bool touched = false;
+  for (int step = 0; step < 200000; ++step) {
+    engine.Step({true, false});
+    if (engine.sums().contacts > 0) {
+      ++contact_steps;
+      touched = true;
+    } else if (touched) {
+      break;
+    }
+  }
+  ASSERT_TRUE(touched);
+  EXPECT_NEAR(contact_steps * dt, contact_duration, 2.0 * dt);
+  const double energy_after = KineticEnergy(engine);
+  EXPECT_NEAR(energy_after / energy_before, 1.0, 1e-6);
+  const double restitution = -engine.velocities()[Slot(engine, 0)].x / speed;
+  EXPECT_NEAR(restitution, 1.0, 1e-6);
+}
+
+TEST(ContactLaw, SlidingIsCappedAtTheCoulombLimitAgainstTheMotion) {
+  const double mu = std::tan(0.5);
+  LinearCundallStrack law({500e6, 0.3, mu}, 1e-7);
+  const double r = 0.5e-3, overlap = 1e-6;
+  LinearCundallStrack::Pair pair;
+  pair.branch = {2 * r - overlap, 0, 0};
+  pair.distance = 2 * r - overlap;
+  pair.radius_i = pair.radius_j = r;
+  pair.centre_velocity = {0, 1.0, 0};  // j slides along +y
+  Vec3 shear{};
+  // One small increment: elastic, F_s = k_s Δu_s on i along +y.
+  LinearCundallStrack::Result result = law.Evaluate<true>(pair, &shear);
+  const double k_n = law.NormalStiffness(r, r);
+  EXPECT_NEAR(shear.y, 0.3 * k_n * 1.0 * 1e-7, 1e-18);
+  // Keep sliding until the cap: |F_s| = μ F_n, along the motion of j (drags i).
+  for (int k = 0; k < 2000; ++k) result = law.Evaluate<true>(pair, &shear);
+  EXPECT_NEAR(Norm(shear), mu * k_n * overlap, 1e-12 * mu * k_n * overlap);
+  EXPECT_GT(shear.y, 0.0);
+  EXPECT_NEAR(shear.x, 0.0, 1e-20);
+  // Torque on i: (r − u/2) n × F_s.
+  EXPECT_NEAR(result.torque_i.z, (r - 0.5 * overlap) * shear.y, 1e-18);
+}
+
+TEST(ContactLaw, RigidRotationOfThePairKeepsTheShearForceMagnitude) {
+  LinearCundallStrack law({500e6, 0.3, 10.0}, 1e-6);
+  const double r = 0.5e-3, overlap = 1e-6, d = 2 * r - overlap;
+  // Rigid rotation about z at rate w: centres move perpendicular to l, both
+  // spheres spin at w, so the contact point has no relative slip.
+  const double w = 100.0;
+  Vec3 shear{0, 1e-3, 0};
+  double angle = 0.0;
+  Vec3 n{};
+  for (int k = 0; k < 1000; ++k) {
+    LinearCundallStrack::Pair pair;
+    n = {std::cos(angle), std::sin(angle), 0};
+    pair.branch = d * n;
+    pair.distance = d;
+    pair.radius_i = pair.radius_j = r;
+    pair.centre_velocity = (w * d) * Vec3{-n.y, n.x, 0};
+    pair.spin_i = pair.spin_j = {0, 0, w};
+    law.Evaluate<true>(pair, &shear);
+    angle += w * 1e-6;
+  }
+  // The force turned with the pair (0.1 rad) and kept its magnitude.
+  EXPECT_NEAR(Norm(shear), 1e-3, 2e-6);
+  EXPECT_NEAR(Dot(shear, n), 0.0, 1e-15);
+  EXPECT_NEAR(shear.x, -1e-3 * std::sin(angle - w * 1e-6), 1e-6);
+}
+
+// Forces on two overlapping spheres placed at `a` and `a + offset`.
+std::array<Vec3, 2> PairForces(std::array<double, 3> a, std::array<double, 3> offset) {
+  std::array<double, 3> b = {a[0] + offset[0], a[1] + offset[1], a[2] + offset[2]};
+  const double side = 0.01;
+  for (double& x : b) x -= side * std::floor(x / side);
+  Engine engine(TwoSpheres(a, b, 0.5e-3, side), Elastic(0.5), StepOptions(1e-8));
+  engine.SetVelocity(Slot(engine, 1), {0.01, -0.02, 0.03});
+  engine.Step({true, false});
+  engine.ComputeForces({true, false});
+  const auto& f = engine.forces();
+  return {Xyz(f[Slot(engine, 0)]), Xyz(f[Slot(engine, 1)])};
+}
+
+TEST(Engine, ContactAcrossEachFaceAndCornerEqualsTheSameContactInside) {
+  const std::array<double, 3> offset = {0.6e-3, 0.5e-3, 0.4e-3};  // |offset| < 2r: overlapping
+  const auto inside = PairForces({0.004, 0.004, 0.004}, offset);
+  ASSERT_GT(Norm(inside[0]), 0.0);
+  const std::array<std::array<double, 3>, 4> placements = {{{0.0098, 0.004, 0.004},
+                                                            {0.004, 0.0098, 0.004},
+                                                            {0.004, 0.004, 0.0098},
+                                                            {0.0098, 0.0098, 0.0098}}};
+  for (const auto& a : placements) {
+    const auto across = PairForces(a, offset);
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_NEAR(across[k].x, inside[k].x, 1e-9 * Norm(inside[0]));
+      EXPECT_NEAR(across[k].y, inside[k].y, 1e-9 * Norm(inside[0]));
+      EXPECT_NEAR(across[k].z, inside[k].z, 1e-9 * Norm(inside[0]));
+    }
+  }
+}
+
+TEST(Engine, LoveWeberStressOfOneNormalContact) {
+  const double r = 0.5e-3, overlap = 2e-6, side = 0.01;
+  Engine engine(TwoSpheres({0.004, 0.005, 0.005}, {0.004 + 2 * r - overlap, 0.005, 0.005}, r, side),
+                Elastic(0.5), StepOptions(1e-8));
+  engine.ComputeForces({true, false});
+  const double k_n = 500e6 * r;
+  const double expected = k_n * overlap * (2 * r - overlap) / (side * side * side);
+  EXPECT_NEAR(engine.sums().stress[0], expected, 1e-9 * expected);
+  for (int k = 1; k < 6; ++k) EXPECT_NEAR(engine.sums().stress[k], 0.0, 1e-12 * expected);
+  EXPECT_EQ(engine.sums().contacts, 1);
+  // Compression positive: the stress of a repulsive contact is positive.
+  EXPECT_GT(engine.sums().stress[0], 0.0);
+}
+
+TEST(Engine, AffineStretchingOfAContactFreeGasProducesNoForce) {
+  Packing packing;
+  packing.cell = {0.01, 0.01, 0.01};
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      for (int k = 0; k < 4; ++k) {
+        packing.positions.push_back({0.0025 * i + 0.001, 0.0025 * j + 0.001, 0.0025 * k + 0.001});
+        packing.radii.push_back(0.4e-3);
+      }
+    }
+  }
+  Material material = Elastic(0.5);
+  material.local_damping = 0.5;
+  Engine engine(packing, material, StepOptions(1e-7));
+  const std::vector<Vec4> before = engine.scaled_positions();
+  engine.SetVelocityGradient({50.0, -30.0, 20.0});
+  for (int step = 0; step < 1000; ++step) engine.Step({true, false});
+  EXPECT_EQ(engine.sums().contacts, 0);
+  for (size_t i = 0; i < engine.size(); ++i) {
+    EXPECT_EQ(Norm(Xyz(engine.forces()[i])), 0.0);
+    EXPECT_EQ(Norm(Xyz(engine.velocities()[i])), 0.0);
+    // Scaled positions are unchanged: the particles moved affinely.
+    EXPECT_DOUBLE_EQ(engine.scaled_positions()[i].x, before[i].x);
+  }
+  EXPECT_NEAR(engine.cell()[0], 0.01 * std::pow(1 + 50.0 * 1e-7, 1000), 1e-15);
+}
+
+}  // namespace
+}  // namespace granasym::dem
