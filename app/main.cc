@@ -1,1 +1,137 @@
-int main() { return 0; }
+// granasym: the command-line program. It parses and validates arguments and
+// calls the libraries; errors in user input end with a message and status 2.
+#include <CLI/CLI.hpp>
+#include <omp.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "common/error.h"
+#include "common/hdf5_file.h"
+#include "common/time_series.h"
+#include "dem/packing.h"
+#include "dem/scene.h"
+#include "dem/simulation.h"
+
+#ifdef GRANASYM_HAVE_CONSTITUTIVE
+#include "app/model_commands.h"
+#endif
+
+namespace granasym {
+namespace {
+
+void RegisterDemCommands(CLI::App& app) {
+  CLI::App* dem = app.add_subcommand("dem", "discrete element runs on a periodic cell");
+  dem->require_subcommand(1);
+
+  // granasym dem generate
+  CLI::App* generate = dem->add_subcommand(
+      "generate", "generate a packing from a grain-size table and write it as plain text");
+  static dem::GenerationOptions generation;
+  static std::string gsd_path, packing_out;
+  static double cell_mm = 31.0;
+  static int64_t count = 150000;
+  generate->add_option("--count", count, "number of spheres")->check(CLI::Range(int64_t{2}, int64_t{2000000000}));
+  generate->add_option("--cell-mm", cell_mm, "side of the periodic cube (mm)")->check(CLI::PositiveNumber);
+  generate->add_option("--gsd", gsd_path,
+                       "grain-size table (CSV: diameter_mm,percent_passing_by_mass); default: "
+                       "the reduced GSD of Zbraslav sand");
+  generate->add_option("--seed", generation.seed, "random placement seed");
+  generate->add_option("--out", packing_out, "packing file to write (N Lx Ly Lz / x y z r, metres)")
+      ->required();
+  generate->callback([] {
+    const dem::GrainSizeDistribution gsd = gsd_path.empty()
+                                               ? dem::GrainSizeDistribution::Default()
+                                               : dem::GrainSizeDistribution::ReadCsv(gsd_path);
+    generation.count = static_cast<size_t>(count);
+    generation.cell_size = cell_mm * 1e-3;
+    dem::GenerationReport report;
+    const dem::Packing packing = dem::GeneratePacking(gsd, generation, &report);
+    packing.WriteText(packing_out);
+    std::printf("%swritten to %s\n", report.Table().c_str(), packing_out.c_str());
+  });
+
+  // granasym dem run
+  CLI::App* run = dem->add_subcommand("run", "run a scene file (TOML) and write one HDF5 result");
+  static std::string scene_path;
+  static dem::RunOptions run_options;
+  run->add_option("scene", scene_path, "scene file (TOML)")->required()->check(CLI::ExistingFile);
+  run->add_option("--out", run_options.output_path, "result file (HDF5)");
+  run->add_option("--threads", run_options.threads, "OpenMP threads (default: the scene's)")
+      ->check(CLI::Range(1, 1024));
+  run->add_flag("--restart", run_options.restart,
+                "continue from the checkpoint written next to --out");
+  run->add_flag("--quiet", run_options.quiet, "no progress output");
+  run->add_flag("--keep-checkpoint", run_options.keep_checkpoint,
+                "keep the checkpoint after a completed run");
+  run->callback([] {
+    const dem::Scene scene = dem::Scene::Load(scene_path);
+    const dem::RunSummary summary = dem::RunScene(scene, run_options);
+    std::printf("%s\nresults: %s\n", summary.OneLine().c_str(), run_options.output_path.c_str());
+    if (summary.termination == dem::Termination::kInterrupted) throw CLI::RuntimeError(130);
+    if (summary.termination == dem::Termination::kFailed) throw CLI::RuntimeError(3);
+  });
+}
+
+void RegisterExportCommand(CLI::App& app) {
+  CLI::App* exporter =
+      app.add_subcommand("export", "export a result file: time series as CSV, final packing as text");
+  static std::string input, csv_path, packing_path;
+  exporter->add_option("result", input, "result file (HDF5)")->required()->check(CLI::ExistingFile);
+  exporter->add_option("--csv", csv_path, "write the time series as CSV with a header row");
+  exporter->add_option("--packing", packing_path,
+                       "write the final particle state as a plain-text packing");
+  exporter->callback([] {
+    if (csv_path.empty() && packing_path.empty()) {
+      throw InputError("export: give --csv FILE and/or --packing FILE");
+    }
+    const Hdf5File file = Hdf5File::OpenRead(input);
+    if (!csv_path.empty()) {
+      const std::string group = file.Exists("/series") ? "/series" : "";
+      if (group.empty()) throw InputError(input + ": no /series group to export");
+      TimeSeries::Read(file, group).WriteCsv(csv_path);
+      std::printf("time series written to %s\n", csv_path.c_str());
+    }
+    if (!packing_path.empty()) {
+      if (!file.Exists("/final_state/positions")) {
+        throw InputError(input + ": no /final_state to export (not a DEM result file)");
+      }
+      dem::Packing packing;
+      const std::vector<double> cell = file.ReadDoubles("/final_state/cell");
+      packing.cell = {cell.at(0), cell.at(1), cell.at(2)};
+      size_t rows = 0, cols = 0;
+      const std::vector<double> x = file.ReadMatrix("/final_state/positions", &rows, &cols);
+      packing.radii = file.ReadDoubles("/final_state/radii");
+      for (size_t i = 0; i < rows; ++i) packing.positions.push_back({x[3 * i], x[3 * i + 1], x[3 * i + 2]});
+      packing.WriteText(packing_path);
+      std::printf("final packing written to %s\n", packing_path.c_str());
+    }
+  });
+}
+
+}  // namespace
+}  // namespace granasym
+
+int main(int argc, char** argv) {
+  CLI::App app{"granasym: asymptotic behaviour of granular materials (DEM, constitutive models, "
+               "calibration)"};
+  app.require_subcommand(1);
+  granasym::RegisterDemCommands(app);
+  granasym::RegisterExportCommand(app);
+#ifdef GRANASYM_HAVE_CONSTITUTIVE
+  granasym::RegisterModelCommands(app);
+#endif
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    return app.exit(error);
+  } catch (const granasym::InputError& error) {
+    std::fprintf(stderr, "error: %s\n", error.what());
+    return 2;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "failure: %s\n", error.what());
+    return 1;
+  }
+  return 0;
+}

@@ -7,3 +7,4 @@
 #include "common/hdf5_file.h"
 #include "common/progress.h"
 #include "common/state_measures.h"
+#include "common/time_series.h"
