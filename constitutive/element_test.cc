@@ -1,0 +1,763 @@
+// The mixed-control element-test driver: stages, stops by root finding,
+// records, and the Cam clay strain-increment path.
+#include "constitutive/element_test.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.h"
+#include "common/progress.h"
+
+namespace granasym {
+
+namespace {
+
+// Layout of the ODE state y.
+constexpr int kStress = 0;      // T, tension positive (6)
+constexpr int kLogVolume = 6;   // ln(1 + e)
+constexpr int kStrain = 7;      // ∫D dt, tension positive (6)
+constexpr int kPath = 13;       // ∫‖D‖ dt
+constexpr int kInternal = 14;   // model internal variables
+
+bool Fail(std::string* why, const std::string& message) {
+  if (why != nullptr) *why = message;
+  return false;
+}
+
+}  // namespace
+
+const char* ToString(ComponentControl control) {
+  return control == ComponentControl::kStretching ? "stretching" : "stress_rate";
+}
+
+bool FromString(const std::string& name, ComponentControl* control) {
+  if (name == "stretching") {
+    *control = ComponentControl::kStretching;
+  } else if (name == "stress_rate") {
+    *control = ComponentControl::kStressRate;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+const char* ToString(StopKind kind) {
+  switch (kind) {
+    case StopKind::kMeanStress:
+      return "mean_stress";
+    case StopKind::kAxialStrain:
+      return "axial_strain";
+    case StopKind::kVolumetricStrain:
+      return "volumetric_strain";
+    case StopKind::kShearStrain:
+      return "shear_strain";
+    case StopKind::kStrainPath:
+      return "strain_path";
+    case StopKind::kStressRatio:
+      return "stress_ratio";
+    case StopKind::kAsymptote:
+      return "asymptote";
+  }
+  return "unknown";
+}
+
+bool FromString(const std::string& name, StopKind* kind) {
+  for (StopKind candidate :
+       {StopKind::kMeanStress, StopKind::kAxialStrain, StopKind::kVolumetricStrain,
+        StopKind::kShearStrain, StopKind::kStrainPath, StopKind::kStressRatio,
+        StopKind::kAsymptote}) {
+    if (name == ToString(candidate)) {
+      *kind = candidate;
+      return true;
+    }
+  }
+  return false;
+}
+
+const char* ToString(DriveMethod method) {
+  return method == DriveMethod::kRateIntegration ? "rate_integration" : "stress_point";
+}
+
+bool FromString(const std::string& name, DriveMethod* method) {
+  if (name == "rate_integration") {
+    *method = DriveMethod::kRateIntegration;
+  } else if (name == "stress_point") {
+    *method = DriveMethod::kStressPoint;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+LoadingStage LoadingStage::Proportional(double psi_epsilon, double stretching_rate,
+                                        double duration) {
+  LoadingStage stage;
+  stage.name = fmt::format("proportional psi_epsilon={:.6g} deg", psi_epsilon / kDegree);
+  const AxisymmetricRate rate = AxisymmetricRate::FromAngle(psi_epsilon, stretching_rate);
+  stage.rate = {rate.axial, rate.radial, rate.radial, 0, 0, 0};
+  stage.duration = duration;
+  return stage;
+}
+
+LoadingStage LoadingStage::ConstantRadialStress(double axial_rate, double duration) {
+  LoadingStage stage;
+  stage.name = "constant radial stress";
+  stage.control[1] = stage.control[2] = ComponentControl::kStressRate;
+  stage.rate = {axial_rate, 0, 0, 0, 0, 0};
+  stage.duration = duration;
+  return stage;
+}
+
+LoadingStage LoadingStage::Isochoric(double axial_rate, double duration) {
+  LoadingStage stage;
+  stage.name = "isochoric";
+  stage.rate = {axial_rate, -0.5 * axial_rate, -0.5 * axial_rate, 0, 0, 0};
+  stage.duration = duration;
+  return stage;
+}
+
+LoadingStage LoadingStage::Oedometric(double axial_rate, double duration) {
+  LoadingStage stage;
+  stage.name = "oedometric";
+  stage.rate = {axial_rate, 0, 0, 0, 0, 0};
+  stage.duration = duration;
+  return stage;
+}
+
+LoadingStage LoadingStage::IsotropicToMeanStress(double target_mean_stress,
+                                                 double stretching_rate) {
+  LoadingStage stage;
+  stage.name = fmt::format("isotropic to p={:.6g} kPa", target_mean_stress);
+  stage.rate = {stretching_rate, 0, 0, 0, 0, 0};
+  stage.isotropic_target = target_mean_stress;
+  // Generous duration: the stop fires long before for any realistic model.
+  stage.duration = 50.0 / stretching_rate;
+  stage.stops.push_back({StopKind::kMeanStress, target_mean_stress});
+  return stage;
+}
+
+namespace {
+// Resolves the direction of an isotropic stage from the current mean stress.
+LoadingStage ResolveStage(const LoadingStage& stage, double mean_stress) {
+  if (!(stage.isotropic_target > 0)) return stage;
+  const bool loading = stage.isotropic_target > mean_stress;
+  LoadingStage resolved = LoadingStage::Proportional(loading ? 0.0 : kPi, stage.rate[0], 0.0);
+  resolved.name = fmt::format("isotropic {} to p={:.6g} kPa", loading ? "loading" : "unloading",
+                              stage.isotropic_target);
+  resolved.duration = stage.duration;
+  resolved.stops = stage.stops;
+  resolved.output_points = stage.output_points;
+  return resolved;
+}
+}  // namespace
+
+Vector6 AxisymmetricStressTensor(double mean_stress, double psi_sigma) {
+  const double q = 3.0 * mean_stress * std::tan(psi_sigma) / std::sqrt(2.0);
+  const SymTensor compression{mean_stress + 2.0 * q / 3.0, mean_stress - q / 3.0,
+                              mean_stress - q / 3.0, 0, 0, 0};
+  return ToVector(FlipSign(compression));
+}
+
+namespace {
+ModelState CheckedInitialState(const ConstitutiveModel& model, double mean_stress,
+                               double psi_sigma, double void_ratio) {
+  if (!(mean_stress > 0)) {
+    throw InputError(fmt::format("initial mean stress p = {} kPa must be > 0", mean_stress));
+  }
+  if (!(std::abs(psi_sigma) < kPi / 2)) {
+    throw InputError(
+        fmt::format("initial psi_sigma = {} deg must be in (−90, 90)", psi_sigma / kDegree));
+  }
+  ModelState state = model.MakeState(AxisymmetricStressTensor(mean_stress, psi_sigma), void_ratio);
+  std::string why;
+  if (!model.IsAdmissible(state, &why)) {
+    throw InputError(fmt::format(
+        "initial state p = {} kPa, psi_sigma = {} deg, e = {} is outside the model's domain: {}",
+        mean_stress, psi_sigma / kDegree, void_ratio, why));
+  }
+  if (model.kind() == ModelKind::kModifiedCamClay) {
+    const auto& cam_clay = static_cast<const ModifiedCamClay&>(model);
+    const double f = cam_clay.YieldFunction(state.stress, state.internal[0]);
+    const double m = cam_clay.parameters().critical_state_ratio;
+    if (f > cam_clay.parameters().yield_tolerance * m * m * state.internal[0] * state.internal[0]) {
+      throw InputError(fmt::format(
+          "initial state p = {} kPa, psi_sigma = {} deg, e = {} lies outside the Cam clay yield "
+          "surface (p_c = {:.6g} kPa from the elastic line, f = {:.6g} kPa²); raise OCR or lower "
+          "psi_sigma",
+          mean_stress, psi_sigma / kDegree, void_ratio, state.internal[0], f));
+    }
+  }
+  return state;
+}
+}  // namespace
+
+ModelState InitialStateFromVoidRatio(const ConstitutiveModel& model, double mean_stress,
+                                     double psi_sigma, double void_ratio) {
+  return CheckedInitialState(model, mean_stress, psi_sigma, void_ratio);
+}
+
+ModelState InitialStateFromOcr(const ConstitutiveModel& model, double mean_stress,
+                               double psi_sigma, double ocr) {
+  if (!(ocr > 0)) throw InputError(fmt::format("initial OCR = {} must be > 0", ocr));
+  return CheckedInitialState(model, mean_stress, psi_sigma,
+                             model.VoidRatioForOcr(mean_stress, ocr));
+}
+
+bool ElementTestOptions::IsValid(std::string* why) const {
+  std::string inner;
+  if (!integrator.IsValid(&inner)) return Fail(why, "integrator." + inner);
+  if (!stress_point.IsValid(&inner)) return Fail(why, "stress_point." + inner);
+  if (!(control_tolerance > 0 && control_tolerance < 1e-3)) {
+    return Fail(why, fmt::format("control_tolerance = {} must be in (0, 1e-3)", control_tolerance));
+  }
+  if (!(control_max_iterations > 0)) {
+    return Fail(why, fmt::format("control_max_iterations = {} must be > 0", control_max_iterations));
+  }
+  if (!(max_strain_increment > 0 && max_strain_increment <= 0.1)) {
+    return Fail(why,
+                fmt::format("max_strain_increment = {} must be in (0, 0.1]", max_strain_increment));
+  }
+  if (!(stop_location_tolerance > 0 && stop_location_tolerance < 1e-2)) {
+    return Fail(why, fmt::format("stop_location_tolerance = {} must be in (0, 0.01)",
+                                 stop_location_tolerance));
+  }
+  return true;
+}
+
+std::string ElementTestSummary::Report() const {
+  std::string line = fmt::format("{} after {} stage(s): {} steps ({} rejected), {} RHS, {:.3g} s",
+                                 ToString(termination), stages.size(), totals.steps,
+                                 totals.rejected_steps, totals.rhs_evaluations, totals.wall_time_s);
+  if (!message.empty()) line += " — " + message;
+  return line;
+}
+
+AxisymmetricStress RecordStress(const ElementTestRecord& record) {
+  return AxisymmetricFromTensor(record.stress);
+}
+
+AxisymmetricRate RecordStretching(const ElementTestRecord& record) {
+  return {record.stretching[0], 0.5 * (record.stretching[1] + record.stretching[2])};
+}
+
+namespace {
+
+// The ODE of one stage under mixed control.
+class StageOde : public OdeSystem {
+ public:
+  StageOde(const ConstitutiveModel& model, const LoadingStage& stage,
+           const ElementTestOptions& options, double stress_scale)
+      : model_(model), stage_(stage), options_(options), stress_scale_(stress_scale) {
+    // Internally tension positive: one sign flip of the whole rate vector.
+    prescribed_ = ToVector(FlipSign(stage.rate));
+    for (int i = 0; i < 6; ++i) {
+      (stage.control[i] == ComponentControl::kStressRate ? unknown_ : known_).push_back(i);
+    }
+    warm_start_.setZero();
+  }
+
+  int dimension() const override { return kInternal + model_.num_internal(); }
+
+  void ComponentScales(double* scale) const override {
+    for (int i = 0; i < dimension(); ++i) scale[i] = 1.0;
+    for (int i = 0; i < 6; ++i) scale[kStress + i] = stress_scale_;
+    for (int i = kInternal; i < dimension(); ++i) scale[i] = stress_scale_;
+  }
+
+  ModelState StateOf(const double* y) const {
+    ModelState state;
+    state.stress = Eigen::Map<const Vector6>(y + kStress);
+    state.void_ratio = std::expm1(y[kLogVolume]);
+    state.internal = Eigen::Map<const Eigen::VectorXd>(y + kInternal, model_.num_internal());
+    return state;
+  }
+
+  // The stretching that satisfies the stage's control at `state`.
+  bool SolveStretching(const ModelState& state, Vector6* stretching, ModelRate* rate,
+                       Matrix6* tangent_out = nullptr) {
+    Vector6 d = warm_start_;
+    for (int i : known_) d[i] = prescribed_[i];
+    Matrix6 tangent;
+    const int n = static_cast<int>(unknown_.size());
+    if (n == 0) {
+      if (!model_.Rate(state, d, rate, tangent_out, &failure_)) return false;
+      *stretching = d;
+      return true;
+    }
+    Eigen::VectorXd residual(n), trial_residual(n);
+    auto evaluate = [&](const Vector6& candidate, ModelRate* r, Matrix6* t,
+                        Eigen::VectorXd* res) -> bool {
+      if (!model_.Rate(state, candidate, r, t, &failure_)) return false;
+      for (int k = 0; k < n; ++k) (*res)[k] = r->stress_rate[unknown_[k]] - prescribed_[unknown_[k]];
+      return true;
+    };
+    if (!evaluate(d, rate, &tangent, &residual)) return false;
+    for (int iteration = 0; iteration < options_.control_max_iterations; ++iteration) {
+      const double scale = rate->stress_rate.cwiseAbs().maxCoeff() +
+                           prescribed_.cwiseAbs().maxCoeff() + 1e-300;
+      if (residual.cwiseAbs().maxCoeff() <= options_.control_tolerance * scale) {
+        *stretching = d;
+        warm_start_ = d;
+        if (tangent_out != nullptr) *tangent_out = tangent;
+        return true;
+      }
+      Eigen::MatrixXd block(n, n);
+      for (int a = 0; a < n; ++a) {
+        for (int b = 0; b < n; ++b) block(a, b) = tangent(unknown_[a], unknown_[b]);
+      }
+      Eigen::FullPivLU<Eigen::MatrixXd> lu(block);
+      if (!lu.isInvertible()) {
+        failure_ = "the tangent block of the stress-controlled components is singular";
+        return false;
+      }
+      const Eigen::VectorXd step = -lu.solve(residual);
+      double fraction = 1.0;
+      bool improved = false;
+      for (int search = 0; search < 30; ++search) {
+        Vector6 candidate = d;
+        for (int k = 0; k < n; ++k) candidate[unknown_[k]] += fraction * step[k];
+        ModelRate candidate_rate;
+        Matrix6 candidate_tangent;
+        if (evaluate(candidate, &candidate_rate, &candidate_tangent, &trial_residual) &&
+            trial_residual.norm() < (1.0 - 1e-4 * fraction) * residual.norm()) {
+          d = candidate;
+          *rate = candidate_rate;
+          tangent = candidate_tangent;
+          residual = trial_residual;
+          improved = true;
+          break;
+        }
+        fraction *= 0.5;
+      }
+      if (!improved) break;
+    }
+    const double scale =
+        rate->stress_rate.cwiseAbs().maxCoeff() + prescribed_.cwiseAbs().maxCoeff() + 1e-300;
+    if (residual.cwiseAbs().maxCoeff() <= 1e3 * options_.control_tolerance * scale) {
+      *stretching = d;
+      warm_start_ = d;
+      if (tangent_out != nullptr) *tangent_out = tangent;
+      return true;
+    }
+    failure_ = fmt::format("mixed control did not converge (residual {:.3g} kPa/s)",
+                           residual.cwiseAbs().maxCoeff());
+    return false;
+  }
+
+  bool Rhs(double, const double* y, double* y_dot) override {
+    const ModelState state = StateOf(y);
+    Vector6 d;
+    ModelRate rate;
+    if (!SolveStretching(state, &d, &rate)) return false;
+    for (int i = 0; i < 6; ++i) y_dot[kStress + i] = rate.stress_rate[i];
+    for (int i : unknown_) y_dot[kStress + i] = prescribed_[i];
+    y_dot[kLogVolume] = Trace<double>(d);
+    for (int i = 0; i < 6; ++i) y_dot[kStrain + i] = d[i];
+    y_dot[kPath] = FrobeniusNorm<double>(d);
+    for (int i = 0; i < model_.num_internal(); ++i) y_dot[kInternal + i] = rate.internal_rate[i];
+    return true;
+  }
+
+  bool has_jacobian() const override { return true; }
+
+  bool Jacobian(double, const double* y, double* jacobian) override {
+    const int dim = dimension();
+    const int num_internal = model_.num_internal();
+    const int num_state = 7 + num_internal;  // model state x = [T, ln(1+e), q]
+    const ModelState state = StateOf(y);
+    Vector6 d;
+    ModelRate rate;
+    if (!SolveStretching(state, &d, &rate)) return false;
+    RateJacobian model_jacobian;
+    if (!model_.Jacobian(state, d, &model_jacobian, &failure_)) return false;
+    const Eigen::MatrixXd& jx = model_jacobian.d_state;
+    const Eigen::MatrixXd& jd = model_jacobian.d_stretching;
+    // dD/dx: zero for prescribed components; implicit function theorem for the others.
+    Eigen::MatrixXd dd_dx = Eigen::MatrixXd::Zero(6, num_state);
+    const int n = static_cast<int>(unknown_.size());
+    if (n > 0) {
+      Eigen::MatrixXd block(n, n), rhs(n, num_state);
+      for (int a = 0; a < n; ++a) {
+        for (int b = 0; b < n; ++b) block(a, b) = jd(unknown_[a], unknown_[b]);
+        rhs.row(a) = jx.row(unknown_[a]);
+      }
+      Eigen::FullPivLU<Eigen::MatrixXd> lu(block);
+      if (!lu.isInvertible()) {
+        failure_ = "singular stress-control block in the Jacobian";
+        return false;
+      }
+      const Eigen::MatrixXd solution = -lu.solve(rhs);
+      for (int a = 0; a < n; ++a) dd_dx.row(unknown_[a]) = solution.row(a);
+    }
+    // Rows of y_dot with respect to x, then scattered into y's columns.
+    Eigen::MatrixXd rows = Eigen::MatrixXd::Zero(dim, num_state);
+    const Eigen::MatrixXd rates = jx + jd * dd_dx;  // (6 + n_int) x num_state
+    for (int i = 0; i < 6; ++i) rows.row(kStress + i) = rates.row(i);
+    for (int i : unknown_) rows.row(kStress + i).setZero();
+    rows.row(kLogVolume) = dd_dx.row(0) + dd_dx.row(1) + dd_dx.row(2);
+    for (int i = 0; i < 6; ++i) rows.row(kStrain + i) = dd_dx.row(i);
+    const double d_norm = FrobeniusNorm<double>(d);
+    if (d_norm > 0) {
+      Vector6 weighted = d / d_norm;
+      weighted.tail<3>() *= 2.0;
+      rows.row(kPath) = weighted.transpose() * dd_dx;
+    }
+    for (int k = 0; k < num_internal; ++k) rows.row(kInternal + k) = rates.row(6 + k);
+    Eigen::Map<Eigen::MatrixXd> out(jacobian, dim, dim);
+    out.setZero();
+    for (int c = 0; c < num_state; ++c) {
+      const int column = c < 7 ? c : kInternal + (c - 7);
+      out.col(column) = rows.col(c);
+    }
+    return out.allFinite();
+  }
+
+  int num_roots() const override { return static_cast<int>(stage_.stops.size()); }
+
+  bool Roots(double t, const double* y, double* g) override {
+    for (size_t k = 0; k < stage_.stops.size(); ++k) g[k] = StopFunction(stage_.stops[k], t, y);
+    return true;
+  }
+
+  double StopFunction(const StopCondition& stop, double t, const double* y) {
+    // Compression-positive measures of the tension-positive state.
+    const double p = -(y[kStress] + y[kStress + 1] + y[kStress + 2]) / 3.0;
+    const double axial_strain = -y[kStrain];
+    const double radial_strain = -0.5 * (y[kStrain + 1] + y[kStrain + 2]);
+    switch (stop.kind) {
+      case StopKind::kMeanStress:
+        return p - stop.value;
+      case StopKind::kAxialStrain:
+        return axial_strain - stop.value;
+      case StopKind::kVolumetricStrain:
+        return axial_strain + 2.0 * radial_strain - stop.value;
+      case StopKind::kShearStrain:
+        return 2.0 * (axial_strain - radial_strain) / 3.0 - stop.value;
+      case StopKind::kStrainPath:
+        return y[kPath] - stop.value;
+      case StopKind::kStressRatio: {
+        const Vector6 stress = Eigen::Map<const Vector6>(y + kStress);
+        const double q = -(stress[0] - 0.5 * (stress[1] + stress[2]));
+        return q / p - stop.value;
+      }
+      case StopKind::kAsymptote:
+        return AsymptoteMeasure(t, y) - stop.value;
+    }
+    return 1.0;
+  }
+
+  // |dψ_σ/ds| + |d ln OCR/ds| along the current path (per unit strain path).
+  double AsymptoteMeasure(double t, const double* y) {
+    std::vector<double> y_dot(dimension());
+    if (!Rhs(t, y, y_dot.data())) return 1.0;  // undefined: not at an asymptote
+    const double path_rate = y_dot[kPath];
+    if (!(path_rate > 0)) return 1.0;
+    const double sa = -y[kStress], sr = -0.5 * (y[kStress + 1] + y[kStress + 2]);
+    const double dsa = -y_dot[kStress], dsr = -0.5 * (y_dot[kStress + 1] + y_dot[kStress + 2]);
+    const double x = sa + 2.0 * sr, yy = std::sqrt(2.0) * (sa - sr);
+    const double dx = dsa + 2.0 * dsr, dy = std::sqrt(2.0) * (dsa - dsr);
+    const double psi_rate = (x * dy - yy * dx) / (x * x + yy * yy);
+    const double e = std::expm1(y[kLogVolume]);
+    const double h = 1e-6 * (1.0 + e);
+    const double dlnpe_de =
+        (std::log(model_.EquivalentPressure(e + h)) - std::log(model_.EquivalentPressure(e - h))) /
+        (2.0 * h);
+    const double e_rate = (1.0 + e) * y_dot[kLogVolume];
+    const double log_ocr_rate = dlnpe_de * e_rate - dx / x;  // d ln p = dx/x
+    return (std::abs(psi_rate) + std::abs(log_ocr_rate)) / path_rate;
+  }
+
+  const std::string& last_failure() const override { return failure_; }
+  const std::vector<int>& unknown() const { return unknown_; }
+  const std::vector<int>& known() const { return known_; }
+  const Vector6& prescribed() const { return prescribed_; }
+
+ private:
+  const ConstitutiveModel& model_;
+  const LoadingStage& stage_;
+  const ElementTestOptions& options_;
+  double stress_scale_;
+  Vector6 prescribed_;
+  std::vector<int> unknown_, known_;
+  Vector6 warm_start_;
+  std::string failure_;
+};
+
+ElementTestRecord MakeRecord(const ConstitutiveModel& model, StageOde& ode, double time,
+                             const double* y, int stage) {
+  ElementTestRecord record;
+  const ModelState state = ode.StateOf(y);
+  record.time = time;
+  record.stress = FlipSign(ToSymTensor(state.stress));
+  record.void_ratio = state.void_ratio;
+  record.strain = FlipSign(ToSymTensor(Eigen::Map<const Vector6>(y + kStrain)));
+  record.strain_path = y[kPath];
+  Vector6 d = Vector6::Zero();
+  ModelRate rate;
+  if (!ode.SolveStretching(state, &d, &rate)) d.setZero();
+  record.stretching = FlipSign(ToSymTensor(d));
+  record.internal.assign(state.internal.data(), state.internal.data() + state.internal.size());
+  record.ocr = OverconsolidationRatio(model, state);
+  record.stage = stage;
+  return record;
+}
+
+std::string DescribeStop(const StopCondition& stop) {
+  return fmt::format("{}={:.6g}", ToString(stop.kind), stop.value);
+}
+
+// Cam clay stress-point stage: strain increments with Newton on the unknown
+// components and bisection onto stop crossings.
+IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
+                                       const ElementTestOptions& options, StageOde& ode,
+                                       const LoadingStage& stage, std::vector<double>* y,
+                                       const std::function<void(double, const double*)>& observer) {
+  Stopwatch stopwatch;
+  IntegrationSummary summary;
+  summary.termination = TerminationType::kReachedEnd;
+  const std::vector<int>& unknown = ode.unknown();
+  const std::vector<int>& known = ode.known();
+  const Vector6& prescribed = ode.prescribed();
+  const int n = static_cast<int>(unknown.size());
+  const int dim = ode.dimension();
+
+  // Time per increment from the strain rate (known and, estimated, unknown parts).
+  Vector6 rate_estimate;
+  ModelRate rate;
+  if (!ode.SolveStretching(ode.StateOf(y->data()), &rate_estimate, &rate)) {
+    summary.termination = TerminationType::kFailure;
+    summary.message = "initial stretching: " + ode.last_failure();
+    return summary;
+  }
+  const double stretching_norm = FrobeniusNorm<double>(rate_estimate);
+  double dt = stretching_norm > 0 ? options.max_strain_increment / stretching_norm
+                                  : stage.duration / 1000.0;
+  dt = std::min(dt, stage.duration / std::max(1, stage.output_points));
+
+  // One increment of duration h from y0 into y1; false with a message on failure.
+  Vector6 unknown_rate_guess = rate_estimate;
+  auto increment = [&](const std::vector<double>& y0, double h, std::vector<double>* y1,
+                       std::string* why) -> bool {
+    const ModelState start = ode.StateOf(y0.data());
+    Vector6 strain = unknown_rate_guess * h;
+    for (int i : known) strain[i] = prescribed[i] * h;
+    ModelState end;
+    for (int iteration = 0; iteration <= options.control_max_iterations; ++iteration) {
+      end = start;
+      Matrix6 tangent;
+      const CamClayStressPoint::Summary update =
+          stress_point.Update(strain, &end, n > 0 ? &tangent : nullptr);
+      ++summary.rhs_evaluations;
+      summary.nonlinear_iterations += update.iterations;
+      summary.rejected_steps += update.rejected_substeps;
+      if (!update.success) {
+        *why = update.message;
+        return false;
+      }
+      if (n == 0) break;
+      Eigen::VectorXd residual(n);
+      double scale = 1e-300;
+      for (int k = 0; k < n; ++k) {
+        const int i = unknown[k];
+        residual[k] = end.stress[i] - start.stress[i] - prescribed[i] * h;
+        scale = std::max(scale, std::abs(end.stress[i] - start.stress[i]));
+      }
+      scale = std::max(scale, (end.stress - start.stress).cwiseAbs().maxCoeff());
+      if (residual.cwiseAbs().maxCoeff() <= options.control_tolerance * 10 * scale) break;
+      if (iteration == options.control_max_iterations) {
+        *why = "mixed control of the strain increment did not converge";
+        return false;
+      }
+      Eigen::MatrixXd block(n, n);
+      for (int a = 0; a < n; ++a) {
+        for (int b = 0; b < n; ++b) block(a, b) = tangent(unknown[a], unknown[b]);
+      }
+      const Eigen::VectorXd correction = -block.fullPivLu().solve(residual);
+      for (int k = 0; k < n; ++k) strain[unknown[k]] += correction[k];
+    }
+    for (int i : unknown) unknown_rate_guess[i] = strain[i] / h;
+    y1->assign(dim, 0.0);
+    for (int i = 0; i < 6; ++i) (*y1)[kStress + i] = end.stress[i];
+    for (int i : unknown) (*y1)[kStress + i] = y0[kStress + i] + prescribed[i] * h;
+    (*y1)[kLogVolume] = y0[kLogVolume] + Trace<double>(strain);
+    for (int i = 0; i < 6; ++i) (*y1)[kStrain + i] = y0[kStrain + i] + strain[i];
+    (*y1)[kPath] = y0[kPath] + FrobeniusNorm<double>(strain);
+    for (int i = 0; i < end.internal.size(); ++i) (*y1)[kInternal + i] = end.internal[i];
+    return true;
+  };
+
+  const int num_roots = ode.num_roots();
+  std::vector<double> g_old(num_roots), g_new(num_roots);
+  ode.Roots(0.0, y->data(), g_old.data());
+  const double output_interval = stage.duration / std::max(1, stage.output_points);
+  double next_output = output_interval;
+  double t = 0.0;
+  std::vector<double> y_new;
+  std::string why;
+  while (t < stage.duration * (1.0 - 1e-14)) {
+    const double h = std::min(dt, stage.duration - t);
+    if (!increment(*y, h, &y_new, &why)) {
+      summary.termination = TerminationType::kFailure;
+      summary.message = fmt::format("increment at t = {:.6g} s failed: {}", t, why);
+      break;
+    }
+    ++summary.steps;
+    ode.Roots(t + h, y_new.data(), g_new.data());
+    int crossed = -1;
+    for (int k = 0; k < num_roots; ++k) {
+      if ((g_old[k] < 0 && g_new[k] >= 0) || (g_old[k] > 0 && g_new[k] <= 0)) {
+        crossed = k;
+        break;
+      }
+    }
+    if (crossed >= 0) {
+      double lo = 0.0, hi = 1.0;
+      std::vector<double> y_hi = y_new, y_mid;
+      while ((hi - lo) > options.stop_location_tolerance) {
+        const double mid = 0.5 * (lo + hi);
+        if (!increment(*y, mid * h, &y_mid, &why)) break;
+        std::vector<double> g(num_roots);
+        ode.Roots(t + mid * h, y_mid.data(), g.data());
+        if ((g[crossed] < 0) == (g_old[crossed] < 0) && g[crossed] != 0) {
+          lo = mid;
+        } else {
+          hi = mid;
+          y_hi = y_mid;
+        }
+      }
+      *y = y_hi;
+      t += hi * h;
+      summary.termination = TerminationType::kRootFound;
+      summary.root_index = crossed;
+      break;
+    }
+    *y = y_new;
+    t += h;
+    g_old = g_new;
+    if (t >= next_output * (1.0 - 1e-12) && t < stage.duration * (1.0 - 1e-14)) {
+      observer(t, y->data());
+      while (next_output <= t * (1.0 + 1e-12)) next_output += output_interval;
+    }
+  }
+  summary.final_time = t;
+  summary.wall_time_s = stopwatch.Seconds();
+  return summary;
+}
+
+}  // namespace
+
+ElementTest::ElementTest(const ConstitutiveModel& model, const ElementTestOptions& options)
+    : model_(model), options_(options) {
+  std::string why;
+  GRANASYM_CHECK(options.IsValid(&why)) << why;
+  GRANASYM_CHECK(options.method == DriveMethod::kRateIntegration ||
+                 model.kind() == ModelKind::kModifiedCamClay)
+      << "the stress-point method exists for Modified Cam clay only";
+}
+
+ElementTestResult ElementTest::Run(const ModelState& initial,
+                                   const std::vector<LoadingStage>& stages) const {
+  ElementTestResult result;
+  ElementTestSummary& summary = result.summary;
+  result.final_state = initial;
+  std::string why;
+  if (!model_.IsAdmissible(initial, &why)) {
+    summary.termination = TerminationType::kFailure;
+    summary.message = "initial state: " + why;
+    return result;
+  }
+  const int num_internal = model_.num_internal();
+  std::vector<double> y(kInternal + num_internal, 0.0);
+  for (int i = 0; i < 6; ++i) y[kStress + i] = initial.stress[i];
+  y[kLogVolume] = std::log1p(initial.void_ratio);
+  for (int i = 0; i < num_internal; ++i) y[kInternal + i] = initial.internal[i];
+
+  std::unique_ptr<Integrator> integrator;
+  std::unique_ptr<CamClayStressPoint> stress_point;
+  if (options_.method == DriveMethod::kRateIntegration) {
+    integrator = Integrator::Create(options_.integrator);
+  } else {
+    stress_point = std::make_unique<CamClayStressPoint>(
+        static_cast<const ModifiedCamClay&>(model_), options_.stress_point);
+  }
+
+  double time = 0.0;
+  for (size_t k = 0; k < stages.size(); ++k) {
+    const double mean_stress = MeanStress(Eigen::Map<const Vector6>(y.data()));
+    const LoadingStage stage = ResolveStage(stages[k], mean_stress);
+    const int stage_index = static_cast<int>(k);
+    const double stress_scale = std::max(mean_stress, 1e-6);
+    StageOde ode(model_, stage, options_, stress_scale);
+    if (k == 0) result.history.push_back(MakeRecord(model_, ode, 0.0, y.data(), stage_index));
+    auto observer = [&](double t, const double* state) {
+      result.history.push_back(MakeRecord(model_, ode, time + t, state, stage_index));
+    };
+    IntegrationSummary stage_summary;
+    std::vector<double> y_start = y;
+    // An asymptote stop that already holds ends the stage at once.
+    int satisfied = -1;
+    for (size_t s = 0; s < stage.stops.size() && satisfied < 0; ++s) {
+      if (stage.stops[s].kind == StopKind::kAsymptote &&
+          ode.StopFunction(stage.stops[s], 0.0, y.data()) <= 0) {
+        satisfied = static_cast<int>(s);
+      }
+    }
+    try {
+      if (satisfied >= 0) {
+        stage_summary.termination = TerminationType::kRootFound;
+        stage_summary.root_index = satisfied;
+      } else if (integrator) {
+        std::vector<double> output_times;
+        for (int i = 1; i < stage.output_points; ++i) {
+          output_times.push_back(stage.duration * i / stage.output_points);
+        }
+        stage_summary =
+            integrator->Integrate(ode, 0.0, stage.duration, y.data(), output_times, observer);
+      } else {
+        stage_summary = RunStressPointStage(*stress_point, options_, ode, stage, &y, observer);
+      }
+    } catch (const RuntimeError& error) {
+      stage_summary.termination = TerminationType::kFailure;
+      stage_summary.message = error.what();
+    }
+    StageSummary stage_report;
+    stage_report.name = stage.name;
+    stage_report.integration = stage_summary;
+    stage_report.stop = stage_summary.root_index >= 0
+                            ? DescribeStop(stage.stops[stage_summary.root_index])
+                            : "duration";
+    summary.stages.push_back(stage_report);
+    summary.totals.Accumulate(stage_summary);
+    bool valid = stage_summary.success();
+    if (valid) {
+      for (double value : y) valid = valid && std::isfinite(value);
+      valid = valid && model_.IsAdmissible(ode.StateOf(y.data()), &why);
+      if (!valid && stage_summary.success()) {
+        stage_summary.message = "final state invalid: " + why;
+      }
+    }
+    if (!valid) {
+      // The records of the valid part of the stage stay; the state goes back
+      // to the start of the stage, the last state known to be valid.
+      y = y_start;
+      summary.termination = TerminationType::kFailure;
+      summary.message = fmt::format("stage {} ({}): {}", k, stage.name,
+                                    stage_summary.message.empty() ? "failed"
+                                                                  : stage_summary.message);
+      summary.stages.back().integration.termination = TerminationType::kFailure;
+      break;
+    }
+    time += stage_summary.final_time;
+    result.history.push_back(MakeRecord(model_, ode, time, y.data(), stage_index));
+    result.final_state = ode.StateOf(y.data());
+    summary.termination = stage_summary.termination;
+  }
+  if (summary.success()) summary.termination = TerminationType::kReachedEnd;
+  summary.totals.final_time = time;
+  return result;
+}
+
+}  // namespace granasym

@@ -1,0 +1,179 @@
+// RKF23 with step control (Mašín's reference scheme) and root location.
+#include "constitutive/rkf23_integrator.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/progress.h"
+
+namespace granasym {
+
+namespace {
+
+struct Workspace {
+  std::vector<double> k1, k2, k3, stage, low, high;
+  explicit Workspace(int n) : k1(n), k2(n), k3(n), stage(n), low(n), high(n) {}
+};
+
+// One RKF23 step of size h from (t, y). Returns false when a stage fails.
+bool TakeStep(OdeSystem& system, double t, const double* y, double h, Workspace* w,
+              long* evaluations) {
+  const int n = system.dimension();
+  ++*evaluations;
+  if (!system.Rhs(t, y, w->k1.data())) return false;
+  for (int i = 0; i < n; ++i) w->stage[i] = y[i] + 0.5 * h * w->k1[i];
+  ++*evaluations;
+  if (!system.Rhs(t + 0.5 * h, w->stage.data(), w->k2.data())) return false;
+  for (int i = 0; i < n; ++i) w->stage[i] = y[i] - h * w->k1[i] + 2.0 * h * w->k2[i];
+  ++*evaluations;
+  if (!system.Rhs(t + h, w->stage.data(), w->k3.data())) return false;
+  for (int i = 0; i < n; ++i) {
+    w->low[i] = y[i] + h * w->k2[i];
+    w->high[i] = y[i] + h * (w->k1[i] + 4.0 * w->k2[i] + w->k3[i]) / 6.0;
+    if (!std::isfinite(w->high[i])) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+IntegrationSummary Rkf23Integrator::Integrate(OdeSystem& system, double t0, double t_end,
+                                              double* y, const std::vector<double>& output_times,
+                                              const Observer& observer) {
+  Stopwatch stopwatch;
+  IntegrationSummary summary;
+  const int n = system.dimension();
+  std::vector<double> scale(n);
+  system.ComponentScales(scale.data());
+  for (double& s : scale) s *= options_.absolute_tolerance;
+  std::vector<double> stops;
+  for (double t : output_times) {
+    if (t > t0 && t < t_end) stops.push_back(t);
+  }
+  std::sort(stops.begin(), stops.end());
+  stops.push_back(t_end);
+  size_t next_stop = 0;
+
+  const int num_roots = system.num_roots();
+  std::vector<double> g_old(num_roots), g_new(num_roots);
+  if (num_roots > 0) system.Roots(t0, y, g_old.data());
+
+  Workspace w(n);
+  const bool fixed = options_.fixed_step > 0;
+  const double interval = t_end - t0;
+  double h = fixed ? options_.fixed_step
+                   : (options_.initial_step > 0 ? options_.initial_step : 0.01 * interval);
+  const double min_step = options_.rkf23_min_step_fraction * interval;
+  double t = t0;
+  summary.termination = TerminationType::kReachedEnd;
+  while (t < t_end) {
+    if (summary.steps >= options_.max_steps) {
+      summary.termination = TerminationType::kFailure;
+      summary.message = fmt::format("more than max_steps = {} steps", options_.max_steps);
+      break;
+    }
+    const double target = stops[next_stop];
+    if (options_.max_step > 0) h = std::min(h, options_.max_step);
+    bool hits_stop = false;
+    double step = h;
+    if (t + step >= target * (1.0 - 1e-15) - 1e-300) {
+      step = target - t;
+      hits_stop = true;
+    }
+    const bool ok = TakeStep(system, t, y, step, &w, &summary.rhs_evaluations);
+    double error = 0.0;
+    if (ok) {
+      for (int i = 0; i < n; ++i) {
+        const double tolerance = options_.relative_tolerance * std::abs(w.high[i]) + scale[i];
+        error = std::max(error, std::abs(w.high[i] - w.low[i]) / tolerance);
+      }
+    }
+    if (!ok || (!fixed && error > 1.0)) {
+      ++summary.rejected_steps;
+      if (fixed) {
+        summary.termination = TerminationType::kFailure;
+        summary.message = "a fixed step left the model's domain: " + system.last_failure();
+        break;
+      }
+      const double shrink = ok ? std::max(0.25, 0.9 * std::cbrt(1.0 / error)) : 0.25;
+      h = step * shrink;
+      if (h < min_step) {
+        summary.termination = TerminationType::kFailure;
+        summary.message = fmt::format("step size {:.3g} below the minimum {:.3g} at t = {:.6g}", h,
+                                      min_step, t);
+        if (!ok) summary.message += " (model: " + system.last_failure() + ")";
+        break;
+      }
+      continue;
+    }
+    // Accepted. Check the root functions on the new state.
+    if (num_roots > 0) {
+      system.Roots(t + step, w.high.data(), g_new.data());
+      int crossed = -1;
+      for (int i = 0; i < num_roots; ++i) {
+        if ((g_old[i] < 0 && g_new[i] >= 0) || (g_old[i] > 0 && g_new[i] <= 0)) {
+          crossed = i;
+          break;
+        }
+      }
+      if (crossed >= 0) {
+        // Illinois iteration on the fraction θ of the step where g crosses zero.
+        double lo = 0.0, hi = 1.0, g_lo = g_old[crossed], g_hi = g_new[crossed];
+        int side = 0;
+        std::vector<double> state(w.high);
+        for (int iteration = 0; iteration < 100; ++iteration) {
+          double theta = lo - g_lo * (hi - lo) / (g_hi - g_lo);
+          if (!(theta > lo && theta < hi)) theta = 0.5 * (lo + hi);
+          if (!TakeStep(system, t, y, theta * step, &w, &summary.rhs_evaluations)) break;
+          std::vector<double> g(num_roots);
+          system.Roots(t + theta * step, w.high.data(), g.data());
+          const double g_mid = g[crossed];
+          state = w.high;
+          if ((g_mid < 0) == (g_lo < 0)) {
+            lo = theta;
+            g_lo = g_mid;
+            if (side == -1) g_hi *= 0.5;
+            side = -1;
+          } else {
+            hi = theta;
+            g_hi = g_mid;
+            if (side == 1) g_lo *= 0.5;
+            side = 1;
+          }
+          if (g_mid == 0.0 || (hi - lo) * step <= 1e-14 * std::max(std::abs(t), std::abs(step))) {
+            break;
+          }
+        }
+        const double theta = 0.5 * (lo + hi);
+        TakeStep(system, t, y, theta * step, &w, &summary.rhs_evaluations);
+        std::copy(w.high.begin(), w.high.end(), y);
+        t += theta * step;
+        ++summary.steps;
+        summary.termination = TerminationType::kRootFound;
+        summary.root_index = crossed;
+        break;
+      }
+      g_old = g_new;
+    }
+    std::copy(w.high.begin(), w.high.end(), y);
+    t = hits_stop ? target : t + step;
+    ++summary.steps;
+    if (!fixed) {
+      const double grow = error > 0 ? std::min(4.0, 0.9 * std::cbrt(1.0 / error)) : 4.0;
+      h = std::max(h, step) * std::max(grow, 0.25);
+      if (!hits_stop) h = step * std::max(grow, 0.25);
+    }
+    if (hits_stop) {
+      if (observer && next_stop + 1 < stops.size()) observer(t, y);
+      ++next_stop;
+      if (next_stop >= stops.size()) break;
+    }
+  }
+  summary.final_time = t;
+  summary.wall_time_s = stopwatch.Seconds();
+  return summary;
+}
+
+}  // namespace granasym
