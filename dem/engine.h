@@ -5,7 +5,7 @@
 // Kinematics (SPEC §4). Positions are stored scaled by the cell sides,
 // x = H s with H = diag(L); a particle's velocity is its fluctuation v plus
 // the affine field D x, so that ds/dt = H⁻¹ v and the cell follows
-// H ← H + Δt D H. The affine motion carries no inertia (the usual choice for
+// dH/dt = D H, integrated exactly over each step (H ← exp(Δt D) H). The affine motion carries no inertia (the usual choice for
 // periodic cells); Newton's law and damping act on the fluctuation:
 //   a = F/m,  a_k ← a_k (1 − χ sign(a_k (v_k + a_k Δt/2))),  v ← v + Δt a,
 //   s ← s + Δt H⁻¹ v, and the same for spins with torques (no orientation is

@@ -16,9 +16,13 @@ void NeighborList::Build(const std::vector<Vec4>& s, const std::array<double, 3>
   for (const Vec4& p : s) max_radius = std::max(max_radius, p.w);
   const double reach = 2.0 * max_radius + skin;
   for (int d = 0; d < 3; ++d) {
-    GRANASYM_CHECK(cell[d] > 2.0 * reach)
-        << "cell side " << cell[d] << " m is not larger than twice the interaction reach " << reach
-        << " m: the minimum image would not be unique";
+    if (!(cell[d] > 2.0 * reach)) {
+      throw RuntimeError("the periodic cell side " + std::to_string(cell[d] * 1e3) +
+                         " mm has become smaller than twice the interaction reach " +
+                         std::to_string(reach * 1e3) +
+                         " mm (largest diameter + skin): the cell is too small for its largest "
+                         "spheres; use more particles");
+    }
   }
   // Bins of side >= reach; with fewer than three bins along an axis one bin
   // spans it (the neighbourhood would otherwise visit a bin twice).

@@ -69,6 +69,8 @@ Stage ParseStage(const ConfigTable& table, size_t index) {
   if (table.Has("control")) {
     const ConfigTable control = table.GetTable("control");
     stage.control.gain = control.GetDouble("gain", stage.control.gain, Range::Open(0, 1));
+    stage.control.integral_gain =
+        control.GetDouble("integral_gain", stage.control.integral_gain, Range::Closed(0, 1));
     stage.control.max_rate_factor =
         control.GetDouble("max_rate_factor", stage.control.max_rate_factor, Range::Positive());
     stage.control.check_interval =

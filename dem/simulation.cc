@@ -110,6 +110,7 @@ struct RunnerState {
   int64_t steps_since_output = 0;
   int64_t stage_first_row = 0;
   std::array<double, 3> controlled_rate{};  // compression-positive rates of controllers
+  std::array<double, 3> integral{};         // integral terms of the controllers (strain)
   std::vector<StageRecord> records;
 };
 
@@ -128,12 +129,15 @@ class Simulation {
   void Control(const Stage& stage, bool have_stress);
   std::optional<std::string> CheckStop(const Stage& stage, bool have_stress, bool sampled);
   bool StrainStopReached(const Stage& stage) const;
+  bool StepsOrTimeDone(const Stage& stage) const;
   void AddRow();
   void FinishStage(const std::string& reason);
   void WriteResults(const std::string& path, const RunSummary& summary) const;
   void WriteCheckpoint() const;
   void LoadCheckpoint();
   void ReportProgress();
+  template <typename Finish>
+  RunSummary Loop(RunSummary& summary, Finish& finish, double& loop_seconds);
   std::array<double, 3> Strains() const;  // eps_a, eps_r, per axis from the run start
   double MeanStressKpa() const { return AxisymmetricFromTensor(engine_->sums().stress).mean() / kKiloPascal; }
 
@@ -198,6 +202,7 @@ void Simulation::StartStage() {
   state_.stage_strain_norm = 0;
   state_.next_sample_strain = 0;
   state_.stage_first_row = static_cast<int64_t>(series_.rows());
+  state_.integral = {0.0, 0.0, 0.0};
   detector_ = AsymptoteDetector(stage.asymptote);
   switch (stage.type) {
     case StageType::kStrainPath: {
@@ -243,7 +248,12 @@ void Simulation::Control(const Stage& stage, bool have_stress) {
     const double c_ra = 0.5 * (c[3] + c[4]);
     double rate;
     if (c_rr > 0) {
-      rate = -c_ra / c_rr * stage.axial_strain_rate + gain * (target - radial) / (c_rr * dt);
+      // Integral action removes the steady error left by the affine
+      // estimate of the feed-forward (the relaxed network is softer).
+      const double strain_error = (target - radial) / c_rr;
+      state_.integral[1] += stage.control.integral_gain * strain_error;
+      rate = -c_ra / c_rr * stage.axial_strain_rate +
+             (gain * strain_error + state_.integral[1]) / dt;
     } else {
       rate = target > radial ? max_rate : -max_rate;
     }
@@ -256,13 +266,26 @@ void Simulation::Control(const Stage& stage, bool have_stress) {
     std::array<double, 3> gradient;
     for (int d = 0; d < 3; ++d) {
       const double error = target - sums.stress[d];
-      const double rate =
-          clamp(row[d] > 0 ? gain * error / (row[d] * dt) : (error > 0 ? max_rate : -max_rate));
+      double rate;
+      if (row[d] > 0) {
+        const double strain_error = error / row[d];
+        state_.integral[d] += stage.control.integral_gain * strain_error;
+        rate = clamp((gain * strain_error + state_.integral[d]) / dt);
+      } else {
+        rate = error > 0 ? max_rate : -max_rate;
+      }
       state_.controlled_rate[d] = rate;
       gradient[d] = -rate;
     }
     engine_->SetVelocityGradient(gradient);
   }
+}
+
+bool Simulation::StepsOrTimeDone(const Stage& stage) const {
+  const StopConditions& stop = stage.stop;
+  if (stop.steps && engine_->step() + 1 - state_.stage_start_step >= *stop.steps) return true;
+  const double elapsed = engine_->time() + engine_->time_step() - state_.stage_start_time;
+  return stop.time_s && elapsed >= *stop.time_s * (1 - 1e-12);
 }
 
 bool Simulation::StrainStopReached(const Stage& stage) const {
@@ -280,10 +303,10 @@ bool Simulation::StrainStopReached(const Stage& stage) const {
   if (reached(stop.volumetric_strain, axial + 2 * radial)) return true;
   if (reached(stop.shear_strain, 2.0 * (axial - radial) / 3.0)) return true;
   if (stop.strain_norm && state_.stage_strain_norm >= *stop.strain_norm) return true;
-  if (stop.time_s && engine_->time() - state_.stage_start_time >= *stop.time_s * (1 - 1e-12)) {
-    return true;
-  }
-  if (stop.steps && engine_->step() - state_.stage_start_step >= *stop.steps) return true;
+  // Steps and time count the step about to be taken, so that a stage of
+  // `steps = N` takes exactly N steps (its last row is the state before the
+  // last step).
+  if (StepsOrTimeDone(stage)) return true;
   return false;
 }
 
@@ -331,11 +354,9 @@ std::optional<std::string> Simulation::CheckStop(const Stage& stage, bool have_s
   }
   if (StrainStopReached(stage)) {
     const auto& s = stage.stop;
-    if (s.steps && engine_->step() - state_.stage_start_step >= *s.steps) {
-      return fmt::format("{} steps done", *s.steps);
-    }
-    if (s.time_s && engine_->time() - state_.stage_start_time >= *s.time_s * (1 - 1e-12)) {
-      return fmt::format("stage time {:.6g} s reached", *s.time_s);
+    if (StepsOrTimeDone(stage)) {
+      return s.steps ? fmt::format("{} steps done", *s.steps)
+                     : fmt::format("stage time {:.6g} s reached", *s.time_s);
     }
     return std::string("strain target reached");
   }
@@ -626,6 +647,7 @@ void Simulation::WriteCheckpoint() const {
   file.SetAttribute(r, "stage_first_row", state_.stage_first_row);
   file.WriteDoubles(r + "/stage_start_cell", ToVector(state_.stage_start_cell));
   file.WriteDoubles(r + "/controlled_rate", ToVector(state_.controlled_rate));
+  file.WriteDoubles(r + "/integral", ToVector(state_.integral));
   std::vector<double> samples;
   for (const auto& sample : detector_.samples()) {
     samples.insert(samples.end(), {sample.strain, sample.psi_sigma, sample.log_p, sample.log_volume});
@@ -722,6 +744,7 @@ void Simulation::LoadCheckpoint() {
   state_.stage_first_row = file.ReadIntAttribute(r, "stage_first_row");
   state_.stage_start_cell = ToArray(file.ReadDoubles(r + "/stage_start_cell"));
   state_.controlled_rate = ToArray(file.ReadDoubles(r + "/controlled_rate"));
+  state_.integral = ToArray(file.ReadDoubles(r + "/integral"));
   if (state_.stage < static_cast<int64_t>(scene_.stages.size())) {
     detector_ = AsymptoteDetector(scene_.stages[state_.stage].asymptote);
   }
@@ -771,7 +794,6 @@ RunSummary Simulation::Run() {
   summary.time_step = engine_->time_step();
   const int64_t first_step = engine_->step();
   double loop_seconds = 0;
-  Stopwatch since_checkpoint;
   auto finish = [&](Termination termination, const std::string& message) {
     summary.termination = termination;
     summary.message = message;
@@ -792,6 +814,17 @@ RunSummary Simulation::Run() {
     return summary;
   };
 
+  try {
+    return Loop(summary, finish, loop_seconds);
+  } catch (const RuntimeError& error) {
+    // Keep what was computed: results and a checkpoint of the last state.
+    return finish(Termination::kFailed, error.what());
+  }
+}
+
+template <typename Finish>
+RunSummary Simulation::Loop(RunSummary& summary, Finish& finish, double& loop_seconds) {
+  Stopwatch since_checkpoint;
   const double dt = engine_->time_step();
   const OutputOptions& output = scene_.output;
   while (state_.stage < static_cast<int64_t>(scene_.stages.size())) {

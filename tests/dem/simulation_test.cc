@@ -1,0 +1,248 @@
+#include "dem/simulation.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/hdf5_file.h"
+#include "common/time_series.h"
+#include "dem/scene.h"
+#include "test_util.h"
+
+namespace granasym::dem {
+namespace {
+
+using testing::SampleToml;
+using testing::TempPath;
+
+struct Result {
+  RunSummary summary;
+  TimeSeries series;
+  std::vector<double> positions;
+};
+
+Result RunText(const std::string& text, const std::string& name, RunOptions options = {}) {
+  const Scene scene = Scene::Parse(text, name + ".toml", "");
+  options.output_path = TempPath(name + ".h5");
+  options.quiet = true;
+  Result result;
+  result.summary = RunScene(scene, options);
+  const Hdf5File file = Hdf5File::OpenRead(options.output_path);
+  result.series = TimeSeries::Read(file, "/series");
+  size_t rows = 0, cols = 0;
+  result.positions = file.ReadMatrix("/final_state/positions", &rows, &cols);
+  return result;
+}
+
+TEST(Simulation, IsotropicCompressionFollowsALinearNclInLnPAboveFiftyKpa) {
+  const std::string text = SampleToml() + R"(
+[output]
+interval_strain = 0.002
+[[stage]]
+name = "ncl"
+psi_epsilon_deg = 0.0
+stretching_rate = 167.0
+[stage.stop]
+mean_stress_kpa = 1000.0
+)";
+  const Result result = RunText(text, "ncl");
+  ASSERT_EQ(result.summary.termination, Termination::kCompleted) << result.summary.message;
+  const auto& p = result.series.Values("p_kpa");
+  const auto& log_volume = result.series.Values("ln_1_plus_e");
+  const auto& contacts = result.series.Values("contacts");
+  EXPECT_GE(p.back(), 1000.0);
+  // Past first contact: ln(1+e) falls at every row and p rises overall.
+  size_t first_contact = 0;
+  while (first_contact < contacts.size() && contacts[first_contact] == 0) ++first_contact;
+  ASSERT_LT(first_contact, p.size());
+  for (size_t k = first_contact + 1; k < p.size(); ++k) EXPECT_LT(log_volume[k], log_volume[k - 1]);
+  EXPECT_GT(p.back(), 100 * p[first_contact + 1]);
+  // Linear regression of ln(1+e) on ln p above 50 kPa.
+  std::vector<double> x, y;
+  for (size_t k = 0; k < p.size(); ++k) {
+    if (p[k] > 50.0) {
+      x.push_back(std::log(p[k]));
+      y.push_back(log_volume[k]);
+    }
+  }
+  ASSERT_GE(x.size(), 10u);
+  double mx = 0, my = 0;
+  for (size_t k = 0; k < x.size(); ++k) {
+    mx += x[k];
+    my += y[k];
+  }
+  mx /= x.size();
+  my /= x.size();
+  double sxy = 0, sxx = 0, syy = 0;
+  for (size_t k = 0; k < x.size(); ++k) {
+    sxy += (x[k] - mx) * (y[k] - my);
+    sxx += (x[k] - mx) * (x[k] - mx);
+    syy += (y[k] - my) * (y[k] - my);
+  }
+  const double r2 = sxy * sxy / (sxx * syy);
+  EXPECT_GT(r2, 0.97) << "slope " << sxy / sxx;
+  EXPECT_LT(sxy / sxx, 0.0);
+}
+
+const char* kMultiStage = R"(
+[output]
+interval_strain = 0.004
+[[stage]]
+name = "ncl"
+psi_epsilon_deg = 0.0
+stretching_rate = 167.0
+[stage.stop]
+mean_stress_kpa = 150.0
+[[stage]]
+name = "triaxial"
+type = "triaxial"
+axial_strain_rate = 136.355
+radial_stress_kpa = 150.0
+[stage.stop]
+axial_strain = 0.04
+)";
+
+TEST(Simulation, SameSeedAndThreadCountGiveIdenticalResults) {
+  RunOptions options;
+  options.threads = 2;
+  const Result a = RunText(SampleToml(1000, 5.8, 5) + kMultiStage, "determinism_a", options);
+  const Result b = RunText(SampleToml(1000, 5.8, 5) + kMultiStage, "determinism_b", options);
+  ASSERT_EQ(a.summary.termination, Termination::kCompleted) << a.summary.message;
+  EXPECT_EQ(a.series.Values("p_kpa"), b.series.Values("p_kpa"));
+  EXPECT_EQ(a.positions, b.positions);
+}
+
+TEST(Simulation, RestartContinuesBitIdentically) {
+  const std::string text = SampleToml(1000, 5.8, 7) + kMultiStage;
+  const Result straight = RunText(text, "straight");
+  ASSERT_EQ(straight.summary.termination, Termination::kCompleted);
+  // Interrupt in the middle of the triaxial stage, then continue.
+  RunOptions first;
+  first.interrupt_after_steps = straight.summary.steps - 700;
+  first.output_path = TempPath("restarted.h5");
+  const Result interrupted = RunText(text, "restarted", first);
+  ASSERT_EQ(interrupted.summary.termination, Termination::kInterrupted);
+  EXPECT_LT(interrupted.series.rows(), straight.series.rows());
+  RunOptions second;
+  second.restart = true;
+  const Result resumed = RunText(text, "restarted", second);
+  ASSERT_EQ(resumed.summary.termination, Termination::kCompleted) << resumed.summary.message;
+  EXPECT_EQ(resumed.summary.steps, straight.summary.steps);
+  EXPECT_EQ(resumed.series.Values("p_kpa"), straight.series.Values("p_kpa"));
+  EXPECT_EQ(resumed.series.Values("sigma_r_kpa"), straight.series.Values("sigma_r_kpa"));
+  EXPECT_EQ(resumed.positions, straight.positions);
+}
+
+TEST(Simulation, TriaxialControllerHoldsTheRadialStressWithinOnePercent) {
+  const std::string text = SampleToml(1000, 5.8, 3) + R"(
+[output]
+interval_strain = 0.002
+[[stage]]
+name = "ncl"
+psi_epsilon_deg = 0.0
+stretching_rate = 167.0
+[stage.stop]
+mean_stress_kpa = 200.0
+[[stage]]
+name = "triaxial"
+type = "triaxial"
+axial_strain_rate = 136.355
+radial_stress_kpa = 200.0
+[stage.stop]
+axial_strain = 0.12
+)";
+  const Result result = RunText(text, "triaxial");
+  ASSERT_EQ(result.summary.termination, Termination::kCompleted) << result.summary.message;
+  const auto& stage = result.series.Values("stage");
+  const auto& radial = result.series.Values("sigma_r_kpa");
+  const auto& axial_strain = result.series.Values("eps_a");
+  const auto& q = result.series.Values("q_kpa");
+  double start = -1;
+  int checked = 0;
+  for (size_t k = 0; k < stage.size(); ++k) {
+    if (stage[k] != 1) continue;
+    if (start < 0) start = axial_strain[k];
+    if (axial_strain[k] - start < 0.01) continue;  // shearing has started
+    EXPECT_NEAR(radial[k], 200.0, 2.0) << "row " << k;
+    ++checked;
+  }
+  EXPECT_GT(checked, 30);
+  EXPECT_GT(q.back(), 100.0);  // the sample was sheared
+}
+
+TEST(Simulation, IsochoricShearReachesADetectedAsymptote) {
+  const std::string text = SampleToml(1000, 5.8, 3) + R"(
+[output]
+interval_strain = 0.01
+[[stage]]
+name = "ncl"
+psi_epsilon_deg = 0.0
+stretching_rate = 167.0
+[stage.stop]
+mean_stress_kpa = 300.0
+[[stage]]
+name = "shear"
+psi_epsilon_deg = 90.0
+stretching_rate = 167.0
+[stage.asymptote]
+window_strain = 0.15
+sample_strain = 0.005
+psi_tolerance_deg = 3.0
+lnp_tolerance = 0.15
+[stage.stop]
+asymptote = true
+strain_norm = 2.0
+)";
+  const Result result = RunText(text, "asymptote");
+  ASSERT_EQ(result.summary.termination, Termination::kCompleted) << result.summary.message;
+  const Hdf5File file = Hdf5File::OpenRead(TempPath("asymptote.h5"));
+  EXPECT_EQ(file.ReadIntAttribute("/stages/001", "asymptote_detected"), 1)
+      << file.ReadStringAttribute("/stages/001", "stop_reason");
+  const double psi = file.ReadDoubleAttribute("/stages/001", "asymptote_psi_sigma_deg");
+  EXPECT_GT(psi, 10.0);
+  EXPECT_LT(psi, 40.0);
+  EXPECT_NE(file.ReadStringAttribute("/stages/001", "asymptote_criterion").find("psi_sigma"),
+            std::string::npos);
+  // Isochoric: the void ratio is constant during the stage.
+  const auto& e = result.series.Values("e");
+  const auto& stage = result.series.Values("stage");
+  double e0 = -1;
+  for (size_t k = 0; k < e.size(); ++k) {
+    if (stage[k] != 1) continue;
+    if (e0 < 0) e0 = e[k];
+    EXPECT_NEAR(e[k], e0, 1e-9);
+  }
+}
+
+TEST(Simulation, ResultFileCarriesUnitsSummaryAndContactDurations) {
+  const std::string text = SampleToml(1000, 5.8, 3) + R"(
+[output]
+interval_steps = 100
+overlap_histogram = true
+[[stage]]
+name = "compress"
+psi_epsilon_deg = 0.0
+stretching_rate = 167.0
+[stage.stop]
+steps = 500
+)";
+  const Result result = RunText(text, "layout");
+  const Hdf5File file = Hdf5File::OpenRead(TempPath("layout.h5"));
+  EXPECT_EQ(file.ReadStringAttribute("/series/p_kpa", "units"), "kPa");
+  EXPECT_EQ(file.ReadStringAttribute("/series/time_s", "units"), "s");
+  EXPECT_EQ(file.ReadStringAttribute("/summary", "termination"), "completed");
+  EXPECT_EQ(file.ReadIntAttribute("/summary", "steps"), 500);
+  // The paper's quoted durations use one particle's mass; the reduced mass is √2 shorter.
+  const double single = file.ReadDoubleAttribute("/summary", "contact_duration_min_single_mass_s");
+  const double reduced = file.ReadDoubleAttribute("/summary", "contact_duration_min_reduced_mass_s");
+  EXPECT_NEAR(single / reduced, std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(single, 1.5e-6, 0.1e-6);
+  EXPECT_EQ(file.ReadString("/scene"), text);
+  size_t rows = 0, cols = 0;
+  file.ReadMatrix("/series_histogram/counts", &rows, &cols);
+  EXPECT_EQ(rows, result.series.rows());
+  EXPECT_EQ(cols, 40u);
+}
+
+}  // namespace
+}  // namespace granasym::dem
