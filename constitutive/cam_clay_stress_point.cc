@@ -330,15 +330,25 @@ Eigen::Matrix<S, 8, 1> ReturnResidual(const ReturnData& data, const Vec6<S>& str
   for (int i = 0; i < 3; ++i) n[i] -= m2 * (2.0 * p - preconsolidation) / 3.0;
   const Vec6<S> elastic_strain = strain_increment - multiplier * n;
   const S log_volume = data.log_volume_start + Trace(strain_increment);
-  S lambda(c.lambda), kappa(c.kappa);
+  const S plastic_volumetric = multiplier * m2 * (2.0 * p - preconsolidation);  // compression +
+  // Volume measure v = ln(1+e) (log-log) or e (semi-log), split into elastic and
+  // plastic parts: p = p_n exp(−Δv^e/κ), p_c = p_{c,n} exp(−Δv^p/(λ−κ)); exact on the NCL.
+  S volume_change, plastic_volume_change;
+  S kappa_star(c.kappa);
   if (c.form == ModifiedCamClay::CompressionForm::kSemiLog) {
-    lambda = c.lambda / exp(log_volume);
-    kappa = c.kappa / exp(log_volume);
+    const S one_plus_e = exp(log_volume);
+    volume_change = std::exp(data.log_volume_start) * (exp(Trace(strain_increment)) - 1.0);
+    plastic_volume_change = -one_plus_e * plastic_volumetric;
+    kappa_star = c.kappa / one_plus_e;
+  } else {
+    volume_change = Trace(strain_increment);
+    plastic_volume_change = -plastic_volumetric;
   }
-  const S p_target = data.mean_stress_start * exp(-Trace(elastic_strain) / kappa);
+  const S p_target =
+      data.mean_stress_start * exp(-(volume_change - plastic_volume_change) / c.kappa);
   const S shear = c.elasticity == ModifiedCamClay::Elasticity::kPoissonRatio
-                      ? S(p_target / kappa * (3.0 * (1.0 - 2.0 * c.poisson_ratio) /
-                                              (2.0 * (1.0 + c.poisson_ratio))))
+                      ? S(p_target / kappa_star * (3.0 * (1.0 - 2.0 * c.poisson_ratio) /
+                                                   (2.0 * (1.0 + c.poisson_ratio))))
                       : S(c.shear_modulus);
   const Vec6<S> s_target = data.deviator_start.cast<S>() + 2.0 * shear * Deviator(elastic_strain);
   Eigen::Matrix<S, 8, 1> residual;
@@ -347,9 +357,8 @@ Eigen::Matrix<S, 8, 1> ReturnResidual(const ReturnData& data, const Vec6<S>& str
     if (i < 3) target -= p_target;
     residual[i] = (stress[i] - target) / data.mean_stress_start;
   }
-  const S plastic_volumetric = multiplier * m2 * (2.0 * p - preconsolidation);  // compression +
-  residual[6] =
-      log_preconsolidation - data.log_preconsolidation_start - plastic_volumetric / (lambda - kappa);
+  residual[6] = log_preconsolidation - data.log_preconsolidation_start +
+                plastic_volume_change / (c.lambda - c.kappa);
   residual[7] = (1.5 * Contract(s, s) + m2 * p * (p - preconsolidation)) / data.scale;
   return residual;
 }

@@ -535,7 +535,6 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
   const double stretching_norm = FrobeniusNorm<double>(rate_estimate);
   double dt = stretching_norm > 0 ? options.max_strain_increment / stretching_norm
                                   : stage.duration / 1000.0;
-  dt = std::min(dt, stage.duration / std::max(1, stage.output_points));
 
   // One increment of duration h from y0 into y1; false with a message on failure.
   Vector6 unknown_rate_guess = rate_estimate;
@@ -544,12 +543,12 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
     const ModelState start = ode.StateOf(y0.data());
     Vector6 strain = unknown_rate_guess * h;
     for (int i : known) strain[i] = prescribed[i] * h;
-    ModelState end;
-    for (int iteration = 0; iteration <= options.control_max_iterations; ++iteration) {
-      end = start;
-      Matrix6 tangent;
+    // Residual of the stress-controlled components for a trial increment.
+    auto solve = [&](const Vector6& trial, ModelState* out, Matrix6* tangent,
+                     Eigen::VectorXd* residual) -> bool {
+      *out = start;
       const CamClayStressPoint::Summary update =
-          stress_point.Update(strain, &end, n > 0 ? &tangent : nullptr);
+          stress_point.Update(trial, out, tangent);
       ++summary.rhs_evaluations;
       summary.nonlinear_iterations += update.iterations;
       summary.rejected_steps += update.rejected_substeps;
@@ -557,26 +556,69 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
         *why = update.message;
         return false;
       }
-      if (n == 0) break;
-      Eigen::VectorXd residual(n);
-      double scale = 1e-300;
+      residual->resize(n);
       for (int k = 0; k < n; ++k) {
         const int i = unknown[k];
-        residual[k] = end.stress[i] - start.stress[i] - prescribed[i] * h;
-        scale = std::max(scale, std::abs(end.stress[i] - start.stress[i]));
+        (*residual)[k] = out->stress[i] - start.stress[i] - prescribed[i] * h;
       }
-      scale = std::max(scale, (end.stress - start.stress).cwiseAbs().maxCoeff());
+      return true;
+    };
+    ModelState end;
+    Eigen::VectorXd residual;
+    const bool consistent = stress_point.options().method == CamClayStressPoint::Method::kReturnMapping;
+    Matrix6 tangent;
+    if (!solve(strain, &end, n > 0 && consistent ? &tangent : nullptr, &residual)) return false;
+    for (int iteration = 0; n > 0; ++iteration) {
+      const double scale =
+          std::max((end.stress - start.stress).cwiseAbs().maxCoeff(), 1e-12 * start.stress.norm());
       if (residual.cwiseAbs().maxCoeff() <= options.control_tolerance * 10 * scale) break;
       if (iteration == options.control_max_iterations) {
-        *why = "mixed control of the strain increment did not converge";
+        *why = fmt::format("mixed control of the strain increment did not converge (residual "
+                           "{:.3g} kPa)", residual.cwiseAbs().maxCoeff());
         return false;
       }
       Eigen::MatrixXd block(n, n);
-      for (int a = 0; a < n; ++a) {
-        for (int b = 0; b < n; ++b) block(a, b) = tangent(unknown[a], unknown[b]);
+      if (consistent) {
+        for (int a = 0; a < n; ++a) {
+          for (int b = 0; b < n; ++b) block(a, b) = tangent(unknown[a], unknown[b]);
+        }
+      } else {
+        // Modified Euler: forward differences of the update itself.
+        for (int b = 0; b < n; ++b) {
+          Vector6 perturbed = strain;
+          const double step = 1e-7 * std::max(FrobeniusNorm<double>(strain), 1e-9);
+          perturbed[unknown[b]] += step;
+          ModelState unused;
+          Eigen::VectorXd perturbed_residual;
+          if (!solve(perturbed, &unused, nullptr, &perturbed_residual)) return false;
+          block.col(b) = (perturbed_residual - residual) / step;
+        }
       }
       const Eigen::VectorXd correction = -block.fullPivLu().solve(residual);
-      for (int k = 0; k < n; ++k) strain[unknown[k]] += correction[k];
+      double fraction = 1.0;
+      bool improved = false;
+      for (int search = 0; search < 20; ++search) {
+        Vector6 candidate = strain;
+        for (int k = 0; k < n; ++k) candidate[unknown[k]] += fraction * correction[k];
+        ModelState candidate_end;
+        Eigen::VectorXd candidate_residual;
+        Matrix6 candidate_tangent;
+        if (solve(candidate, &candidate_end, consistent ? &candidate_tangent : nullptr,
+                  &candidate_residual) &&
+            candidate_residual.norm() < residual.norm()) {
+          strain = candidate;
+          end = candidate_end;
+          residual = candidate_residual;
+          if (consistent) tangent = candidate_tangent;
+          improved = true;
+          break;
+        }
+        fraction *= 0.5;
+      }
+      if (!improved) {
+        *why = "mixed control of the strain increment stalled";
+        return false;
+      }
     }
     for (int i : unknown) unknown_rate_guess[i] = strain[i] / h;
     y1->assign(dim, 0.0);
@@ -597,13 +639,22 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
   double t = 0.0;
   std::vector<double> y_new;
   std::string why;
+  double h_current = dt;
   while (t < stage.duration * (1.0 - 1e-14)) {
-    const double h = std::min(dt, stage.duration - t);
-    if (!increment(*y, h, &y_new, &why)) {
+    double h = std::min(h_current, stage.duration - t);
+    // A failed increment (non-smooth transition, no convergence) is halved.
+    bool ok = increment(*y, h, &y_new, &why);
+    for (int halving = 0; !ok && halving < 30; ++halving) {
+      ++summary.rejected_steps;
+      h *= 0.5;
+      ok = increment(*y, h, &y_new, &why);
+    }
+    if (!ok) {
       summary.termination = TerminationType::kFailure;
       summary.message = fmt::format("increment at t = {:.6g} s failed: {}", t, why);
       break;
     }
+    h_current = std::min(dt, 2.0 * h);
     ++summary.steps;
     ode.Roots(t + h, y_new.data(), g_new.data());
     int crossed = -1;

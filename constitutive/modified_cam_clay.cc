@@ -24,6 +24,7 @@ bool CamClayRate(const ModifiedCamClay::Parameters& c, const Vec6<S>& t, const S
                  const S& preconsolidation, const Vec6<S>& d, Vec6<S>* stress_rate,
                  S* preconsolidation_rate, std::string* why) {
   using std::exp;
+  using std::sqrt;
   const double m2 = c.critical_state_ratio * c.critical_state_ratio;
   const S p = -Trace(t) / 3.0;
   const Vec6<S> s = Deviator(t);
@@ -51,14 +52,18 @@ bool CamClayRate(const ModifiedCamClay::Parameters& c, const Vec6<S>& t, const S
   for (int i = 0; i < 3; ++i) n[i] -= m2 * (2.0 * p - preconsolidation) / 3.0;
   const S n_trial = Contract(n, trial);
   const double scale = m2 * autodiff::Value(preconsolidation) * autodiff::Value(preconsolidation);
-  const bool on_surface = autodiff::Value(f) >= -c.yield_tolerance * scale;
-  if (on_surface && autodiff::Value(n_trial) > 0) {
+  const bool on_surface = autodiff::Value(f) >= -c.rate_form_band * scale;
+  const S d2 = Contract(d, d);
+  S d_norm(0.0);
+  if (autodiff::Value(d2) > 0) d_norm = sqrt(d2);
+  const S loading = n_trial + c.drift_stabilization * f * d_norm;
+  if (on_surface && autodiff::Value(n_trial) > 0 && autodiff::Value(loading) > 0) {
     const S hardening = preconsolidation * m2 * (2.0 * p - preconsolidation) / (lambda - kappa);
     const S denominator = Contract(n, elastic(n)) + m2 * p * hardening;
     if (!(autodiff::Value(denominator) > 0)) {
       return Fail(why, "plastic denominator n:𝔼:n + H ≤ 0 (softening beyond the elastic limit)");
     }
-    const S multiplier = n_trial / denominator;
+    const S multiplier = loading / denominator;
     *stress_rate = trial - multiplier * elastic(n);
     *preconsolidation_rate = multiplier * hardening;
   } else {
@@ -110,6 +115,12 @@ bool ModifiedCamClay::Parameters::IsValid(std::string* why) const {
   if (!(yield_tolerance > 0 && yield_tolerance < 1e-2)) {
     return fail(fmt::format("yield_tolerance = {} must be in (0, 0.01)", yield_tolerance));
   }
+  if (!(rate_form_band > 0 && rate_form_band < 1e-2)) {
+    return fail(fmt::format("rate_form_band = {} must be in (0, 0.01)", rate_form_band));
+  }
+  if (!(drift_stabilization >= 0)) {
+    return fail(fmt::format("drift_stabilization = {} must be >= 0", drift_stabilization));
+  }
   return true;
 }
 
@@ -155,14 +166,23 @@ bool ModifiedCamClay::Rate(const ModelState& state, const Vector6& stretching, M
     weighted_n.tail<3>() *= 2.0;
     const Eigen::Matrix<double, 1, 6> n_elastic = weighted_n.transpose() * elastic;
     const double n_trial = n_elastic.dot(stretching);
-    if (OnYieldSurface(state.stress, p_c) && n_trial > 0) {
+    const double m2 = parameters_.critical_state_ratio * parameters_.critical_state_ratio;
+    const double f = YieldFunction(state.stress, p_c);
+    const double d_norm = FrobeniusNorm<double>(stretching);
+    const double loading = n_trial + parameters_.drift_stabilization * f * d_norm;
+    if (f >= -parameters_.rate_form_band * m2 * p_c * p_c && n_trial > 0 && loading > 0) {
       double lambda, kappa;
       CompressionSlopes(state.void_ratio, &lambda, &kappa);
-      const double m2 = parameters_.critical_state_ratio * parameters_.critical_state_ratio;
       const double p = MeanStress(state.stress);
       const double hardening = p_c * m2 * (2.0 * p - p_c) / (lambda - kappa);
       const double denominator = n_elastic.dot(n) + m2 * p * hardening;
-      *tangent -= (elastic * n) * n_elastic / denominator;
+      Eigen::Matrix<double, 1, 6> d_loading = n_elastic;
+      if (d_norm > 0) {
+        Vector6 weighted = stretching / d_norm;
+        weighted.tail<3>() *= 2.0;
+        d_loading += parameters_.drift_stabilization * f * weighted.transpose();
+      }
+      *tangent -= (elastic * n) * d_loading / denominator;
     }
   }
   if (!rate->stress_rate.allFinite() || !std::isfinite(preconsolidation_rate)) {

@@ -36,6 +36,14 @@ class ModifiedCamClay : public ConstitutiveModel {
     // A state counts as on the yield surface when f ≥ −yield_tolerance (M p_c)²;
     // the stress-point algorithms also use it as their drift tolerance.
     double yield_tolerance = 1e-9;
+    // Rate form only (used by the ODE integrators): the plastic branch is taken
+    // when f ≥ −rate_form_band (M p_c)² and the multiplier is positive, and the
+    // multiplier carries a Baumgarte term, λ̇ = (n:𝔼:D + β f ‖D‖)/(n:𝔼:n + H),
+    // so that ḟ = −β f ‖D‖ pulls integration drift back onto f = 0 (β per unit
+    // strain). Without it the branch switch chatters and implicit integrators
+    // stall; on f = 0 the term vanishes and the exact plastic rate is unchanged.
+    double rate_form_band = 1e-5;
+    double drift_stabilization = 100.0;
     bool IsValid(std::string* why) const;
   };
 
