@@ -158,6 +158,8 @@ class Simulation {
   double last_p_kpa_ = 0, last_psi_deg_ = 0;
   Stopwatch stage_clock_;  // for the ETA only; not part of the state
   int64_t stage_clock_start_step_ = 0;
+  int64_t eta_stage_ = -1;
+  double eta_p0_ = 0;
   int threads_ = 1;
 };
 
@@ -438,9 +440,16 @@ void Simulation::ReportProgress() {
   if (stop.steps) fraction = std::max(fraction, double(engine_->step() - state_.stage_start_step) / *stop.steps);
   if (stop.time_s) fraction = std::max(fraction, (engine_->time() - state_.stage_start_time) / *stop.time_s);
   if (stop.strain_norm) fraction = std::max(fraction, state_.stage_strain_norm / *stop.strain_norm);
-  if (stop.mean_stress_kpa && last_p_kpa_ > 0 && state_.stage_start_p > 0) {
-    const double done = std::log(last_p_kpa_ / state_.stage_start_p);
-    const double total = std::log(*stop.mean_stress_kpa / state_.stage_start_p);
+  // From a contact-free start, progress in ln p counts from the first
+  // positive pressure seen in the stage.
+  if (eta_stage_ != state_.stage) {
+    eta_stage_ = state_.stage;
+    eta_p0_ = state_.stage_start_p;
+  }
+  if (!(eta_p0_ > 0) && last_p_kpa_ > 0) eta_p0_ = last_p_kpa_;
+  if (stop.mean_stress_kpa && last_p_kpa_ > 0 && eta_p0_ > 0) {
+    const double done = std::log(last_p_kpa_ / eta_p0_);
+    const double total = std::log(*stop.mean_stress_kpa / eta_p0_);
     if (total != 0) fraction = std::max(fraction, done / total);
   }
   const double steps_per_second = static_cast<double>(engine_->step() - stage_clock_start_step_) /
