@@ -115,23 +115,45 @@ IntegratedAsymptote IntegrateAsymptote(const ConstitutiveModel& model, const Mod
                                        double psi_epsilon, const AsymptoteSearchOptions& options) {
   std::string why;
   GRANASYM_CHECK(options.IsValid(&why)) << why;
-  LoadingStage stage = LoadingStage::Proportional(psi_epsilon, 1.0, options.max_strain_path);
-  stage.stops.push_back({StopKind::kAsymptote, options.tolerance});
-  stage.output_points = 1;
+  // Chunks of strain path; between chunks the state is rescaled to the initial
+  // mean stress where the model allows it (the asymptote is scale free), so that
+  // p neither overflows on compression paths nor underflows on extension paths.
+  constexpr double kChunk = 2.0;
+  constexpr double kRescaleRange = 1e3;
+  const double reference_pressure = MeanStress(initial.stress);
   const ElementTest test(model, options.element_test);
-  const ElementTestResult result = test.Run(initial, {stage});
   IntegratedAsymptote asymptote;
-  asymptote.summary = result.summary;
-  if (!result.summary.success() || result.history.empty()) return asymptote;
+  ModelState state = initial;
+  double path = 0.0;
+  ElementTestResult result;
+  while (path < options.max_strain_path && !asymptote.found) {
+    LoadingStage stage =
+        LoadingStage::Proportional(psi_epsilon, 1.0, std::min(kChunk, options.max_strain_path - path));
+    stage.stops.push_back({StopKind::kAsymptote, options.tolerance});
+    stage.output_points = 1;
+    result = test.Run(state, {stage});
+    asymptote.summary.totals.Accumulate(result.summary.totals);
+    asymptote.summary.stages.insert(asymptote.summary.stages.end(), result.summary.stages.begin(),
+                                    result.summary.stages.end());
+    asymptote.summary.termination = result.summary.termination;
+    asymptote.summary.message = result.summary.message;
+    if (!result.summary.success() || result.history.empty()) return asymptote;
+    path += result.history.back().strain_path;
+    asymptote.found = result.summary.stages.back().integration.root_index == 0;
+    state = result.final_state;
+    const double p = MeanStress(state.stress);
+    if (!asymptote.found && (p > kRescaleRange * reference_pressure ||
+                             p < reference_pressure / kRescaleRange)) {
+      model.ScaleState(reference_pressure / p, &state);
+    }
+  }
   const ElementTestRecord& last = result.history.back();
-  asymptote.found = result.summary.stages.size() == 1 &&
-                    result.summary.stages[0].integration.root_index == 0;
   const AxisymmetricStress stress = RecordStress(last);
   asymptote.state.psi_epsilon = psi_epsilon;
   asymptote.state.psi_sigma = stress.psi();
   asymptote.state.ocr = last.ocr;
   asymptote.state.stress_ratio = stress.deviator() / stress.mean();
-  asymptote.strain_path = last.strain_path;
+  asymptote.strain_path = path;
   asymptote.mean_stress = stress.mean();
   asymptote.void_ratio = last.void_ratio;
   if (!asymptote.found) {

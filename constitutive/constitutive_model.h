@@ -72,6 +72,13 @@ class ConstitutiveModel {
   // internal variables consistently (Cam clay: p_c from the elastic line).
   virtual ModelState MakeState(const Vector6& stress, double void_ratio) const = 0;
 
+  // Homogeneity in pressure: maps `state` to the state with stress (and
+  // stress-like internal variables) times `factor` and p_e* times `factor`,
+  // which evolves identically up to that scale (rate independence, barotropy
+  // ∝ p). Returns false for models without this property. Used to keep long
+  // asymptote searches within floating-point range.
+  virtual bool ScaleState(double factor, ModelState* state) const { return false; }
+
   // Critical friction angle φ_c (rad) of the model, for the critical-state ratio.
   virtual double critical_friction_angle() const = 0;
   // One line with the parameters, for logs and HDF5 attributes.

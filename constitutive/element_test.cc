@@ -460,13 +460,14 @@ class StageOde : public OdeSystem {
     const double x = sa + 2.0 * sr, yy = std::sqrt(2.0) * (sa - sr);
     const double dx = dsa + 2.0 * dsr, dy = std::sqrt(2.0) * (dsa - dsr);
     const double psi_rate = (x * dy - yy * dx) / (x * x + yy * yy);
-    const double e = std::expm1(y[kLogVolume]);
-    const double h = 1e-6 * (1.0 + e);
-    const double dlnpe_de =
-        (std::log(model_.EquivalentPressure(e + h)) - std::log(model_.EquivalentPressure(e - h))) /
-        (2.0 * h);
-    const double e_rate = (1.0 + e) * y_dot[kLogVolume];
-    const double log_ocr_rate = dlnpe_de * e_rate - dx / x;  // d ln p = dx/x
+    // d ln p_e/d ln(1+e) by a central difference in v = ln(1+e): exact for NCLs
+    // linear in v (−1/λ*), O(h²) accurate otherwise, free of cancellation noise.
+    const double v = y[kLogVolume];
+    const double h = 1e-3;
+    const double dlnpe_dv = (std::log(model_.EquivalentPressure(std::expm1(v + h))) -
+                             std::log(model_.EquivalentPressure(std::expm1(v - h)))) /
+                            (2.0 * h);
+    const double log_ocr_rate = dlnpe_dv * y_dot[kLogVolume] - dx / x;  // d ln p = dx/x
     return (std::abs(psi_rate) + std::abs(log_ocr_rate)) / path_rate;
   }
 

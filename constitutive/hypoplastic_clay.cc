@@ -297,6 +297,13 @@ bool HypoplasticClay::AsymptoteForStress(const Vector6& stress, Asymptote* asymp
   return true;
 }
 
+bool HypoplasticClay::ScaleState(double factor, ModelState* state) const {
+  state->stress *= factor;
+  state->void_ratio =
+      std::expm1(std::log1p(state->void_ratio) - parameters_.lambda_star * std::log(factor));
+  return true;
+}
+
 std::string HypoplasticClay::Describe() const {
   return fmt::format(
       "hypoplastic_clay phi_c={:.6g} deg lambda*={:.6g} kappa*={:.6g} N={:.6g} r={:.6g} p_r={:.6g} "

@@ -42,6 +42,7 @@ class HypoplasticClay : public ConstitutiveModel {
   double EquivalentPressure(double void_ratio) const override;
   double VoidRatioForOcr(double mean_stress, double ocr) const override;
   ModelState MakeState(const Vector6& stress, double void_ratio) const override;
+  bool ScaleState(double factor, ModelState* state) const override;
   double critical_friction_angle() const override { return parameters_.critical_friction_angle; }
   std::string Describe() const override;
 

@@ -305,6 +305,20 @@ ModelState ModifiedCamClay::MakeState(const Vector6& stress, double void_ratio) 
   return state;
 }
 
+bool ModifiedCamClay::ScaleState(double factor, ModelState* state) const {
+  // K = p/κ* and G ∝ p make the log-log form homogeneous; a constant G or the
+  // semi-log form's 1/(1+e) break it.
+  if (parameters_.form != CompressionForm::kLogLog ||
+      parameters_.elasticity != Elasticity::kPoissonRatio) {
+    return false;
+  }
+  state->stress *= factor;
+  state->internal *= factor;
+  state->void_ratio =
+      std::expm1(std::log1p(state->void_ratio) - parameters_.lambda * std::log(factor));
+  return true;
+}
+
 double ModifiedCamClay::critical_friction_angle() const {
   const double m = parameters_.critical_state_ratio;
   return std::asin(3.0 * m / (6.0 + m));

@@ -60,6 +60,7 @@ class ModifiedCamClay : public ConstitutiveModel {
   double EquivalentPressure(double void_ratio) const override;
   double VoidRatioForOcr(double mean_stress, double ocr) const override;
   ModelState MakeState(const Vector6& stress, double void_ratio) const override;
+  bool ScaleState(double factor, ModelState* state) const override;  // log-log form only
   double critical_friction_angle() const override;
   std::string Describe() const override;
 
