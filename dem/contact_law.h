@@ -51,8 +51,10 @@ class LinearCundallStrack {
   }
 
   // Evaluates a pair in contact (overlap u_N = r_i + r_j − |l| > 0). With
-  // kFriction the stored shear force `shear` (acting on i) is updated.
-  template <bool kFriction>
+  // kFriction the stored shear force `shear` (acting on i) is updated, unless
+  // kFrozen: then the pair is re-evaluated at the configuration of its last
+  // update and the stored shear force is used as it is.
+  template <bool kFriction, bool kFrozen = false>
   inline Result Evaluate(const Pair& pair, Vec3* shear) const {
     const double overlap = pair.radius_i + pair.radius_j - pair.distance;
     const Vec3 normal = (1.0 / pair.distance) * pair.branch;  // from i to j
@@ -60,7 +62,12 @@ class LinearCundallStrack {
     Result result;
     result.normal_force = k_n * overlap;
     result.force_i = (-result.normal_force) * normal;
-    if constexpr (kFriction) {
+    if constexpr (kFriction && kFrozen) {
+      const Vec3 moment = Cross(normal, *shear);
+      result.force_i = result.force_i + *shear;
+      result.torque_i = (pair.radius_i - 0.5 * overlap) * moment;
+      result.torque_j = (pair.radius_j - 0.5 * overlap) * moment;
+    } else if constexpr (kFriction) {
       const double arm_i = pair.radius_i - 0.5 * overlap;
       const double arm_j = pair.radius_j - 0.5 * overlap;
       // Rigid rotation of the contact over the step: the normal turned by

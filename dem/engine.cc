@@ -11,7 +11,7 @@
 namespace granasym::dem {
 namespace {
 
-enum Flag : unsigned { kFriction = 1, kDamping = 2, kStress = 4, kStiffness = 8 };
+enum Flag : unsigned { kFriction = 1, kDamping = 2, kStress = 4, kStiffness = 8, kFrozen = 16 };
 
 // Minimum image of a scaled separation; |delta| < 1.5 holds because scaled
 // positions are wrapped into [0, 1) at every list build and move less than a
@@ -167,6 +167,7 @@ void Engine::ComputeForcesImpl() {
   constexpr bool kUseFriction = (kFlags & kFriction) != 0;
   constexpr bool kSumStress = (kFlags & kStress) != 0;
   constexpr bool kSumStiffness = (kFlags & kStiffness) != 0;
+  constexpr bool kReevaluate = (kFlags & kFrozen) != 0;
   const int64_t n = static_cast<int64_t>(position_.size());
   const int threads = options_.threads;
   const double lx = cell_[0], ly = cell_[1], lz = cell_[2];
@@ -202,7 +203,7 @@ void Engine::ComputeForcesImpl() {
         const double distance2 = Dot(branch, branch);
         const double reach = pi.w + pj.w;
         if (distance2 >= reach * reach) {
-          if constexpr (kUseFriction) shear[p] = Vec3{};
+          if constexpr (kUseFriction && !kReevaluate) shear[p] = Vec3{};
           continue;
         }
         LinearCundallStrack::Pair pair;
@@ -210,7 +211,7 @@ void Engine::ComputeForcesImpl() {
         pair.distance = std::sqrt(distance2);
         pair.radius_i = pi.w;
         pair.radius_j = pj.w;
-        if constexpr (kUseFriction) {
+        if constexpr (kUseFriction && !kReevaluate) {
           const Vec4 vi = velocity[i], vj = velocity[j];
           pair.centre_velocity = {vj.x - vi.x + gx * branch.x, vj.y - vi.y + gy * branch.y,
                                   vj.z - vi.z + gz * branch.z};
@@ -218,7 +219,7 @@ void Engine::ComputeForcesImpl() {
           pair.spin_j = Xyz(spin[j]);
         }
         const LinearCundallStrack::Result r =
-            law_.Evaluate<kUseFriction>(pair, kUseFriction ? &shear[p] : nullptr);
+            law_.Evaluate<kUseFriction, kReevaluate>(pair, kUseFriction ? &shear[p] : nullptr);
         force_i = force_i + r.force_i;
         force[j].x -= r.force_i.x;
         force[j].y -= r.force_i.y;
@@ -306,7 +307,7 @@ void Engine::ComputeForcesImpl() {
 }
 
 void Engine::ComputeForces(Request request) {
-  if (neighbors_.NeedsRebuild(max_displacement_, cell_)) {
+  if (!forces_current_ && neighbors_.NeedsRebuild(max_displacement_, cell_)) {
     for (Vec4& s : position_) {
       s.x -= std::floor(s.x);
       s.y -= std::floor(s.y);
@@ -315,19 +316,26 @@ void Engine::ComputeForces(Request request) {
     neighbors_.Build(position_, cell_, skin_, options_.threads);
     max_displacement_ = 0.0;
   }
+  // A second evaluation at unchanged positions must not slide the contacts
+  // again: it reuses the shear forces of the first.
   const unsigned flags = (friction_ ? kFriction : 0u) | (request.stress ? kStress : 0u) |
-                         (request.stiffness ? kStiffness : 0u);
+                         (request.stiffness ? kStiffness : 0u) |
+                         (forces_current_ && friction_ ? kFrozen : 0u);
   using Kernel = void (Engine::*)();
-  static constexpr Kernel kKernels[16] = {
-      &Engine::ComputeForcesImpl<0>,  &Engine::ComputeForcesImpl<1>,
-      &Engine::ComputeForcesImpl<2>,  &Engine::ComputeForcesImpl<3>,
-      &Engine::ComputeForcesImpl<4>,  &Engine::ComputeForcesImpl<5>,
-      &Engine::ComputeForcesImpl<6>,  &Engine::ComputeForcesImpl<7>,
-      &Engine::ComputeForcesImpl<8>,  &Engine::ComputeForcesImpl<9>,
-      &Engine::ComputeForcesImpl<10>, &Engine::ComputeForcesImpl<11>,
-      &Engine::ComputeForcesImpl<12>, &Engine::ComputeForcesImpl<13>,
-      &Engine::ComputeForcesImpl<14>, &Engine::ComputeForcesImpl<15>};
+  static constexpr Kernel kKernels[32] = {
+#define GRANASYM_KERNEL(k) &Engine::ComputeForcesImpl<k>
+      GRANASYM_KERNEL(0),  GRANASYM_KERNEL(1),  GRANASYM_KERNEL(2),  GRANASYM_KERNEL(3),
+      GRANASYM_KERNEL(4),  GRANASYM_KERNEL(5),  GRANASYM_KERNEL(6),  GRANASYM_KERNEL(7),
+      GRANASYM_KERNEL(8),  GRANASYM_KERNEL(9),  GRANASYM_KERNEL(10), GRANASYM_KERNEL(11),
+      GRANASYM_KERNEL(12), GRANASYM_KERNEL(13), GRANASYM_KERNEL(14), GRANASYM_KERNEL(15),
+      GRANASYM_KERNEL(16), GRANASYM_KERNEL(17), GRANASYM_KERNEL(18), GRANASYM_KERNEL(19),
+      GRANASYM_KERNEL(20), GRANASYM_KERNEL(21), GRANASYM_KERNEL(22), GRANASYM_KERNEL(23),
+      GRANASYM_KERNEL(24), GRANASYM_KERNEL(25), GRANASYM_KERNEL(26), GRANASYM_KERNEL(27),
+      GRANASYM_KERNEL(28), GRANASYM_KERNEL(29), GRANASYM_KERNEL(30), GRANASYM_KERNEL(31)
+#undef GRANASYM_KERNEL
+  };
   (this->*kKernels[flags])();
+  forces_current_ = true;
 }
 
 template <unsigned kFlags>
@@ -377,6 +385,7 @@ void Engine::IntegrateImpl() {
     }
   }
   max_displacement_ = std::sqrt(max2);
+  forces_current_ = false;
   // dH/dt = D H integrated exactly over the step for the constant diagonal D
   // (the forward-Euler H += Δt D H would change the volume of an isochoric
   // path at second order, Δε_v ≈ −¾(ε̇_a Δt)² per step).
@@ -427,6 +436,7 @@ Engine::State Engine::Save() const {
   state.time = time_;
   state.step = step_;
   state.max_displacement = max_displacement_;
+  state.forces_current = forces_current_;
   state.neighbors = neighbors_.Save();
   return state;
 }
@@ -444,6 +454,7 @@ void Engine::Restore(State state) {
   time_ = state.time;
   step_ = state.step;
   max_displacement_ = state.max_displacement;
+  forces_current_ = state.forces_current;
   neighbors_.Restore(std::move(state.neighbors));
 }
 

@@ -92,6 +92,8 @@ class Engine {
 
   // Evaluates contact forces at the current positions (rebuilding the
   // neighbour list when needed). Leaves net forces and torques in place.
+  // Calling it again before Integrate() gives the same forces (the shear
+  // history advances once per step), with the sums now requested.
   void ComputeForces(Request request);
   // Advances velocities, positions and the cell by one step.
   void Integrate();
@@ -138,6 +140,7 @@ class Engine {
     double time = 0;
     int64_t step = 0;
     double max_displacement = 0;
+    bool forces_current = false;
     NeighborList::State neighbors;
   };
   State Save() const;
@@ -159,6 +162,7 @@ class Engine {
   double solid_volume_ = 0;
   double skin_ = 0;
   double max_displacement_ = 0;  // since the last list build (m)
+  bool forces_current_ = false;  // forces evaluated at the current positions
   bool friction_ = false;
   bool damping_ = false;
 

@@ -285,8 +285,8 @@ void Simulation::Control(const Stage& stage, bool have_stress) {
 
 bool Simulation::StepsOrTimeDone(const Stage& stage) const {
   const StopConditions& stop = stage.stop;
-  if (stop.steps && engine_->step() + 1 - state_.stage_start_step >= *stop.steps) return true;
-  const double elapsed = engine_->time() + engine_->time_step() - state_.stage_start_time;
+  if (stop.steps && engine_->step() - state_.stage_start_step >= *stop.steps) return true;
+  const double elapsed = engine_->time() - state_.stage_start_time;
   return stop.time_s && elapsed >= *stop.time_s * (1 - 1e-12);
 }
 
@@ -305,11 +305,7 @@ bool Simulation::StrainStopReached(const Stage& stage) const {
   if (reached(stop.volumetric_strain, axial + 2 * radial)) return true;
   if (reached(stop.shear_strain, 2.0 * (axial - radial) / 3.0)) return true;
   if (stop.strain_norm && state_.stage_strain_norm >= *stop.strain_norm) return true;
-  // Steps and time count the step about to be taken, so that a stage of
-  // `steps = N` takes exactly N steps (its last row is the state before the
-  // last step).
-  if (StepsOrTimeDone(stage)) return true;
-  return false;
+  return StepsOrTimeDone(stage);
 }
 
 std::optional<std::string> Simulation::CheckStop(const Stage& stage, bool have_stress,
@@ -845,7 +841,7 @@ RunSummary Simulation::Loop(RunSummary& summary, Finish& finish, double& loop_se
       stage_clock_start_step_ = engine_->step();
     }
     const bool strain_stop = StrainStopReached(stage);
-    const bool output_due = series_.rows() == 0 ||
+    const bool output_due = series_.rows() == 0 || engine_->step() == state_.stage_start_step ||
                             state_.strain_since_output >= output.interval_strain * (1 - 1e-9) ||
                             (output.interval_steps > 0 &&
                              state_.steps_since_output >= output.interval_steps);
@@ -887,13 +883,19 @@ RunSummary Simulation::Loop(RunSummary& summary, Finish& finish, double& loop_se
                                   series_.Last("overlap_max"), engine_->step()));
       }
     }
-    engine_->Integrate();
-    const auto& g = engine_->velocity_gradient();
-    const double increment = dt * std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-    state_.stage_strain_norm += increment;
-    state_.strain_since_output += increment;
-    ++state_.steps_since_output;
-    if (reason) FinishStage(*reason);
+    if (reason) {
+      // The stage ends at the state that met its condition (its last row);
+      // the next stage starts from the same state: the engine re-evaluates
+      // its forces there without advancing the shear history.
+      FinishStage(*reason);
+    } else {
+      engine_->Integrate();
+      const auto& g = engine_->velocity_gradient();
+      const double increment = dt * std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+      state_.stage_strain_norm += increment;
+      state_.strain_since_output += increment;
+      ++state_.steps_since_output;
+    }
     loop_seconds += step_clock.Seconds();
 
     if (state_.stage < static_cast<int64_t>(scene_.stages.size())) ReportProgress();

@@ -160,6 +160,26 @@ TEST(Engine, ContactAcrossEachFaceAndCornerEqualsTheSameContactInside) {
   }
 }
 
+TEST(Engine, ASecondEvaluationAtTheSamePositionsDoesNotSlideTheContactsAgain) {
+  const double r = 0.5e-3;
+  Engine engine(TwoSpheres({0.004, 0.004, 0.004}, {0.004 + 0.95e-3, 0.0042, 0.004}, r, 0.01),
+                Elastic(0.5), StepOptions(1e-8));
+  engine.SetVelocity(Slot(engine, 1), {0.0, 0.05, 0.01});
+  engine.SetSpin(Slot(engine, 0), {0.0, 0.0, 30.0});
+  for (int step = 0; step < 20; ++step) engine.Step();
+  engine.ComputeForces({false, false});
+  const std::vector<Vec4> first = engine.forces();
+  engine.ComputeForces({true, true});
+  const std::vector<Vec4> second = engine.forces();
+  for (size_t i = 0; i < first.size(); ++i) {
+    EXPECT_EQ(first[i].x, second[i].x);
+    EXPECT_EQ(first[i].y, second[i].y);
+    EXPECT_EQ(first[i].z, second[i].z);
+  }
+  EXPECT_NE(first[0].y, 0.0);  // the contact carries a shear force
+  EXPECT_EQ(engine.sums().contacts, 1);
+}
+
 TEST(Engine, LoveWeberStressOfOneNormalContact) {
   const double r = 0.5e-3, overlap = 2e-6, side = 0.01;
   Engine engine(TwoSpheres({0.004, 0.005, 0.005}, {0.004 + 2 * r - overlap, 0.005, 0.005}, r, side),

@@ -232,6 +232,9 @@ steps = 500
   EXPECT_EQ(file.ReadStringAttribute("/series/time_s", "units"), "s");
   EXPECT_EQ(file.ReadStringAttribute("/summary", "termination"), "completed");
   EXPECT_EQ(file.ReadIntAttribute("/summary", "steps"), 500);
+  // The last row is the final state: 500 steps done, the cell of /final_state.
+  EXPECT_EQ(result.series.Last("step"), 500);
+  EXPECT_EQ(file.ReadDoubles("/final_state/cell")[0], result.series.Last("cell_x_m"));
   // The paper's quoted durations use one particle's mass; the reduced mass is √2 shorter.
   const double single = file.ReadDoubleAttribute("/summary", "contact_duration_min_single_mass_s");
   const double reduced = file.ReadDoubleAttribute("/summary", "contact_duration_min_reduced_mass_s");
