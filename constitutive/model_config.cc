@@ -1,0 +1,340 @@
+// Reading model, test and asymptote files; writing their results.
+#include "constitutive/model_config.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "common/csv_table.h"
+#include "common/error.h"
+#include "common/state_measures.h"
+#include "constitutive/hypoplastic_clay.h"
+#include "constitutive/modified_cam_clay.h"
+
+namespace granasym {
+
+namespace {
+const Range kFrictionAngleDeg = Range::Open(0.0, 90.0);
+}
+
+std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
+  const std::string kind_name =
+      table.GetChoice("kind", {"hypoplastic_clay", "modified_cam_clay"}, "hypoplastic_clay");
+  ModelKind kind;
+  FromString(kind_name, &kind);
+  std::unique_ptr<ConstitutiveModel> model;
+  std::string why;
+  if (kind == ModelKind::kHypoplasticClay) {
+    HypoplasticClay::Parameters p;
+    p.critical_friction_angle = table.GetDouble("phi_c_deg", kFrictionAngleDeg) * kDegree;
+    p.lambda_star = table.GetDouble("lambda_star", Range::Positive());
+    p.kappa_star = table.GetDouble("kappa_star", Range::Positive());
+    if (!(p.kappa_star < p.lambda_star)) {
+      table.Fail("kappa_star", fmt::format("kappa_star = {} must be smaller than lambda_star = {}",
+                                           p.kappa_star, p.lambda_star));
+    }
+    p.n_intercept = table.GetDouble("n_intercept");
+    p.bulk_shear_ratio = table.GetDouble("r", Range::Positive());
+    p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, Range::Positive());
+    p.minimum_mean_stress = table.GetDouble("minimum_mean_stress_kpa", 1e-9, Range::Positive());
+    if (!p.IsValid(&why)) table.Fail("phi_c_deg", why);
+    model = std::make_unique<HypoplasticClay>(p);
+  } else {
+    ModifiedCamClay::Parameters p;
+    const std::string form = table.GetChoice("form", {"log_log", "semi_log"}, "log_log");
+    FromString(form, &p.form);
+    const bool has_m = table.Has("critical_state_ratio");
+    const bool has_phi = table.Has("phi_c_deg");
+    if (has_m == has_phi) {
+      table.Fail("critical_state_ratio",
+                 "give exactly one of critical_state_ratio (M) and phi_c_deg");
+    }
+    p.critical_state_ratio = has_m ? table.GetDouble("critical_state_ratio", Range::Open(0.0, 3.0))
+                                   : CriticalStateRatio(table.GetDouble("phi_c_deg",
+                                                                        kFrictionAngleDeg) *
+                                                        kDegree);
+    const std::string lambda_key = p.form == ModifiedCamClay::CompressionForm::kLogLog
+                                       ? "lambda_star"
+                                       : "lambda";
+    const std::string kappa_key = p.form == ModifiedCamClay::CompressionForm::kLogLog
+                                      ? "kappa_star"
+                                      : "kappa";
+    p.lambda = table.GetDouble(lambda_key, Range::Positive());
+    p.kappa = table.GetDouble(kappa_key, Range::Positive());
+    if (!(p.kappa < p.lambda)) {
+      table.Fail(kappa_key, fmt::format("{} = {} must be smaller than {} = {}", kappa_key, p.kappa,
+                                        lambda_key, p.lambda));
+    }
+    p.n_intercept = table.GetDouble(
+        p.form == ModifiedCamClay::CompressionForm::kLogLog ? "n_intercept" : "e_n");
+    const bool has_g = table.Has("shear_modulus_kpa");
+    if (has_g) {
+      p.elasticity = ModifiedCamClay::Elasticity::kConstantShearModulus;
+      p.shear_modulus = table.GetDouble("shear_modulus_kpa", Range::Positive());
+    } else {
+      p.poisson_ratio = table.GetDouble("poisson_ratio", 0.25, Range::Open(-1.0, 0.5));
+    }
+    p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, Range::Positive());
+    p.yield_tolerance = table.GetDouble("yield_tolerance", 1e-9, Range::Open(0.0, 1e-2));
+    if (!p.IsValid(&why)) table.Fail(lambda_key, why);
+    model = std::make_unique<ModifiedCamClay>(p);
+  }
+  return model;
+}
+
+ModelState ReadInitialState(const ConstitutiveModel& model, const ConfigTable& table) {
+  const double p = table.GetDouble("mean_stress_kpa", Range::Positive());
+  const double psi = table.GetDouble("psi_sigma_deg", 0.0, Range::Open(-35.26, 54.73)) * kDegree;
+  const bool has_e = table.Has("void_ratio");
+  const bool has_ocr = table.Has("ocr");
+  if (has_e == has_ocr) table.Fail("ocr", "give exactly one of void_ratio and ocr");
+  try {
+    return has_e ? InitialStateFromVoidRatio(model, p, psi,
+                                             table.GetDouble("void_ratio", Range::Open(-1.0, 100)))
+                 : InitialStateFromOcr(model, p, psi, table.GetDouble("ocr", Range::Positive()));
+  } catch (const InputError& error) {
+    throw InputError(fmt::format("{}: [{}]: {}", table.origin(), table.KeyName(""), error.what()));
+  }
+}
+
+std::vector<LoadingStage> ReadStages(const ConfigTable& root) {
+  std::vector<LoadingStage> stages;
+  for (const ConfigTable& table : root.GetTableArray("stage")) {
+    const std::string type = table.GetChoice(
+        "type",
+        {"proportional", "constant_radial_stress", "isochoric", "oedometric", "isotropic", "mixed"},
+        "proportional");
+    const double rate = table.GetDouble("stretching_rate", 1.0, Range::Positive());
+    const double duration = table.GetDouble("duration_s", 1.0, Range::Positive());
+    LoadingStage stage;
+    if (type == "proportional") {
+      stage = LoadingStage::Proportional(
+          table.GetDouble("psi_epsilon_deg", Range::Closed(-180, 180)) * kDegree, rate, duration);
+    } else if (type == "constant_radial_stress") {
+      stage = LoadingStage::ConstantRadialStress(table.GetDouble("axial_rate", rate, Range::Any()),
+                                                 duration);
+    } else if (type == "isochoric") {
+      stage = LoadingStage::Isochoric(table.GetDouble("axial_rate", rate, Range::Any()), duration);
+    } else if (type == "oedometric") {
+      stage = LoadingStage::Oedometric(table.GetDouble("axial_rate", rate, Range::Any()), duration);
+    } else if (type == "isotropic") {
+      stage = LoadingStage::IsotropicToMeanStress(
+          table.GetDouble("target_mean_stress_kpa", Range::Positive()), rate);
+      if (table.Has("duration_s")) stage.duration = duration;
+    } else {
+      const std::vector<double> values = table.GetDoubles("rate");
+      if (values.size() != 6) {
+        table.Fail("rate", fmt::format("needs 6 values (Voigt 11,22,33,12,13,23), got {}",
+                                       values.size()));
+      }
+      stage.duration = duration;
+      stage.name = "mixed";
+      for (int i = 0; i < 6; ++i) stage.rate[i] = values[i];
+      std::vector<double> stress_controlled;
+      if (table.Has("stress_controlled")) {
+        stress_controlled = table.GetDoubles("stress_controlled", Range::Closed(0, 5));
+      }
+      for (double index : stress_controlled) {
+        if (index != std::floor(index)) {
+          table.Fail("stress_controlled", "lists component indices 0..5");
+        }
+        stage.control[static_cast<int>(index)] = ComponentControl::kStressRate;
+      }
+    }
+    stage.name = table.GetString("name", stage.name);
+    stage.output_points = static_cast<int>(table.GetInt("output_points", 100, Range::Closed(1, 1e6)));
+    if (table.Has("stop")) {
+      const ConfigTable stop = table.GetTable("stop");
+      const std::vector<std::pair<std::string, StopKind>> keys = {
+          {"mean_stress_kpa", StopKind::kMeanStress},
+          {"axial_strain", StopKind::kAxialStrain},
+          {"volumetric_strain", StopKind::kVolumetricStrain},
+          {"shear_strain", StopKind::kShearStrain},
+          {"strain_path", StopKind::kStrainPath},
+          {"stress_ratio", StopKind::kStressRatio},
+          {"asymptote", StopKind::kAsymptote}};
+      for (const auto& [key, kind] : keys) {
+        if (stop.Has(key)) {
+          const Range range = kind == StopKind::kAsymptote ? Range::Open(0.0, 1e-2) : Range::Any();
+          stage.stops.push_back({kind, stop.GetDouble(key, range)});
+        }
+      }
+    }
+    stages.push_back(stage);
+  }
+  if (stages.empty()) root.Fail("stage", "a test needs at least one [[stage]]");
+  return stages;
+}
+
+ElementTestOptions ReadElementTestOptions(const ConfigTable& table) {
+  ElementTestOptions options;
+  const std::string method =
+      table.GetChoice("method", {"rate_integration", "stress_point"}, "rate_integration");
+  FromString(method, &options.method);
+  std::vector<std::string> kinds;
+  for (IntegratorKind kind : AllIntegratorKinds()) kinds.push_back(ToString(kind));
+  FromString(table.GetChoice("integrator", kinds, ToString(options.integrator.kind)),
+             &options.integrator.kind);
+  FromString(table.GetChoice("jacobian", {"exact", "finite_difference"}, "exact"),
+             &options.integrator.jacobian);
+  options.integrator.relative_tolerance = table.GetDouble(
+      "relative_tolerance", options.integrator.relative_tolerance, Range::Open(0.0, 1.0));
+  options.integrator.absolute_tolerance = table.GetDouble(
+      "absolute_tolerance", options.integrator.absolute_tolerance, Range::Positive());
+  options.integrator.arkode_order = static_cast<int>(
+      table.GetInt("arkode_order", options.integrator.arkode_order, Range::Closed(2, 8)));
+  FromString(table.GetChoice("stress_point", {"modified_euler", "return_mapping"},
+                             ToString(options.stress_point.method)),
+             &options.stress_point.method);
+  options.stress_point.tolerance =
+      table.GetDouble("stress_point_tolerance", options.stress_point.tolerance, Range::Open(0, 0.1));
+  options.max_strain_increment = table.GetDouble("max_strain_increment",
+                                                 options.max_strain_increment, Range::Open(0, 0.1));
+  std::string why;
+  if (!options.IsValid(&why)) table.Fail("method", why);
+  return options;
+}
+
+void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestResult& result,
+                            const std::string& group, Hdf5File* file) {
+  const size_t n = result.history.size();
+  std::vector<double> time, stress, strain, stretching, e, p, q, psi_sigma, psi_epsilon, ocr, path;
+  std::vector<int64_t> stage;
+  const int num_internal = model.num_internal();
+  std::vector<double> internal;
+  for (const ElementTestRecord& record : result.history) {
+    time.push_back(record.time);
+    stress.insert(stress.end(), record.stress.begin(), record.stress.end());
+    strain.insert(strain.end(), record.strain.begin(), record.strain.end());
+    stretching.insert(stretching.end(), record.stretching.begin(), record.stretching.end());
+    e.push_back(record.void_ratio);
+    const AxisymmetricStress s = RecordStress(record);
+    p.push_back(s.mean());
+    q.push_back(s.deviator());
+    psi_sigma.push_back(s.psi());
+    psi_epsilon.push_back(RecordStretching(record).psi());
+    ocr.push_back(record.ocr);
+    path.push_back(record.strain_path);
+    stage.push_back(record.stage);
+    internal.insert(internal.end(), record.internal.begin(), record.internal.end());
+  }
+  file->CreateGroup(group);
+  file->WriteDoubles(group + "/time", time, "s");
+  file->WriteMatrix(group + "/stress", stress, n, 6, "kPa");
+  file->WriteMatrix(group + "/strain", strain, n, 6, "1");
+  file->WriteMatrix(group + "/stretching", stretching, n, 6, "1/s");
+  file->WriteDoubles(group + "/void_ratio", e, "1");
+  file->WriteDoubles(group + "/mean_stress", p, "kPa");
+  file->WriteDoubles(group + "/deviator_stress", q, "kPa");
+  file->WriteDoubles(group + "/psi_sigma", psi_sigma, "rad");
+  file->WriteDoubles(group + "/psi_epsilon", psi_epsilon, "rad");
+  file->WriteDoubles(group + "/ocr", ocr, "1");
+  file->WriteDoubles(group + "/strain_path", path, "1");
+  file->WriteInts(group + "/stage", stage, "1");
+  if (num_internal > 0) {
+    file->WriteMatrix(group + "/internal", internal, n, num_internal, "kPa");
+  }
+  const ElementTestSummary& summary = result.summary;
+  file->SetAttribute(group, "model", model.Describe());
+  file->SetAttribute(group, "sign_convention", "compression positive; Voigt 11,22,33,12,13,23");
+  file->SetAttribute(group, "termination", ToString(summary.termination));
+  file->SetAttribute(group, "message", summary.message);
+  file->SetAttribute(group, "report", summary.Report());
+  file->SetAttribute(group, "steps", static_cast<int64_t>(summary.totals.steps));
+  file->SetAttribute(group, "rejected_steps", static_cast<int64_t>(summary.totals.rejected_steps));
+  file->SetAttribute(group, "rhs_evaluations", static_cast<int64_t>(summary.totals.rhs_evaluations));
+  file->SetAttribute(group, "wall_time_s", summary.totals.wall_time_s);
+  for (size_t k = 0; k < summary.stages.size(); ++k) {
+    const std::string stage_group = fmt::format("{}/stages/{}", group, k);
+    file->CreateGroup(stage_group);
+    file->SetAttribute(stage_group, "name", summary.stages[k].name);
+    file->SetAttribute(stage_group, "stop", summary.stages[k].stop);
+    file->SetAttribute(stage_group, "report", summary.stages[k].integration.Report());
+  }
+}
+
+void WriteElementTestCsv(const ElementTestResult& result, const std::string& path) {
+  std::vector<std::string> columns = {"time_s",        "stress_a_kpa",  "stress_r_kpa",
+                                      "p_kpa",         "q_kpa",         "void_ratio",
+                                      "strain_a",      "strain_r",      "strain_path",
+                                      "psi_sigma_deg", "psi_epsilon_deg", "ocr"};
+  std::vector<std::vector<double>> values(columns.size());
+  for (const ElementTestRecord& r : result.history) {
+    const AxisymmetricStress s = RecordStress(r);
+    const std::vector<double> row = {r.time,
+                                     s.axial,
+                                     s.radial,
+                                     s.mean(),
+                                     s.deviator(),
+                                     r.void_ratio,
+                                     r.strain[0],
+                                     0.5 * (r.strain[1] + r.strain[2]),
+                                     r.strain_path,
+                                     s.psi() / kDegree,
+                                     RecordStretching(r).psi() / kDegree,
+                                     r.ocr};
+    for (size_t c = 0; c < row.size(); ++c) values[c].push_back(row[c]);
+  }
+  WriteCsv(path, columns, values);
+}
+
+AsymptoteTable ComputeAsymptotes(const ConstitutiveModel& model, const ConfigTable& root) {
+  AsymptoteTable out;
+  const ConfigTable table = root.GetTable("asymptotes");
+  const int points = static_cast<int>(table.GetInt("analytic_points", 200, Range::Closed(2, 1e6)));
+  if (model.kind() == ModelKind::kHypoplasticClay) {
+    out.analytic = AnalyticAsymptoteCurve(static_cast<const HypoplasticClay&>(model), points);
+  }
+  if (table.Has("psi_epsilon_deg")) {
+    AsymptoteSearchOptions options;
+    options.tolerance = table.GetDouble("tolerance", options.tolerance, Range::Open(0.0, 1e-2));
+    options.max_strain_path =
+        table.GetDouble("max_strain_path", options.max_strain_path, Range::Positive());
+    const ModelState initial = ReadInitialState(model, table.GetTable("initial"));
+    for (double psi : table.GetDoubles("psi_epsilon_deg", Range::Closed(-180, 180))) {
+      out.integrated.push_back(IntegrateAsymptote(model, initial, psi * kDegree, options));
+    }
+  }
+  return out;
+}
+
+void WriteAsymptotes(const ConstitutiveModel& model, const AsymptoteTable& table,
+                     const std::string& group, Hdf5File* file) {
+  file->CreateGroup(group);
+  file->SetAttribute(group, "model", model.Describe());
+  auto write = [&](const std::string& sub, const std::vector<AsymptoticState>& states) {
+    std::vector<double> psi_e, psi_s, ocr, ratio;
+    for (const AsymptoticState& s : states) {
+      psi_e.push_back(s.psi_epsilon);
+      psi_s.push_back(s.psi_sigma);
+      ocr.push_back(s.ocr);
+      ratio.push_back(s.stress_ratio);
+    }
+    file->WriteDoubles(sub + "/psi_epsilon", psi_e, "rad");
+    file->WriteDoubles(sub + "/psi_sigma", psi_s, "rad");
+    file->WriteDoubles(sub + "/ocr", ocr, "1");
+    file->WriteDoubles(sub + "/stress_ratio", ratio, "1");
+  };
+  if (!table.analytic.empty()) {
+    write(group + "/analytic", table.analytic);
+    file->SetAttribute(group + "/analytic", "source",
+                       "Masin & Herle (2005) ASBS: D ~ -A^-1:N, OCR = 2 fd_SBS^(-1/alpha)");
+  }
+  if (!table.integrated.empty()) {
+    std::vector<AsymptoticState> states;
+    std::vector<int64_t> found;
+    std::vector<double> path;
+    for (const IntegratedAsymptote& a : table.integrated) {
+      states.push_back(a.state);
+      found.push_back(a.found ? 1 : 0);
+      path.push_back(a.strain_path);
+    }
+    write(group + "/integrated", states);
+    file->WriteInts(group + "/integrated/found", found, "1");
+    file->WriteDoubles(group + "/integrated/strain_path", path, "1");
+    file->SetAttribute(group + "/integrated", "criterion",
+                       "|dpsi_sigma/ds| + |d ln OCR/ds| below tolerance (per unit strain path s)");
+  }
+}
+
+}  // namespace granasym
