@@ -1,0 +1,78 @@
+// What a model predicts for asymptotic states (SPEC §7): for a stretching
+// direction ψ_ε the asymptotic stress direction ψ_σ and ln OCR, i.e. the line
+// ln(1+e) = N − λ* ln(p OCR/p_r) parallel to the NCL; for a stress direction
+// ψ_σ (ASBS cross-sections) the OCR of the state boundary surface.
+//
+// Analytic (default):
+//   hypoplastic clay: the ASBS of Mašín & Herle (2005), ψ_σ → (ψ_ε, OCR) from
+//   constitutive/asymptotic_states.h, inverted for ψ_ε on a ψ_σ grid refined
+//   by the Illinois method;
+//   Modified Cam clay: on the Roscoe surface (ψ_σ ↔ η = q/p, p_c/p = 1 + η²/M²)
+//   proportional stretching keeps η and moves p and p_c together, so
+//   ε̇_v ∝ λ*(M² − η²), ε̇_s ∝ η[κ* c (M² − η²) + 2(λ* − κ*)], c = 2(1+ν)/(9(1−2ν)),
+//   tan ψ_ε = (3/√2) ε̇_s/ε̇_v and ln OCR = (1 − κ*/λ*) ln(1 + η²/M²).
+// Integrated: proportional stretching from an isotropic normally consolidated
+// state until stationary (IntegrateAsymptote), for each distinct ψ_ε (slow;
+// the reference for the analytic forms).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "constitutive/asymptotic_states.h"
+#include "constitutive/constitutive_model.h"
+
+namespace granasym::calibration {
+
+enum class AsymptoteMethod { kAnalytic, kIntegrated };
+const char* ToString(AsymptoteMethod method);
+bool FromString(const std::string& name, AsymptoteMethod* method);
+
+struct PredictorOptions {
+  AsymptoteMethod method = AsymptoteMethod::kAnalytic;
+  // Analytic: ψ_σ grid over the admissible range used to bracket each ψ_ε;
+  // 120 points resolve the steep ends of the hypoplastic curve.
+  int curve_points = 120;
+  // Analytic: the inversion stops when the ψ_σ bracket is below this (rad).
+  double psi_sigma_tolerance = 1e-12;
+  // Integrated: the search settings and the isotropic start (kPa).
+  AsymptoteSearchOptions search;
+  double initial_mean_stress = 100.0;
+  bool IsValid(std::string* why) const;
+};
+
+struct Prediction {
+  double psi_epsilon = 0.0;  // rad
+  double psi_sigma = 0.0;    // rad
+  double ln_ocr = 0.0;       // ln(p_e*/p)
+  // The requested ψ_ε lies outside the model's asymptote range: the state of
+  // the nearest end is returned (residuals stay continuous and large).
+  bool clamped = false;
+};
+
+class AsymptotePredictor {
+ public:
+  // The options must be valid (GRANASYM_CHECK).
+  AsymptotePredictor(ModelKind kind, const PredictorOptions& options);
+
+  ModelKind kind() const { return kind_; }
+  const PredictorOptions& options() const { return options_; }
+
+  // Predictions for each ψ_ε in `psi_epsilons` and each ψ_σ in `psi_sigmas`
+  // (rad) with the full parameter vector (model_parameters.h). Returns false,
+  // with the reason, for invalid parameters or a failed evaluation.
+  bool Predict(const std::vector<double>& parameters, const std::vector<double>& psi_epsilons,
+               const std::vector<double>& psi_sigmas, std::vector<Prediction>* by_stretching,
+               std::vector<Prediction>* by_stress, std::string* why) const;
+
+  // The model's asymptotes for `points` stress directions evenly spaced over
+  // the admissible ψ_σ range (analytic forms), for figures.
+  bool Curve(const std::vector<double>& parameters, int points, std::vector<Prediction>* curve,
+             std::string* why) const;
+
+ private:
+  ModelKind kind_;
+  PredictorOptions options_;
+};
+
+}  // namespace granasym::calibration

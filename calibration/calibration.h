@@ -1,0 +1,16 @@
+// granasym calibration: fit hypoplastic and Modified Cam clay parameters to
+// asymptotic states (DEM results, CSV) with Ceres and NLopt (issue 4).
+#pragma once
+
+#include "calibration/asymptote_predictor.h"
+#include "calibration/calibration_config.h"
+#include "calibration/calibration_problem.h"
+#include "calibration/calibration_report.h"
+#include "calibration/ceres_fitter.h"
+#include "calibration/csv_state_reader.h"
+#include "calibration/dem_state_reader.h"
+#include "calibration/fit_result.h"
+#include "calibration/model_parameters.h"
+#include "calibration/nlopt_fitter.h"
+#include "calibration/starting_values.h"
+#include "calibration/state_dataset.h"

@@ -1,0 +1,163 @@
+// Reading the calibration file.
+#include "calibration/calibration_config.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <sstream>
+
+#include "common/error.h"
+
+namespace granasym::calibration {
+
+const char* ToString(FitMethod method) {
+  switch (method) {
+    case FitMethod::kCeres:
+      return "ceres";
+    case FitMethod::kNlopt:
+      return "nlopt";
+    case FitMethod::kBoth:
+      return "both";
+  }
+  return "unknown";
+}
+
+namespace {
+
+std::string Resolve(const std::string& base, const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.is_absolute()) return path;
+  return (std::filesystem::path(base).parent_path() / p).lexically_normal().string();
+}
+
+std::vector<std::string> SplitComma(const std::string& text) {
+  std::vector<std::string> parts;
+  std::stringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    const size_t a = part.find_first_not_of(" \t");
+    const size_t b = part.find_last_not_of(" \t");
+    if (a != std::string::npos) parts.push_back(part.substr(a, b - a + 1));
+  }
+  return parts;
+}
+
+}  // namespace
+
+CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
+  CalibrationConfig config;
+  config.origin = root.origin();
+  const ConfigTable model = root.GetTable("model");
+  const std::string kind =
+      model.GetChoice("kind", {"hypoplastic_clay", "modified_cam_clay"}, "hypoplastic_clay");
+  FromString(kind, &config.model);
+  FromString(model.GetChoice("asymptotes", {"analytic", "integrated"}, "analytic"),
+             &config.predictor.method);
+
+  const ModelParameters defaults = ModelParameters::Defaults(config.model);
+  if (root.Has("parameters")) {
+    const ConfigTable parameters = root.GetTable("parameters");
+    for (const ParameterSpec& spec : defaults.specs()) {
+      if (!parameters.Has(spec.name)) continue;
+      const ConfigTable t = parameters.GetTable(spec.name);
+      ParameterChoice choice;
+      choice.name = spec.name;
+      choice.free = t.GetBool("free", true);
+      choice.has_value = t.Has("value");
+      if (choice.has_value) choice.value = t.GetDouble("value");
+      choice.has_lower = t.Has("lower");
+      if (choice.has_lower) choice.lower = t.GetDouble("lower");
+      choice.has_upper = t.Has("upper");
+      if (choice.has_upper) choice.upper = t.GetDouble("upper");
+      if (!choice.free && !choice.has_value) {
+        t.Fail("value", "a fixed parameter (free = false) needs a value");
+      }
+      const double lower = choice.has_lower ? choice.lower : spec.lower;
+      const double upper = choice.has_upper ? choice.upper : spec.upper;
+      if (choice.free && !(lower < upper)) {
+        t.Fail(choice.has_lower ? "lower" : "upper",
+               fmt::format("lower = {} must be below upper = {}", lower, upper));
+      }
+      if (choice.free && choice.has_value && !(choice.value >= lower && choice.value <= upper)) {
+        t.Fail("value", fmt::format("value = {} lies outside [{}, {}]", choice.value, lower, upper));
+      }
+      config.parameters.push_back(choice);
+    }
+    parameters.CheckNoUnknownKeys();
+  }
+
+  const std::vector<ConfigTable> datasets = root.GetTableArray("dataset");
+  if (datasets.empty()) root.Fail("dataset", "at least one [[dataset]] is needed");
+  for (size_t k = 0; k < datasets.size(); ++k) {
+    const ConfigTable& t = datasets[k];
+    DatasetConfig d;
+    d.name = t.GetString("name", fmt::format("dataset{}", k + 1));
+    const bool has_dem = t.Has("dem"), has_csv = t.Has("csv");
+    if (has_dem == has_csv) t.Fail("csv", "give exactly one of dem = \"RUN.h5\" and csv = \"FILE.csv\"");
+    d.is_dem = has_dem;
+    d.path = Resolve(config.origin, has_dem ? t.GetString("dem") : t.GetString("csv"));
+    const double weight = t.GetDouble("weight", 1.0, Range::Positive());
+    const double u_psi = t.GetDouble("psi_sigma_uncertainty_deg", 0.5, Range::Positive());
+    const double u_v = t.GetDouble("ln_1_plus_e_uncertainty", 0.002, Range::Positive());
+    if (has_dem) {
+      d.dem.weight = weight;
+      d.dem.psi_sigma_uncertainty_deg = u_psi;
+      d.dem.ln_volume_uncertainty = u_v;
+      d.dem.ncl_min_p_kpa = t.GetDouble("ncl_min_p_kpa", d.dem.ncl_min_p_kpa, Range::NonNegative());
+      d.dem.max_line_points =
+          static_cast<int>(t.GetInt("max_line_points", d.dem.max_line_points, Range::AtLeast(2)));
+    } else {
+      d.csv.weight = weight;
+      d.csv.psi_sigma_uncertainty_deg = u_psi;
+      d.csv.ln_volume_uncertainty = u_v;
+      d.csv.kind = t.GetChoice(
+          "kind", {"auto", "ncl", "csl", "compression", "extension", "asbs", "unloading"}, "auto");
+      d.csv.ignore_columns = SplitComma(t.GetString("ignore_columns", ""));
+    }
+    config.datasets.push_back(d);
+  }
+
+  if (root.Has("fitter")) {
+    const ConfigTable f = root.GetTable("fitter");
+    const std::string method = f.GetChoice("method", {"ceres", "nlopt", "both"}, "ceres");
+    config.method = method == "ceres" ? FitMethod::kCeres
+                                      : method == "nlopt" ? FitMethod::kNlopt : FitMethod::kBoth;
+    config.ceres.max_iterations =
+        static_cast<int>(f.GetInt("max_iterations", config.ceres.max_iterations, Range::Closed(1, 1e6)));
+    config.ceres.uncertainty.scale_by_residual_variance = f.GetBool(
+        "scale_by_residual_variance", config.ceres.uncertainty.scale_by_residual_variance);
+    if (f.Has("nlopt")) {
+      const ConfigTable t = f.GetTable("nlopt");
+      FromString(t.GetChoice("algorithm", {"crs2", "isres", "direct_l", "mlsl"}, "crs2"),
+                 &config.nlopt.algorithm);
+      config.nlopt.starts = static_cast<int>(t.GetInt("starts", config.nlopt.starts, Range::Closed(1, 1000)));
+      config.nlopt.max_evaluations = static_cast<int>(
+          t.GetInt("max_evaluations", config.nlopt.max_evaluations, Range::Closed(10, 1e8)));
+      config.nlopt.seed = static_cast<uint64_t>(t.GetInt("seed", 1, Range::NonNegative()));
+      FromString(t.GetChoice("polish", {"bobyqa", "ceres", "none"}, "bobyqa"), &config.nlopt.polish);
+    }
+    config.nlopt.uncertainty = config.ceres.uncertainty;
+    config.nlopt.ceres = config.ceres;
+  }
+
+  const std::filesystem::path stem = std::filesystem::path(config.origin).replace_extension("");
+  config.hdf5_path = stem.string() + ".h5";
+  config.summary_path = stem.string() + ".txt";
+  config.plot_data_dir = stem.string() + "_plots";
+  if (root.Has("output")) {
+    const ConfigTable o = root.GetTable("output");
+    if (o.Has("hdf5")) config.hdf5_path = Resolve(config.origin, o.GetString("hdf5"));
+    if (o.Has("summary")) config.summary_path = Resolve(config.origin, o.GetString("summary"));
+    if (o.Has("plot_data")) config.plot_data_dir = Resolve(config.origin, o.GetString("plot_data"));
+  }
+  std::string why;
+  if (!config.ceres.IsValid(&why) || !config.nlopt.IsValid(&why)) root.Fail("fitter", why);
+  root.CheckNoUnknownKeys();
+  return config;
+}
+
+CalibrationConfig ReadCalibrationConfigFile(const std::string& path) {
+  return ReadCalibrationConfig(ConfigTable::ParseFile(path));
+}
+
+}  // namespace granasym::calibration

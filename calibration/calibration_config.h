@@ -1,0 +1,92 @@
+// The calibration file (TOML), validated through ConfigTable: every error
+// names the file, the key, the bad value and what is valid. Layout:
+//
+//   [model]
+//   kind = "hypoplastic_clay"     # or "modified_cam_clay"
+//   asymptotes = "analytic"       # or "integrated" (slow reference path)
+//
+//   [parameters.lambda_star]      # one table per parameter, all optional:
+//   free = true                   #   fitted (default) or fixed at `value`
+//   value = 0.1                   #   start or fixed value; default: from the data
+//   lower = 0.001                 #   bounds of the fit; default: model_parameters.cc
+//   upper = 0.5
+//   # names: phi_c_deg, lambda_star, kappa_star, n_intercept, and r
+//   # (hypoplastic_clay) or poisson_ratio (modified_cam_clay)
+//
+//   [[dataset]]                   # one or more
+//   name = "dem"
+//   dem = "run.h5"                # a granasym DEM result, or csv = "states.csv"
+//   weight = 1.0                  # multiplies the squared residuals
+//   psi_sigma_uncertainty_deg = 0.5
+//   ln_1_plus_e_uncertainty = 0.002
+//   kind = "auto"                 # csv: auto | ncl | csl | compression | extension | asbs | unloading
+//   ignore_columns = "q_kpa,t_s"  # csv: comma-separated columns to skip
+//   ncl_min_p_kpa = 50.0          # dem: lowest p of NCL rows
+//   max_line_points = 12          # dem: most NCL/unloading rows per stage
+//
+//   [fitter]
+//   method = "ceres"              # ceres | nlopt | both (then the two are compared)
+//   max_iterations = 200          # ceres
+//   scale_by_residual_variance = true
+//   [fitter.nlopt]
+//   algorithm = "crs2"            # crs2 | isres | direct_l | mlsl
+//   starts = 3
+//   max_evaluations = 1500
+//   seed = 1
+//   polish = "bobyqa"             # bobyqa | ceres | none
+//
+//   [output]                      # paths relative to the calibration file
+//   hdf5 = "calibration.h5"       # default: the calibration file with .h5
+//   summary = "calibration.txt"   # default: the calibration file with .txt
+//   plot_data = "calibration_plots"  # folder of CSV/DAT files for plots/*.gp
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "calibration/asymptote_predictor.h"
+#include "calibration/ceres_fitter.h"
+#include "calibration/csv_state_reader.h"
+#include "calibration/dem_state_reader.h"
+#include "calibration/model_parameters.h"
+#include "calibration/nlopt_fitter.h"
+#include "common/config.h"
+
+namespace granasym::calibration {
+
+struct DatasetConfig {
+  std::string name;
+  std::string path;  // resolved against the calibration file's folder
+  bool is_dem = false;
+  CsvReadOptions csv;
+  DemReadOptions dem;
+};
+
+// A user's choice for one parameter; unset fields take the defaults.
+struct ParameterChoice {
+  std::string name;
+  bool free = true;
+  bool has_value = false, has_lower = false, has_upper = false;
+  double value = 0.0, lower = 0.0, upper = 0.0;
+};
+
+enum class FitMethod { kCeres, kNlopt, kBoth };
+const char* ToString(FitMethod method);
+
+struct CalibrationConfig {
+  std::string origin;  // the calibration file
+  ModelKind model = ModelKind::kHypoplasticClay;
+  PredictorOptions predictor;
+  std::vector<ParameterChoice> parameters;
+  std::vector<DatasetConfig> datasets;
+  FitMethod method = FitMethod::kCeres;
+  CeresFitter::Options ceres;
+  NloptFitter::Options nlopt;
+  std::string hdf5_path, summary_path, plot_data_dir;
+};
+
+// Reads and validates the whole file (unknown keys included).
+CalibrationConfig ReadCalibrationConfig(const ConfigTable& root);
+CalibrationConfig ReadCalibrationConfigFile(const std::string& path);
+
+}  // namespace granasym::calibration

@@ -1,0 +1,204 @@
+// Residuals of asymptotic states and the identifiability checks.
+#include "calibration/calibration_problem.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "common/error.h"
+#include "common/state_measures.h"
+
+namespace granasym::calibration {
+
+CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
+                                       ModelParameters parameters,
+                                       const PredictorOptions& predictor_options)
+    : datasets_(std::move(datasets)),
+      parameters_(std::move(parameters)),
+      predictor_(parameters_.kind(), predictor_options),
+      free_(parameters_.FreeIndices()) {
+  if (datasets_.empty()) throw InputError("calibration: no datasets");
+  parameters_.Validate();
+  stretching_index_.resize(datasets_.size());
+  stress_index_.resize(datasets_.size());
+  for (size_t d = 0; d < datasets_.size(); ++d) {
+    datasets_[d].Validate();
+    for (const AsymptoticStatePoint& point : datasets_[d].points) {
+      int s = -1, a = -1;
+      if (point.HasStretching()) {
+        for (size_t k = 0; k < psi_epsilons_.size(); ++k) {
+          if (psi_epsilons_[k] == point.psi_epsilon) s = static_cast<int>(k);
+        }
+        if (s < 0) {
+          s = static_cast<int>(psi_epsilons_.size());
+          psi_epsilons_.push_back(point.psi_epsilon);
+        }
+        num_residuals_ += 2;
+      } else if (point.kind == StateKind::kAsbs) {
+        if (predictor_options.method == AsymptoteMethod::kIntegrated) {
+          throw InputError(fmt::format(
+              "dataset '{}': {}: ASBS points need analytic asymptotes (asymptotes = "
+              "\"integrated\" follows stretching directions only)",
+              datasets_[d].name, point.source));
+        }
+        a = static_cast<int>(asbs_psi_sigmas_.size());
+        asbs_psi_sigmas_.push_back(point.psi_sigma);
+        num_residuals_ += 1;
+      }
+      stretching_index_[d].push_back(s);
+      stress_index_[d].push_back(a);
+    }
+  }
+  if (num_residuals_ == 0) {
+    throw InputError("calibration: the datasets hold no asymptotic states (only unloading points)");
+  }
+  if (num_residuals_ <= num_free()) {
+    throw InputError(fmt::format(
+        "calibration: too few data: {} residuals for {} free parameters (need more residuals "
+        "than free parameters; fix parameters or add states)",
+        num_residuals_, num_free()));
+  }
+  CheckIdentifiable();
+}
+
+void CalibrationProblem::CheckIdentifiable() const {
+  std::set<double> ln_p_with_line;  // distinct p among points on asymptotic lines
+  int non_isotropic = 0;            // points with ψ_ε ≠ 0 or ASBS points
+  std::set<double> non_isotropic_directions;
+  for (const StateDataset& dataset : datasets_) {
+    for (const AsymptoticStatePoint& point : dataset.points) {
+      if (!point.IsAsymptotic()) continue;
+      ln_p_with_line.insert(std::round(std::log(point.mean_stress) * 1e6));
+      if (point.kind != StateKind::kNcl) {
+        ++non_isotropic;
+        if (point.kind == StateKind::kCsl) continue;  // OCR_c and ψ_σ(c) need φ_c only
+        non_isotropic_directions.insert(point.kind == StateKind::kAsbs ? point.psi_sigma + 10.0
+                                                                       : point.psi_epsilon);
+      }
+    }
+  }
+  auto is_free = [this](int index) { return parameters_.specs()[index].free; };
+  auto fail = [this](int index, const std::string& need) {
+    throw InputError(fmt::format(
+        "calibration: parameter {} cannot be identified by these data: {} (fix it with "
+        "free = false and a value, or add states)",
+        parameters_.specs()[index].name, need));
+  };
+  if (is_free(kLambdaStar) && ln_p_with_line.size() < 2) {
+    fail(kLambdaStar, "lambda_star needs asymptotic states at two or more mean stresses");
+  }
+  if (is_free(kCriticalFrictionAngle) && non_isotropic == 0) {
+    fail(kCriticalFrictionAngle,
+         "phi_c needs states away from the isotropic axis (CSL, compression, extension or ASBS)");
+  }
+  if (is_free(kKappaStar) && non_isotropic == 0) {
+    fail(kKappaStar,
+         "kappa_star acts on asymptotes only through the OCR of non-isotropic states; none given");
+  }
+  if (is_free(kShearParameter) && non_isotropic_directions.size() < 2) {
+    fail(kShearParameter, fmt::format("{} needs non-isotropic states in two or more directions "
+                                      "besides the critical state",
+                                      parameters_.specs()[kShearParameter].name));
+  }
+}
+
+std::vector<double> CalibrationProblem::FreeLower() const {
+  std::vector<double> v;
+  for (int i : free_) v.push_back(parameters_.specs()[i].lower);
+  return v;
+}
+std::vector<double> CalibrationProblem::FreeUpper() const {
+  std::vector<double> v;
+  for (int i : free_) v.push_back(parameters_.specs()[i].upper);
+  return v;
+}
+std::vector<double> CalibrationProblem::FreeStart() const {
+  std::vector<double> v;
+  for (int i : free_) v.push_back(parameters_.specs()[i].value);
+  return v;
+}
+
+bool CalibrationProblem::Evaluate(const std::vector<double>& values,
+                                  std::vector<PointResidual>* residuals, std::string* why) const {
+  std::vector<Prediction> by_stretching, by_stress;
+  if (!predictor_.Predict(values, psi_epsilons_, asbs_psi_sigmas_, &by_stretching, &by_stress,
+                          why)) {
+    return false;
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double n = values[kNIntercept], lambda = values[kLambdaStar];
+  residuals->clear();
+  for (size_t d = 0; d < datasets_.size(); ++d) {
+    const StateDataset& dataset = datasets_[d];
+    for (size_t k = 0; k < dataset.points.size(); ++k) {
+      const AsymptoticStatePoint& point = dataset.points[k];
+      PointResidual r;
+      r.dataset = static_cast<int>(d);
+      r.point = static_cast<int>(k);
+      const int s = stretching_index_[d][k], a = stress_index_[d][k];
+      const Prediction* prediction = s >= 0 ? &by_stretching[s] : a >= 0 ? &by_stress[a] : nullptr;
+      // Unloading points: compare with the NCL itself (for the report only).
+      r.psi_sigma_model = prediction ? prediction->psi_sigma : nan;
+      r.ln_ocr_model = prediction ? prediction->ln_ocr : nan;
+      r.clamped = prediction && prediction->clamped;
+      r.ln_volume_model = prediction ? n - lambda * (std::log(point.mean_stress) + r.ln_ocr_model)
+                                     : n - lambda * std::log(point.mean_stress);
+      r.psi_sigma_residual_deg = s >= 0 ? (r.psi_sigma_model - point.psi_sigma) / kDegree : nan;
+      r.ln_volume_residual = prediction ? r.ln_volume_model - std::log1p(point.void_ratio) : nan;
+      if (!std::isfinite(r.ln_volume_model) || (s >= 0 && !std::isfinite(r.psi_sigma_model))) {
+        *why = fmt::format("non-finite prediction at {}", point.source);
+        return false;
+      }
+      residuals->push_back(r);
+    }
+  }
+  return true;
+}
+
+bool CalibrationProblem::Residuals(const double* free_values, double* residuals,
+                                   std::string* why) const {
+  ++evaluations_;
+  const std::vector<double> values =
+      parameters_.WithFree(std::vector<double>(free_values, free_values + free_.size()));
+  std::vector<PointResidual> raw;
+  if (!Evaluate(values, &raw, why)) return false;
+  int j = 0;
+  for (const PointResidual& r : raw) {
+    const AsymptoticStatePoint& point = datasets_[r.dataset].points[r.point];
+    if (!point.IsAsymptotic()) continue;
+    const double w = std::sqrt(point.weight);
+    if (point.HasStretching()) {
+      residuals[j++] = w * r.psi_sigma_residual_deg * kDegree / point.psi_sigma_uncertainty;
+    }
+    residuals[j++] = w * r.ln_volume_residual / point.ln_volume_uncertainty;
+  }
+  GRANASYM_CHECK(j == num_residuals_) << j << " vs " << num_residuals_;
+  return true;
+}
+
+double CalibrationProblem::Cost(const std::vector<double>& free_values) const {
+  std::vector<double> r(static_cast<size_t>(num_residuals_));
+  std::string why;
+  if (!Residuals(free_values.data(), r.data(), &why)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  double cost = 0;
+  for (double x : r) cost += 0.5 * x * x;
+  return std::isfinite(cost) ? cost : std::numeric_limits<double>::infinity();
+}
+
+std::vector<std::string> CalibrationProblem::ResidualLabels() const {
+  std::vector<std::string> labels;
+  for (const StateDataset& dataset : datasets_) {
+    for (const AsymptoticStatePoint& point : dataset.points) {
+      if (!point.IsAsymptotic()) continue;
+      if (point.HasStretching()) labels.push_back(dataset.name + ": " + point.source + ": psi_sigma");
+      labels.push_back(dataset.name + ": " + point.source + ": ln_1_plus_e");
+    }
+  }
+  return labels;
+}
+
+}  // namespace granasym::calibration

@@ -1,0 +1,131 @@
+// Ceres least squares on the calibration residuals.
+#include "calibration/ceres_fitter.h"
+
+#include <ceres/ceres.h>
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "common/error.h"
+
+namespace granasym::calibration {
+
+namespace {
+
+struct ResidualFunctor {
+  const CalibrationProblem* problem;
+  bool operator()(double const* const* parameters, double* residuals) const {
+    std::string why;
+    return problem->Residuals(parameters[0], residuals, &why);
+  }
+};
+
+class HistoryCallback : public ceres::IterationCallback {
+ public:
+  HistoryCallback(const CalibrationProblem& problem, std::vector<HistoryPoint>* history)
+      : problem_(problem), history_(history) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    const double best = history_->empty() ? summary.cost : std::min(summary.cost, history_->back().cost);
+    history_->push_back({problem_.evaluations(), best, "ceres"});
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const CalibrationProblem& problem_;
+  std::vector<HistoryPoint>* history_;
+};
+
+}  // namespace
+
+bool CeresFitter::Options::IsValid(std::string* why) const {
+  if (max_iterations < 1) {
+    *why = fmt::format("max_iterations = {} must be >= 1", max_iterations);
+    return false;
+  }
+  if (!(function_tolerance > 0 && parameter_tolerance > 0 && gradient_tolerance > 0)) {
+    *why = "function_tolerance, parameter_tolerance and gradient_tolerance must be > 0";
+    return false;
+  }
+  if (!(relative_step > 0 && relative_step < 1e-2)) {
+    *why = fmt::format("relative_step = {} must be in (0, 1e-2)", relative_step);
+    return false;
+  }
+  return uncertainty.IsValid(why);
+}
+
+CeresFitter::CeresFitter(const Options& options) : options_(options) {
+  std::string why;
+  GRANASYM_CHECK(options_.IsValid(&why)) << why;
+}
+
+FitResult CeresFitter::Fit(const CalibrationProblem& problem,
+                           const std::vector<double>& start) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  const long evaluations0 = problem.evaluations();
+  std::vector<double> x = start.empty() ? problem.FreeStart() : start;
+  GRANASYM_CHECK(static_cast<int>(x.size()) == problem.num_free()) << x.size();
+  const std::vector<double> lower = problem.FreeLower(), upper = problem.FreeUpper();
+  for (size_t k = 0; k < x.size(); ++k) x[k] = std::min(std::max(x[k], lower[k]), upper[k]);
+
+  FitResult result;
+  result.summary.fitter = "ceres";
+  result.summary.initial_cost = problem.Cost(x);
+  if (!std::isfinite(result.summary.initial_cost)) {
+    result.summary.termination = FitTermination::kFailure;
+    std::string why;
+    std::vector<double> r(static_cast<size_t>(problem.num_residuals()));
+    problem.Residuals(x.data(), r.data(), &why);
+    result.summary.message = "the model is undefined at the starting values: " + why;
+    result.values = problem.parameters().WithFree(x);
+    return result;
+  }
+
+  ceres::NumericDiffOptions numeric;
+  numeric.relative_step_size = options_.relative_step;
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<ResidualFunctor, ceres::CENTRAL>(
+      new ResidualFunctor{&problem}, ceres::TAKE_OWNERSHIP, numeric);
+  cost->AddParameterBlock(problem.num_free());
+  cost->SetNumResiduals(problem.num_residuals());
+  ceres::Problem ceres_problem;
+  ceres_problem.AddResidualBlock(cost, nullptr, x.data());
+  for (int k = 0; k < problem.num_free(); ++k) {
+    ceres_problem.SetParameterLowerBound(x.data(), k, lower[k]);
+    ceres_problem.SetParameterUpperBound(x.data(), k, upper[k]);
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = options_.max_iterations;
+  solver.function_tolerance = options_.function_tolerance;
+  solver.parameter_tolerance = options_.parameter_tolerance;
+  solver.gradient_tolerance = options_.gradient_tolerance;
+  solver.num_threads = 1;
+  solver.logging_type = ceres::SILENT;
+  HistoryCallback callback(problem, &result.history);
+  solver.callbacks.push_back(&callback);
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &ceres_problem, &summary);
+
+  result.values = problem.parameters().WithFree(x);
+  result.summary.iterations = static_cast<int>(summary.iterations.size());
+  result.summary.final_cost = summary.final_cost;
+  result.summary.message = summary.message;
+  switch (summary.termination_type) {
+    case ceres::CONVERGENCE:
+      result.summary.termination = FitTermination::kConverged;
+      break;
+    case ceres::NO_CONVERGENCE:
+      result.summary.termination = FitTermination::kNoConvergence;
+      break;
+    default:
+      result.summary.termination = FitTermination::kFailure;
+  }
+  if (result.summary.termination != FitTermination::kFailure) {
+    ComputeUncertainty(problem, options_.uncertainty, &result);
+  }
+  result.summary.evaluations = problem.evaluations() - evaluations0;
+  result.summary.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace granasym::calibration

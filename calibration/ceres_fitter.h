@@ -1,0 +1,35 @@
+// Bounded nonlinear least squares with Ceres (Levenberg–Marquardt, dense QR)
+// on the weighted residuals of a CalibrationProblem; derivatives by central
+// differences of the (analytic or integrated) asymptotes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "calibration/calibration_problem.h"
+#include "calibration/fit_result.h"
+
+namespace granasym::calibration {
+
+class CeresFitter {
+ public:
+  struct Options {
+    int max_iterations = 200;
+    double function_tolerance = 1e-12;   // relative change of the cost
+    double parameter_tolerance = 1e-12;  // relative step
+    double gradient_tolerance = 1e-14;
+    // Central-difference step, relative to the parameter value.
+    double relative_step = 1e-6;
+    UncertaintyOptions uncertainty;
+    bool IsValid(std::string* why) const;
+  };
+
+  explicit CeresFitter(const Options& options);
+  // Starts from `start` (free values; empty: the parameters' starting values).
+  FitResult Fit(const CalibrationProblem& problem, const std::vector<double>& start = {}) const;
+
+ private:
+  Options options_;
+};
+
+}  // namespace granasym::calibration

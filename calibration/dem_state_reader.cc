@@ -1,0 +1,162 @@
+// DEM result files → asymptotic states, using the DEM's own asymptote detection.
+#include "calibration/dem_state_reader.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "common/error.h"
+#include "common/hdf5_file.h"
+#include "common/state_measures.h"
+
+namespace granasym::calibration {
+
+bool DemReadOptions::IsValid(std::string* why) const {
+  if (!(ncl_min_p_kpa >= 0)) {
+    *why = fmt::format("ncl_min_p_kpa = {} must be >= 0", ncl_min_p_kpa);
+    return false;
+  }
+  if (max_line_points < 2) {
+    *why = fmt::format("max_line_points = {} must be >= 2", max_line_points);
+    return false;
+  }
+  if (!(kind_tolerance_deg >= 0 && kind_tolerance_deg < 45)) {
+    *why = fmt::format("kind_tolerance_deg = {} must be in [0, 45)", kind_tolerance_deg);
+    return false;
+  }
+  if (!(psi_sigma_uncertainty_deg > 0)) {
+    *why = fmt::format("psi_sigma_uncertainty_deg = {} must be > 0", psi_sigma_uncertainty_deg);
+    return false;
+  }
+  if (!(ln_volume_uncertainty > 0)) {
+    *why = fmt::format("ln_1_plus_e_uncertainty = {} must be > 0", ln_volume_uncertainty);
+    return false;
+  }
+  if (!(weight > 0)) {
+    *why = fmt::format("weight = {} must be > 0", weight);
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+// Rows [first, last] whose p moves monotonically in `direction` (+1 rising,
+// −1 falling) and passes `filter`, thinned to `max_points` evenly spaced in ln p.
+std::vector<size_t> LineRows(const std::vector<double>& p, int64_t first, int64_t last,
+                             int direction, double min_p, int max_points) {
+  std::vector<size_t> candidates;
+  double extreme = direction > 0 ? 0.0 : std::numeric_limits<double>::infinity();
+  for (int64_t r = first; r <= last && r < static_cast<int64_t>(p.size()); ++r) {
+    if (r < 0) continue;
+    const double value = p[static_cast<size_t>(r)];
+    if (!(value > 0) || value < min_p) continue;
+    if (direction > 0 ? value > extreme : value < extreme) {
+      candidates.push_back(static_cast<size_t>(r));
+      extreme = value;
+    }
+  }
+  if (candidates.size() <= static_cast<size_t>(max_points)) return candidates;
+  std::vector<size_t> rows;
+  const double lo = std::log(p[candidates.front()]);
+  const double hi = std::log(p[candidates.back()]);
+  size_t next = 0;
+  for (int k = 0; k < max_points; ++k) {
+    const double target = lo + (hi - lo) * k / (max_points - 1);
+    while (next + 1 < candidates.size() &&
+           std::abs(std::log(p[candidates[next + 1]]) - target) <=
+               std::abs(std::log(p[candidates[next]]) - target)) {
+      ++next;
+    }
+    if (rows.empty() || rows.back() != candidates[next]) rows.push_back(candidates[next]);
+  }
+  return rows;
+}
+
+}  // namespace
+
+StateDataset ReadStatesDem(const std::string& path, const std::string& name,
+                           const DemReadOptions& options) {
+  std::string why;
+  GRANASYM_CHECK(options.IsValid(&why)) << why;
+  const Hdf5File file = Hdf5File::OpenRead(path);
+  for (const char* required : {"/stages", "/series/p_kpa", "/series/e", "/series/psi_sigma_deg"}) {
+    if (!file.Exists(required)) {
+      throw InputError(fmt::format("{}: not a granasym DEM result file (no {})", path, required));
+    }
+  }
+  const std::vector<double> p = file.ReadDoubles("/series/p_kpa");
+  const std::vector<double> e = file.ReadDoubles("/series/e");
+  const std::vector<double> psi_sigma = file.ReadDoubles("/series/psi_sigma_deg");
+
+  StateDataset dataset;
+  dataset.name = name;
+  dataset.origin = path;
+  const double tolerance = options.kind_tolerance_deg * kDegree;
+  for (const std::string& stage : file.List("/stages")) {
+    const std::string group = "/stages/" + stage;
+    const std::string stage_name = file.ReadStringAttribute(group, "name");
+    const std::string where = fmt::format("{}:{} ({})", path, group, stage_name);
+    if (!file.HasAttribute(group, "psi_epsilon_deg")) continue;  // not a strain-path stage
+    const double psi_epsilon = file.ReadDoubleAttribute(group, "psi_epsilon_deg") * kDegree;
+    AsymptoticStatePoint base;
+    base.psi_epsilon = psi_epsilon;
+    base.weight = options.weight;
+    base.psi_sigma_uncertainty = options.psi_sigma_uncertainty_deg * kDegree;
+    base.ln_volume_uncertainty = options.ln_volume_uncertainty;
+    const bool ran_detector = file.HasAttribute(group, "asymptote_detected");
+    if (ran_detector && file.ReadIntAttribute(group, "asymptote_detected") == 1) {
+      AsymptoticStatePoint point = base;
+      point.kind = KindFromStretching(psi_epsilon, tolerance);
+      point.mean_stress = file.ReadDoubleAttribute(group, "asymptote_p_kpa");
+      point.void_ratio = file.ReadDoubleAttribute(group, "asymptote_e");
+      point.psi_sigma = file.ReadDoubleAttribute(group, "asymptote_psi_sigma_deg") * kDegree;
+      point.source = where;
+      if (point.kind == StateKind::kUnloading) {
+        dataset.warnings.push_back(where + ": an asymptote at psi_epsilon = 180 deg is not used");
+        continue;
+      }
+      dataset.points.push_back(point);
+      continue;
+    }
+    if (ran_detector) {
+      dataset.warnings.push_back(fmt::format(
+          "{}: no asymptote detected (stop reason: {}); stage skipped", where,
+          file.HasAttribute(group, "stop_reason") ? file.ReadStringAttribute(group, "stop_reason")
+                                                 : "unknown"));
+      continue;
+    }
+    const StateKind kind = KindFromStretching(psi_epsilon, tolerance);
+    if (kind != StateKind::kNcl && kind != StateKind::kUnloading) continue;
+    const int64_t first = file.ReadIntAttribute(group, "first_row");
+    const int64_t last = file.ReadIntAttribute(group, "last_row");
+    const int direction = kind == StateKind::kNcl ? +1 : -1;
+    const double min_p = kind == StateKind::kNcl ? options.ncl_min_p_kpa : 0.0;
+    const std::vector<size_t> rows =
+        LineRows(p, first, last, direction, min_p, options.max_line_points);
+    if (kind == StateKind::kNcl && rows.size() < 2) {
+      dataset.warnings.push_back(fmt::format(
+          "{}: fewer than 2 rows with p >= {} kPa; no NCL points taken", where,
+          options.ncl_min_p_kpa));
+    }
+    for (size_t r : rows) {
+      AsymptoticStatePoint point = base;
+      point.kind = kind;
+      point.mean_stress = p[r];
+      point.void_ratio = e[r];
+      point.psi_sigma = psi_sigma[r] * kDegree;
+      point.source = fmt::format("{} row {}", where, r);
+      dataset.points.push_back(point);
+    }
+  }
+  if (dataset.points.empty()) {
+    std::string reasons;
+    for (const std::string& w : dataset.warnings) reasons += "; " + w;
+    throw InputError(fmt::format("{}: no asymptotic states found (dataset '{}'){}", path, name,
+                                 reasons));
+  }
+  dataset.Validate();
+  return dataset;
+}
+
+}  // namespace granasym::calibration

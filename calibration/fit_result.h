@@ -1,0 +1,81 @@
+// The outcome of a fit: parameters, their uncertainty from the linearised
+// model at the optimum, residuals, warnings and the objective history.
+//
+// Covariance: C = s² (JᵀJ)⁻¹ with J the Jacobian of the weighted residuals
+// with respect to the free parameters (central differences) and, when
+// scale_by_residual_variance, s² = 2 cost/(m − n) (the data uncertainties are
+// then relative weights); otherwise s² = 1 (they are true standard deviations).
+// (JᵀJ)⁻¹ comes from the SVD of J; singular values below
+// singular_tolerance·σ_max are dropped and reported as a near-singular
+// covariance with the parameters of the poorly determined direction.
+// 95 % intervals: value ± t_{0.975, m−n} · standard error.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "calibration/calibration_problem.h"
+
+namespace granasym::calibration {
+
+enum class FitTermination { kConverged, kNoConvergence, kFailure };
+const char* ToString(FitTermination termination);
+
+struct FitSummary {
+  std::string fitter;  // "ceres", "nlopt:crs2+bobyqa", ...
+  FitTermination termination = FitTermination::kFailure;
+  std::string message;
+  int iterations = 0;
+  long evaluations = 0;  // residual-vector evaluations
+  double initial_cost = 0.0;  // ½ Σ r² of the weighted residuals
+  double final_cost = 0.0;
+  double wall_seconds = 0.0;
+  bool success() const { return termination != FitTermination::kFailure; }
+  std::string Report() const;  // one line
+};
+
+struct HistoryPoint {
+  long evaluation = 0;  // residual evaluations so far
+  double cost = 0.0;    // best cost so far
+  std::string stage;    // "ceres", "global start 2", "polish"
+};
+
+struct UncertaintyOptions {
+  bool scale_by_residual_variance = true;
+  // Relative singular-value threshold of J below which a direction counts as
+  // not determined.
+  double singular_tolerance = 1e-8;
+  // A parameter within this fraction of its bound range counts as at the bound.
+  double bound_tolerance = 1e-4;
+  // Relative central-difference step for J (of max(|θ|, 1e-3 · bound range)).
+  double difference_step = 1e-5;
+  bool IsValid(std::string* why) const;
+};
+
+struct FitResult {
+  FitSummary summary;
+  std::vector<double> values;  // full parameter vector (model_parameters.h order)
+  std::vector<int> free_indices;
+  Eigen::MatrixXd covariance;   // free × free, in the parameters' units
+  Eigen::MatrixXd correlation;  // free × free
+  std::vector<double> standard_errors;  // free order; NaN when not determined
+  std::vector<double> lower_95, upper_95;
+  double residual_variance = 1.0;  // s²
+  int degrees_of_freedom = 0;      // m − n
+  double condition_number = 0.0;   // σ_max/σ_min of J (scaled columns)
+  std::vector<std::string> warnings;
+  std::vector<HistoryPoint> history;
+  std::vector<PointResidual> residuals;
+};
+
+// Fills the uncertainty fields, residuals and warnings of `result` at
+// result->values (which must hold a valid full parameter vector).
+void ComputeUncertainty(const CalibrationProblem& problem, const UncertaintyOptions& options,
+                        FitResult* result);
+
+// Two-sided Student-t quantile t_{p, dof} (Cornish-Fisher expansion; exact to
+// about 1e-3 relative for dof ≥ 3).
+double StudentQuantile(double probability, int degrees_of_freedom);
+
+}  // namespace granasym::calibration

@@ -1,0 +1,55 @@
+// Asymptotic states to calibrate against (SPEC §7): each a tuple
+// (ψ_ε, p, e, ψ_σ) with its kind, its source and its weight and uncertainties.
+//
+// Kinds: the isotropic NCL (ψ_ε = 0), the CSL (ψ_ε = 90°), compression
+// asymptotic states (0 < ψ_ε < 90°), normal extension lines (ψ_ε > 90°, and
+// the extension side ψ_ε < 0), points of ASBS cross-sections (known ψ_σ, p, e,
+// no ψ_ε), and isotropic unloading branches (used for the starting value of κ*
+// only; they are not asymptotic states of the models).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace granasym::calibration {
+
+enum class StateKind { kNcl, kCsl, kCompression, kExtension, kAsbs, kUnloading };
+const char* ToString(StateKind kind);
+// Returns false for an unknown name.
+bool FromString(const std::string& name, StateKind* kind);
+// The kind an asymptotic state at ψ_ε (rad) belongs to; `tolerance` (rad)
+// decides what counts as exactly 0°, 90° and 180°.
+StateKind KindFromStretching(double psi_epsilon, double tolerance);
+
+struct AsymptoticStatePoint {
+  StateKind kind = StateKind::kNcl;
+  double psi_epsilon = 0.0;  // rad; NaN for kAsbs points (not known)
+  double mean_stress = 0.0;  // p (kPa), > 0
+  double void_ratio = 0.0;   // e
+  double psi_sigma = 0.0;    // rad
+  std::string source;        // e.g. "run.h5:/stages/003 (psi90)" or "lab.csv:12"
+  double weight = 1.0;       // multiplies the squared residuals of this point
+  // One standard deviation of the measurement; residuals are divided by it.
+  double psi_sigma_uncertainty = 0.0;  // rad, > 0
+  double ln_volume_uncertainty = 0.0;  // of ln(1+e), > 0
+
+  // Whether the point enters the objective (unloading points do not).
+  bool IsAsymptotic() const { return kind != StateKind::kUnloading; }
+  // Whether its ψ_ε is known (all asymptotic kinds except kAsbs).
+  bool HasStretching() const { return kind != StateKind::kAsbs && kind != StateKind::kUnloading; }
+};
+
+struct StateDataset {
+  std::string name;  // from the calibration file or the file name
+  std::string origin;  // file read
+  std::vector<AsymptoticStatePoint> points;
+  std::vector<std::string> warnings;  // e.g. stages without a detected asymptote
+
+  size_t Count(StateKind kind) const;
+  // Throws InputError naming the dataset, the point's source and the bad field
+  // for NaN/infinite values, p ≤ 0, e ≤ 0, ψ_σ outside (−35.26°, 54.74°),
+  // non-positive weights or uncertainties.
+  void Validate() const;
+};
+
+}  // namespace granasym::calibration
