@@ -146,11 +146,12 @@ void ComputeUncertainty(const CalibrationProblem& problem, const UncertaintyOpti
       jacobian.col(k).setZero();
     }
   }
-  // Scale columns so that the conditioning reflects the data, not the units.
+  // Columns per relative change of each parameter, so that the conditioning
+  // reflects the data and not the units (a column of numerical noise stays small).
   Eigen::VectorXd scale(n);
   for (int k = 0; k < n; ++k) {
-    const double norm = jacobian.col(k).norm();
-    scale[k] = norm > 0 ? 1.0 / norm : 1.0;
+    const ParameterSpec& spec = parameters.specs()[free[k]];
+    scale[k] = std::max(std::abs(x[k]), 1e-3 * (spec.upper - spec.lower));
   }
   const Eigen::MatrixXd scaled = jacobian * scale.asDiagonal();
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeThinV);
