@@ -61,7 +61,7 @@ void StateDataset::Validate() const {
   const double highest = std::atan(std::sqrt(2.0));
   for (const AsymptoticStatePoint& point : points) {
     auto fail = [&](const char* field, double value, const char* valid) {
-      throw InputError(fmt::format("dataset '{}': {}: {} = {} is invalid ({})", name, point.source,
+      throw InputError(fmt::format("dataset '{}': {}: {} = {:.6g} is invalid ({})", name, point.source,
                                    field, value, valid));
     };
     if (!(std::isfinite(point.mean_stress) && point.mean_stress > 0)) {

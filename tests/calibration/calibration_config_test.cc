@@ -1,0 +1,151 @@
+// The calibration file: validation messages, and a whole run from CSV data to
+// the HDF5 record, summary and plot data.
+#include "calibration/calibration_config.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "calibration/calibration_report.h"
+#include "calibration/csv_state_reader.h"
+#include "common/error.h"
+#include "common/hdf5_file.h"
+#include "synthetic_data.h"
+
+namespace granasym::calibration {
+namespace {
+
+const char* kConfig = R"(
+[model]
+kind = "hypoplastic_clay"
+
+[parameters.r]
+free = false
+value = 0.4
+
+[[dataset]]
+name = "synthetic"
+csv = "states.csv"
+psi_sigma_uncertainty_deg = 0.3
+
+[fitter]
+method = "both"
+[fitter.nlopt]
+starts = 2
+max_evaluations = 800
+)";
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  if (at == std::string::npos) ADD_FAILURE() << "no '" << from << "'";
+  else text.replace(at, from.size(), to);
+  return text;
+}
+
+void ExpectRejected(const std::string& text, const std::string& expected) {
+  try {
+    ReadCalibrationConfig(ConfigTable::ParseString(text, "calib.toml"));
+    FAIL() << "accepted: " << expected;
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("calib.toml"), std::string::npos) << message;
+    EXPECT_NE(message.find(expected), std::string::npos) << message;
+  }
+}
+
+TEST(CalibrationConfig, ReadsAValidFile) {
+  const CalibrationConfig c = ReadCalibrationConfig(ConfigTable::ParseString(kConfig, "/d/calib.toml"));
+  EXPECT_EQ(c.model, ModelKind::kHypoplasticClay);
+  EXPECT_EQ(c.method, FitMethod::kBoth);
+  ASSERT_EQ(c.datasets.size(), 1u);
+  EXPECT_EQ(c.datasets[0].path, "/d/states.csv");
+  EXPECT_FALSE(c.datasets[0].is_dem);
+  ASSERT_EQ(c.parameters.size(), 1u);
+  EXPECT_FALSE(c.parameters[0].free);
+  EXPECT_EQ(c.nlopt.starts, 2);
+  EXPECT_EQ(c.hdf5_path, "/d/calib.h5");
+}
+
+TEST(CalibrationConfig, RejectsBadFilesNamingTheKey) {
+  ExpectRejected(Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"sand\""), "kind");
+  ExpectRejected(Replace(kConfig, "method = \"both\"", "method = \"simplex\""), "method");
+  ExpectRejected(Replace(kConfig, "free = false\nvalue = 0.4", "free = false"), "value");
+  ExpectRejected(Replace(kConfig, "value = 0.4", "value = 0.4\nlower = 2.0\nfree_ = 1"), "free_");
+  ExpectRejected(Replace(kConfig, "[parameters.r]", "[parameters.lambda]"), "lambda");
+  ExpectRejected(Replace(kConfig, "csv = \"states.csv\"", "dem = \"a.h5\"\ncsv = \"b.csv\""),
+                 "exactly one");
+  ExpectRejected(Replace(kConfig, "starts = 2", "starts = 0"), "starts");
+  ExpectRejected(Replace(kConfig, "psi_sigma_uncertainty_deg = 0.3",
+                         "psi_sigma_uncertainty_deg = -1"),
+                 "psi_sigma_uncertainty_deg");
+  ExpectRejected("[model]\nkind = \"hypoplastic_clay\"\n", "dataset");
+}
+
+TEST(CalibrationConfig, RunsAWholeCalibrationAndWritesItsRecord) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "granasym_calibration_run";
+  std::filesystem::create_directories(dir);
+  const std::vector<double> truth = testing::LondonClay();
+  WriteStatesCsv(testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, {}),
+                 (dir / "states.csv").string());
+  {
+    std::ofstream out(dir / "calib.toml");
+    out << kConfig;
+  }
+  const CalibrationConfig config = ReadCalibrationConfigFile((dir / "calib.toml").string());
+  const CalibrationRun run = RunCalibration(config);
+  ASSERT_EQ(run.fits.size(), 2u);
+  EXPECT_TRUE(run.starting_values.lambda_star.from_data);
+  EXPECT_LT(run.agreement_in_standard_errors, 0.1);
+  for (const FitResult& fit : run.fits) {
+    EXPECT_TRUE(fit.summary.success()) << fit.summary.Report();
+    EXPECT_DOUBLE_EQ(fit.values[kShearParameter], 0.4);  // fixed
+    EXPECT_EQ(fit.free_indices.size(), 4u);
+    EXPECT_NEAR(fit.values[kLambdaStar], truth[kLambdaStar], 0.01);
+  }
+  WriteCalibrationHdf5(run, config.hdf5_path);
+  WritePlotData(run, run.fits[0], config.plot_data_dir);
+  const std::string summary = SummaryText(run);
+  EXPECT_NE(summary.find("95 % interval"), std::string::npos);
+  EXPECT_NE(summary.find("UMAT"), std::string::npos);
+  EXPECT_NE(summary.find("ceres vs nlopt"), std::string::npos);
+
+  const Hdf5File file = Hdf5File::OpenRead(config.hdf5_path);
+  const std::vector<double> values = file.ReadDoubles("/fits/ceres/values");
+  ASSERT_EQ(values.size(), 5u);
+  EXPECT_DOUBLE_EQ(values[kLambdaStar], run.fits[0].values[kLambdaStar]);
+  EXPECT_EQ(file.ReadDoubles("/fits/ceres/standard_errors").size(), 4u);
+  EXPECT_EQ(file.ReadStringAttribute("/fits/ceres/export_umat", "order"),
+            "phi_c_deg,lambda_star,kappa_star,N,r");
+  EXPECT_TRUE(file.Exists("/fits/nlopt_crs2_bobyqa/history/cost"));
+  EXPECT_EQ(file.ReadDoubles("/data/p_kpa").size(), run.problem->datasets()[0].points.size());
+  EXPECT_TRUE(std::filesystem::exists(config.plot_data_dir + "/states.csv"));
+  EXPECT_TRUE(std::filesystem::exists(config.plot_data_dir + "/model_curve.csv"));
+  EXPECT_TRUE(std::filesystem::exists(config.plot_data_dir + "/model_lines.dat"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CalibrationConfig, RefusesTooFewPointsForTheFreeParameters) {
+  CsvReadOptions options;
+  const StateDataset tiny = ParseStatesCsv(
+      "p_kpa,e,psi_sigma_deg,psi_epsilon_deg\n100,0.8,0,0\n", "tiny.csv", "tiny", options);
+  try {
+    CalibrationProblem problem({tiny}, ModelParameters::Defaults(ModelKind::kHypoplasticClay),
+                               PredictorOptions());
+    FAIL() << "accepted 2 residuals for 5 parameters";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("too few data"), std::string::npos) << error.what();
+  }
+  try {
+    CalibrationProblem problem({}, ModelParameters::Defaults(ModelKind::kHypoplasticClay),
+                               PredictorOptions());
+    FAIL() << "accepted no datasets";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("no datasets"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace granasym::calibration
