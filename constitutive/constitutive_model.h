@@ -79,6 +79,14 @@ class ConstitutiveModel {
   // asymptote searches within floating-point range.
   virtual bool ScaleState(double factor, ModelState* state) const { return false; }
 
+  // Necessary sign conditions of the state, coded as in OdeSystem::Constraints
+  // (tension-positive stress components; internal variables), which the
+  // integrators enforce on every accepted step. Default: none.
+  virtual void SignConstraints(Vector6* stress_codes, Eigen::VectorXd* internal_codes) const {
+    stress_codes->setZero();
+    internal_codes->setZero(num_internal());
+  }
+
   // Critical friction angle φ_c (rad) of the model, for the critical-state ratio.
   virtual double critical_friction_angle() const = 0;
   // One line with the parameters, for logs and HDF5 attributes.

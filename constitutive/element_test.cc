@@ -267,6 +267,19 @@ class StageOde : public OdeSystem {
     for (int i = kInternal; i < dimension(); ++i) scale[i] = stress_scale_;
   }
 
+  // Stresses (and stress-like internal variables) scale with the current
+  // ‖T‖: the models are homogeneous in stress, and a fixed scale from the
+  // stage start would let the absolute tolerance swamp p after unloading by
+  // orders of magnitude (path fuzzing: extension beyond the limit d took p
+  // from 4 to 1e-6 kPa with errors larger than p, and states far outside the SBS).
+  void StateScales(const double* y, double* scale) const override {
+    ComponentScales(scale);
+    const double norm = FrobeniusNorm<double>(Eigen::Map<const Vector6>(y + kStress));
+    if (!(norm > 0) || !std::isfinite(norm)) return;
+    for (int i = 0; i < 6; ++i) scale[kStress + i] = norm;
+    for (int i = kInternal; i < dimension(); ++i) scale[i] = std::max(norm, std::abs(y[i]));
+  }
+
   ModelState StateOf(const double* y) const {
     ModelState state;
     state.stress = Eigen::Map<const Vector6>(y + kStress);
@@ -413,6 +426,23 @@ class StageOde : public OdeSystem {
       out.col(column) = rows.col(c);
     }
     return out.allFinite();
+  }
+
+  bool Constraints(double* codes) const override {
+    Vector6 stress_codes;
+    Eigen::VectorXd internal_codes;
+    model_.SignConstraints(&stress_codes, &internal_codes);
+    for (int i = 0; i < dimension(); ++i) codes[i] = 0.0;
+    bool any = false;
+    for (int i = 0; i < 6; ++i) {
+      codes[kStress + i] = stress_codes[i];
+      any = any || stress_codes[i] != 0;
+    }
+    for (int i = 0; i < internal_codes.size(); ++i) {
+      codes[kInternal + i] = internal_codes[i];
+      any = any || internal_codes[i] != 0;
+    }
+    return any;
   }
 
   int num_roots() const override { return static_cast<int>(stage_.stops.size()); }
@@ -685,6 +715,18 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
       summary.termination = TerminationType::kRootFound;
       summary.root_index = crossed;
       break;
+    }
+    // Records at the output times inside this increment, evenly spaced in the
+    // stage as with the rate integrators: a partial increment from its start
+    // (the path itself keeps the increments it chose).
+    while (next_output < std::min(t + h, stage.duration) * (1.0 - 1e-12)) {
+      std::vector<double> y_output;
+      std::string output_why;
+      const double fraction = next_output - t;
+      if (fraction > 0 && increment(*y, fraction, &y_output, &output_why)) {
+        observer(next_output, y_output.data());
+      }
+      next_output += output_interval;
     }
     *y = y_new;
     t += h;

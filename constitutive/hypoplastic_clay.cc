@@ -297,6 +297,12 @@ bool HypoplasticClay::AsymptoteForStress(const Vector6& stress, Asymptote* asymp
   return true;
 }
 
+void HypoplasticClay::SignConstraints(Vector6* stress_codes,
+                                      Eigen::VectorXd* internal_codes) const {
+  *stress_codes << -2, -2, -2, 0, 0, 0;
+  internal_codes->resize(0);
+}
+
 bool HypoplasticClay::ScaleState(double factor, ModelState* state) const {
   state->stress *= factor;
   state->void_ratio =

@@ -43,6 +43,8 @@ class HypoplasticClay : public ConstitutiveModel {
   double VoidRatioForOcr(double mean_stress, double ocr) const override;
   ModelState MakeState(const Vector6& stress, double void_ratio) const override;
   bool ScaleState(double factor, ModelState* state) const override;
+  // Normal stresses strictly compressive (necessary for a negative-definite T).
+  void SignConstraints(Vector6* stress_codes, Eigen::VectorXd* internal_codes) const override;
   double critical_friction_angle() const override { return parameters_.critical_friction_angle; }
   std::string Describe() const override;
 

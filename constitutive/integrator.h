@@ -31,8 +31,9 @@ struct IntegratorOptions {
   // Relative tolerance on each component (dimensionless). 1e-6 keeps the stress
   // paths within plotting accuracy over strains of order one.
   double relative_tolerance = 1e-6;
-  // Absolute tolerance as a fraction of each component's scale
-  // (OdeSystem::ComponentScales); guards components that pass through zero.
+  // Absolute tolerance as a fraction of each component's scale at the current
+  // state (OdeSystem::StateScales; stresses: ‖T‖); guards components that pass
+  // through zero.
   double absolute_tolerance = 1e-9;
   // Implicit methods: exact (automatic differentiation) or difference-quotient Jacobian.
   JacobianKind jacobian = JacobianKind::kExact;

@@ -305,6 +305,12 @@ ModelState ModifiedCamClay::MakeState(const Vector6& stress, double void_ratio) 
   return state;
 }
 
+void ModifiedCamClay::SignConstraints(Vector6* stress_codes,
+                                      Eigen::VectorXd* internal_codes) const {
+  stress_codes->setZero();
+  *internal_codes = Eigen::VectorXd::Constant(1, 2.0);
+}
+
 bool ModifiedCamClay::ScaleState(double factor, ModelState* state) const {
   // K = p/κ* and G ∝ p make the log-log form homogeneous; a constant G or the
   // semi-log form's 1/(1+e) break it.

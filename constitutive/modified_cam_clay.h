@@ -61,6 +61,8 @@ class ModifiedCamClay : public ConstitutiveModel {
   double VoidRatioForOcr(double mean_stress, double ocr) const override;
   ModelState MakeState(const Vector6& stress, double void_ratio) const override;
   bool ScaleState(double factor, ModelState* state) const override;  // log-log form only
+  // p_c > 0 (single normal stresses may be tensile at high OCR).
+  void SignConstraints(Vector6* stress_codes, Eigen::VectorXd* internal_codes) const override;
   double critical_friction_angle() const override;
   std::string Describe() const override;
 

@@ -17,9 +17,22 @@ struct Workspace {
   explicit Workspace(int n) : k1(n), k2(n), k3(n), stage(n), low(n), high(n) {}
 };
 
-// One RKF23 step of size h from (t, y). Returns false when a stage fails.
+// Whether x satisfies the sign constraints (SUNDIALS coding, see OdeSystem).
+bool SatisfiesConstraints(const std::vector<double>& codes, const double* x) {
+  for (size_t i = 0; i < codes.size(); ++i) {
+    const double c = codes[i];
+    if ((c == 1.0 && !(x[i] >= 0)) || (c == 2.0 && !(x[i] > 0)) || (c == -1.0 && !(x[i] <= 0)) ||
+        (c == -2.0 && !(x[i] < 0))) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// One RKF23 step of size h from (t, y). Returns false when a stage fails or
+// the result violates the sign constraints (`codes`, empty for none).
 bool TakeStep(OdeSystem& system, double t, const double* y, double h, Workspace* w,
-              long* evaluations) {
+              long* evaluations, const std::vector<double>& codes = {}) {
   const int n = system.dimension();
   ++*evaluations;
   if (!system.Rhs(t, y, w->k1.data())) return false;
@@ -34,7 +47,7 @@ bool TakeStep(OdeSystem& system, double t, const double* y, double h, Workspace*
     w->high[i] = y[i] + h * (w->k1[i] + 4.0 * w->k2[i] + w->k3[i]) / 6.0;
     if (!std::isfinite(w->high[i])) return false;
   }
-  return true;
+  return SatisfiesConstraints(codes, w->high.data());
 }
 
 }  // namespace
@@ -46,8 +59,6 @@ IntegrationSummary Rkf23Integrator::Integrate(OdeSystem& system, double t0, doub
   IntegrationSummary summary;
   const int n = system.dimension();
   std::vector<double> scale(n);
-  system.ComponentScales(scale.data());
-  for (double& s : scale) s *= options_.absolute_tolerance;
   std::vector<double> stops;
   for (double t : output_times) {
     if (t > t0 && t < t_end) stops.push_back(t);
@@ -61,6 +72,8 @@ IntegrationSummary Rkf23Integrator::Integrate(OdeSystem& system, double t0, doub
   if (num_roots > 0) system.Roots(t0, y, g_old.data());
 
   Workspace w(n);
+  std::vector<double> codes(n);
+  if (!system.Constraints(codes.data())) codes.clear();
   const bool fixed = options_.fixed_step > 0;
   const double interval = t_end - t0;
   double h = fixed ? options_.fixed_step
@@ -82,11 +95,13 @@ IntegrationSummary Rkf23Integrator::Integrate(OdeSystem& system, double t0, doub
       step = target - t;
       hits_stop = true;
     }
-    const bool ok = TakeStep(system, t, y, step, &w, &summary.rhs_evaluations);
+    const bool ok = TakeStep(system, t, y, step, &w, &summary.rhs_evaluations, codes);
     double error = 0.0;
     if (ok) {
+      system.StateScales(y, scale.data());
       for (int i = 0; i < n; ++i) {
-        const double tolerance = options_.relative_tolerance * std::abs(w.high[i]) + scale[i];
+        const double tolerance = options_.relative_tolerance * std::abs(w.high[i]) +
+                                 options_.absolute_tolerance * scale[i];
         error = std::max(error, std::abs(w.high[i] - w.low[i]) / tolerance);
       }
     }
@@ -126,7 +141,7 @@ IntegrationSummary Rkf23Integrator::Integrate(OdeSystem& system, double t0, doub
         for (int iteration = 0; iteration < 100; ++iteration) {
           double theta = lo - g_lo * (hi - lo) / (g_hi - g_lo);
           if (!(theta > lo && theta < hi)) theta = 0.5 * (lo + hi);
-          if (!TakeStep(system, t, y, theta * step, &w, &summary.rhs_evaluations)) break;
+          if (!TakeStep(system, t, y, theta * step, &w, &summary.rhs_evaluations, codes)) break;
           std::vector<double> g(num_roots);
           system.Roots(t + theta * step, w.high.data(), g.data());
           const double g_mid = g[crossed];

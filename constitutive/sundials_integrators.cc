@@ -125,7 +125,38 @@ struct CallbackData {
   std::string last_error;
   std::string last_rhs_failure;
   long rhs_failures = 0;
+  // Error weights 1/(rtol |y_i| + atol scale_i(y)).
+  double relative_tolerance = 0.0;
+  double absolute_tolerance = 0.0;
+  std::vector<double> scales;
+  // ERKStep restarts: the last accepted step's time and state.
+  double accepted_time = 0.0;
+  std::vector<double> accepted_state;
 };
+
+int ErrorWeightCallback(N_Vector y, N_Vector weights, void* user_data) {
+  auto* data = static_cast<CallbackData*>(user_data);
+  const int n = data->system->dimension();
+  const double* values = N_VGetArrayPointer(y);
+  double* out = N_VGetArrayPointer(weights);
+  data->scales.resize(n);
+  data->system->StateScales(values, data->scales.data());
+  for (int i = 0; i < n; ++i) {
+    const double tolerance =
+        data->relative_tolerance * std::abs(values[i]) + data->absolute_tolerance * data->scales[i];
+    if (!(tolerance > 0) || !std::isfinite(tolerance)) return -1;
+    out[i] = 1.0 / tolerance;
+  }
+  return 0;
+}
+
+int RecordAcceptedStep(realtype t, N_Vector y, void* user_data) {
+  auto* data = static_cast<CallbackData*>(user_data);
+  const double* values = N_VGetArrayPointer(y);
+  data->accepted_time = t;
+  data->accepted_state.assign(values, values + data->system->dimension());
+  return 0;
+}
 
 int RhsCallback(realtype t, N_Vector y, N_Vector y_dot, void* user_data) {
   auto* data = static_cast<CallbackData*>(user_data);
@@ -168,6 +199,13 @@ void ErrorHandler(int error_code, const char* module, const char* function, char
   if (error_code >= 0) return;  // warnings (e.g. t + h == t) do not end the run
   auto* data = static_cast<CallbackData*>(user_data);
   data->last_error = fmt::format("{}::{}: {}", module, function, message);
+}
+
+// The system's sign constraints as a SUNDIALS vector, or null when it has none.
+std::unique_ptr<SerialVector> MakeConstraints(const OdeSystem& system, const Context& context) {
+  auto constraints = std::make_unique<SerialVector>(system.dimension(), context);
+  if (!system.Constraints(constraints->data())) return nullptr;
+  return constraints;
 }
 
 void FillAbsoluteTolerances(const OdeSystem& system, double absolute_tolerance,
@@ -249,8 +287,9 @@ IntegrationSummary CvodeIntegrator::Integrate(OdeSystem& system, double t0, doub
     Check(CVodeSetMinStep(mem, options_.fixed_step), "CVodeSetMinStep");
     Check(CVodeSetMaxStep(mem, options_.fixed_step), "CVodeSetMaxStep");
   } else {
-    Check(CVodeSVtolerances(mem, options_.relative_tolerance, tolerances.get()),
-          "CVodeSVtolerances");
+    data.relative_tolerance = options_.relative_tolerance;
+    data.absolute_tolerance = options_.absolute_tolerance;
+    Check(CVodeWFtolerances(mem, ErrorWeightCallback), "CVodeWFtolerances");
     if (options_.initial_step > 0) {
       Check(CVodeSetInitStep(mem, options_.initial_step), "CVodeSetInitStep");
     }
@@ -270,6 +309,8 @@ IntegrationSummary CvodeIntegrator::Integrate(OdeSystem& system, double t0, doub
     fixed_point = std::make_unique<FixedPointSolver>(y, context);
     Check(CVodeSetNonlinearSolver(mem, fixed_point->get()), "CVodeSetNonlinearSolver");
   }
+  const std::unique_ptr<SerialVector> constraints = MakeConstraints(system, context);
+  if (constraints) Check(CVodeSetConstraints(mem, constraints->get()), "CVodeSetConstraints");
   const int num_roots = system.num_roots();
   if (num_roots > 0) Check(CVodeRootInit(mem, num_roots, RootCallback), "CVodeRootInit");
 
@@ -311,11 +352,10 @@ IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, dou
   Context context;
   SerialVector y(n, context);
   std::copy(y_in, y_in + n, y.data());
-  SerialVector tolerances(n, context);
-  FillAbsoluteTolerances(system, options_.absolute_tolerance, tolerances);
   CallbackData data;
   data.system = &system;
   const int num_roots = system.num_roots();
+  const std::unique_ptr<SerialVector> constraints = MakeConstraints(system, context);
   IntegrationSummary summary;
 
   if (options_.kind == IntegratorKind::kArkodeErk) {
@@ -325,8 +365,12 @@ IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, dou
     Check(ERKStepSetUserData(mem, &data), "ERKStepSetUserData");
     Check(ERKStepSetErrHandlerFn(mem, ErrorHandler, &data), "ERKStepSetErrHandlerFn");
     Check(ERKStepSetOrder(mem, options_.arkode_order), "ERKStepSetOrder");
-    Check(ERKStepSVtolerances(mem, options_.relative_tolerance, tolerances.get()),
-          "ERKStepSVtolerances");
+    data.accepted_time = t0;
+    data.accepted_state.assign(y.data(), y.data() + n);
+    Check(ERKStepSetPostprocessStepFn(mem, RecordAcceptedStep), "ERKStepSetPostprocessStepFn");
+    data.relative_tolerance = options_.relative_tolerance;
+    data.absolute_tolerance = options_.absolute_tolerance;
+    Check(ERKStepWFtolerances(mem, ErrorWeightCallback), "ERKStepWFtolerances");
     Check(ERKStepSetMaxNumSteps(mem, options_.max_steps), "ERKStepSetMaxNumSteps");
     Check(ERKStepSetStopTime(mem, t_end), "ERKStepSetStopTime");
     if (options_.fixed_step > 0) {
@@ -337,19 +381,60 @@ IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, dou
       }
       if (options_.max_step > 0) Check(ERKStepSetMaxStep(mem, options_.max_step), "ERKStepSetMaxStep");
     }
+    if (constraints) {
+      Check(ERKStepSetConstraints(mem, constraints->get()), "ERKStepSetConstraints");
+    }
     if (num_roots > 0) Check(ERKStepRootInit(mem, num_roots, RootCallback), "ERKStepRootInit");
+    // Counters of the restarts below, which reset ERKStep's own.
+    long steps = 0, rejected = 0, evaluations = 0;
+    auto add_counters = [&]() {
+      long value = 0;
+      Check(ERKStepGetNumSteps(mem, &value), "ERKStepGetNumSteps");
+      steps += value;
+      Check(ERKStepGetNumErrTestFails(mem, &value), "ERKStepGetNumErrTestFails");
+      rejected += value;
+      Check(ERKStepGetNumRhsEvals(mem, &value), "ERKStepGetNumRhsEvals");
+      evaluations += value;
+    };
+    // ERKStep cannot recover when a stage leaves the model's domain (it ends
+    // with ARK_RHSFUNC_FAIL even for a recoverable failure). The state at a
+    // failure is the last accepted one, so restart there with a quarter of
+    // the last step, as CVODE and ARKStep do internally (found by path
+    // fuzzing: Cam clay isochoric shear from OCR 8 drove a stage to p_c < 0).
+    constexpr int kMaxRestarts = 50;
+    int restarts = 0;
+    auto evolve = [&](double tout, double* t) {
+      while (true) {
+        const long failures_before = data.rhs_failures;
+        const int flag = ERKStepEvolve(mem, tout, y.get(), t, ARK_NORMAL);
+        if (flag >= 0 || data.rhs_failures == failures_before || restarts >= kMaxRestarts ||
+            (flag != ARK_RHSFUNC_FAIL && flag != ARK_REPTD_RHSFUNC_ERR &&
+             flag != ARK_UNREC_RHSFUNC_ERR)) {
+          return flag;
+        }
+        ++restarts;
+        double last_step = 0.0;
+        Check(ERKStepGetLastStep(mem, &last_step), "ERKStepGetLastStep");
+        add_counters();
+        ++rejected;
+        data.last_error.clear();
+        std::copy(data.accepted_state.begin(), data.accepted_state.end(), y.data());
+        *t = data.accepted_time;
+        Check(ERKStepReInit(mem, RhsCallback, data.accepted_time, y.get()), "ERKStepReInit");
+        Check(ERKStepSetStopTime(mem, t_end), "ERKStepSetStopTime");
+        if (last_step > 0) {
+          Check(ERKStepSetInitStep(mem, 0.25 * last_step), "ERKStepSetInitStep");
+        }
+      }
+    };
     RunOutputLoop(
-        t0, t_end, output_times, y, num_roots,
-        [&](double tout, double* t) { return ERKStepEvolve(mem, tout, y.get(), t, ARK_NORMAL); },
+        t0, t_end, output_times, y, num_roots, evolve,
         [&](int* found) { Check(ERKStepGetRootInfo(mem, found), "ERKStepGetRootInfo"); },
         observer, ARK_ROOT_RETURN, data, &summary);
-    long value = 0;
-    Check(ERKStepGetNumSteps(mem, &value), "ERKStepGetNumSteps");
-    summary.steps = value;
-    Check(ERKStepGetNumErrTestFails(mem, &value), "ERKStepGetNumErrTestFails");
-    summary.rejected_steps = value;
-    Check(ERKStepGetNumRhsEvals(mem, &value), "ERKStepGetNumRhsEvals");
-    summary.rhs_evaluations = value;
+    add_counters();
+    summary.steps = steps;
+    summary.rejected_steps = rejected;
+    summary.rhs_evaluations = evaluations;
   } else {
     IntegratorMemory memory(ARKStepCreate(nullptr, RhsCallback, t0, y.get(), context.get()),
                             ARKStepFree, "ARKStepCreate");
@@ -364,8 +449,9 @@ IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, dou
       Check(ARKStepSetJacFn(mem, JacobianCallback), "ARKStepSetJacFn");
     }
     Check(ARKStepSetOrder(mem, options_.arkode_order), "ARKStepSetOrder");
-    Check(ARKStepSVtolerances(mem, options_.relative_tolerance, tolerances.get()),
-          "ARKStepSVtolerances");
+    data.relative_tolerance = options_.relative_tolerance;
+    data.absolute_tolerance = options_.absolute_tolerance;
+    Check(ARKStepWFtolerances(mem, ErrorWeightCallback), "ARKStepWFtolerances");
     Check(ARKStepSetMaxNumSteps(mem, options_.max_steps), "ARKStepSetMaxNumSteps");
     Check(ARKStepSetStopTime(mem, t_end), "ARKStepSetStopTime");
     if (options_.fixed_step > 0) {
@@ -377,6 +463,9 @@ IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, dou
         Check(ARKStepSetInitStep(mem, options_.initial_step), "ARKStepSetInitStep");
       }
       if (options_.max_step > 0) Check(ARKStepSetMaxStep(mem, options_.max_step), "ARKStepSetMaxStep");
+    }
+    if (constraints) {
+      Check(ARKStepSetConstraints(mem, constraints->get()), "ARKStepSetConstraints");
     }
     if (num_roots > 0) Check(ARKStepRootInit(mem, num_roots, RootCallback), "ARKStepRootInit");
     RunOutputLoop(
