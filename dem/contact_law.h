@@ -37,6 +37,7 @@ class LinearCundallStrack {
 
   // Result for sphere i; sphere j receives −force and its own torque.
   struct Result {
+    Vec3 shear;         // updated shear force on i, to be stored (N)
     Vec3 force_i;       // total contact force on i (N)
     Vec3 torque_i;      // (N m)
     Vec3 torque_j;      // (N m)
@@ -51,20 +52,26 @@ class LinearCundallStrack {
   }
 
   // Evaluates a pair in contact (overlap u_N = r_i + r_j − |l| > 0). With
-  // kFriction the stored shear force `shear` (acting on i) is updated, unless
-  // kFrozen: then the pair is re-evaluated at the configuration of its last
-  // update and the stored shear force is used as it is.
+  // kFriction the stored shear force `shear` (acting on i) is advanced and
+  // returned in Result::shear, unless kFrozen: then the pair is re-evaluated
+  // at the configuration of its last update with the stored force as it is.
   template <bool kFriction, bool kFrozen = false>
-  inline Result Evaluate(const Pair& pair, Vec3* shear) const {
-    const double overlap = pair.radius_i + pair.radius_j - pair.distance;
-    const Vec3 normal = (1.0 / pair.distance) * pair.branch;  // from i to j
-    const double k_n = NormalStiffness(pair.radius_i, pair.radius_j);
+  inline Result Evaluate(const Pair& pair, Vec3 shear) const {
+    const double reach = pair.radius_i + pair.radius_j;
+    const double overlap = reach - pair.distance;
+    // One division gives both 1/|l| and 1/(r_i + r_j).
+    const double reciprocal = 1.0 / (reach * pair.distance);
+    const double inverse_distance = reach * reciprocal;
+    const Vec3 normal = inverse_distance * pair.branch;  // from i to j
+    const double k_n =
+        2.0 * params_.youngs_modulus * pair.radius_i * pair.radius_j * (pair.distance * reciprocal);
     Result result;
+    result.shear = shear;
     result.normal_force = k_n * overlap;
     result.force_i = (-result.normal_force) * normal;
     if constexpr (kFriction && kFrozen) {
-      const Vec3 moment = Cross(normal, *shear);
-      result.force_i = result.force_i + *shear;
+      const Vec3 moment = Cross(normal, shear);
+      result.force_i = result.force_i + shear;
       result.torque_i = (pair.radius_i - 0.5 * overlap) * moment;
       result.torque_j = (pair.radius_j - 0.5 * overlap) * moment;
     } else if constexpr (kFriction) {
@@ -74,10 +81,10 @@ class LinearCundallStrack {
       // n × (Δt v_c)/|l| (the centres' relative motion that moved it) and the
       // frame spun about n by the mean spin.
       const double dt = time_step_;
-      const Vec3 turn = (dt / pair.distance) * Cross(normal, pair.centre_velocity);
+      const Vec3 turn = (dt * inverse_distance) * Cross(normal, pair.centre_velocity);
       const Vec3 spin_sum = pair.spin_i + pair.spin_j;
       const Vec3 rotation = turn + (0.5 * dt * Dot(normal, spin_sum)) * normal;
-      Vec3 force_s = *shear;
+      Vec3 force_s = shear;
       force_s = force_s + Cross(rotation, force_s);
       force_s = force_s - Dot(force_s, normal) * normal;
       // Relative velocity of j with respect to i at the contact point.
@@ -91,7 +98,7 @@ class LinearCundallStrack {
       const double limit = params_.friction_coefficient * result.normal_force;
       const double magnitude2 = Dot(force_s, force_s);
       if (magnitude2 > limit * limit) force_s = (limit / std::sqrt(magnitude2)) * force_s;
-      *shear = force_s;
+      result.shear = force_s;
       result.force_i = result.force_i + force_s;
       const Vec3 moment = Cross(normal, force_s);
       result.torque_i = arm_i * moment;

@@ -149,6 +149,7 @@ Engine::Engine(const Packing& packing, const Material& material, const Options& 
   thread_force_.assign(extra, std::vector<Vec4>(n));
   thread_torque_.assign(friction_ ? extra : 0, std::vector<Vec4>(n));
   thread_sums_.assign(options.threads, Sums{});
+  blocks_.resize(options.threads);
 }
 
 void Engine::SetVelocity(size_t i, Vec3 v) {
@@ -175,6 +176,7 @@ void Engine::ComputeForcesImpl() {
   const double gx = gradient_[0], gy = gradient_[1], gz = gradient_[2];
   const int64_t* offsets = neighbors_.offsets().data();
   const int32_t* neighbor = neighbors_.neighbors().data();
+  const int32_t* owner = neighbors_.owners().data();
   Vec3* shear = kUseFriction ? neighbors_.shear().data() : nullptr;
   const Vec4* position = position_.data();
   const Vec4* velocity = velocity_.data();
@@ -193,81 +195,109 @@ void Engine::ComputeForcesImpl() {
     if constexpr (kUseFriction) std::fill(torque + zero_from, torque + n, Vec4{});
     Sums local;
 
-    for (int64_t i = begin; i < end; ++i) {
-      const Vec4 pi = position[i];
-      Vec3 force_i{}, torque_i{};
-      for (int64_t p = offsets[i]; p < offsets[i + 1]; ++p) {
-        const int32_t j = neighbor[p];
-        const Vec4 pj = position[j];
-        const Vec3 branch = {lx * MinimumImage(pj.x - pi.x), ly * MinimumImage(pj.y - pi.y),
-                             lz * MinimumImage(pj.z - pi.z)};
-        const double distance2 = Dot(branch, branch);
+    // Two passes over blocks of the pair list: the first finds the touching
+    // pairs without a data-dependent branch (compaction by index increment),
+    // the second evaluates them. The contact/no-contact decision is close to
+    // a coin toss in a dense packing and would otherwise cost a branch
+    // misprediction per pair; the second pass has independent iterations
+    // that the processor overlaps (sqrt and division latencies).
+    ContactBlock& b = blocks_[t];
+    const int64_t pair_end = offsets[end];
+    for (int64_t p0 = offsets[begin]; p0 < pair_end; p0 += ContactBlock::kSize) {
+      const int64_t p1 = std::min<int64_t>(p0 + ContactBlock::kSize, pair_end);
+      int count = 0;
+      for (int64_t p = p0; p < p1; ++p) {
+        const int32_t i = owner[p], j = neighbor[p];
+        const Vec4 pi = position[i], pj = position[j];
+        const double bx = lx * MinimumImage(pj.x - pi.x);
+        const double by = ly * MinimumImage(pj.y - pi.y);
+        const double bz = lz * MinimumImage(pj.z - pi.z);
+        const double distance2 = bx * bx + by * by + bz * bz;
         const double reach = pi.w + pj.w;
-        if (distance2 >= reach * reach) {
+        const bool touching = distance2 < reach * reach;
+        b.i[count] = i;
+        b.j[count] = j;
+        b.pair[count] = p;
+        b.bx[count] = bx;
+        b.by[count] = by;
+        b.bz[count] = bz;
+        b.d[count] = distance2;
+        b.ri[count] = pi.w;
+        b.rj[count] = pj.w;
+        count += touching;
+        if constexpr (kUseFriction && !kReevaluate) {
           // A broken contact forgets its shear force; testing first keeps the
           // many never-touching pairs from dirtying cache lines.
-          if constexpr (kUseFriction && !kReevaluate) {
-            if (shear[p].x != 0.0 || shear[p].y != 0.0 || shear[p].z != 0.0) shear[p] = Vec3{};
+          if (!touching && (shear[p].x != 0.0 || shear[p].y != 0.0 || shear[p].z != 0.0)) {
+            shear[p] = Vec3{};
           }
-          continue;
         }
+      }
+      for (int k = 0; k < count; ++k) {
+        const int32_t i = b.i[k], j = b.j[k];
+        const int64_t p = b.pair[k];
         LinearCundallStrack::Pair pair;
-        pair.branch = branch;
-        pair.distance = std::sqrt(distance2);
-        pair.radius_i = pi.w;
-        pair.radius_j = pj.w;
-        if constexpr (kUseFriction && !kReevaluate) {
-          const Vec4 vi = velocity[i], vj = velocity[j];
-          pair.centre_velocity = {vj.x - vi.x + gx * branch.x, vj.y - vi.y + gy * branch.y,
-                                  vj.z - vi.z + gz * branch.z};
-          pair.spin_i = Xyz(spin[i]);
-          pair.spin_j = Xyz(spin[j]);
+        pair.branch = {b.bx[k], b.by[k], b.bz[k]};
+        pair.distance = std::sqrt(b.d[k]);
+        pair.radius_i = b.ri[k];
+        pair.radius_j = b.rj[k];
+        Vec3 stored{};
+        if constexpr (kUseFriction) {
+          stored = shear[p];
+          if constexpr (!kReevaluate) {
+            const Vec4 vi = velocity[i], vj = velocity[j];
+            pair.centre_velocity = {vj.x - vi.x + gx * pair.branch.x,
+                                    vj.y - vi.y + gy * pair.branch.y,
+                                    vj.z - vi.z + gz * pair.branch.z};
+            pair.spin_i = Xyz(spin[i]);
+            pair.spin_j = Xyz(spin[j]);
+          }
         }
         const LinearCundallStrack::Result r =
-            law_.Evaluate<kUseFriction, kReevaluate>(pair, kUseFriction ? &shear[p] : nullptr);
-        force_i = force_i + r.force_i;
-        force[j].x -= r.force_i.x;
-        force[j].y -= r.force_i.y;
-        force[j].z -= r.force_i.z;
+            law_.Evaluate<kUseFriction, kReevaluate>(pair, stored);
+        const Vec3 f = r.force_i;
+        force[i].x += f.x;
+        force[i].y += f.y;
+        force[i].z += f.z;
+        force[j].x -= f.x;
+        force[j].y -= f.y;
+        force[j].z -= f.z;
         if constexpr (kUseFriction) {
-          torque_i = torque_i + r.torque_i;
+          if constexpr (!kReevaluate) shear[p] = r.shear;
+          torque[i].x += r.torque_i.x;
+          torque[i].y += r.torque_i.y;
+          torque[i].z += r.torque_i.z;
           torque[j].x += r.torque_j.x;
           torque[j].y += r.torque_j.y;
           torque[j].z += r.torque_j.z;
         }
+        const Vec3 branch = {b.bx[k], b.by[k], b.bz[k]};
+        const double distance2 = b.d[k];
         if constexpr (kSumStress) {
           // σ = (1/V) Σ F_j ⊗ l with F_j = −F_i the force on j (compression
           // positive for repulsion); symmetric part.
-          const Vec3 f = (-1.0) * r.force_i;
-          local.stress[0] += f.x * branch.x;
-          local.stress[1] += f.y * branch.y;
-          local.stress[2] += f.z * branch.z;
-          local.stress[3] += 0.5 * (f.x * branch.y + f.y * branch.x);
-          local.stress[4] += 0.5 * (f.x * branch.z + f.z * branch.x);
-          local.stress[5] += 0.5 * (f.y * branch.z + f.z * branch.y);
-          local.force_sum += Norm(f);
+          const Vec3 fj = (-1.0) * f;  // on j
+          local.stress[0] += fj.x * branch.x;
+          local.stress[1] += fj.y * branch.y;
+          local.stress[2] += fj.z * branch.z;
+          local.stress[3] += 0.5 * (fj.x * branch.y + fj.y * branch.x);
+          local.stress[4] += 0.5 * (fj.x * branch.z + fj.z * branch.x);
+          local.stress[5] += 0.5 * (fj.y * branch.z + fj.z * branch.y);
+          local.force_sum += Norm(fj);
           ++local.contacts;
         }
         if constexpr (kSumStiffness) {
           // Affine response of the normal force: dσ_aa/dε_bb = (1/V) Σ k_n l_a² l_b² / |l|².
-          const double k = law_.NormalStiffness(pi.w, pj.w) / distance2;
+          const double weight = law_.NormalStiffness(b.ri[k], b.rj[k]) / distance2;
           const double xx = branch.x * branch.x, yy = branch.y * branch.y,
                        zz = branch.z * branch.z;
-          local.stiffness[0] += k * xx * xx;
-          local.stiffness[1] += k * yy * yy;
-          local.stiffness[2] += k * zz * zz;
-          local.stiffness[3] += k * xx * yy;
-          local.stiffness[4] += k * xx * zz;
-          local.stiffness[5] += k * yy * zz;
+          local.stiffness[0] += weight * xx * xx;
+          local.stiffness[1] += weight * yy * yy;
+          local.stiffness[2] += weight * zz * zz;
+          local.stiffness[3] += weight * xx * yy;
+          local.stiffness[4] += weight * xx * zz;
+          local.stiffness[5] += weight * yy * zz;
         }
-      }
-      force[i].x += force_i.x;
-      force[i].y += force_i.y;
-      force[i].z += force_i.z;
-      if constexpr (kUseFriction) {
-        torque[i].x += torque_i.x;
-        torque[i].y += torque_i.y;
-        torque[i].z += torque_i.z;
       }
     }
     thread_sums_[t] = local;

@@ -122,6 +122,7 @@ void NeighborList::Build(const std::vector<Vec4>& s, const std::array<double, 3>
   offsets_ = std::move(offsets);
   neighbors_ = std::move(neighbors);
   shear_ = std::move(shear);
+  DeriveOwners();
   build_positions_ = s;
   build_cell_ = cell;
   skin_ = skin;
@@ -149,6 +150,16 @@ void NeighborList::Restore(State state) {
   skin_ = state.skin;
   max_radius_ = state.max_radius;
   builds_ = state.builds;
+  DeriveOwners();
+}
+
+void NeighborList::DeriveOwners() {
+  owners_.resize(neighbors_.size());
+  const int64_t n = static_cast<int64_t>(offsets_.size()) - 1;
+  for (int64_t i = 0; i < n; ++i) {
+    std::fill(owners_.begin() + offsets_[i], owners_.begin() + offsets_[i + 1],
+              static_cast<int32_t>(i));
+  }
 }
 
 }  // namespace granasym::dem

@@ -30,6 +30,8 @@ class NeighborList {
 
   const std::vector<int64_t>& offsets() const { return offsets_; }
   const std::vector<int32_t>& neighbors() const { return neighbors_; }
+  // The i of each pair (derived from offsets) for loops over flat pair ranges.
+  const std::vector<int32_t>& owners() const { return owners_; }
   std::vector<Vec3>& shear() { return shear_; }
   const std::vector<Vec3>& shear() const { return shear_; }
   const std::vector<Vec4>& build_positions() const { return build_positions_; }
@@ -55,8 +57,10 @@ class NeighborList {
   void Restore(State state);
 
  private:
+  void DeriveOwners();
   std::vector<int64_t> offsets_;
   std::vector<int32_t> neighbors_;
+  std::vector<int32_t> owners_;
   std::vector<Vec3> shear_;
   std::vector<Vec4> build_positions_;  // scaled positions and radius at the build
   std::array<double, 3> build_cell_{};

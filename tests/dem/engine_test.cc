@@ -91,11 +91,15 @@ TEST(ContactLaw, SlidingIsCappedAtTheCoulombLimitAgainstTheMotion) {
   pair.centre_velocity = {0, 1.0, 0};  // j slides along +y
   Vec3 shear{};
   // One small increment: elastic, F_s = k_s Δu_s on i along +y.
-  LinearCundallStrack::Result result = law.Evaluate<true>(pair, &shear);
+  LinearCundallStrack::Result result = law.Evaluate<true>(pair, shear);
+  shear = result.shear;
   const double k_n = law.NormalStiffness(r, r);
   EXPECT_NEAR(shear.y, 0.3 * k_n * 1.0 * 1e-7, 1e-18);
   // Keep sliding until the cap: |F_s| = μ F_n, along the motion of j (drags i).
-  for (int k = 0; k < 2000; ++k) result = law.Evaluate<true>(pair, &shear);
+  for (int k = 0; k < 2000; ++k) {
+    result = law.Evaluate<true>(pair, shear);
+    shear = result.shear;
+  }
   EXPECT_NEAR(Norm(shear), mu * k_n * overlap, 1e-12 * mu * k_n * overlap);
   EXPECT_GT(shear.y, 0.0);
   EXPECT_NEAR(shear.x, 0.0, 1e-20);
@@ -120,7 +124,7 @@ TEST(ContactLaw, RigidRotationOfThePairKeepsTheShearForceMagnitude) {
     pair.radius_i = pair.radius_j = r;
     pair.centre_velocity = (w * d) * Vec3{-n.y, n.x, 0};
     pair.spin_i = pair.spin_j = {0, 0, w};
-    law.Evaluate<true>(pair, &shear);
+    shear = law.Evaluate<true>(pair, shear).shear;
     angle += w * 1e-6;
   }
   // The force turned with the pair (0.1 rad) and kept its magnitude.
