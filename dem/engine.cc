@@ -195,16 +195,18 @@ void Engine::ComputeForcesImpl() {
     if constexpr (kUseFriction) std::fill(torque + zero_from, torque + n, Vec4{});
     Sums local;
 
-    // Two passes over blocks of the pair list: the first finds the touching
-    // pairs without a data-dependent branch (compaction by index increment),
-    // the second evaluates them. The contact/no-contact decision is close to
-    // a coin toss in a dense packing and would otherwise cost a branch
-    // misprediction per pair; the second pass has independent iterations
-    // that the processor overlaps (sqrt and division latencies).
+    // Three passes over blocks of the pair list. (1) Find the touching pairs
+    // without a data-dependent branch (compaction by index increment): the
+    // contact/no-contact decision is close to a coin toss in a dense packing
+    // and would otherwise cost a branch misprediction per pair. (2) Gather
+    // their kinematics into structure-of-arrays form and evaluate the
+    // contact law in one vectorised loop. (3) Scatter forces and torques.
     ContactBlock& b = blocks_[t];
+    LinearCundallStrack::Batch& batch = b.batch;
     const int64_t pair_end = offsets[end];
-    for (int64_t p0 = offsets[begin]; p0 < pair_end; p0 += ContactBlock::kSize) {
-      const int64_t p1 = std::min<int64_t>(p0 + ContactBlock::kSize, pair_end);
+    constexpr int kBlock = LinearCundallStrack::Batch::kSize;
+    for (int64_t p0 = offsets[begin]; p0 < pair_end; p0 += kBlock) {
+      const int64_t p1 = std::min<int64_t>(p0 + kBlock, pair_end);
       int count = 0;
       for (int64_t p = p0; p < p1; ++p) {
         const int32_t i = owner[p], j = neighbor[p];
@@ -218,12 +220,12 @@ void Engine::ComputeForcesImpl() {
         b.i[count] = i;
         b.j[count] = j;
         b.pair[count] = p;
-        b.bx[count] = bx;
-        b.by[count] = by;
-        b.bz[count] = bz;
-        b.d[count] = distance2;
-        b.ri[count] = pi.w;
-        b.rj[count] = pj.w;
+        batch.bx[count] = bx;
+        batch.by[count] = by;
+        batch.bz[count] = bz;
+        batch.d2[count] = distance2;
+        batch.ri[count] = pi.w;
+        batch.rj[count] = pj.w;
         count += touching;
         if constexpr (kUseFriction && !kReevaluate) {
           // A broken contact forgets its shear force; testing first keeps the
@@ -233,29 +235,54 @@ void Engine::ComputeForcesImpl() {
           }
         }
       }
-      for (int k = 0; k < count; ++k) {
-        const int32_t i = b.i[k], j = b.j[k];
-        const int64_t p = b.pair[k];
-        LinearCundallStrack::Pair pair;
-        pair.branch = {b.bx[k], b.by[k], b.bz[k]};
-        pair.distance = std::sqrt(b.d[k]);
-        pair.radius_i = b.ri[k];
-        pair.radius_j = b.rj[k];
-        Vec3 stored{};
+      if constexpr (kReevaluate) {
+        // Forces again at unchanged positions (rare): the scalar evaluator
+        // with the stored shear forces.
+        for (int k = 0; k < count; ++k) {
+          LinearCundallStrack::Pair pair;
+          pair.branch = {batch.bx[k], batch.by[k], batch.bz[k]};
+          pair.distance = std::sqrt(batch.d2[k]);
+          pair.radius_i = batch.ri[k];
+          pair.radius_j = batch.rj[k];
+          const Vec3 stored = kUseFriction ? shear[b.pair[k]] : Vec3{};
+          const LinearCundallStrack::Result r =
+              law_.Evaluate<kUseFriction, true>(pair, stored);
+          batch.fx[k] = r.force_i.x;
+          batch.fy[k] = r.force_i.y;
+          batch.fz[k] = r.force_i.z;
+          batch.tix[k] = r.torque_i.x;
+          batch.tiy[k] = r.torque_i.y;
+          batch.tiz[k] = r.torque_i.z;
+          batch.tjx[k] = r.torque_j.x;
+          batch.tjy[k] = r.torque_j.y;
+          batch.tjz[k] = r.torque_j.z;
+        }
+      } else {
         if constexpr (kUseFriction) {
-          stored = shear[p];
-          if constexpr (!kReevaluate) {
+          for (int k = 0; k < count; ++k) {
+            const int32_t i = b.i[k], j = b.j[k];
+            const Vec3 stored = shear[b.pair[k]];
+            batch.sx[k] = stored.x;
+            batch.sy[k] = stored.y;
+            batch.sz[k] = stored.z;
             const Vec4 vi = velocity[i], vj = velocity[j];
-            pair.centre_velocity = {vj.x - vi.x + gx * pair.branch.x,
-                                    vj.y - vi.y + gy * pair.branch.y,
-                                    vj.z - vi.z + gz * pair.branch.z};
-            pair.spin_i = Xyz(spin[i]);
-            pair.spin_j = Xyz(spin[j]);
+            batch.vx[k] = vj.x - vi.x + gx * batch.bx[k];
+            batch.vy[k] = vj.y - vi.y + gy * batch.by[k];
+            batch.vz[k] = vj.z - vi.z + gz * batch.bz[k];
+            const Vec4 wi = spin[i], wj = spin[j];
+            batch.wix[k] = wi.x;
+            batch.wiy[k] = wi.y;
+            batch.wiz[k] = wi.z;
+            batch.wjx[k] = wj.x;
+            batch.wjy[k] = wj.y;
+            batch.wjz[k] = wj.z;
           }
         }
-        const LinearCundallStrack::Result r =
-            law_.Evaluate<kUseFriction, kReevaluate>(pair, stored);
-        const Vec3 f = r.force_i;
+        law_.EvaluateBatch<kUseFriction>(batch, count);
+      }
+      for (int k = 0; k < count; ++k) {
+        const int32_t i = b.i[k], j = b.j[k];
+        const Vec3 f = {batch.fx[k], batch.fy[k], batch.fz[k]};  // on i
         force[i].x += f.x;
         force[i].y += f.y;
         force[i].z += f.z;
@@ -263,16 +290,16 @@ void Engine::ComputeForcesImpl() {
         force[j].y -= f.y;
         force[j].z -= f.z;
         if constexpr (kUseFriction) {
-          if constexpr (!kReevaluate) shear[p] = r.shear;
-          torque[i].x += r.torque_i.x;
-          torque[i].y += r.torque_i.y;
-          torque[i].z += r.torque_i.z;
-          torque[j].x += r.torque_j.x;
-          torque[j].y += r.torque_j.y;
-          torque[j].z += r.torque_j.z;
+          if constexpr (!kReevaluate) shear[b.pair[k]] = {batch.sx[k], batch.sy[k], batch.sz[k]};
+          torque[i].x += batch.tix[k];
+          torque[i].y += batch.tiy[k];
+          torque[i].z += batch.tiz[k];
+          torque[j].x += batch.tjx[k];
+          torque[j].y += batch.tjy[k];
+          torque[j].z += batch.tjz[k];
         }
-        const Vec3 branch = {b.bx[k], b.by[k], b.bz[k]};
-        const double distance2 = b.d[k];
+        const Vec3 branch = {batch.bx[k], batch.by[k], batch.bz[k]};
+        const double distance2 = batch.d2[k];
         if constexpr (kSumStress) {
           // σ = (1/V) Σ F_j ⊗ l with F_j = −F_i the force on j (compression
           // positive for repulsion); symmetric part.
@@ -288,7 +315,7 @@ void Engine::ComputeForcesImpl() {
         }
         if constexpr (kSumStiffness) {
           // Affine response of the normal force: dσ_aa/dε_bb = (1/V) Σ k_n l_a² l_b² / |l|².
-          const double weight = law_.NormalStiffness(b.ri[k], b.rj[k]) / distance2;
+          const double weight = law_.NormalStiffness(batch.ri[k], batch.rj[k]) / distance2;
           const double xx = branch.x * branch.x, yy = branch.y * branch.y,
                        zz = branch.z * branch.z;
           local.stiffness[0] += weight * xx * xx;

@@ -171,13 +171,12 @@ class Engine {
   // Forces and torques of threads 1..T−1 (thread 0 writes force_/torque_).
   std::vector<std::vector<Vec4>> thread_force_, thread_torque_;
   std::vector<Sums> thread_sums_;
-  // Per-thread scratch of the pair loop: a block of touching pairs found by
-  // the branch-free first pass.
+  // Per-thread scratch of the pair loop: a block of touching pairs.
   struct ContactBlock {
-    static constexpr int kSize = 128;
+    static constexpr int kSize = LinearCundallStrack::Batch::kSize;
     int32_t i[kSize], j[kSize];
     int64_t pair[kSize];
-    double bx[kSize], by[kSize], bz[kSize], d[kSize], ri[kSize], rj[kSize];
+    LinearCundallStrack::Batch batch;
   };
   std::vector<ContactBlock> blocks_;
   NeighborList neighbors_;

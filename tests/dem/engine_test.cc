@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "dem/contact_statistics.h"
+#include "dem/packing.h"
 
 namespace granasym::dem {
 namespace {
@@ -105,6 +106,64 @@ TEST(ContactLaw, SlidingIsCappedAtTheCoulombLimitAgainstTheMotion) {
   EXPECT_NEAR(shear.x, 0.0, 1e-20);
   // Torque on i: (r − u/2) n × F_s.
   EXPECT_NEAR(result.torque_i.z, (r - 0.5 * overlap) * shear.y, 1e-18);
+}
+
+TEST(ContactLaw, VectorisedBatchAgreesWithTheScalarEvaluator) {
+  LinearCundallStrack law({500e6, 0.3, std::tan(0.5)}, 1.2e-7);
+  SplitMix64 random(5);
+  auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * random.Uniform(); };
+  LinearCundallStrack::Batch batch;
+  std::vector<LinearCundallStrack::Pair> pairs;
+  std::vector<Vec3> shears;
+  const int count = 100;
+  for (int k = 0; k < count; ++k) {
+    LinearCundallStrack::Pair pair;
+    pair.radius_i = uniform(0.1e-3, 0.5e-3);
+    pair.radius_j = uniform(0.1e-3, 0.5e-3);
+    const Vec3 direction = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+    pair.distance = (pair.radius_i + pair.radius_j) * uniform(0.95, 0.9999);
+    pair.branch = (pair.distance / Norm(direction)) * direction;
+    pair.centre_velocity = {uniform(-0.1, 0.1), uniform(-0.1, 0.1), uniform(-0.1, 0.1)};
+    pair.spin_i = {uniform(-50, 50), uniform(-50, 50), uniform(-50, 50)};
+    pair.spin_j = {uniform(-50, 50), uniform(-50, 50), uniform(-50, 50)};
+    // Half of the stored forces far above the Coulomb limit (sliding).
+    const double size = k % 2 ? 1e-4 : 10.0;
+    const Vec3 shear = {uniform(-size, size), uniform(-size, size), uniform(-size, size)};
+    pairs.push_back(pair);
+    shears.push_back(shear);
+    batch.bx[k] = pair.branch.x;
+    batch.by[k] = pair.branch.y;
+    batch.bz[k] = pair.branch.z;
+    batch.d2[k] = Dot(pair.branch, pair.branch);
+    batch.ri[k] = pair.radius_i;
+    batch.rj[k] = pair.radius_j;
+    batch.vx[k] = pair.centre_velocity.x;
+    batch.vy[k] = pair.centre_velocity.y;
+    batch.vz[k] = pair.centre_velocity.z;
+    batch.wix[k] = pair.spin_i.x;
+    batch.wiy[k] = pair.spin_i.y;
+    batch.wiz[k] = pair.spin_i.z;
+    batch.wjx[k] = pair.spin_j.x;
+    batch.wjy[k] = pair.spin_j.y;
+    batch.wjz[k] = pair.spin_j.z;
+    batch.sx[k] = shear.x;
+    batch.sy[k] = shear.y;
+    batch.sz[k] = shear.z;
+  }
+  law.EvaluateBatch<true>(batch, count);
+  int sliding = 0;
+  for (int k = 0; k < count; ++k) {
+    const LinearCundallStrack::Result r = law.Evaluate<true>(pairs[k], shears[k]);
+    const double scale = Norm(r.force_i);
+    EXPECT_NEAR(batch.fx[k], r.force_i.x, 1e-12 * scale) << k;
+    EXPECT_NEAR(batch.fy[k], r.force_i.y, 1e-12 * scale) << k;
+    EXPECT_NEAR(batch.fz[k], r.force_i.z, 1e-12 * scale) << k;
+    EXPECT_NEAR(batch.sx[k], r.shear.x, 1e-12 * scale) << k;
+    EXPECT_NEAR(batch.tix[k], r.torque_i.x, 1e-12 * scale * pairs[k].radius_i) << k;
+    EXPECT_NEAR(batch.tjz[k], r.torque_j.z, 1e-12 * scale * pairs[k].radius_j) << k;
+    sliding += Norm(r.shear) < Norm(shears[k]);
+  }
+  EXPECT_GT(sliding, 20);  // the cap was exercised
 }
 
 TEST(ContactLaw, RigidRotationOfThePairKeepsTheShearForceMagnitude) {
