@@ -351,8 +351,7 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
     const AsymptoticStatePoint& point = problem.datasets()[r.dataset].points[r.point];
     const double ln_v = std::log1p(point.void_ratio);
     const double pe = EquivalentPressure(point.void_ratio, n, lambda);
-    const double q = std::sqrt(2.0) / 3.0 * 3.0 * std::tan(point.psi_sigma) / std::sqrt(2.0) *
-                     point.mean_stress;  // q = (3/√2) tan ψ_σ p
+    const double q = 3.0 / std::sqrt(2.0) * std::tan(point.psi_sigma) * point.mean_stress;
     columns[0].push_back(static_cast<double>(point.kind));
     columns[1].push_back(r.dataset);
     columns[2].push_back(point.mean_stress);
@@ -406,11 +405,11 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
   }
   std::ofstream out(folder + "/model_lines.dat");
   out << "# model asymptotic lines ln(1+e) = N - lambda* ln(p OCR(psi_epsilon)); one block per "
-         "psi_epsilon\n# columns: psi_epsilon_deg ln_p ln_1_plus_e psi_sigma_deg\n";
+         "psi_epsilon\n# columns (comma-separated): psi_epsilon_deg, ln_p, ln_1_plus_e, psi_sigma_deg\n";
   for (size_t k = 0; k < list.size(); ++k) {
     for (int i = 0; i <= 20; ++i) {
       const double ln_p = std::log(p_min / 2) + (std::log(p_max * 2) - std::log(p_min / 2)) * i / 20;
-      out << fmt::format("{:.6g} {:.8g} {:.8g} {:.6g}\n", list[k] / kDegree, ln_p,
+      out << fmt::format("{:.6g},{:.8g},{:.8g},{:.6g}\n", list[k] / kDegree, ln_p,
                          n - lambda * (ln_p + by_stretching[k].ln_ocr),
                          by_stretching[k].psi_sigma / kDegree);
     }

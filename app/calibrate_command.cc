@@ -1,0 +1,67 @@
+// `granasym calibrate CONFIG.toml [--out FILE.h5] [--summary FILE.txt]
+// [--plot-data DIR] [--quiet]`: parse, validate, call the calibration library,
+// write the HDF5 record atomically, the readable summary and the plot data.
+#include "app/calibrate_command.h"
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "calibration/calibration_config.h"
+#include "calibration/calibration_report.h"
+#include "common/error.h"
+
+namespace granasym {
+
+namespace {
+
+struct CalibrateFlags {
+  std::string config, out, summary, plot_data;
+  bool quiet = false;
+};
+
+void RunCalibrate(const CalibrateFlags& flags) {
+  calibration::CalibrationConfig config = calibration::ReadCalibrationConfigFile(flags.config);
+  if (!flags.out.empty()) config.hdf5_path = flags.out;
+  if (!flags.summary.empty()) config.summary_path = flags.summary;
+  if (!flags.plot_data.empty()) config.plot_data_dir = flags.plot_data;
+  const calibration::CalibrationRun run = calibration::RunCalibration(config);
+  const std::string summary = calibration::SummaryText(run);
+  calibration::WriteCalibrationHdf5(run, config.hdf5_path);
+  {
+    const std::string temporary = config.summary_path + ".tmp";
+    std::ofstream out(temporary);
+    out << summary;
+    out.close();
+    if (!out || std::rename(temporary.c_str(), config.summary_path.c_str()) != 0) {
+      throw RuntimeError("cannot write the summary '" + config.summary_path + "'");
+    }
+  }
+  bool success = !run.fits.empty();
+  for (const calibration::FitResult& fit : run.fits) success = success && fit.summary.success();
+  if (success) calibration::WritePlotData(run, run.fits.front(), config.plot_data_dir);
+  if (!flags.quiet) std::printf("%s\n", summary.c_str());
+  std::printf("record: %s\nsummary: %s\n", config.hdf5_path.c_str(), config.summary_path.c_str());
+  if (success) std::printf("plot data: %s (see plots/calibration_*.gp)\n", config.plot_data_dir.c_str());
+  if (!success) throw CLI::RuntimeError(3);
+}
+
+}  // namespace
+
+void RegisterCalibrateCommand(CLI::App& app) {
+  static CalibrateFlags flags;
+  CLI::App* calibrate = app.add_subcommand(
+      "calibrate", "fit a constitutive model to asymptotic states (TOML: [model], [parameters.*], "
+                   "[[dataset]], [fitter], [output])");
+  calibrate->add_option("config", flags.config, "calibration file (TOML)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  calibrate->add_option("--out", flags.out, "HDF5 record (default: [output] hdf5 or CONFIG.h5)");
+  calibrate->add_option("--summary", flags.summary, "readable summary (default: CONFIG.txt)");
+  calibrate->add_option("--plot-data", flags.plot_data,
+                        "folder for the figure data (default: CONFIG_plots)");
+  calibrate->add_flag("--quiet", flags.quiet, "print only the output paths");
+  calibrate->callback([] { RunCalibrate(flags); });
+}
+
+}  // namespace granasym
