@@ -17,6 +17,9 @@
 #ifdef GRANASYM_HAVE_CONSTITUTIVE
 #include "app/model_commands.h"
 #endif
+#ifdef GRANASYM_HAVE_CALIBRATION
+#include "app/calibrate_command.h"
+#endif
 
 namespace granasym {
 namespace {
@@ -121,6 +124,9 @@ int main(int argc, char** argv) {
   granasym::RegisterExportCommand(app);
 #ifdef GRANASYM_HAVE_CONSTITUTIVE
   granasym::RegisterModelCommands(app);
+#endif
+#ifdef GRANASYM_HAVE_CALIBRATION
+  granasym::RegisterCalibrateCommand(app);
 #endif
   try {
     app.parse(argc, argv);
