@@ -55,9 +55,9 @@ struct ControlOptions {
   // Fraction of the stress error removed per step by the affine (Voigt)
   // stiffness; the true, relaxed stiffness is lower, so this is an upper
   // bound of the per-step correction.
-  double gain = 0.05;
+  double gain = 0.2;
   // Integral gain per step on the same strain error (removes steady errors).
-  double integral_gain = 0.002;
+  double integral_gain = 0.01;
   // Largest controlled strain rate as a multiple of the stage's ‖D‖ scale.
   double max_rate_factor = 2.0;
   // Steps between stress/unbalanced-force checks of rest stages.

@@ -234,10 +234,14 @@ TEST(Engine, ASecondEvaluationAtTheSamePositionsDoesNotSlideTheContactsAgain) {
   const std::vector<Vec4> first = engine.forces();
   engine.ComputeForces({true, true});
   const std::vector<Vec4> second = engine.forces();
+  // Equal up to rounding (the first evaluation runs the vectorised batch,
+  // the second the scalar evaluator); sliding again would change the shear
+  // force by k_s Δt |v_t|, a twentieth of it after these 20 steps.
   for (size_t i = 0; i < first.size(); ++i) {
-    EXPECT_EQ(first[i].x, second[i].x);
-    EXPECT_EQ(first[i].y, second[i].y);
-    EXPECT_EQ(first[i].z, second[i].z);
+    const double scale = Norm(Xyz(first[i]));
+    EXPECT_NEAR(first[i].x, second[i].x, 1e-13 * scale);
+    EXPECT_NEAR(first[i].y, second[i].y, 1e-13 * scale);
+    EXPECT_NEAR(first[i].z, second[i].z, 1e-13 * scale);
   }
   EXPECT_NE(first[0].y, 0.0);  // the contact carries a shear force
   EXPECT_EQ(engine.sums().contacts, 1);
