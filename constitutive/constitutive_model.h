@@ -87,6 +87,13 @@ class ConstitutiveModel {
     internal_codes->setZero(num_internal());
   }
 
+  // Functions of the state whose zero crossings are kinks of the rate (Cam
+  // clay: reaching the yield surface). The element-test driver stops the
+  // integration at each crossing and restarts there, so that no step straddles
+  // a kink that its error estimate cannot see. Default: none.
+  virtual int num_switches() const { return 0; }
+  virtual void Switches(const ModelState& state, double* values) const {}
+
   // Critical friction angle φ_c (rad) of the model, for the critical-state ratio.
   virtual double critical_friction_angle() const = 0;
   // One line with the parameters, for logs and HDF5 attributes.

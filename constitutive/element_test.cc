@@ -445,11 +445,42 @@ class StageOde : public OdeSystem {
     return any;
   }
 
-  int num_roots() const override { return static_cast<int>(stage_.stops.size()); }
+  // The stage's stops, then the model's switches (ModelState kinks).
+  int num_stops() const { return static_cast<int>(stage_.stops.size()); }
+  int num_roots() const override { return num_stops() + model_.num_switches(); }
 
   bool Roots(double t, const double* y, double* g) override {
     for (size_t k = 0; k < stage_.stops.size(); ++k) g[k] = StopFunction(stage_.stops[k], t, y);
+    const int num_switches = model_.num_switches();
+    if (num_switches > 0) {
+      model_.Switches(StateOf(y), g + num_stops());
+      switch_offsets_.resize(num_switches, 0.0);
+      switch_disabled_.resize(num_switches, false);
+      for (int k = 0; k < num_switches; ++k) {
+        g[num_stops() + k] = switch_disabled_[k] ? 1.0 : g[num_stops() + k] + switch_offsets_[k];
+      }
+    }
     return true;
+  }
+
+  // After the integration stopped at a crossing of switch k at y: a small
+  // hysteresis puts y on the far side, so that the restart does not find the
+  // same crossing again (root location leaves y within round-off of g = 0).
+  void PassSwitch(int k, const double* y, double side_before) {
+    std::vector<double> g(num_roots());
+    switch_offsets_.resize(model_.num_switches(), 0.0);
+    switch_offsets_[k] = 0.0;
+    Roots(0.0, y, g.data());
+    const double after = side_before < 0 ? 1.0 : -1.0;
+    switch_offsets_[k] = after * kSwitchHysteresis - g[num_stops() + k];
+  }
+  static constexpr double kSwitchHysteresis = 1e-9;
+
+  // A switch that keeps firing (the state slides along it) is ignored for the
+  // rest of the stage; the model's own stabilisation takes over there.
+  void DisableSwitch(int k) {
+    switch_disabled_.resize(model_.num_switches(), false);
+    switch_disabled_[k] = true;
   }
 
   double StopFunction(const StopCondition& stop, double t, const double* y) {
@@ -515,6 +546,8 @@ class StageOde : public OdeSystem {
   std::vector<int> unknown_, known_;
   Vector6 warm_start_;
   std::string failure_;
+  std::vector<double> switch_offsets_;
+  std::vector<bool> switch_disabled_;
 };
 
 ElementTestRecord MakeRecord(const ConstitutiveModel& model, StageOde& ode, double time,
@@ -672,6 +705,14 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
   std::string why;
   double h_current = dt;
   while (t < stage.duration * (1.0 - 1e-14)) {
+    // Path fuzzing: near a limit point every increment but a vanishing one
+    // can fail, and the stage crept on for ever; the step limit ends it.
+    if (summary.steps >= options.integrator.max_steps) {
+      summary.termination = TerminationType::kFailure;
+      summary.message = fmt::format("more than integrator.max_steps = {} increments at t = {:.6g} s",
+                                    options.integrator.max_steps, t);
+      break;
+    }
     double h = std::min(h_current, stage.duration - t);
     // A failed increment (non-smooth transition, no convergence) is halved.
     bool ok = increment(*y, h, &y_new, &why);
@@ -689,7 +730,8 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
     ++summary.steps;
     ode.Roots(t + h, y_new.data(), g_new.data());
     int crossed = -1;
-    for (int k = 0; k < num_roots; ++k) {
+    // Stops only: the increments handle the model's switches themselves.
+    for (int k = 0; k < ode.num_stops(); ++k) {
       if ((g_old[k] < 0 && g_new[k] >= 0) || (g_old[k] > 0 && g_new[k] <= 0)) {
         crossed = k;
         break;
@@ -808,8 +850,46 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
         for (int i = 1; i < stage.output_points; ++i) {
           output_times.push_back(stage.duration * i / stage.output_points);
         }
-        stage_summary =
-            integrator->Integrate(ode, 0.0, stage.duration, y.data(), output_times, observer);
+        // A switch root (a kink of the rate) ends a piece; the next starts
+        // there. Each switch stops the integration at most kMaxSwitchStops
+        // times per stage: more means the state slides along it (seen in path
+        // fuzzing at the Cam clay critical state), where restarts only cost.
+        constexpr int kMaxSwitchStops = 20;
+        constexpr int kMaxSwitches = 10000;
+        std::vector<int> switch_stops(model_.num_switches(), 0);
+        double start = 0.0;
+        std::vector<double> roots_before(ode.num_roots());
+        for (int piece = 0;; ++piece) {
+          ode.Roots(start, y.data(), roots_before.data());
+          const IntegrationSummary part =
+              integrator->Integrate(ode, start, stage.duration, y.data(), output_times, observer);
+          if (piece == 0) {
+            stage_summary = part;
+          } else {
+            stage_summary.Accumulate(part);
+            stage_summary.termination = part.termination;
+            stage_summary.message = part.message;
+            stage_summary.root_index = part.root_index;
+            stage_summary.final_time = part.final_time;
+          }
+          const bool switched = part.termination == TerminationType::kRootFound &&
+                                part.root_index >= ode.num_stops();
+          if (!switched) break;
+          if (piece == kMaxSwitches) {
+            stage_summary.termination = TerminationType::kFailure;
+            stage_summary.root_index = -1;
+            stage_summary.message = fmt::format(
+                "more than {} crossings of the model's switching surfaces (chattering at t = {:.6g})",
+                kMaxSwitches, part.final_time);
+            break;
+          }
+          start = part.final_time;
+          const int which = part.root_index - ode.num_stops();
+          ode.PassSwitch(which, y.data(), roots_before[part.root_index]);
+          if (++switch_stops[which] >= kMaxSwitchStops) ode.DisableSwitch(which);
+          stage_summary.root_index = -1;
+          stage_summary.termination = TerminationType::kReachedEnd;
+        }
       } else {
         stage_summary = RunStressPointStage(*stress_point, options_, ode, stage, &y, observer);
       }
@@ -820,7 +900,8 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
     StageSummary stage_report;
     stage_report.name = stage.name;
     stage_report.integration = stage_summary;
-    stage_report.stop = stage_summary.root_index >= 0
+    stage_report.stop = stage_summary.root_index >= 0 &&
+                                stage_summary.root_index < static_cast<int>(stage.stops.size())
                             ? DescribeStop(stage.stops[stage_summary.root_index])
                             : "duration";
     summary.stages.push_back(stage_report);

@@ -102,7 +102,8 @@ struct ElementTestOptions {
   // of the controlled stress rates is below this fraction of the rate scale.
   double control_tolerance = 1e-13;
   int control_max_iterations = 50;
-  // Stress-point method: largest strain increment ‖Δε‖ per increment.
+  // Stress-point method: largest strain increment ‖Δε‖ per increment (at most
+  // integrator.max_steps increments per stage).
   double max_strain_increment = 1e-3;
   // Stress-point method: stops are located to this fraction of an increment.
   double stop_location_tolerance = 1e-10;

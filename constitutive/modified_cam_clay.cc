@@ -305,6 +305,14 @@ ModelState ModifiedCamClay::MakeState(const Vector6& stress, double void_ratio) 
   return state;
 }
 
+void ModifiedCamClay::Switches(const ModelState& state, double* values) const {
+  const double p_c = state.internal.size() == 1 ? state.internal[0] : 0.0;
+  const double m = parameters_.critical_state_ratio;
+  const double scale = m * m * p_c * p_c;
+  values[0] = scale > 0 ? YieldFunction(state.stress, p_c) / scale + 0.5 * parameters_.rate_form_band
+                        : 1.0;
+}
+
 void ModifiedCamClay::SignConstraints(Vector6* stress_codes,
                                       Eigen::VectorXd* internal_codes) const {
   stress_codes->setZero();

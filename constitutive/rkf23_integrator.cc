@@ -161,7 +161,9 @@ IntegrationSummary Rkf23Integrator::Integrate(OdeSystem& system, double t0, doub
             break;
           }
         }
-        const double theta = 0.5 * (lo + hi);
+        // The far side of the bracket: a restart from here does not see the
+        // same crossing again.
+        const double theta = hi;
         TakeStep(system, t, y, theta * step, &w, &summary.rhs_evaluations);
         std::copy(w.high.begin(), w.high.end(), y);
         t += theta * step;
