@@ -187,3 +187,37 @@ TEST(Integrator, AllAgreeOnAHypoplasticDrainedTriaxialPath) {
 
 }  // namespace
 }  // namespace granasym
+
+namespace granasym {
+namespace {
+
+// ERKStep cannot recover when a stage leaves the model's domain; on Cam clay
+// isochoric shear from OCR 8 (softening, p_c falling) a stage reached p_c < 0
+// and ARKODE ERK failed at every tolerance. It now restarts from the last
+// accepted step (and every integrator rejects steps that break the sign
+// constraints).
+TEST(Integrator, ArkodeErkRecoversWhenAStageLeavesTheDomain) {
+  const ModifiedCamClay model(testing_models::CamClay());
+  const ModelState initial = InitialStateFromOcr(model, 100.0, 0.0, 8.0);
+  const LoadingStage stage = LoadingStage::Isochoric(1.0, 0.3);
+  ElementTestOptions reference_options;
+  reference_options.integrator.kind = IntegratorKind::kCvodeBdf;
+  reference_options.integrator.relative_tolerance = 1e-11;
+  reference_options.integrator.absolute_tolerance = 1e-13;
+  const ElementTestResult reference = ElementTest(model, reference_options).Run(initial, {stage});
+  ASSERT_TRUE(reference.summary.success()) << reference.summary.Report();
+  for (double tolerance : {1e-5, 1e-7}) {
+    ElementTestOptions options;
+    options.integrator.kind = IntegratorKind::kArkodeErk;
+    options.integrator.arkode_order = 4;
+    options.integrator.relative_tolerance = options.integrator.absolute_tolerance = tolerance;
+    const ElementTestResult result = ElementTest(model, options).Run(initial, {stage});
+    ASSERT_TRUE(result.summary.success()) << result.summary.Report();
+    EXPECT_LT((result.final_state.stress - reference.final_state.stress).norm() /
+                  reference.final_state.stress.norm(),
+              1e3 * tolerance);
+  }
+}
+
+}  // namespace
+}  // namespace granasym
