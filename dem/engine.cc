@@ -23,6 +23,24 @@ inline double MinimumImage(double delta) {
 
 inline double Sign(double x) { return static_cast<double>((x > 0) - (x < 0)); }
 
+// v ← v + Δt a with a = load · w (w = v.w: the inverse mass or inertia) and,
+// with kDamping, Cundall's local damping of each component of the
+// fluctuating acceleration: a_k ← a_k (1 − χ sign(a_k (v_k + a_k Δt/2))).
+template <bool kDamping>
+inline void Kick(const Vec4& load, double dt, double chi, Vec4* velocity) {
+  Vec4& v = *velocity;
+  double ax = load.x * v.w, ay = load.y * v.w, az = load.z * v.w;
+  if constexpr (kDamping) {
+    const double half_dt = 0.5 * dt;
+    ax *= 1.0 - chi * Sign(ax * (v.x + half_dt * ax));
+    ay *= 1.0 - chi * Sign(ay * (v.y + half_dt * ay));
+    az *= 1.0 - chi * Sign(az * (v.z + half_dt * az));
+  }
+  v.x += dt * ax;
+  v.y += dt * ay;
+  v.z += dt * az;
+}
+
 double SphereMass(double radius, double density) {
   return density * 4.0 / 3.0 * kPi * radius * radius * radius;
 }
@@ -406,7 +424,6 @@ void Engine::IntegrateImpl() {
   constexpr bool kUseDamping = (kFlags & kDamping) != 0;
   const int64_t n = static_cast<int64_t>(position_.size());
   const double dt = options_.time_step;
-  const double half_dt = 0.5 * dt;
   const double chi = material_.local_damping;
   const double ix = 1.0 / cell_[0], iy = 1.0 / cell_[1], iz = 1.0 / cell_[2];
   const double lx = cell_[0], ly = cell_[1], lz = cell_[2];
@@ -415,16 +432,7 @@ void Engine::IntegrateImpl() {
 #pragma omp parallel for num_threads(options_.threads) schedule(static) reduction(max : max2)
   for (int64_t i = 0; i < n; ++i) {
     Vec4& v = velocity_[i];
-    const Vec4& f = force_[i];
-    double ax = f.x * v.w, ay = f.y * v.w, az = f.z * v.w;
-    if constexpr (kUseDamping) {
-      ax *= 1.0 - chi * Sign(ax * (v.x + half_dt * ax));
-      ay *= 1.0 - chi * Sign(ay * (v.y + half_dt * ay));
-      az *= 1.0 - chi * Sign(az * (v.z + half_dt * az));
-    }
-    v.x += dt * ax;
-    v.y += dt * ay;
-    v.z += dt * az;
+    Kick<kUseDamping>(force_[i], dt, chi, &v);
     Vec4& s = position_[i];
     s.x += dt * v.x * ix;
     s.y += dt * v.y * iy;
@@ -432,19 +440,7 @@ void Engine::IntegrateImpl() {
     const double dx = lx * (s.x - reference[i].x), dy = ly * (s.y - reference[i].y),
                  dz = lz * (s.z - reference[i].z);
     max2 = std::max(max2, dx * dx + dy * dy + dz * dz);
-    if constexpr (kUseFriction) {
-      Vec4& w = spin_[i];
-      const Vec4& m = torque_[i];
-      double bx = m.x * w.w, by = m.y * w.w, bz = m.z * w.w;
-      if constexpr (kUseDamping) {
-        bx *= 1.0 - chi * Sign(bx * (w.x + half_dt * bx));
-        by *= 1.0 - chi * Sign(by * (w.y + half_dt * by));
-        bz *= 1.0 - chi * Sign(bz * (w.z + half_dt * bz));
-      }
-      w.x += dt * bx;
-      w.y += dt * by;
-      w.z += dt * bz;
-    }
+    if constexpr (kUseFriction) Kick<kUseDamping>(torque_[i], dt, chi, &spin_[i]);
   }
   max_displacement_ = std::sqrt(max2);
   forces_current_ = false;
