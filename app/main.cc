@@ -97,16 +97,7 @@ void RegisterExportCommand(CLI::App& app) {
       std::printf("time series written to %s\n", csv_path.c_str());
     }
     if (!packing_path.empty()) {
-      if (!file.Exists("/final_state/positions")) {
-        throw InputError(input + ": no /final_state to export (not a DEM result file)");
-      }
-      dem::Packing packing;
-      const std::vector<double> cell = file.ReadDoubles("/final_state/cell");
-      packing.cell = {cell.at(0), cell.at(1), cell.at(2)};
-      size_t rows = 0, cols = 0;
-      const std::vector<double> x = file.ReadMatrix("/final_state/positions", &rows, &cols);
-      packing.radii = file.ReadDoubles("/final_state/radii");
-      for (size_t i = 0; i < rows; ++i) packing.positions.push_back({x[3 * i], x[3 * i + 1], x[3 * i + 2]});
+      const dem::Packing packing = dem::ReadResultPacking(input, "/final_state");
       packing.WriteText(packing_path);
       std::printf("final packing written to %s\n", packing_path.c_str());
     }

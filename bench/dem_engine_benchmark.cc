@@ -17,7 +17,6 @@
 #include "common/state_measures.h"
 #include "dem/contact_statistics.h"
 #include "dem/engine.h"
-#include "common/hdf5_file.h"
 #include "dem/packing.h"
 #include "dem/scene.h"
 #include "dem/simulation.h"
@@ -56,24 +55,11 @@ const Packing& DensePacking(size_t count) {
     if (summary.termination != Termination::kCompleted) {
       throw std::runtime_error("dense packing fixture failed: " + summary.message);
     }
-    const Hdf5File file = Hdf5File::OpenRead(options.output_path);
-    Packing dense;
-    const std::vector<double> cell = file.ReadDoubles("/final_state/cell");
-    dense.cell = {cell[0], cell[1], cell[2]};
-    size_t rows = 0, cols = 0;
-    const std::vector<double> x = file.ReadMatrix("/final_state/positions", &rows, &cols);
-    dense.radii = file.ReadDoubles("/final_state/radii");
-    for (size_t i = 0; i < rows; ++i) dense.positions.push_back({x[3 * i], x[3 * i + 1], x[3 * i + 2]});
+    const Packing dense = ReadResultPacking(options.output_path, "/final_state");
     dense.WriteText(path);
     std::filesystem::remove(options.output_path);
   }
   return cache[count] = Packing::ReadText(path);
-}
-
-or (int step = 0; step < 2000; ++step) engine.Step();
-  Packing dense = engine.CurrentPacking();
-  dense.WriteText(path);
-  return cache[count] = dense;
 }
 
 void BM_DemStep(benchmark::State& state) {

@@ -954,4 +954,13 @@ RunSummary RunScene(const Scene& scene, const RunOptions& options) {
 
 void RequestInterrupt() { g_interrupt = 1; }
 
+Packing ReadResultPacking(const std::string& result_path, const std::string& group) {
+  const Hdf5File file = Hdf5File::OpenRead(result_path);
+  if (!file.Exists(group + "/positions")) {
+    throw InputError(result_path + ": no packing in '" + group +
+                     "' (expected a granasym DEM result file)");
+  }
+  return ReadPacking(file, group);
+}
+
 }  // namespace granasym::dem

@@ -57,6 +57,10 @@ struct RunSummary {
 // results so far written.
 RunSummary RunScene(const Scene& scene, const RunOptions& options);
 
+// Reads a packing stored in a result file: "/final_state" (the end of the
+// run) or "/sample" (the initial packing). InputError if it is missing.
+Packing ReadResultPacking(const std::string& result_path, const std::string& group);
+
 // Signals SIGINT/SIGTERM to a running RunScene in this process (installed by
 // RunScene; exposed for tests).
 void RequestInterrupt();

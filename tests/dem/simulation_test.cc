@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/time_series.h"
 #include "dem/scene.h"
@@ -241,6 +242,10 @@ steps = 500
   EXPECT_NEAR(single / reduced, std::sqrt(2.0), 1e-12);
   EXPECT_NEAR(single, 1.5e-6, 0.1e-6);
   EXPECT_EQ(file.ReadString("/scene"), text);
+  const Packing final_packing = ReadResultPacking(TempPath("layout.h5"), "/final_state");
+  EXPECT_EQ(final_packing.size(), 1000u);
+  EXPECT_EQ(final_packing.cell[0], result.series.Last("cell_x_m"));
+  EXPECT_THROW(ReadResultPacking(TempPath("layout.h5"), "/nothing"), InputError);
   size_t rows = 0, cols = 0;
   file.ReadMatrix("/series_histogram/counts", &rows, &cols);
   EXPECT_EQ(rows, result.series.rows());
