@@ -30,11 +30,12 @@ const char* ToString(TerminationType type);
 // bench/constitutive_work_precision, 7 paths × 2 models): the element-test
 // ODE has 14–15 components and a cheap right-hand side, so per-step overhead
 // decides; ARKODE's explicit order-5 pair (Cash–Karp) at rtol = atol = 1e-8
-// gives path errors of 3e-9 to 2e-8 and, at equal error (1e-8), runs 2.9×
-// faster than Mašín's RKF23 on the hypoplastic paths (geometric mean; 2.2× on
-// the slowest path) and 1.2× on the Cam clay rate form (geometric mean; Cam
-// clay's kinks at the yield surface favour low order). BDF/DIRK pay for
-// Newton and Jacobians on a problem that is not stiff.
+// gives path errors of about 1e-9 to 2e-8 and, at equal error (1e-8), runs
+// 3.4× faster than Mašín's RKF23 on the hypoplastic paths (geometric mean;
+// 1.7× on the least favourable path) and 1.2× on the Cam clay rate form
+// (geometric mean; Cam clay's kinks at the yield surface favour low order, and
+// under mixed control CVODE Adams is faster). BDF/DIRK pay for Newton and
+// Jacobians on a problem that is not stiff.
 struct IntegratorOptions {
   IntegratorKind kind = IntegratorKind::kArkodeErk;
   // Relative tolerance on each component (dimensionless); see the note above.
