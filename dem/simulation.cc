@@ -793,6 +793,17 @@ RunSummary Simulation::Run() {
     if (generated_ && !options_.quiet) std::fprintf(stderr, "%s", generation_.Table().c_str());
   }
   PrepareMeasurements();
+  if (!options_.quiet) {
+    const ContactDurations d = ComputeContactDurations(initial_.radii, scene_.material);
+    std::fprintf(stderr,
+                 "%zu spheres, %d threads; time step %.4g s = %.3f of the smallest contact "
+                 "duration %.4g s (reduced mass; %.4g s with one sphere's mass; largest %.4g / "
+                 "%.4g s); stability limit %.4g s\n",
+                 initial_.size(), threads_, engine_->time_step(),
+                 engine_->time_step() / d.smallest_reduced_mass, d.smallest_reduced_mass,
+                 d.smallest_single_mass, d.largest_reduced_mass, d.largest_single_mass,
+                 d.critical_time_step);
+  }
   RunSummary summary;
   summary.particles = static_cast<int64_t>(engine_->size());
   summary.threads = threads_;

@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
 
 #include "common/error.h"
 #include "common/hdf5_file.h"
@@ -132,6 +137,30 @@ TEST(Simulation, RestartContinuesBitIdentically) {
   EXPECT_EQ(resumed.series.Values("p_kpa"), straight.series.Values("p_kpa"));
   EXPECT_EQ(resumed.series.Values("sigma_r_kpa"), straight.series.Values("sigma_r_kpa"));
   EXPECT_EQ(resumed.positions, straight.positions);
+}
+
+TEST(Simulation, SigintWritesACheckpointAndTheRunContinuesFromIt) {
+  const std::string text = SampleToml(1000, 5.8, 9) + kMultiStage;
+  const Scene scene = Scene::Parse(text, "sigint.toml", "");
+  RunOptions options;
+  options.output_path = TempPath("sigint.h5");
+  options.quiet = true;
+  std::remove((options.output_path + ".ckpt").c_str());
+  RunSummary first;
+  std::thread runner([&] { first = RunScene(scene, options); });
+  // Signal once the run is under way (the handler is process-wide).
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  std::raise(SIGINT);
+  runner.join();
+  ASSERT_EQ(first.termination, Termination::kInterrupted) << first.message;
+  EXPECT_TRUE(std::filesystem::exists(options.output_path + ".ckpt"));
+  // The partial results are readable, and the run continues to the end.
+  EXPECT_GT(TimeSeries::Read(Hdf5File::OpenRead(options.output_path), "/series").rows(), 0u);
+  options.restart = true;
+  const RunSummary second = RunScene(scene, options);
+  EXPECT_EQ(second.termination, Termination::kCompleted) << second.message;
+  EXPECT_GT(second.steps, first.steps);
+  EXPECT_FALSE(std::filesystem::exists(options.output_path + ".ckpt"));
 }
 
 TEST(Simulation, TriaxialControllerHoldsTheRadialStressWithinOnePercent) {
