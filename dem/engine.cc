@@ -248,9 +248,12 @@ void Engine::ComputeForcesImpl() {
         if constexpr (kUseFriction && !kReevaluate) {
           // A broken contact forgets its shear force; testing first keeps the
           // many never-touching pairs from dirtying cache lines.
-          if (!touching && (shear[p].x != 0.0 || shear[p].y != 0.0 || shear[p].z != 0.0)) {
-            shear[p] = Vec3{};
-          }
+          // Bitwise, not short-circuit: the branch is then taken only at a
+          // separation (rare, well predicted), never on the coin toss of
+          // `touching` itself.
+          const Vec3& stored = shear[p];
+          const bool loaded = (stored.x != 0.0) | (stored.y != 0.0) | (stored.z != 0.0);
+          if (loaded & !touching) shear[p] = Vec3{};
         }
       }
       if constexpr (kReevaluate) {
@@ -387,6 +390,13 @@ void Engine::ComputeForcesImpl() {
 }
 
 void Engine::ComputeForces(Request request) {
+  // The integrator accumulates a cheap upper bound of the displacements,
+  // Σ Δt max_i |v_i|; only when that bound calls for a rebuild is the exact
+  // displacement measured (one pass), and the list rebuilt if it must be.
+  if (!forces_current_ && neighbors_.built() &&
+      neighbors_.NeedsRebuild(max_displacement_ * neighbors_.MetricFactor(), cell_)) {
+    max_displacement_ = neighbors_.MaxDisplacement(position_, cell_, options_.threads);
+  }
   if (!forces_current_ && neighbors_.NeedsRebuild(max_displacement_, cell_)) {
     for (Vec4& s : position_) {
       s.x -= std::floor(s.x);
@@ -426,8 +436,6 @@ void Engine::IntegrateImpl() {
   const double dt = options_.time_step;
   const double chi = material_.local_damping;
   const double ix = 1.0 / cell_[0], iy = 1.0 / cell_[1], iz = 1.0 / cell_[2];
-  const double lx = cell_[0], ly = cell_[1], lz = cell_[2];
-  const Vec4* reference = neighbors_.build_positions().data();
   double max2 = 0.0;
 #pragma omp parallel for num_threads(options_.threads) schedule(static) reduction(max : max2)
   for (int64_t i = 0; i < n; ++i) {
@@ -437,12 +445,10 @@ void Engine::IntegrateImpl() {
     s.x += dt * v.x * ix;
     s.y += dt * v.y * iy;
     s.z += dt * v.z * iz;
-    const double dx = lx * (s.x - reference[i].x), dy = ly * (s.y - reference[i].y),
-                 dz = lz * (s.z - reference[i].z);
-    max2 = std::max(max2, dx * dx + dy * dy + dz * dz);
+    max2 = std::max(max2, v.x * v.x + v.y * v.y + v.z * v.z);
     if constexpr (kUseFriction) Kick<kUseDamping>(torque_[i], dt, chi, &spin_[i]);
   }
-  max_displacement_ = std::sqrt(max2);
+  max_displacement_ += dt * std::sqrt(max2);  // bound: Σ Δt max_i |v_i|
   forces_current_ = false;
   // dH/dt = D H integrated exactly over the step for the constant diagonal D
   // (the forward-Euler H += Δt D H would change the volume of an isochoric

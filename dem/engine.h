@@ -161,7 +161,8 @@ class Engine {
   int64_t step_ = 0;
   double solid_volume_ = 0;
   double skin_ = 0;
-  double max_displacement_ = 0;  // since the last list build (m)
+  // Upper bound of the largest displacement since the last list build (m).
+  double max_displacement_ = 0;
   bool forces_current_ = false;  // forces evaluated at the current positions
   bool friction_ = false;
   bool damping_ = false;

@@ -137,6 +137,25 @@ bool NeighborList::NeedsRebuild(double max_displacement, const std::array<double
   return 2.0 * max_displacement + strain * (2.0 * max_radius_ + skin_) >= skin_;
 }
 
+double NeighborList::MaxDisplacement(const std::vector<Vec4>& s, const std::array<double, 3>& cell,
+                                     int threads) const {
+  const int64_t n = static_cast<int64_t>(s.size());
+  double max2 = 0.0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : max2)
+  for (int64_t i = 0; i < n; ++i) {
+    const double dx = cell[0] * (s[i].x - build_positions_[i].x);
+    const double dy = cell[1] * (s[i].y - build_positions_[i].y);
+    const double dz = cell[2] * (s[i].z - build_positions_[i].z);
+    max2 = std::max(max2, dx * dx + dy * dy + dz * dz);
+  }
+  return std::sqrt(max2);
+}
+
+double NeighborList::MetricFactor() const {
+  const double strain = skin_ / (2.0 * max_radius_ + skin_);
+  return (1.0 + strain) / (1.0 - strain);
+}
+
 NeighborList::State NeighborList::Save() const {
   return {offsets_, neighbors_, shear_, build_positions_, build_cell_, skin_, max_radius_, builds_};
 }

@@ -27,7 +27,17 @@ class NeighborList {
 
   // True when the list may miss a contact for the given current state.
   bool NeedsRebuild(double max_displacement, const std::array<double, 3>& cell) const;
+  // The largest non-affine displacement since the build, |H (s_i − s_i,build)|
+  // in the current metric (m): one pass over the particles.
+  double MaxDisplacement(const std::vector<Vec4>& scaled_positions,
+                         const std::array<double, 3>& cell, int threads) const;
+  // Factor by which a displacement summed in the metrics of the steps since
+  // the build can grow when measured in the current metric: the cell side
+  // ratios stay within 1 ± ε*, ε* = skin/(2 r_max + skin), or the strain term
+  // of the criterion would have forced a rebuild.
+  double MetricFactor() const;
 
+  bool built() const { return !offsets_.empty(); }
   const std::vector<int64_t>& offsets() const { return offsets_; }
   const std::vector<int32_t>& neighbors() const { return neighbors_; }
   // The i of each pair (derived from offsets) for loops over flat pair ranges.
