@@ -20,23 +20,8 @@ bool DemReadOptions::IsValid(std::string* why) const {
     *why = fmt::format("max_line_points = {} must be >= 2", max_line_points);
     return false;
   }
-  if (!(kind_tolerance_deg >= 0 && kind_tolerance_deg < 45)) {
-    *why = fmt::format("kind_tolerance_deg = {} must be in [0, 45)", kind_tolerance_deg);
-    return false;
-  }
-  if (!(psi_sigma_uncertainty_deg > 0)) {
-    *why = fmt::format("psi_sigma_uncertainty_deg = {} must be > 0", psi_sigma_uncertainty_deg);
-    return false;
-  }
-  if (!(ln_volume_uncertainty > 0)) {
-    *why = fmt::format("ln_1_plus_e_uncertainty = {} must be > 0", ln_volume_uncertainty);
-    return false;
-  }
-  if (!(weight > 0)) {
-    *why = fmt::format("weight = {} must be > 0", weight);
-    return false;
-  }
-  return true;
+  return ValidReaderSettings(kind_tolerance_deg, psi_sigma_uncertainty_deg, ln_volume_uncertainty,
+                             weight, why);
 }
 
 namespace {

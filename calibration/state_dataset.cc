@@ -88,4 +88,25 @@ void StateDataset::Validate() const {
   }
 }
 
+bool ValidReaderSettings(double kind_tolerance_deg, double psi_sigma_uncertainty_deg,
+                         double ln_volume_uncertainty, double weight, std::string* why) {
+  if (!(kind_tolerance_deg >= 0 && kind_tolerance_deg < 45)) {
+    *why = fmt::format("kind_tolerance_deg = {} must be in [0, 45)", kind_tolerance_deg);
+    return false;
+  }
+  if (!(psi_sigma_uncertainty_deg > 0)) {
+    *why = fmt::format("psi_sigma_uncertainty_deg = {} must be > 0", psi_sigma_uncertainty_deg);
+    return false;
+  }
+  if (!(ln_volume_uncertainty > 0)) {
+    *why = fmt::format("ln_1_plus_e_uncertainty = {} must be > 0", ln_volume_uncertainty);
+    return false;
+  }
+  if (!(weight > 0)) {
+    *why = fmt::format("weight = {} must be > 0", weight);
+    return false;
+  }
+  return true;
+}
+
 }  // namespace granasym::calibration

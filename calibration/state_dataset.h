@@ -52,4 +52,9 @@ struct StateDataset {
   void Validate() const;
 };
 
+// Checks the per-dataset settings that the CSV and DEM readers share; `why`
+// names the offending setting and its valid range.
+bool ValidReaderSettings(double kind_tolerance_deg, double psi_sigma_uncertainty_deg,
+                         double ln_volume_uncertainty, double weight, std::string* why);
+
 }  // namespace granasym::calibration
