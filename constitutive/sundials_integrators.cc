@@ -49,59 +49,46 @@ class Context {
   SUNContext context_ = nullptr;
 };
 
-class SerialVector {
+// Owns one SUNDIALS object, created by a checked call and freed by Destroy;
+// the classes below only add their typed constructors.
+template <typename Handle, auto Destroy>
+class Owned {
+ public:
+  ~Owned() { Destroy(handle_); }
+  Owned(const Owned&) = delete;
+  Owned& operator=(const Owned&) = delete;
+  Handle get() const { return handle_; }
+
+ protected:
+  Owned(Handle handle, const char* call) : handle_(CheckPointer(handle, call)) {}
+
+ private:
+  Handle handle_;
+};
+
+class SerialVector : public Owned<N_Vector, N_VDestroy> {
  public:
   SerialVector(int size, const Context& context)
-      : vector_(CheckPointer(N_VNew_Serial(size, context.get()), "N_VNew_Serial")) {}
-  ~SerialVector() { N_VDestroy(vector_); }
-  SerialVector(const SerialVector&) = delete;
-  SerialVector& operator=(const SerialVector&) = delete;
-  N_Vector get() const { return vector_; }
-  double* data() const { return N_VGetArrayPointer(vector_); }
-
- private:
-  N_Vector vector_;
+      : Owned(N_VNew_Serial(size, context.get()), "N_VNew_Serial") {}
+  double* data() const { return N_VGetArrayPointer(get()); }
 };
 
-class DenseMatrix {
+class DenseMatrix : public Owned<SUNMatrix, SUNMatDestroy> {
  public:
   DenseMatrix(int size, const Context& context)
-      : matrix_(CheckPointer(SUNDenseMatrix(size, size, context.get()), "SUNDenseMatrix")) {}
-  ~DenseMatrix() { SUNMatDestroy(matrix_); }
-  DenseMatrix(const DenseMatrix&) = delete;
-  DenseMatrix& operator=(const DenseMatrix&) = delete;
-  SUNMatrix get() const { return matrix_; }
-
- private:
-  SUNMatrix matrix_;
+      : Owned(SUNDenseMatrix(size, size, context.get()), "SUNDenseMatrix") {}
 };
 
-class DenseLinearSolver {
+class DenseLinearSolver : public Owned<SUNLinearSolver, SUNLinSolFree> {
  public:
   DenseLinearSolver(const SerialVector& y, const DenseMatrix& matrix, const Context& context)
-      : solver_(CheckPointer(SUNLinSol_Dense(y.get(), matrix.get(), context.get()),
-                             "SUNLinSol_Dense")) {}
-  ~DenseLinearSolver() { SUNLinSolFree(solver_); }
-  DenseLinearSolver(const DenseLinearSolver&) = delete;
-  DenseLinearSolver& operator=(const DenseLinearSolver&) = delete;
-  SUNLinearSolver get() const { return solver_; }
-
- private:
-  SUNLinearSolver solver_;
+      : Owned(SUNLinSol_Dense(y.get(), matrix.get(), context.get()), "SUNLinSol_Dense") {}
 };
 
-class FixedPointSolver {
+class FixedPointSolver : public Owned<SUNNonlinearSolver, SUNNonlinSolFree> {
  public:
   FixedPointSolver(const SerialVector& y, const Context& context)
-      : solver_(CheckPointer(SUNNonlinSol_FixedPoint(y.get(), 0, context.get()),
-                             "SUNNonlinSol_FixedPoint")) {}
-  ~FixedPointSolver() { SUNNonlinSolFree(solver_); }
-  FixedPointSolver(const FixedPointSolver&) = delete;
-  FixedPointSolver& operator=(const FixedPointSolver&) = delete;
-  SUNNonlinearSolver get() const { return solver_; }
-
- private:
-  SUNNonlinearSolver solver_;
+      : Owned(SUNNonlinSol_FixedPoint(y.get(), 0, context.get()), "SUNNonlinSol_FixedPoint") {}
 };
 
 // Owns an integrator memory block and frees it with the matching function.
