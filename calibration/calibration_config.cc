@@ -106,6 +106,13 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
       d.dem.ncl_min_p_kpa = t.GetDouble("ncl_min_p_kpa", d.dem.ncl_min_p_kpa, Range::NonNegative());
       d.dem.max_line_points =
           static_cast<int>(t.GetInt("max_line_points", d.dem.max_line_points, Range::AtLeast(2)));
+      if (t.Has("asbs_ln_1_plus_e")) {
+        // Each value: ln(1+e) of a void ratio e > 0; NaN fails Range::Contains.
+        d.dem.asbs_ln_1_plus_e = t.GetDoubles("asbs_ln_1_plus_e", Range::Positive());
+        if (d.dem.asbs_ln_1_plus_e.empty()) {
+          t.Fail("asbs_ln_1_plus_e", "is empty: give at least one ln(1+e) value or leave the key out");
+        }
+      }
     } else {
       d.csv.weight = weight;
       d.csv.psi_sigma_uncertainty_deg = u_psi;

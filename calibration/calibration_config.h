@@ -23,6 +23,15 @@
 //   ignore_columns = "q_kpa,t_s"  # csv: comma-separated columns to skip
 //   ncl_min_p_kpa = 50.0          # dem: lowest p of NCL rows
 //   max_line_points = 12          # dem: most NCL/unloading rows per stage
+//   asbs_ln_1_plus_e = [0.55, 0.58]  # dem, optional: ASBS cross-section points
+//                                 #   at these ln(1+e) (each finite and > 0),
+//                                 #   one per value and detected asymptote,
+//                                 #   along the stage's asymptotic line
+//                                 #   (slope asymptote_dln1pe_dlnp); stages
+//                                 #   with |slope| < 1e-4 (isochoric, e.g.
+//                                 #   psi_epsilon = 90 deg) and points more
+//                                 #   than 1.0 in ln p from the asymptote are
+//                                 #   skipped with a warning
 //
 //   [fitter]
 //   method = "ceres"              # ceres | nlopt | both (then the two are compared)

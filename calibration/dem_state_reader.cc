@@ -20,6 +20,24 @@ bool DemReadOptions::IsValid(std::string* why) const {
     *why = fmt::format("max_line_points = {} must be >= 2", max_line_points);
     return false;
   }
+  for (size_t k = 0; k < asbs_ln_1_plus_e.size(); ++k) {
+    const double v = asbs_ln_1_plus_e[k];
+    if (!(std::isfinite(v) && v > 0)) {
+      *why = fmt::format("asbs_ln_1_plus_e[{}] = {} must be finite and > 0 (ln(1+e) of a void "
+                         "ratio e > 0)",
+                         k, v);
+      return false;
+    }
+  }
+  if (!(std::isfinite(asbs_min_abs_slope) && asbs_min_abs_slope > 0)) {
+    *why = fmt::format("asbs_min_abs_slope = {} must be finite and > 0", asbs_min_abs_slope);
+    return false;
+  }
+  if (!(std::isfinite(asbs_max_ln_p_extrapolation) && asbs_max_ln_p_extrapolation > 0)) {
+    *why = fmt::format("asbs_max_ln_p_extrapolation = {} must be finite and > 0",
+                       asbs_max_ln_p_extrapolation);
+    return false;
+  }
   return ValidReaderSettings(kind_tolerance_deg, psi_sigma_uncertainty_deg, ln_volume_uncertainty,
                              weight, why);
 }
@@ -56,6 +74,46 @@ std::vector<size_t> LineRows(const std::vector<double>& p, int64_t first, int64_
     if (rows.empty() || rows.back() != candidates[next]) rows.push_back(candidates[next]);
   }
   return rows;
+}
+
+// ASBS cross-section points on the asymptotic line of a stage whose detected
+// asymptote is `asymptote` (see the header); warnings for what is skipped.
+void AddAsbsPoints(const Hdf5File& file, const std::string& group, const std::string& where,
+                   const AsymptoticStatePoint& asymptote, const DemReadOptions& options,
+                   StateDataset* dataset) {
+  const char* kSlope = "asymptote_dln1pe_dlnp";
+  if (!file.HasAttribute(group, kSlope)) {
+    dataset->warnings.push_back(fmt::format(
+        "{}: no {} attribute (slope of the asymptotic line); no ASBS points taken", where, kSlope));
+    return;
+  }
+  const double slope = file.ReadDoubleAttribute(group, kSlope);
+  if (!(std::isfinite(slope) && std::abs(slope) >= options.asbs_min_abs_slope)) {
+    dataset->warnings.push_back(fmt::format(
+        "{}: {} = {:.6g} is not usable (not finite or |slope| < {:g}: e does not change along "
+        "the asymptotic line, as on an isochoric path such as psi_epsilon = 90 deg, so it cannot "
+        "be followed to another e); no ASBS points taken",
+        where, kSlope, slope, options.asbs_min_abs_slope));
+    return;
+  }
+  const double ln_v_a = std::log1p(asymptote.void_ratio);
+  const double ln_p_a = std::log(asymptote.mean_stress);
+  for (const double target : options.asbs_ln_1_plus_e) {
+    const double d_ln_p = (target - ln_v_a) / slope;
+    if (!(std::abs(d_ln_p) <= options.asbs_max_ln_p_extrapolation)) {
+      dataset->warnings.push_back(fmt::format(
+          "{}: ASBS point at ln(1+e) = {:g} skipped: it lies {:.3g} in ln p from the asymptote "
+          "(ln(1+e) = {:.6g}, {} = {:.6g}), beyond the extrapolation limit |d ln p| <= {:g}",
+          where, target, d_ln_p, ln_v_a, kSlope, slope, options.asbs_max_ln_p_extrapolation));
+      continue;
+    }
+    AsymptoticStatePoint point = asymptote;
+    point.kind = StateKind::kAsbs;
+    point.mean_stress = std::exp(ln_p_a + d_ln_p);
+    point.void_ratio = std::expm1(target);
+    point.source = fmt::format("{} asbs ln(1+e) = {:g}", where, target);
+    dataset->points.push_back(point);
+  }
 }
 
 }  // namespace
@@ -102,6 +160,7 @@ StateDataset ReadStatesDem(const std::string& path, const std::string& name,
         continue;
       }
       dataset.points.push_back(point);
+      if (!options.asbs_ln_1_plus_e.empty()) AddAsbsPoints(file, group, where, point, options, &dataset);
       continue;
     }
     if (ran_detector) {

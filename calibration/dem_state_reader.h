@@ -6,10 +6,24 @@
 //     with p ≥ ncl_min_p_kpa and p rising, thinned to at most max_line_points
 //     evenly spaced in ln p;
 //   - when ψ_ε = 180°: unloading points (rows with p falling), for κ*;
+//   - with asbs_ln_1_plus_e set: for each detected asymptote (not at 180°) and
+//     each requested value v of ln(1+e), one ASBS cross-section point (paper
+//     Figs. 17–18): the asymptotic line of the stage, ln(1+e) linear in ln p
+//     with the stored slope asymptote_dln1pe_dlnp through (asymptote_p_kpa,
+//     asymptote_e), followed to ln(1+e) = v:
+//       ln p = ln p_a + (v − ln(1+e_a)) / slope,  e = exp(v) − 1,
+//     with the stage's asymptotic ψ_σ; ψ_ε of the stage is kept on the point
+//     for the record (the fit does not use ψ_ε of ASBS points). Skipped with a
+//     warning: stages without a usable slope (missing, not finite, or
+//     |slope| < asbs_min_abs_slope — isochoric paths such as ψ_ε = 90° give
+//     ~0, and the constant-e line cannot be followed), and values that would
+//     need |Δ ln p| > asbs_max_ln_p_extrapolation (1.0: a factor e ≈ 2.7 in p)
+//     from the asymptote;
 // stages that ran the detector without success are skipped with a warning.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "calibration/state_dataset.h"
 
@@ -26,6 +40,13 @@ struct DemReadOptions {
   double psi_sigma_uncertainty_deg = 0.5;  // one standard deviation, per state
   double ln_volume_uncertainty = 0.002;
   double weight = 1.0;
+  // Values of ln(1+e) at which ASBS cross-section points are taken (each
+  // finite and > 0); empty: none.
+  std::vector<double> asbs_ln_1_plus_e;
+  // Stages whose |d ln(1+e)/d ln p| is below this give no ASBS points.
+  double asbs_min_abs_slope = 1e-4;
+  // Most |Δ ln p| from the detected asymptote to an ASBS point.
+  double asbs_max_ln_p_extrapolation = 1.0;
   bool IsValid(std::string* why) const;
 };
 

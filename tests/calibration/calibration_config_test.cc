@@ -83,6 +83,24 @@ TEST(CalibrationConfig, RejectsBadFilesNamingTheKey) {
   ExpectRejected("[model]\nkind = \"hypoplastic_clay\"\n", "dataset");
 }
 
+TEST(CalibrationConfig, ReadsAndChecksAsbsValuesOfADemDataset) {
+  const std::string dem = Replace(kConfig, "csv = \"states.csv\"", "dem = \"run.h5\"");
+  const CalibrationConfig c = ReadCalibrationConfig(ConfigTable::ParseString(
+      Replace(dem, "dem = \"run.h5\"", "dem = \"run.h5\"\nasbs_ln_1_plus_e = [0.55, 0.58]"),
+      "/d/calib.toml"));
+  ASSERT_EQ(c.datasets.size(), 1u);
+  EXPECT_TRUE(c.datasets[0].is_dem);
+  EXPECT_EQ(c.datasets[0].dem.asbs_ln_1_plus_e, (std::vector<double>{0.55, 0.58}));
+  EXPECT_TRUE(ReadCalibrationConfig(ConfigTable::ParseString(dem, "/d/calib.toml"))
+                  .datasets[0]
+                  .dem.asbs_ln_1_plus_e.empty());
+  for (const char* bad : {"[0.55, nan]", "[0.55, 0.0]", "[-0.1]", "[]", "0.55"}) {
+    ExpectRejected(Replace(dem, "dem = \"run.h5\"",
+                           std::string("dem = \"run.h5\"\nasbs_ln_1_plus_e = ") + bad),
+                   "asbs_ln_1_plus_e");
+  }
+}
+
 TEST(CalibrationConfig, RunsAWholeCalibrationAndWritesItsRecord) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / "granasym_calibration_run";

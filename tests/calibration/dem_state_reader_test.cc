@@ -2,10 +2,12 @@
 // dem/simulation.cc writes (series with units, stage groups with attributes).
 #include "calibration/dem_state_reader.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "common/error.h"
 #include "common/hdf5_file.h"
@@ -19,7 +21,10 @@ std::string TempPath(const std::string& name) {
 }
 
 // Stage 0: ψ_ε = 0 from 1 to 1000 kPa (NCL); stage 1: ψ_ε = 180° unloading;
-// stage 2: ψ_ε = 90° with a detected asymptote; stage 3: 60° not detected.
+// stage 2: ψ_ε = 90° with a detected asymptote (isochoric: slope 0); stage 3:
+// 60° not detected; stage 4: 30° detected, on the line of kSlope through
+// (kAsymptoteP, kAsymptoteE); stage 5: 45° detected, without a slope attribute.
+constexpr double kSlope = -0.05, kAsymptoteP = 200.0, kAsymptoteE = 0.75;
 std::string WriteDemFile() {
   const std::string path = TempPath("granasym_dem_states.h5");
   std::vector<double> p, e, psi;
@@ -59,8 +64,20 @@ std::string WriteDemFile() {
   file.SetAttribute(csl, "asymptote_psi_sigma_deg", 30.5);
   file.SetAttribute(csl, "asymptote_p_kpa", 321.0);
   file.SetAttribute(csl, "asymptote_e", 0.61);
+  file.SetAttribute(csl, "asymptote_dln1pe_dlnp", 0.0);
   const std::string missed = stage(3, "psi60", 60.0, 41, 40);
   file.SetAttribute(missed, "asymptote_detected", int64_t{0});
+  const std::string compression = stage(4, "psi30", 30.0, 41, 40);
+  file.SetAttribute(compression, "asymptote_detected", int64_t{1});
+  file.SetAttribute(compression, "asymptote_psi_sigma_deg", 12.0);
+  file.SetAttribute(compression, "asymptote_p_kpa", kAsymptoteP);
+  file.SetAttribute(compression, "asymptote_e", kAsymptoteE);
+  file.SetAttribute(compression, "asymptote_dln1pe_dlnp", kSlope);
+  const std::string old_file = stage(5, "psi45", 45.0, 41, 40);
+  file.SetAttribute(old_file, "asymptote_detected", int64_t{1});
+  file.SetAttribute(old_file, "asymptote_psi_sigma_deg", 18.0);
+  file.SetAttribute(old_file, "asymptote_p_kpa", 250.0);
+  file.SetAttribute(old_file, "asymptote_e", 0.7);
   file.Commit();
   return path;
 }
@@ -97,6 +114,64 @@ TEST(DemStateReader, TakesNclRowsUnloadingRowsAndDetectedAsymptotes) {
   ASSERT_EQ(d.warnings.size(), 1u);
   EXPECT_NE(d.warnings[0].find("psi60"), std::string::npos) << d.warnings[0];
   EXPECT_NE(d.warnings[0].find("no asymptote detected"), std::string::npos);
+  std::filesystem::remove(path);
+}
+
+TEST(DemStateReader, RejectsInvalidAsbsValuesNamingTheKey) {
+  for (const double bad : {std::nan(""), 0.0, -0.3, std::numeric_limits<double>::infinity()}) {
+    DemReadOptions options;
+    options.asbs_ln_1_plus_e = {0.55, bad};
+    std::string why;
+    EXPECT_FALSE(options.IsValid(&why)) << bad;
+    EXPECT_NE(why.find("asbs_ln_1_plus_e[1]"), std::string::npos) << why;
+  }
+  DemReadOptions good;
+  good.asbs_ln_1_plus_e = {0.55, 0.58};
+  std::string why;
+  EXPECT_TRUE(good.IsValid(&why)) << why;
+}
+
+TEST(DemStateReader, AsbsPointsLieOnTheAsymptoticLineOfEachUsableStage) {
+  const std::string path = WriteDemFile();
+  DemReadOptions options;
+  options.ncl_min_p_kpa = 10.0;
+  options.max_line_points = 8;
+  // 0.65 lies (0.65 − ln 1.75) / 0.05 ≈ 1.8 in ln p from the asymptote: too far.
+  options.asbs_ln_1_plus_e = {0.55, 0.58, 0.65};
+  const StateDataset d = ReadStatesDem(path, "dem", options);
+  EXPECT_EQ(d.Count(StateKind::kNcl), 8u);
+  EXPECT_EQ(d.Count(StateKind::kCsl), 1u);
+  EXPECT_EQ(d.Count(StateKind::kCompression), 2u);  // psi30 and psi45 asymptotes
+  ASSERT_EQ(d.Count(StateKind::kAsbs), 2u);
+  const double targets[] = {0.55, 0.58};
+  size_t k = 0;
+  for (const AsymptoticStatePoint& point : d.points) {
+    if (point.kind != StateKind::kAsbs) continue;
+    ASSERT_LT(k, 2u);
+    const double target = targets[k++];
+    EXPECT_NEAR(std::log1p(point.void_ratio), target, 1e-14);
+    // On the line: Δ ln(1+e) = slope · Δ ln p from the asymptote.
+    EXPECT_NEAR(std::log1p(point.void_ratio) - std::log1p(kAsymptoteE),
+                kSlope * (std::log(point.mean_stress) - std::log(kAsymptoteP)), 1e-14);
+    EXPECT_NEAR(point.psi_sigma, 12.0 * kDegree, 1e-15);
+    EXPECT_NEAR(point.psi_epsilon, 30.0 * kDegree, 1e-15);
+    EXPECT_FALSE(point.HasStretching());
+    EXPECT_NE(point.source.find("/stages/004 (psi30)"), std::string::npos) << point.source;
+    EXPECT_NE(point.source.find(fmt::format("ln(1+e) = {:g}", target)), std::string::npos)
+        << point.source;
+  }
+  auto warned = [&d](const std::string& a, const std::string& b) {
+    for (const std::string& w : d.warnings) {
+      if (w.find(a) != std::string::npos && w.find(b) != std::string::npos) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(warned("psi90", "asymptote_dln1pe_dlnp = 0 is not usable"));
+  EXPECT_TRUE(warned("psi45", "no asymptote_dln1pe_dlnp attribute"));
+  EXPECT_TRUE(warned("psi30", "ln(1+e) = 0.65 skipped"));
+  EXPECT_TRUE(warned("psi30", "extrapolation limit"));
+  EXPECT_TRUE(warned("psi60", "no asymptote detected"));
+  EXPECT_EQ(d.warnings.size(), 4u);
   std::filesystem::remove(path);
 }
 
