@@ -44,7 +44,6 @@ class NeighborList {
   const std::vector<int32_t>& owners() const { return owners_; }
   std::vector<Vec3>& shear() { return shear_; }
   const std::vector<Vec3>& shear() const { return shear_; }
-  const std::vector<Vec4>& build_positions() const { return build_positions_; }
   size_t pair_count() const { return neighbors_.size(); }
   int64_t builds() const { return builds_; }
   double skin() const { return skin_; }

@@ -963,8 +963,6 @@ RunSummary RunScene(const Scene& scene, const RunOptions& options) {
   return simulation.Run();
 }
 
-void RequestInterrupt() { g_interrupt = 1; }
-
 Packing ReadResultPacking(const std::string& result_path, const std::string& group) {
   const Hdf5File file = Hdf5File::OpenRead(result_path);
   if (!file.Exists(group + "/positions")) {

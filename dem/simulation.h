@@ -61,8 +61,5 @@ RunSummary RunScene(const Scene& scene, const RunOptions& options);
 // run) or "/sample" (the initial packing). InputError if it is missing.
 Packing ReadResultPacking(const std::string& result_path, const std::string& group);
 
-// Signals SIGINT/SIGTERM to a running RunScene in this process (installed by
-// RunScene; exposed for tests).
-void RequestInterrupt();
 
 }  // namespace granasym::dem
