@@ -23,7 +23,8 @@ StateKind KindFromStretching(double psi_epsilon, double tolerance);
 
 struct AsymptoticStatePoint {
   StateKind kind = StateKind::kNcl;
-  double psi_epsilon = 0.0;  // rad; NaN for kAsbs points (not known)
+  double psi_epsilon = 0.0;  // rad; for kAsbs points the source line's ψ_ε, or NaN when
+                             // unknown (CSV); the fit does not use it for them
   double mean_stress = 0.0;  // p (kPa), > 0
   double void_ratio = 0.0;   // e
   double psi_sigma = 0.0;    // rad
