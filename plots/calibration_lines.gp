@@ -9,7 +9,7 @@ set output dir."/lines.png"
 set datafile separator ","
 set xlabel "ln p (p in kPa)"
 set ylabel "ln(1+e)"
-set key outside right
+set key left bottom box opaque samplen 2
 set grid
 kinds = "NCL CSL compression extension ASBS unloading"
 set style line 1 lc rgb "#1f77b4" pt 7
