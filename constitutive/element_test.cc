@@ -206,9 +206,33 @@ ModelState InitialStateFromOcr(const ConstitutiveModel& model, double mean_stres
                              model.VoidRatioForOcr(mean_stress, ocr));
 }
 
+IntegratorOptions DefaultIntegratorOptions(ModelKind model) {
+  IntegratorOptions options;
+  options.kind = IntegratorKind::kArkodeErk;
+  options.arkode_order = 5;
+  const double tolerance = model == ModelKind::kModifiedCamClay ? 1e-9 : 1e-8;
+  options.relative_tolerance = options.absolute_tolerance = tolerance;
+  return options;
+}
+
+namespace {
+
+// `options` with tolerances left at 0 replaced by the model's defaults.
+IntegratorOptions WithModelDefaults(IntegratorOptions options, ModelKind model) {
+  const IntegratorOptions defaults = DefaultIntegratorOptions(model);
+  if (options.relative_tolerance == 0.0) options.relative_tolerance = defaults.relative_tolerance;
+  if (options.absolute_tolerance == 0.0) options.absolute_tolerance = defaults.absolute_tolerance;
+  return options;
+}
+
+}  // namespace
+
 bool ElementTestOptions::IsValid(std::string* why) const {
   std::string inner;
-  if (!integrator.IsValid(&inner)) return Fail(why, "integrator." + inner);
+  // Zero tolerances mean "the model's default" (any model's will do here).
+  if (!WithModelDefaults(integrator, ModelKind::kHypoplasticClay).IsValid(&inner)) {
+    return Fail(why, "integrator." + inner);
+  }
   if (!stress_point.IsValid(&inner)) return Fail(why, "stress_point." + inner);
   if (!(control_tolerance > 0 && control_tolerance < 1e-3)) {
     return Fail(why, fmt::format("control_tolerance = {} must be in (0, 1e-3)", control_tolerance));
@@ -789,6 +813,7 @@ ElementTest::ElementTest(const ConstitutiveModel& model, const ElementTestOption
     : model_(model), options_(options) {
   std::string why;
   GRANASYM_CHECK(options.IsValid(&why)) << why;
+  options_.integrator = WithModelDefaults(options.integrator, model.kind());
   GRANASYM_CHECK(options.method == DriveMethod::kRateIntegration ||
                  model.kind() == ModelKind::kModifiedCamClay)
       << "the stress-point method exists for Modified Cam clay only";

@@ -18,6 +18,39 @@ TEST(ElementTest, AxisymmetricStressTensorHasTheRequestedPAndPsi) {
   EXPECT_LT(t[0], 0.0);  // tension positive inside: compression is negative
 }
 
+TEST(ElementTest, DefaultIntegratorDependsOnTheModel) {
+  for (ModelKind kind : {ModelKind::kHypoplasticClay, ModelKind::kModifiedCamClay}) {
+    const IntegratorOptions defaults = DefaultIntegratorOptions(kind);
+    EXPECT_EQ(defaults.kind, IntegratorKind::kArkodeErk);
+    EXPECT_EQ(defaults.arkode_order, 5);
+    const double expected = kind == ModelKind::kModifiedCamClay ? 1e-9 : 1e-8;
+    EXPECT_EQ(defaults.relative_tolerance, expected);
+    EXPECT_EQ(defaults.absolute_tolerance, expected);
+    std::string why;
+    EXPECT_TRUE(defaults.IsValid(&why)) << why;
+  }
+  // Options left at their defaults take the model's tolerances: the same run
+  // as with those tolerances given, and not the run at the other model's.
+  const ElementTestOptions unset;
+  std::string why;
+  EXPECT_TRUE(unset.IsValid(&why)) << why;
+  EXPECT_EQ(unset.integrator.relative_tolerance, 0.0);
+  const ModifiedCamClay model(testing_models::CamClay());
+  const ModelState initial = InitialStateFromOcr(model, 100.0, 0.0, 1.0);
+  const std::vector<LoadingStage> stages = {LoadingStage::Isochoric(1.0, 0.2)};
+  auto final_q = [&](const ElementTestOptions& options) {
+    const ElementTestResult result = ElementTest(model, options).Run(initial, stages);
+    EXPECT_TRUE(result.summary.success()) << result.summary.Report();
+    return RecordStress(result.history.back()).deviator();
+  };
+  ElementTestOptions given;
+  given.integrator = DefaultIntegratorOptions(ModelKind::kModifiedCamClay);
+  ElementTestOptions hypoplastic_default;
+  hypoplastic_default.integrator = DefaultIntegratorOptions(ModelKind::kHypoplasticClay);
+  EXPECT_EQ(final_q(unset), final_q(given));
+  EXPECT_NE(final_q(unset), final_q(hypoplastic_default));
+}
+
 TEST(ElementTest, OedometricAndIsochoricKinematicsAreHonoured) {
   const HypoplasticClay model(testing_models::LondonClay());
   const ModelState initial = InitialStateFromOcr(model, 100.0, 0.0, 1.5);
