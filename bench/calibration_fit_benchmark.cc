@@ -60,12 +60,15 @@ ModelParameters Start() {
   return p;
 }
 
-void BM_CeresHypoplasticFit(benchmark::State& state) {
+// A full fit with the fitter's default options (Ceres; NLopt CRS2 multi-start
+// with a BOBYQA polish).
+template <typename Fitter>
+void BM_HypoplasticFit(benchmark::State& state) {
   const CalibrationProblem problem({HundredStates()}, Start(), PredictorOptions());
   long evaluations = 0;
   double cost = 0;
   for (auto _ : state) {
-    const FitResult fit = CeresFitter(CeresFitter::Options()).Fit(problem);
+    const FitResult fit = Fitter(typename Fitter::Options()).Fit(problem);
     evaluations = fit.summary.evaluations;
     cost = fit.summary.final_cost;
     benchmark::DoNotOptimize(fit.values.data());
@@ -74,23 +77,8 @@ void BM_CeresHypoplasticFit(benchmark::State& state) {
   state.counters["residual_evaluations"] = static_cast<double>(evaluations);
   state.counters["final_cost"] = cost;
 }
-BENCHMARK(BM_CeresHypoplasticFit)->Unit(benchmark::kMillisecond);
-
-void BM_NloptCrs2HypoplasticFit(benchmark::State& state) {
-  const CalibrationProblem problem({HundredStates()}, Start(), PredictorOptions());
-  long evaluations = 0;
-  double cost = 0;
-  for (auto _ : state) {
-    const FitResult fit = NloptFitter(NloptFitter::Options()).Fit(problem);
-    evaluations = fit.summary.evaluations;
-    cost = fit.summary.final_cost;
-    benchmark::DoNotOptimize(fit.values.data());
-  }
-  state.counters["states"] = static_cast<double>(problem.datasets()[0].points.size());
-  state.counters["residual_evaluations"] = static_cast<double>(evaluations);
-  state.counters["final_cost"] = cost;
-}
-BENCHMARK(BM_NloptCrs2HypoplasticFit)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_HypoplasticFit, CeresFitter)->Unit(benchmark::kMillisecond);
+BENCHMARK_TEMPLATE(BM_HypoplasticFit, NloptFitter)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace granasym::calibration
