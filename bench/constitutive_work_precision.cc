@@ -44,25 +44,9 @@ namespace granasym {
 namespace {
 
 // London clay (Mašín 2005, Table 2) and a Cam clay with the same NCL.
-HypoplasticClay::Parameters LondonClay() {
-  HypoplasticClay::Parameters p;
-  p.critical_friction_angle = 22.6 * kDegree;
-  p.lambda_star = 0.11;
-  p.kappa_star = 0.016;
-  p.n_intercept = 1.375;
-  p.bulk_shear_ratio = 0.4;
-  return p;
-}
+HypoplasticClay::Parameters LondonClay() { return HypoplasticClay::Parameters::LondonClay(); }
 
-ModifiedCamClay::Parameters CamClay() {
-  ModifiedCamClay::Parameters p;
-  p.critical_state_ratio = 0.9;
-  p.lambda = 0.11;
-  p.kappa = 0.016;
-  p.n_intercept = 1.375;
-  p.poisson_ratio = 0.25;
-  return p;
-}
+ModifiedCamClay::Parameters CamClay() { return ModifiedCamClay::Parameters::LondonClayNcl(); }
 
 struct PathCase {
   std::string name;

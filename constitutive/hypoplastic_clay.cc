@@ -319,4 +319,14 @@ std::string HypoplasticClay::Describe() const {
       parameters_.reference_pressure, a_, alpha_);
 }
 
+HypoplasticClay::Parameters HypoplasticClay::Parameters::LondonClay() {
+  Parameters p;
+  p.critical_friction_angle = 22.6 * kDegree;
+  p.lambda_star = 0.11;
+  p.kappa_star = 0.016;
+  p.n_intercept = 1.375;
+  p.bulk_shear_ratio = 0.4;
+  return p;
+}
+
 }  // namespace granasym

@@ -28,6 +28,8 @@ class HypoplasticClay : public ConstitutiveModel {
     double minimum_mean_stress = 1e-9;
     // Names the first offending field (and the derived constant it breaks).
     bool IsValid(std::string* why) const;
+    // London clay, Mašín (2005) Table 2: the project's reference set.
+    static Parameters LondonClay();
   };
 
   // The parameters must be valid (GRANASYM_CHECK).

@@ -349,4 +349,14 @@ std::string ModifiedCamClay::Describe() const {
       parameters_.reference_pressure);
 }
 
+ModifiedCamClay::Parameters ModifiedCamClay::Parameters::LondonClayNcl() {
+  Parameters p;
+  p.critical_state_ratio = 0.9;
+  p.lambda = 0.11;
+  p.kappa = 0.016;
+  p.n_intercept = 1.375;
+  p.poisson_ratio = 0.25;
+  return p;
+}
+
 }  // namespace granasym

@@ -45,6 +45,9 @@ class ModifiedCamClay : public ConstitutiveModel {
     double rate_form_band = 1e-5;
     double drift_stabilization = 100.0;
     bool IsValid(std::string* why) const;
+    // M = 0.9, ν = 0.25 and the NCL of London clay (λ* = 0.11, κ* = 0.016,
+    // N = 1.375): the Cam clay counterpart of HypoplasticClay's reference set.
+    static Parameters LondonClayNcl();
   };
 
   explicit ModifiedCamClay(const Parameters& parameters);
