@@ -4,7 +4,9 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 
@@ -237,6 +239,10 @@ bool ElementTestOptions::IsValid(std::string* why) const {
   if (!(control_tolerance > 0 && control_tolerance < 1e-3)) {
     return Fail(why, fmt::format("control_tolerance = {} must be in (0, 1e-3)", control_tolerance));
   }
+  if (!(limit_point_condition > 0 && limit_point_condition < 0.1)) {
+    return Fail(why, fmt::format("limit_point_condition = {} must be in (0, 0.1)",
+                                 limit_point_condition));
+  }
   if (!(control_max_iterations > 0)) {
     return Fail(why, fmt::format("control_max_iterations = {} must be > 0", control_max_iterations));
   }
@@ -269,6 +275,13 @@ AxisymmetricRate RecordStretching(const ElementTestRecord& record) {
 
 namespace {
 
+// IntegrationSummary::root_index of a stage that ended at a limit point.
+constexpr int kLimitPointStop = -2;
+
+// Smallest stress scale of the error control, as a fraction of ‖T‖
+// (StageOde::StateScales).
+constexpr double kCutoffScaleFloor = 1e-2;
+
 // The ODE of one stage under mixed control.
 class StageOde : public OdeSystem {
  public:
@@ -296,11 +309,28 @@ class StageOde : public OdeSystem {
   // stage start would let the absolute tolerance swamp p after unloading by
   // orders of magnitude (path fuzzing: extension beyond the limit d took p
   // from 4 to 1e-6 kPa with errors larger than p, and states far outside the SBS).
+  // Near the tension cutoff they scale with the smallest principal
+  // compression σ_min instead, as √3 σ_min = ‖σ_min 1‖ (so isotropic states
+  // keep ‖T‖) and not below 1 % of ‖T‖: the rate depends on the direction of
+  // T, whose distance from the edge of the compressive cone is σ_min, and an
+  // error that is small against ‖T‖ can cross it (path fuzzing: oedometric
+  // unloading of hypoplastic clay to σ_a = 2 kPa at σ_r = 90 kPa, BDF at rtol
+  // 4.8e-4 — σ_a wandered between 0.07 and 2.6 kPa and ended at 10 or 422 kPa,
+  // outside the SBS; the scale on σ_a is now 3.5 kPa instead of 128 kPa).
   void StateScales(const double* y, double* scale) const override {
     ComponentScales(scale);
-    const double norm = FrobeniusNorm<double>(Eigen::Map<const Vector6>(y + kStress));
+    const Eigen::Map<const Vector6> stress(y + kStress);
+    const double norm = FrobeniusNorm<double>(stress);
     if (!(norm > 0) || !std::isfinite(norm)) return;
-    for (int i = 0; i < 6; ++i) scale[kStress + i] = norm;
+    Eigen::Matrix3d compression;
+    compression << -stress[0], -stress[3], -stress[4], -stress[3], -stress[1], -stress[5],
+        -stress[4], -stress[5], -stress[2];
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal;
+    principal.computeDirect(compression, Eigen::EigenvaluesOnly);
+    const double stress_scale =
+        std::clamp(std::sqrt(3.0) * principal.eigenvalues().minCoeff(), kCutoffScaleFloor * norm,
+                   norm);
+    for (int i = 0; i < 6; ++i) scale[kStress + i] = stress_scale;
     for (int i = kInternal; i < dimension(); ++i) scale[i] = std::max(norm, std::abs(y[i]));
   }
 
@@ -336,10 +366,7 @@ class StageOde : public OdeSystem {
       const double scale = rate->stress_rate.cwiseAbs().maxCoeff() +
                            prescribed_.cwiseAbs().maxCoeff() + 1e-300;
       if (residual.cwiseAbs().maxCoeff() <= options_.control_tolerance * scale) {
-        *stretching = d;
-        warm_start_ = d;
-        if (tangent_out != nullptr) *tangent_out = tangent;
-        return true;
+        return Accept(d, tangent, stretching, tangent_out);
       }
       Eigen::MatrixXd block(n, n);
       for (int a = 0; a < n; ++a) {
@@ -374,14 +401,66 @@ class StageOde : public OdeSystem {
     const double scale =
         rate->stress_rate.cwiseAbs().maxCoeff() + prescribed_.cwiseAbs().maxCoeff() + 1e-300;
     if (residual.cwiseAbs().maxCoeff() <= 1e3 * options_.control_tolerance * scale) {
-      *stretching = d;
-      warm_start_ = d;
-      if (tangent_out != nullptr) *tangent_out = tangent;
-      return true;
+      return Accept(d, tangent, stretching, tangent_out);
     }
     failure_ = fmt::format("mixed control did not converge (residual {:.3g} kPa/s)",
                            residual.cwiseAbs().maxCoeff());
     return false;
+  }
+
+  // σ_min(B)/‖∂T̊/∂D‖_F for the block B = ∂T̊_u/∂D_u of the stress-controlled
+  // components u, with the sign of det B: how close B is to singular measured
+  // against the stiffness as a whole (a 1×1 block is never ill-conditioned by
+  // itself). Elasticity alone gives about 2G/3K for all three normal
+  // components, more for fewer.
+  static double ControllabilityRatio(const Matrix6& tangent, const std::vector<int>& unknown) {
+    const int n = static_cast<int>(unknown.size());
+    Eigen::MatrixXd block(n, n);
+    for (int a = 0; a < n; ++a) {
+      for (int b = 0; b < n; ++b) block(a, b) = tangent(unknown[a], unknown[b]);
+    }
+    const double scale = tangent.norm();
+    if (!(scale > 0) || !std::isfinite(scale)) return 0.0;
+    const double smallest = Eigen::JacobiSVD<Eigen::MatrixXd>(block).singularValues()[n - 1];
+    const double ratio = smallest / scale;
+    return Eigen::FullPivLU<Eigen::MatrixXd>(block).determinant() > 0 ? ratio : -ratio;
+  }
+
+  // A mixed-control solution counts only while the stress-controlled block of
+  // the tangent stays regular and keeps the orientation it has in elasticity
+  // (det B > 0: every principal block of a positive definite stiffness has
+  // it). A rate law that is piecewise smooth and positively homogeneous in D
+  // maps the unknown stretchings one to one onto the controlled stress rates
+  // only while det B keeps one sign on all its pieces; where B turns singular
+  // the controlled path has a limit point (softening, e.g. Cam clay on the
+  // dry side, or q → M p, under stress control): the stretching needed grows
+  // without bound, and beyond it the prescribed rates have no solution or
+  // several (elastic unloading and plastic softening). Near it the
+  // integrators see a spike of the rates that they may step through onto a
+  // state the path never reaches (path fuzzing: CVODE BDF took a Cam clay
+  // state at p = 0.06 kPa through σ_min/σ_max = 2e-6 and ended at e = −0.48,
+  // 4 (M p_c)² outside the yield surface). That is a reported failure.
+  //
+  // The stage stops at the limit (a root, located like any stop, then a
+  // failure with the state there); right-hand sides are refused only ten
+  // times beyond it, so that steps whose ends straddle it reach the root.
+  bool Accept(const Vector6& d, const Matrix6& tangent, Vector6* stretching, Matrix6* tangent_out) {
+    last_ratio_ = ControllabilityRatio(tangent, unknown_);
+    const double ratio = last_ratio_;
+    if (!(ratio > 0.1 * options_.limit_point_condition)) {
+      failure_ = fmt::format(
+          "limit point of the stress-controlled path: the block of dT/dD for the "
+          "stress-controlled components has {} {:.3g} (limit {:.3g}), so the prescribed stress "
+          "rates have no unique bounded stretching (softening or a critical state under stress "
+          "control)",
+          ratio > 0 ? "sigma_min/|dT/dD|" : "a flipped orientation, sigma_min/|dT/dD|",
+          std::abs(ratio), 0.1 * options_.limit_point_condition);
+      return false;
+    }
+    *stretching = d;
+    warm_start_ = d;
+    if (tangent_out != nullptr) *tangent_out = tangent;
+    return true;
   }
 
   bool Rhs(double, const double* y, double* y_dot) override {
@@ -471,7 +550,13 @@ class StageOde : public OdeSystem {
 
   // The stage's stops, then the model's switches (ModelState kinks).
   int num_stops() const { return static_cast<int>(stage_.stops.size()); }
-  int num_roots() const override { return num_stops() + model_.num_switches(); }
+  int num_roots() const override {
+    return num_stops() + model_.num_switches() + (unknown_.empty() ? 0 : 1);
+  }
+  // The index of the limit-point root (mixed control only), or −1.
+  int limit_point_root() const {
+    return unknown_.empty() ? -1 : num_stops() + model_.num_switches();
+  }
 
   bool Roots(double t, const double* y, double* g) override {
     for (size_t k = 0; k < stage_.stops.size(); ++k) g[k] = StopFunction(stage_.stops[k], t, y);
@@ -483,6 +568,12 @@ class StageOde : public OdeSystem {
       for (int k = 0; k < num_switches; ++k) {
         g[num_stops() + k] = switch_disabled_[k] ? 1.0 : g[num_stops() + k] + switch_offsets_[k];
       }
+    }
+    if (limit_point_root() >= 0) {
+      Vector6 d;
+      ModelRate rate;
+      const bool solved = SolveStretching(StateOf(y), &d, &rate);
+      g[limit_point_root()] = solved ? last_ratio_ - options_.limit_point_condition : -1.0;
     }
     return true;
   }
@@ -569,6 +660,7 @@ class StageOde : public OdeSystem {
   Vector6 prescribed_;
   std::vector<int> unknown_, known_;
   Vector6 warm_start_;
+  double last_ratio_ = 1.0;  // ControllabilityRatio at the last solution
   std::string failure_;
   std::vector<double> switch_offsets_;
   std::vector<bool> switch_disabled_;
@@ -897,6 +989,21 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
             stage_summary.root_index = part.root_index;
             stage_summary.final_time = part.final_time;
           }
+          if (part.termination == TerminationType::kRootFound &&
+              part.root_index == ode.limit_point_root()) {
+            const ModelState there = ode.StateOf(y.data());
+            stage_summary.termination = TerminationType::kFailure;
+            stage_summary.root_index = kLimitPointStop;
+            stage_summary.message = fmt::format(
+                "limit point of the stress-controlled path at t = {:.9g} s (p = {:.6g} kPa, "
+                "q = {:.6g} kPa, e = {:.6g}): the block of dT/dD for the stress-controlled "
+                "components reached sigma_min/|dT/dD| = {:.3g} (limit_point_condition), so the "
+                "prescribed stress rates have no unique bounded stretching beyond it (softening, "
+                "or a critical state under stress control)",
+                part.final_time, MeanStress(there.stress), DeviatorStress(there.stress),
+                there.void_ratio, options_.limit_point_condition);
+            break;
+          }
           const bool switched = part.termination == TerminationType::kRootFound &&
                                 part.root_index >= ode.num_stops();
           if (!switched) break;
@@ -925,10 +1032,12 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
     StageSummary stage_report;
     stage_report.name = stage.name;
     stage_report.integration = stage_summary;
-    stage_report.stop = stage_summary.root_index >= 0 &&
-                                stage_summary.root_index < static_cast<int>(stage.stops.size())
-                            ? DescribeStop(stage.stops[stage_summary.root_index])
-                            : "duration";
+    if (stage_summary.root_index >= 0 &&
+        stage_summary.root_index < static_cast<int>(stage.stops.size())) {
+      stage_report.stop = DescribeStop(stage.stops[stage_summary.root_index]);
+    } else {
+      stage_report.stop = stage_summary.root_index == kLimitPointStop ? "limit_point" : "duration";
+    }
     summary.stages.push_back(stage_report);
     summary.totals.Accumulate(stage_summary);
     bool valid = stage_summary.success();
@@ -940,9 +1049,19 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
       }
     }
     if (!valid) {
-      // The records of the valid part of the stage stay; the state goes back
-      // to the start of the stage, the last state known to be valid.
-      y = y_start;
+      // The records of the valid part of the stage stay. A limit point ends
+      // the path at a valid state, recorded as the last one (e.g. the peak
+      // of a stress-controlled test); otherwise the state goes back to the
+      // start of the stage, the last state known to be valid.
+      bool at_limit_point = stage_summary.root_index == kLimitPointStop;
+      for (double value : y) at_limit_point = at_limit_point && std::isfinite(value);
+      if (at_limit_point && model_.IsAdmissible(ode.StateOf(y.data()), &why)) {
+        time += stage_summary.final_time;
+        result.history.push_back(MakeRecord(model_, ode, time, y.data(), stage_index));
+        result.final_state = ode.StateOf(y.data());
+      } else {
+        y = y_start;
+      }
       summary.termination = TerminationType::kFailure;
       summary.message = fmt::format("stage {} ({}): {}", k, stage.name,
                                     stage_summary.message.empty() ? "failed"

@@ -114,6 +114,12 @@ struct ElementTestOptions {
   // of the controlled stress rates is below this fraction of the rate scale.
   double control_tolerance = 1e-13;
   int control_max_iterations = 50;
+  // Mixed control: a stage fails at a limit point, where the block of ∂T̊/∂D
+  // of the stress-controlled components has σ_min below this fraction of
+  // ‖∂T̊/∂D‖_F or has lost the orientation (det > 0) it has in elasticity
+  // (StageOde::Accept). Elasticity alone gives about 2G/3K for all three
+  // normal components (1.3e-3 at Poisson's ratio 0.499).
+  double limit_point_condition = 1e-4;
   // Stress-point method: largest strain increment ‖Δε‖ per increment (at most
   // integrator.max_steps increments per stage).
   double max_strain_increment = 1e-3;
