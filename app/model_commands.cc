@@ -71,6 +71,7 @@ void RunAsymptotes(const std::string& path, std::string out) {
     std::printf("psi_epsilon %8.3f deg: %s psi_sigma %.9f deg, OCR %.9g, q/p %.9g (strain path %.3g)\n",
                 a.state.psi_epsilon / kDegree, a.found ? "asymptote" : "NOT FOUND",
                 a.state.psi_sigma / kDegree, a.state.ocr, a.state.stress_ratio, a.strain_path);
+    if (!a.found) std::printf("  %s\n", a.summary.Report().c_str());
   }
   std::printf("results: %s\n", out.c_str());
   if (!all_found) throw CLI::RuntimeError(3);

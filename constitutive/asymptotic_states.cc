@@ -123,6 +123,7 @@ IntegratedAsymptote IntegrateAsymptote(const ConstitutiveModel& model, const Mod
   const double reference_pressure = MeanStress(initial.stress);
   const ElementTest test(model, options.element_test);
   IntegratedAsymptote asymptote;
+  asymptote.state.psi_epsilon = psi_epsilon;  // also when the search fails
   ModelState state = initial;
   double path = 0.0;
   ElementTestResult result;

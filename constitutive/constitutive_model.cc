@@ -9,12 +9,15 @@ const char* ToString(ModelKind kind) {
       return "hypoplastic_clay";
     case ModelKind::kModifiedCamClay:
       return "modified_cam_clay";
+    case ModelKind::kHypoplasticSand:
+      return "hypoplastic_sand";
   }
   return "unknown";
 }
 
 bool FromString(const std::string& name, ModelKind* kind) {
-  for (ModelKind candidate : {ModelKind::kHypoplasticClay, ModelKind::kModifiedCamClay}) {
+  for (ModelKind candidate :
+       {ModelKind::kHypoplasticClay, ModelKind::kModifiedCamClay, ModelKind::kHypoplasticSand}) {
     if (name == ToString(candidate)) {
       *kind = candidate;
       return true;

@@ -16,7 +16,7 @@
 
 namespace granasym {
 
-enum class ModelKind { kHypoplasticClay, kModifiedCamClay };
+enum class ModelKind { kHypoplasticClay, kModifiedCamClay, kHypoplasticSand };
 const char* ToString(ModelKind kind);
 // Returns false for an unknown name.
 bool FromString(const std::string& name, ModelKind* kind);

@@ -9,6 +9,7 @@
 #include "common/error.h"
 #include "common/state_measures.h"
 #include "constitutive/hypoplastic_clay.h"
+#include "constitutive/hypoplastic_sand.h"
 #include "constitutive/modified_cam_clay.h"
 
 namespace granasym {
@@ -18,8 +19,8 @@ const Range kFrictionAngleDeg = Range::Open(0.0, 90.0);
 }
 
 std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
-  const std::string kind_name =
-      table.GetChoice("kind", {"hypoplastic_clay", "modified_cam_clay"}, "hypoplastic_clay");
+  const std::string kind_name = table.GetChoice(
+      "kind", {"hypoplastic_clay", "modified_cam_clay", "hypoplastic_sand"}, "hypoplastic_clay");
   ModelKind kind;
   FromString(kind_name, &kind);
   std::unique_ptr<ConstitutiveModel> model;
@@ -39,6 +40,29 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
     p.minimum_mean_stress = table.GetDouble("minimum_mean_stress_kpa", 1e-9, Range::Positive());
     if (!p.IsValid(&why)) table.Fail("phi_c_deg", why);
     model = std::make_unique<HypoplasticClay>(p);
+  } else if (kind == ModelKind::kHypoplasticSand) {
+    HypoplasticSand::Parameters p;
+    p.critical_friction_angle = table.GetDouble("phi_c_deg", kFrictionAngleDeg) * kDegree;
+    p.granular_hardness = table.GetDouble("h_s_kpa", Range::Positive());
+    p.compression_exponent = table.GetDouble("n", Range::Open(0.0, 1.0));
+    p.densest_void_ratio0 = table.GetDouble("e_d0", Range::Positive());
+    p.critical_void_ratio0 = table.GetDouble("e_c0", Range::Positive());
+    p.loosest_void_ratio0 = table.GetDouble("e_i0", Range::Positive());
+    // Bauer's lines must not cross: e_d < e_c < e_i at every p.
+    if (!(p.densest_void_ratio0 < p.critical_void_ratio0)) {
+      table.Fail("e_c0", fmt::format("e_c0 = {} must be greater than e_d0 = {}",
+                                     p.critical_void_ratio0, p.densest_void_ratio0));
+    }
+    if (!(p.critical_void_ratio0 < p.loosest_void_ratio0)) {
+      table.Fail("e_i0", fmt::format("e_i0 = {} must be greater than e_c0 = {}",
+                                     p.loosest_void_ratio0, p.critical_void_ratio0));
+    }
+    p.pyknotropy_exponent = table.GetDouble("alpha", Range::Positive());
+    p.stiffness_exponent = table.GetDouble("beta", Range::Positive());
+    p.minimum_mean_stress = table.GetDouble("minimum_mean_stress_kpa", 1e-9, Range::Positive());
+    // What remains is the sign of the f_b denominator, which α sets for given φ_c and e's.
+    if (!p.IsValid(&why)) table.Fail("alpha", why);
+    model = std::make_unique<HypoplasticSand>(p);
   } else {
     ModifiedCamClay::Parameters p;
     const std::string form = table.GetChoice("form", {"log_log", "semi_log"}, "log_log");

@@ -16,7 +16,8 @@
 
 namespace granasym {
 
-// [model] table: kind = "hypoplastic_clay" | "modified_cam_clay" and its parameters.
+// [model] table: kind = "hypoplastic_clay" | "modified_cam_clay" | "hypoplastic_sand" and
+// its parameters.
 std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& model_table);
 // [initial] table: mean_stress_kpa, psi_sigma_deg, and void_ratio or ocr.
 ModelState ReadInitialState(const ConstitutiveModel& model, const ConfigTable& initial_table);
@@ -32,7 +33,7 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
 void WriteElementTestCsv(const ElementTestResult& result, const std::string& path);
 
 struct AsymptoteTable {
-  std::vector<AsymptoticState> analytic;   // hypoplastic models only
+  std::vector<AsymptoticState> analytic;   // hypoplastic clay only (analytic ASBS)
   std::vector<IntegratedAsymptote> integrated;
 };
 // Computes what an asymptotes file asks for ([model], [asymptotes]).

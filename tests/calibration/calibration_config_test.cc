@@ -83,6 +83,15 @@ TEST(CalibrationConfig, RejectsBadFilesNamingTheKey) {
   ExpectRejected("[model]\nkind = \"hypoplastic_clay\"\n", "dataset");
 }
 
+// Calibration fits the clay models only: the sand model is a valid model kind
+// elsewhere but gets the normal "kind" error here, listing the allowed kinds.
+TEST(CalibrationConfig, RejectsTheSandModelKind) {
+  ExpectRejected(Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"hypoplastic_sand\""),
+                 "kind");
+  ExpectRejected(Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"hypoplastic_sand\""),
+                 "modified_cam_clay");
+}
+
 TEST(CalibrationConfig, ReadsAndChecksAsbsValuesOfADemDataset) {
   const std::string dem = Replace(kConfig, "csv = \"states.csv\"", "dem = \"run.h5\"");
   const CalibrationConfig c = ReadCalibrationConfig(ConfigTable::ParseString(

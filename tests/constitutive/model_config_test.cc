@@ -111,5 +111,97 @@ axial_strain = 0.05
   std::remove(path.c_str());
 }
 
+const char* kSand = R"(
+[model]
+kind = "hypoplastic_sand"
+phi_c_deg = 33.0
+h_s_kpa = 1.0e6
+n = 0.25
+e_d0 = 0.55
+e_c0 = 0.95
+e_i0 = 1.05
+alpha = 0.25
+beta = 1.5
+)";
+
+// The message names the file, every key in `keys` and the bad value.
+void ExpectSandRejected(const std::string& text, const std::vector<std::string>& keys,
+                        const std::string& value) {
+  const ConfigTable root = ConfigTable::ParseString(text, "sand.toml");
+  try {
+    ReadModel(root.GetTable("model"));
+    FAIL() << "accepted a bad " << keys.front();
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("sand.toml"), std::string::npos) << message;
+    for (const std::string& key : keys) EXPECT_NE(message.find(key), std::string::npos) << message;
+    EXPECT_NE(message.find(value), std::string::npos) << message;
+  }
+}
+
+TEST(ModelConfig, ReadsAValidHypoplasticSandModel) {
+  const ConfigTable root = ConfigTable::ParseString(kSand, "sand.toml");
+  const auto model = ReadModel(root.GetTable("model"));
+  EXPECT_EQ(model->kind(), ModelKind::kHypoplasticSand);
+  EXPECT_NO_THROW(root.CheckNoUnknownKeys());
+  // Every parameter reaches the model (the reference set, Hochstetten sand).
+  EXPECT_EQ(model->Describe(),
+            "hypoplastic_sand phi_c=33 deg h_s=1e+06 kPa n=0.25 e_d0=0.55 e_c0=0.95 e_i0=1.05 "
+            "alpha=0.25 beta=1.5 (a=2.76072)");
+  // minimum_mean_stress_kpa: 1e-9 by default, here 0.01, so p = 0.005 kPa is outside.
+  const ModelState low = model->MakeState(AxisymmetricStressTensor(0.005, 0.0), 0.9);
+  std::string why;
+  EXPECT_TRUE(model->IsAdmissible(low, &why)) << why;
+  const ConfigTable with_minimum = ConfigTable::ParseString(
+      std::string(kSand) + "minimum_mean_stress_kpa = 0.01\n", "sand.toml");
+  EXPECT_FALSE(ReadModel(with_minimum.GetTable("model"))->IsAdmissible(low, &why));
+  EXPECT_NE(why.find("0.01"), std::string::npos) << why;
+}
+
+TEST(ModelConfig, RejectsBadSandParameterFiles) {
+  ExpectSandRejected(Replace(kSand, "phi_c_deg = 33.0", "phi_c_deg = 0.0"), {"phi_c_deg"}, "0");
+  ExpectSandRejected(Replace(kSand, "h_s_kpa = 1.0e6", "h_s_kpa = -5.0"), {"h_s_kpa"}, "-5");
+  ExpectSandRejected(Replace(kSand, "n = 0.25", "n = 1.2"), {"n"}, "1.2");
+  ExpectSandRejected(Replace(kSand, "e_d0 = 0.55", "e_d0 = -0.1"), {"e_d0"}, "-0.1");
+  ExpectSandRejected(Replace(kSand, "alpha = 0.25", "alpha = 0.0"), {"alpha"}, "0");
+  ExpectSandRejected(Replace(kSand, "beta = 1.5", "beta = -1.0"), {"beta"}, "-1");
+  ExpectSandRejected(Replace(kSand, "beta = 1.5", "beta = 1.5\nminimum_mean_stress_kpa = 0.0"),
+                     {"minimum_mean_stress_kpa"}, "0");
+  // The ordering e_d0 < e_c0 < e_i0 names both keys of the broken pair.
+  ExpectSandRejected(Replace(kSand, "e_d0 = 0.55", "e_d0 = 0.97"), {"e_c0", "e_d0"}, "0.97");
+  ExpectSandRejected(Replace(kSand, "e_i0 = 1.05", "e_i0 = 0.9"), {"e_i0", "e_c0"}, "0.9");
+  // α = 4 makes 3 + a² − a√3 ((e_i0 − e_d0)/(e_c0 − e_d0))^α negative: f_b < 0.
+  ExpectSandRejected(Replace(kSand, "alpha = 0.25", "alpha = 4.0"), {"alpha", "f_b"}, "4");
+  // A missing key is named.
+  ExpectSandRejected(Replace(kSand, "e_c0 = 0.95\n", ""), {"e_c0"}, "e_c0");
+}
+
+TEST(ModelConfig, RunsASandTestFile) {
+  const std::string text = std::string(kSand) + R"(
+[initial]
+mean_stress_kpa = 100.0
+void_ratio = 0.7
+
+[[stage]]
+type = "isochoric"
+axial_rate = 1.0
+duration_s = 0.05
+)";
+  const ConfigTable root = ConfigTable::ParseString(text, "test.toml");
+  const auto model = ReadModel(root.GetTable("model"));
+  const ModelState initial = ReadInitialState(*model, root.GetTable("initial"));
+  const std::vector<LoadingStage> stages = ReadStages(root);
+  root.CheckNoUnknownKeys();
+  const ElementTestResult result = ElementTest(*model, ElementTestOptions()).Run(initial, stages);
+  ASSERT_TRUE(result.summary.success()) << result.summary.Report();
+  EXPECT_NEAR(result.history.back().void_ratio, 0.7, 1e-9);
+  // Isochoric shear of dense sand (e_c(100 kPa) = 0.83) raises p.
+  EXPECT_GT(RecordStress(result.history.back()).mean(), 100.0);
+  // A state at or below e_d(p) is rejected at the boundary, naming the table.
+  const ConfigTable dense =
+      ConfigTable::ParseString(Replace(text, "void_ratio = 0.7", "void_ratio = 0.3"), "test.toml");
+  EXPECT_THROW(ReadInitialState(*model, dense.GetTable("initial")), InputError);
+}
+
 }  // namespace
 }  // namespace granasym

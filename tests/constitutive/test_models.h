@@ -3,6 +3,7 @@
 
 #include "common/state_measures.h"
 #include "constitutive/hypoplastic_clay.h"
+#include "constitutive/hypoplastic_sand.h"
 #include "constitutive/modified_cam_clay.h"
 
 namespace granasym {
@@ -14,6 +15,10 @@ inline HypoplasticClay::Parameters LondonClay() {
 
 inline ModifiedCamClay::Parameters CamClay() {
   return ModifiedCamClay::Parameters::LondonClayNcl();
+}
+
+inline HypoplasticSand::Parameters HochstettenSand() {
+  return HypoplasticSand::Parameters::HochstettenSand();
 }
 
 }  // namespace testing_models
