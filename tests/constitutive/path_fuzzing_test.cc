@@ -461,6 +461,52 @@ TEST(PathFuzzingRegression, ErrorControlFollowsTheSmallestPrincipalStress) {
   }
 }
 
+// The smallest principal compression over the mean stress of a record.
+double SmallestPrincipalRatio(const ElementTestRecord& record) {
+  const SymTensor& c = record.stress;  // compression positive
+  Eigen::Matrix3d matrix;
+  matrix << c[0], c[3], c[4], c[3], c[1], c[5], c[4], c[5], c[2];
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal(matrix);
+  return principal.eigenvalues().minCoeff() / RecordStress(record).mean();
+}
+
+// Stops were placed on the integrator's interpolant: ERK 5 at rtol 4.8e-4
+// stopped an isotropic unloading from 435 to 3.83 kPa inside a step over
+// which p fell from 8.6 to 2.6 kPa, and the interpolated state had
+// σ_min/p = 0.026 where the integrated one has 0.099 (outside the SBS by 0.44;
+// long fuzz, seed 20261123, path 1735). Each integrator now steps to the
+// crossing from the start of the step that found it.
+TEST(PathFuzzingRegression, StopsLandOnIntegratedStates) {
+  const HypoplasticClay model(testing_models::LondonClay());
+  const ModelState initial = InitialStateFromOcr(model, 437.19097881958049,
+                                                 29.148624549956615 * kDegree, 2.9750876108862343);
+  const double target = 3.831893881180982;
+  LoadingStage shear = LoadingStage::Proportional(-68.401558883291713 * kDegree, 1.0,
+                                                  0.001685027937669828);
+  shear.output_points = 8;
+  LoadingStage unload = LoadingStage::IsotropicToMeanStress(target, 1.0);
+  unload.output_points = 8;
+  ElementTestOptions reference_options;
+  reference_options.integrator.relative_tolerance = 1e-10;
+  reference_options.integrator.absolute_tolerance = 1e-10;
+  const ElementTestResult reference =
+      ElementTest(model, reference_options).Run(initial, {shear, unload});
+  ASSERT_TRUE(reference.summary.success()) << reference.summary.Report();
+  const double expected = SmallestPrincipalRatio(reference.history.back());
+  for (IntegratorKind kind : AllIntegratorKinds()) {
+    ElementTestOptions options;
+    options.integrator.kind = kind;
+    options.integrator.relative_tolerance = options.integrator.absolute_tolerance = 4.8389898e-4;
+    const ElementTestResult result = ElementTest(model, options).Run(initial, {shear, unload});
+    ASSERT_TRUE(result.summary.success()) << ToString(kind) << ": " << result.summary.Report();
+    EXPECT_NEAR(RecordStress(result.history.back()).mean(), target, 1e-6 * target)
+        << ToString(kind);
+    EXPECT_NEAR(SmallestPrincipalRatio(result.history.back()), expected, 0.1 * expected)
+        << ToString(kind);
+    EXPECT_LT(WorstExcursion(model, result), kSbsTolerance) << ToString(kind);
+  }
+}
+
 // Under stress control the Cam clay rate form passed limit points (the
 // stress-controlled block of ∂T̊/∂D turning singular, σ_min/‖∂T̊/∂D‖ down to
 // 2e-6) and the integrators stepped through the spike of the stretching onto
