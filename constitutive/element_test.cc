@@ -212,6 +212,7 @@ IntegratorOptions DefaultIntegratorOptions(ModelKind model) {
   IntegratorOptions options;
   options.kind = IntegratorKind::kArkodeErk;
   options.arkode_order = 5;
+  // Both hypoplastic models (clay and sand) at 1e-8, Cam clay at 1e-9.
   const double tolerance = model == ModelKind::kModifiedCamClay ? 1e-9 : 1e-8;
   options.relative_tolerance = options.absolute_tolerance = tolerance;
   return options;

@@ -214,6 +214,8 @@ ElementTestOptions ReadElementTestOptions(const ConfigTable& table) {
       table.GetDouble("stress_point_tolerance", options.stress_point.tolerance, Range::Open(0, 0.1));
   options.max_strain_increment = table.GetDouble("max_strain_increment",
                                                  options.max_strain_increment, Range::Open(0, 0.1));
+  options.limit_point_condition = table.GetDouble(
+      "limit_point_condition", options.limit_point_condition, Range::Open(0, 0.1));
   std::string why;
   if (!options.IsValid(&why)) table.Fail("method", why);
   return options;
