@@ -354,6 +354,25 @@ TEST(HypoplasticSand, DrainedTriaxialCompressionReachesTheCriticalState) {
   }
 }
 
+TEST(HypoplasticSand, DefaultIntegratorIsErkOrderFiveAsForTheClay) {
+  // Chosen from the work-precision study on the sand's paths (bench/README.md).
+  const IntegratorOptions defaults = DefaultIntegratorOptions(ModelKind::kHypoplasticSand);
+  EXPECT_EQ(defaults.kind, IntegratorKind::kArkodeErk);
+  EXPECT_EQ(defaults.arkode_order, 5);
+  EXPECT_EQ(defaults.relative_tolerance, 1e-8);
+  EXPECT_EQ(defaults.absolute_tolerance, 1e-8);
+  // With the default an isochoric test of loose sand holds e and ends near e_c.
+  const HypoplasticSand model(HochstettenSand());
+  const ModelState initial = InitialStateFromVoidRatio(model, 200.0, 0.0, 0.85);
+  LoadingStage stage = LoadingStage::Isochoric(1.0, 10.0);
+  stage.stops.push_back({StopKind::kAsymptote, 1e-6});
+  const ElementTestResult result = ElementTest(model, ElementTestOptions()).Run(initial, {stage});
+  ASSERT_TRUE(result.summary.success()) << result.summary.Report();
+  EXPECT_NEAR(result.history.back().void_ratio, 0.85, 1e-8);
+  EXPECT_NEAR(model.LimitVoidRatiosAt(RecordStress(result.history.back()).mean()).critical, 0.85,
+              1e-5);
+}
+
 TEST(HypoplasticSand, RateIsPositivelyHomogeneousOfDegreeOneInD) {
   const HypoplasticSand model(HochstettenSand());
   const ModelState state = GeneralState(model);
