@@ -38,7 +38,10 @@
 // hypoplastic models for soils, Habilitation, Bochum (2003); I. Herle and
 // G. Gudehus, Determination of parameters of a hypoplastic constitutive model
 // from properties of grain assemblies, Mech. Cohes.-Frict. Mater. 4 (1999)
-// 461–486 (the Hochstetten sand set below).
+// 461–486 (the Hochstetten sand set below). The formulas were checked against
+// two public implementations (the soilmodels.com UMAT of Tamagnini, Sellari,
+// Mašín and von Wolffersdorff; COFS-UWA/MPM3D sand_hypoplasticity.cpp) and the
+// Hochstetten set against its quotation in the OpenSees UMAT documentation.
 #pragma once
 
 #include <string>
