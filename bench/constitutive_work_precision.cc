@@ -18,7 +18,7 @@
 // same error, interpolated log–log along each curve.
 //
 //   build-models/bench/constitutive_work_precision [--csv FILE]
-//       [--repeats N] [--quick] [--model hypoplastic_clay|modified_cam_clay]
+//       [--repeats N] [--quick] [--model hypoplastic_clay|modified_cam_clay|hypoplastic_sand]
 //       [--path NAME] [--target-error E]
 #include <fmt/format.h>
 
@@ -38,6 +38,7 @@
 #include "common/state_measures.h"
 #include "constitutive/element_test.h"
 #include "constitutive/hypoplastic_clay.h"
+#include "constitutive/hypoplastic_sand.h"
 #include "constitutive/modified_cam_clay.h"
 
 namespace granasym {
@@ -81,6 +82,39 @@ std::vector<PathCase> Paths() {
   paths.push_back({"unload_reload", 100.0, 1.0,
                    {with_outputs(LoadingStage::Proportional(kPi, 1.0, 0.015)),
                     with_outputs(LoadingStage::Proportional(0.0, 1.0, 0.04))}});
+  return paths;
+}
+
+// The sand's paths: Hochstetten sand is far stiffer than London clay and its
+// OCR is measured from e_i (OCR 1: loosest, 10: near e_c, 300: e = 0.61,
+// dense), so the strains are shorter than above and the densities span the
+// range of f_d; extension and unloading stop well before p → 0.
+std::vector<PathCase> SandPaths() {
+  constexpr int kOutputs = 10;
+  auto with_outputs = [](LoadingStage stage) {
+    stage.output_points = kOutputs;
+    return stage;
+  };
+  std::vector<PathCase> paths;
+  paths.push_back({"isotropic_loose", 100.0, 1.0,
+                   {with_outputs(LoadingStage::Proportional(0.0, 1.0, 0.05))}});
+  paths.push_back({"isotropic_dense", 100.0, 300.0,
+                   {with_outputs(LoadingStage::Proportional(0.0, 1.0, 0.03))}});
+  paths.push_back({"isochoric_loose", 100.0, 1.0,
+                   {with_outputs(LoadingStage::Isochoric(1.0, 0.1))}});
+  paths.push_back({"isochoric_dense", 100.0, 300.0,
+                   {with_outputs(LoadingStage::Isochoric(1.0, 0.2))}});
+  paths.push_back({"drained_triaxial_loose", 100.0, 1.0,
+                   {with_outputs(LoadingStage::ConstantRadialStress(1.0, 0.15))}});
+  paths.push_back({"drained_triaxial_dense", 100.0, 300.0,
+                   {with_outputs(LoadingStage::ConstantRadialStress(1.0, 0.15))}});
+  paths.push_back({"proportional_45", 100.0, 10.0,
+                   {with_outputs(LoadingStage::Proportional(45.0 * kDegree, 1.0, 0.05))}});
+  paths.push_back({"proportional_100", 100.0, 10.0,
+                   {with_outputs(LoadingStage::Proportional(100.0 * kDegree, 1.0, 0.02))}});
+  paths.push_back({"unload_reload", 100.0, 1.0,
+                   {with_outputs(LoadingStage::Proportional(kPi, 1.0, 0.002)),
+                    with_outputs(LoadingStage::Proportional(0.0, 1.0, 0.005))}});
   return paths;
 }
 
@@ -250,7 +284,8 @@ int Main(int argc, char** argv) {
 
   const HypoplasticClay hypoplastic(LondonClay());
   const ModifiedCamClay cam_clay(CamClay());
-  const std::vector<const ConstitutiveModel*> models = {&hypoplastic, &cam_clay};
+  const HypoplasticSand sand(HypoplasticSand::Parameters::HochstettenSand());
+  const std::vector<const ConstitutiveModel*> models = {&hypoplastic, &cam_clay, &sand};
 
   std::vector<Row> rows;
   std::printf("%-18s %-18s %-28s %9s %10s %12s %9s %8s %s\n", "path", "model", "integrator",
@@ -258,7 +293,8 @@ int Main(int argc, char** argv) {
   for (const ConstitutiveModel* model : models) {
     const std::string model_name = ToString(model->kind());
     if (!settings.only_model.empty() && settings.only_model != model_name) continue;
-    for (const PathCase& path : Paths()) {
+    for (const PathCase& path :
+         model->kind() == ModelKind::kHypoplasticSand ? SandPaths() : Paths()) {
       if (!settings.only_path.empty() && settings.only_path != path.name) continue;
       const ModelState initial = InitialStateFromOcr(*model, path.mean_stress, 0.0, path.ocr);
       auto run = [&](const ElementTestOptions& options) {
@@ -279,7 +315,7 @@ int Main(int argc, char** argv) {
       tighter.integrator.absolute_tolerance = 1e-15;
       const double self_difference = PathError(run(tighter), reference);
       ElementTestOptions independent;
-      if (model->kind() == ModelKind::kHypoplasticClay) {
+      if (model->kind() != ModelKind::kModifiedCamClay) {
         independent.integrator.kind = IntegratorKind::kArkodeErk;
         independent.integrator.arkode_order = 8;
         independent.integrator.relative_tolerance = 1e-12;
@@ -295,7 +331,7 @@ int Main(int argc, char** argv) {
                   "%.2e\n",
                   path.name.c_str(), model_name.c_str(), reference.summary.totals.rhs_evaluations,
                   self_difference,
-                  model->kind() == ModelKind::kHypoplasticClay ? "arkode_erk order 8 rtol 1e-12"
+                  model->kind() != ModelKind::kModifiedCamClay ? "arkode_erk order 8 rtol 1e-12"
                                                                : "modified Euler tol 1e-12",
                   independent_difference);
       rows.push_back({path.name, model_name, "reference_self_check", 1e-13, self_difference, 0.0,

@@ -132,6 +132,8 @@ bool Invert(const StressMap& map, const std::vector<Prediction>& grid, double ta
 
 AsymptotePredictor::AsymptotePredictor(ModelKind kind, const PredictorOptions& options)
     : kind_(kind), options_(options) {
+  GRANASYM_CHECK(IsCalibrated(kind))
+      << "calibration fits the clay models only, not " << ToString(kind);
   std::string why;
   GRANASYM_CHECK(options_.IsValid(&why)) << why;
 }
@@ -200,10 +202,10 @@ bool AsymptotePredictor::Curve(const std::vector<double>& parameters, int points
   for (int i = 0; i < points; ++i) {
     const double psi = kLowestPsiSigma + (kHighestPsiSigma - kLowestPsiSigma) * i / (points - 1);
     Prediction& out = (*curve)[static_cast<size_t>(i)];
-    const bool ok = kind_ == ModelKind::kHypoplasticClay
-                        ? HypoplasticAsymptote(static_cast<const HypoplasticClay&>(*model), psi,
-                                               &out, why)
-                        : CamClayAsymptote(parameters, psi, &out, why);
+    const bool ok =
+        kind_ == ModelKind::kHypoplasticClay
+            ? HypoplasticAsymptote(static_cast<const HypoplasticClay&>(*model), psi, &out, why)
+            : CamClayAsymptote(parameters, psi, &out, why);
     if (!ok) return false;
   }
   return true;

@@ -13,6 +13,8 @@
 namespace granasym::calibration {
 
 ModelParameters ModelParameters::Defaults(ModelKind kind) {
+  GRANASYM_CHECK(IsCalibrated(kind))
+      << "calibration fits the clay models only, not " << ToString(kind);
   ModelParameters parameters;
   parameters.kind_ = kind;
   // Bounds wide enough for clays and for DEM sphere packings (small λ*).
@@ -23,8 +25,8 @@ ModelParameters ModelParameters::Defaults(ModelKind kind) {
       {"n_intercept", "1", "ln(1+e) on the NCL at p_r = 1 kPa", 1.0, 0.05, 4.0, true},
   };
   if (kind == ModelKind::kHypoplasticClay) {
-    parameters.specs_.push_back({"r", "1", "bulk/shear stiffness ratio K/G on the NCL", 0.4, 0.01,
-                                 3.0, true});
+    parameters.specs_.push_back(
+        {"r", "1", "bulk/shear stiffness ratio K/G on the NCL", 0.4, 0.01, 3.0, true});
   } else {
     parameters.specs_.push_back(
         {"poisson_ratio", "1", "Poisson ratio of the elastic law", 0.25, 0.0, 0.49, true});
@@ -82,6 +84,8 @@ void ModelParameters::Validate() const {
 std::unique_ptr<ConstitutiveModel> MakeModel(ModelKind kind, const std::vector<double>& values,
                                              std::string* why) {
   GRANASYM_CHECK(values.size() == kNumParameters) << values.size();
+  GRANASYM_CHECK(IsCalibrated(kind))
+      << "calibration fits the clay models only, not " << ToString(kind);
   if (kind == ModelKind::kHypoplasticClay) {
     HypoplasticClay::Parameters p;
     p.critical_friction_angle = values[kCriticalFrictionAngle] * kDegree;
@@ -117,22 +121,31 @@ std::vector<ExportedParameters> ExportOrders(ModelKind kind, const std::vector<d
     // Mašín's clay hypoplasticity UMAT (Abaqus, 2005 form) reads props 1-5 as
     // φ_c, λ*, κ*, N, r (then the intergranular-strain parameters, not fitted here).
     orders.push_back({"UMAT clay hypoplasticity (Masin 2005), props 1-5",
-                      {{"phi_c_deg", phi}, {"lambda_star", lambda}, {"kappa_star", kappa},
-                       {"N", n}, {"r", fifth}}});
+                      {{"phi_c_deg", phi},
+                       {"lambda_star", lambda},
+                       {"kappa_star", kappa},
+                       {"N", n},
+                       {"r", fifth}}});
     // The soilmodels.com UMAT/PLAXIS UDSM form puts the tensile shift p_t second.
     orders.push_back({"PLAXIS UDSM / soilmodels.com UMAT (p_t second), parameters 1-6",
-                      {{"phi_c_deg", phi}, {"p_t_kpa", 0.0}, {"lambda_star", lambda},
-                       {"kappa_star", kappa}, {"N", n}, {"r", fifth}}});
+                      {{"phi_c_deg", phi},
+                       {"p_t_kpa", 0.0},
+                       {"lambda_star", lambda},
+                       {"kappa_star", kappa},
+                       {"N", n},
+                       {"r", fifth}}});
   } else {
     const double m = CriticalStateRatio(phi * kDegree);
-    orders.push_back({"Modified Cam clay (ln(1+e)-ln p form)",
-                      {{"M", m}, {"lambda_star", lambda}, {"kappa_star", kappa}, {"N", n},
-                       {"nu", fifth}}});
+    orders.push_back(
+        {"Modified Cam clay (ln(1+e)-ln p form)",
+         {{"M", m}, {"lambda_star", lambda}, {"kappa_star", kappa}, {"N", n}, {"nu", fifth}}});
     // PLAXIS' Modified Cam-Clay takes λ, κ of the e-ln p form; at the NCL
     // state with 1 + e = exp(N) (p = 1 kPa) they are λ*(1+e), κ*(1+e).
     orders.push_back({"PLAXIS Modified Cam-Clay (nu_ur, kappa, lambda, M at 1+e = exp N)",
-                      {{"nu_ur", fifth}, {"kappa", kappa * std::exp(n)},
-                       {"lambda", lambda * std::exp(n)}, {"M", m}}});
+                      {{"nu_ur", fifth},
+                       {"kappa", kappa * std::exp(n)},
+                       {"lambda", lambda * std::exp(n)},
+                       {"M", m}}});
   }
   return orders;
 }

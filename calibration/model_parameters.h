@@ -58,6 +58,12 @@ class ModelParameters {
   std::vector<ParameterSpec> specs_;
 };
 
+// The models calibration fits: the hypoplastic clay and Modified Cam clay
+// (their five parameters share one layout, see ModelParameters).
+inline bool IsCalibrated(ModelKind kind) {
+  return kind == ModelKind::kHypoplasticClay || kind == ModelKind::kModifiedCamClay;
+}
+
 // The constitutive model for a full parameter vector; nullptr with the reason
 // when the combination is invalid (e.g. κ* ≥ λ*, α undefined).
 std::unique_ptr<ConstitutiveModel> MakeModel(ModelKind kind, const std::vector<double>& values,

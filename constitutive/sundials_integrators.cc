@@ -238,7 +238,7 @@ bool LocateRootByIntegration(int k, double t_root, ReadLastStep read_last_step, 
   system->Roots(hi, y_hi.data(), g.data());
   double g_hi = g[k];
   if (!((g_lo < 0 && g_hi >= 0) || (g_lo > 0 && g_hi <= 0))) return false;
-  const double resolution = 1e-10 * (hi - lo);
+  const double resolution = 1e-7 * (hi - lo);
   double theta = t_root;
   int side = 0;
   for (int iteration = 0; iteration < 60 && g_hi != 0.0 && hi - lo > resolution; ++iteration) {

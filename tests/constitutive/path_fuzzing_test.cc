@@ -32,13 +32,16 @@ namespace {
 
 // Allowed excursion beyond the SBS, f_d/f_d^SBS − 1. Mašín's 2005 model
 // bounds states by its SBS only approximately: isochoric shear of heavily
-// overconsolidated clay overshoots it by 6.8 % in f_d and a 3D path with
-// stress-controlled shear by 15.8 %, both the same at rtol 1e-6 and 1e-11
-// (see HypoplasticClay.IsochoricShearOfOverconsolidatedClay... below), so this
-// is the model, not the integration. Integration errors that matter (p swamped
-// by the absolute tolerance after unloading by orders of magnitude) gave
-// excursions of 0.4 to 8 before StageOde::StateScales; the limit catches them.
-constexpr double kSbsTolerance = 0.25;
+// overconsolidated clay overshoots it by 6.8 % in f_d, a 3D path with
+// stress-controlled shear by 15.8 %, and a 3D path with five stress-controlled
+// components by 30.4 % at its limit point, each the same at loose and tight
+// tolerances (see HypoplasticClay.*OvershootsTheSbs* below), so this is the
+// model, not the integration. Integration errors that matter (p swamped by
+// the absolute tolerance after unloading by orders of magnitude; stress
+// errors against ‖T‖ near the tension cutoff; stops on interpolants) gave
+// excursions of 0.4 to 8 before StageOde::StateScales and the integrated
+// root location; the limit catches them.
+constexpr double kSbsTolerance = 0.35;
 
 // Plus the integration error at loose tolerances.
 double SbsTolerance(const ElementTestOptions& options) {
@@ -53,13 +56,15 @@ double SbsTolerance(const ElementTestOptions& options) {
 // (seen: 6e-3 with BDF at rtol 1.4e-4 in oedometric loading from OCR 14,
 // before the switch roots). With the switch roots and records at step ends
 // what remains is drift that grows with the tolerance (f is a difference of
-// large terms that the error control does not weigh): up to 200 rtol, e.g.
-// 2.2e-2 with ERK 5 at rtol 1.1e-4 after yielding in oedometric loading from
-// OCR 50 with 8 records (3e-9 at rtol 1e-8). The stress-point algorithms end
-// every increment on the surface.
+// large terms that the error control does not weigh): up to 330 rtol, e.g.
+// 1.9e-2 with ERK 5 at rtol 5.8e-5 just after a mixed-control stage started
+// on the surface (long fuzz, seed 20261201, path 696; 2e-11 at rtol 1e-5,
+// 1.9e-7 with RKF23 at 5.8e-5), and 2.2e-2 with ERK 5 at rtol 1.1e-4 after
+// yielding in oedometric loading from OCR 50 (3e-9 at rtol 1e-8). The
+// stress-point algorithms end every increment on the surface.
 double YieldTolerance(const ElementTestOptions& options) {
   if (options.method == DriveMethod::kStressPoint) return 1e-6;
-  return std::max(1e-3, 300.0 * options.integrator.relative_tolerance);
+  return std::max(1e-3, 500.0 * options.integrator.relative_tolerance);
 }
 
 long EnvironmentCount(const char* name, long fallback) {
@@ -169,6 +174,9 @@ ElementTestOptions RandomOptions(std::mt19937_64& rng, ModelKind model, std::str
 // Largest excursion of a recorded state beyond the model's bounding surface
 // (0 inside): f_d/f_d^SBS − 1, or f/(M p_c)².
 double BoundaryExcursion(const ConstitutiveModel& model, const ElementTestRecord& record) {
+  // The sand has no bounding surface to check here: e > e_d(p) is part of its
+  // admissibility, which every final state is checked for.
+  if (model.kind() == ModelKind::kHypoplasticSand) return 0.0;
   const Vector6 stress = ToVector(FlipSign(record.stress));
   if (model.kind() == ModelKind::kHypoplasticClay) {
     const auto& clay = static_cast<const HypoplasticClay&>(model);
@@ -286,6 +294,13 @@ void FuzzModel(const ConstitutiveModel& model, long paths, unsigned long seed,
       }
       for (double value : record.internal) finite = finite && std::isfinite(value);
       ASSERT_TRUE(finite) << "record at t = " << record.time;
+      ModelState recorded;
+      recorded.stress = ToVector(FlipSign(record.stress));
+      recorded.void_ratio = record.void_ratio;
+      recorded.internal = Eigen::Map<const Eigen::VectorXd>(record.internal.data(),
+                                                            record.internal.size());
+      ASSERT_TRUE(model.IsAdmissible(recorded, &why))
+          << "record at t = " << record.time << ": " << why;
       const double excursion = BoundaryExcursion(model, record);
       if (std::getenv("GRANASYM_FUZZ_DUMP") != nullptr) {
         std::printf("  stage %d t=%.9g sigma_a=%.9g sigma_r=%.9g e=%.9g internal0=%.9g "
@@ -325,6 +340,42 @@ TEST(HypoplasticClay, IsochoricShearOfOverconsolidatedClayOvershootsTheSbsSlight
   EXPECT_GT(worst[1], 0.05);
   EXPECT_LT(worst[1], kSbsTolerance);
   EXPECT_NEAR(worst[0], worst[1], 1e-4);
+}
+
+// Five stress-controlled components driven from OCR 14 towards the tension
+// cutoff reach a limit point 30 % outside the SBS (long fuzz, seed 20261200,
+// path 1149). The excursion converges as the integration tolerance and the
+// limit-point condition tighten, and the SBS measure is well conditioned
+// there (σ_min/p = 0.04), so the overshoot is the model's.
+TEST(HypoplasticClay, StressControlledLimitPointOvershootsTheSbs) {
+  const HypoplasticClay model(testing_models::LondonClay());
+  const ModelState initial = InitialStateFromOcr(model, 53.802078845170875,
+                                                 33.948080025216981 * kDegree, 14.322735109106489);
+  LoadingStage shear = LoadingStage::Proportional(151.26763648132192 * kDegree, 1.0,
+                                                  0.067987869252319061);
+  shear.output_points = 8;
+  LoadingStage mixed;
+  mixed.control.fill(ComponentControl::kStressRate);
+  mixed.control[1] = ComponentControl::kStretching;
+  mixed.rate = {165.53650832368311,  0.13412393586142013, -247.82431989494194,
+                -140.14616719246001, -80.038839629876264, 69.148112091272594};
+  mixed.duration = 0.033701796862790317;
+  mixed.output_points = 8;
+  std::vector<double> worst;
+  for (double tolerance : {1e-6, 1e-10}) {
+    ElementTestOptions options;
+    options.integrator.relative_tolerance = options.integrator.absolute_tolerance = tolerance;
+    const ElementTestResult result = ElementTest(model, options).Run(initial, {shear, mixed});
+    EXPECT_EQ(result.summary.stages.back().stop, "limit_point") << result.summary.Report();
+    double largest = -1.0;
+    for (const ElementTestRecord& record : result.history) {
+      largest = std::max(largest, BoundaryExcursion(model, record));
+    }
+    worst.push_back(largest);
+  }
+  EXPECT_GT(worst[1], 0.25);
+  EXPECT_LT(worst[1], kSbsTolerance);
+  EXPECT_NEAR(worst[0], worst[1], 1e-3);
 }
 
 // Regressions: one test per problem the fuzzing found and that was fixed.
@@ -615,6 +666,21 @@ TEST(PathFuzzing, CamClayStaysInsideTheYieldSurfaceAndNeverProducesNaN) {
   RecordProperty("reported_failures", std::to_string(totals.failures));
   std::printf("Cam clay: %ld paths, %ld reported failures, worst f/(M p_c)^2 = %.3g\n",
               totals.paths, totals.failures, totals.worst_excursion);
+  if (totals.paths > 1) {
+    EXPECT_LT(totals.failures, totals.paths / 2);
+  }
+}
+
+TEST(PathFuzzing, HypoplasticSandStaysAdmissibleAndNeverProducesNaN) {
+  const long paths = EnvironmentCount("GRANASYM_FUZZ_PATHS", 300);
+  const unsigned long seed = EnvironmentCount("GRANASYM_FUZZ_SEED", 20261123) + 2;
+  FuzzTotals totals;
+  const HypoplasticSand sand(testing_models::HochstettenSand());
+  FuzzModel(sand, paths, seed, &totals);
+  RecordProperty("paths", std::to_string(totals.paths));
+  RecordProperty("reported_failures", std::to_string(totals.failures));
+  std::printf("hypoplastic sand: %ld paths, %ld reported failures\n", totals.paths,
+              totals.failures);
   if (totals.paths > 1) {
     EXPECT_LT(totals.failures, totals.paths / 2);
   }
