@@ -100,6 +100,8 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
     }
     p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, Range::Positive());
     p.yield_tolerance = table.GetDouble("yield_tolerance", 1e-9, Range::Open(0.0, 1e-2));
+    p.rate_form_band =
+        table.GetDouble("rate_form_band", p.rate_form_band, Range::Open(0.0, 1e-2));
     if (!p.IsValid(&why)) table.Fail(lambda_key, why);
     model = std::make_unique<ModifiedCamClay>(p);
   }
