@@ -233,29 +233,17 @@ bool HypoplasticClay::Rate(const ModelState& state, const Vector6& stretching, M
 bool HypoplasticClay::Jacobian(const ModelState& state, const Vector6& stretching,
                                RateJacobian* jacobian, std::string* why) const {
   if (!IsAdmissible(state, why)) return false;
-  constexpr int kSize = 13;  // stress (6), ln(1+e), stretching (6)
-  using Ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, kSize, 1>>;
-  Vec6<Ad> t, d;
-  for (int i = 0; i < 6; ++i) {
-    t[i] = autodiff::Variable<kSize>(state.stress[i], i);
-    d[i] = autodiff::Variable<kSize>(stretching[i], 7 + i);
-  }
-  const Ad log_1pe = autodiff::Variable<kSize>(std::log1p(state.void_ratio), 6);
   const Constants c = MakeConstants(parameters_, a_, alpha_, c1_, c2_, barotropy_denominator_);
-  TermsT<Ad> terms;
-  if (!ComputeTerms<Ad>(c, t, log_1pe, &terms, why)) return false;
-  const Vec6<Ad> rate = RateFromTerms(terms, d);
-  jacobian->d_state.resize(6, 7);
-  jacobian->d_stretching.resize(6, 6);
-  for (int i = 0; i < 6; ++i) {
-    const auto& derivatives = rate[i].derivatives();
-    jacobian->d_state.row(i) = derivatives.head<7>().transpose();
-    jacobian->d_stretching.row(i) = derivatives.tail<6>().transpose();
-  }
-  if (!jacobian->d_state.allFinite() || !jacobian->d_stretching.allFinite()) {
-    return Fail(why, "Jacobian is not finite");
-  }
-  return true;
+  using S = autodiff::StateScalar;
+  return autodiff::StressRateJacobian(
+      state, stretching,
+      [&c](const Vec6<S>& t, const S& log_1pe, const Vec6<S>& d, Vec6<S>* rate, std::string* w) {
+        TermsT<S> terms;
+        if (!ComputeTerms<S>(c, t, log_1pe, &terms, w)) return false;
+        *rate = RateFromTerms(terms, d);
+        return true;
+      },
+      jacobian, why);
 }
 
 double HypoplasticClay::EquivalentPressure(double void_ratio) const {
