@@ -4,10 +4,9 @@
 // differences in the tests).
 #pragma once
 
-#include <unsupported/Eigen/AutoDiff>
-
 #include <cmath>
 #include <string>
+#include <unsupported/Eigen/AutoDiff>
 
 #include "constitutive/constitutive_model.h"
 
