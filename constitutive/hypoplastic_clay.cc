@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "constitutive/autodiff.h"
+#include "constitutive/stress_direction.h"
 
 namespace granasym {
 
@@ -55,34 +56,14 @@ bool ComputeTerms(const Constants& c, const Vec6<S>& t, const S& log_1pe, TermsT
   using std::exp;
   using std::pow;
   using std::sqrt;
-  const double sqrt2 = std::sqrt(2.0);
   const double sqrt3 = std::sqrt(3.0);
-  const double sqrt6 = std::sqrt(6.0);
   const S trace = Trace(t);
   const S p = -trace / 3.0;
-  const Vec6<S> t_hat = t / trace;
-  Vec6<S> t_star = t_hat;
-  for (int i = 0; i < 3; ++i) t_star[i] -= 1.0 / 3.0;
-  const S t_star2 = Contract(t_star, t_star);
-  S tan_psi(0.0);
-  S cos3theta(-1.0);
-  // T̂* = 0 (isotropic stress): cos 3θ is undefined, SPEC takes −1.
-  if (autodiff::Value(t_star2) > 1e-28) {
-    tan_psi = sqrt3 * sqrt(t_star2);
-    cos3theta = -sqrt6 * Contract(Square(t_star), t_star) / (t_star2 * sqrt(t_star2));
-    if (autodiff::Value(cos3theta) > 1.0) cos3theta = S(1.0);
-    if (autodiff::Value(cos3theta) < -1.0) cos3theta = S(-1.0);
-  }
-  const S lode_denominator = 2.0 + sqrt2 * tan_psi * cos3theta;
-  if (!(autodiff::Value(lode_denominator) > 0)) {
-    return Fail(why, "stress obliquity outside the model's domain (2 + √2 tanψ cos3θ ≤ 0)");
-  }
-  const S radicand = tan_psi * tan_psi / 8.0 + (2.0 - tan_psi * tan_psi) / lode_denominator;
-  if (!(autodiff::Value(radicand) > 0)) {
-    return Fail(why, "stress obliquity outside the model's domain (F is not real)");
-  }
-  const S f = sqrt(radicand) - tan_psi / (2.0 * sqrt2);
-  if (!(autodiff::Value(f) > 0)) return Fail(why, "stress obliquity outside the model's domain (F ≤ 0)");
+  StressDirection<S> direction;
+  if (!ComputeStressDirection(t, &direction, why)) return false;
+  const Vec6<S>& t_hat = direction.t_hat;
+  const Vec6<S>& t_star = direction.t_star;
+  const S& f = direction.lode_factor;
 
   const S equivalent_pressure =
       c.reference_pressure * exp((c.n_intercept - log_1pe) / c.lambda_star);

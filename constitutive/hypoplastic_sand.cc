@@ -9,6 +9,7 @@
 
 #include "common/error.h"
 #include "constitutive/autodiff.h"
+#include "constitutive/stress_direction.h"
 
 namespace granasym {
 
@@ -31,44 +32,19 @@ bool Fail(std::string* why, const std::string& message) {
   return false;
 }
 
-// Below this T̂*:T̂* the stress counts as isotropic: tanψ = 0 and F = 1 as
-// constants, so that no derivative of sqrt passes through 0.
-constexpr double kIsotropicTolerance = 1e-28;
-
 template <typename S>
 bool ComputeTerms(const Constants& c, const Vec6<S>& t, const S& log_1pe, TermsT<S>* out,
                   std::string* why) {
   using std::exp;
   using std::pow;
   using std::sqrt;
-  const double sqrt2 = std::sqrt(2.0);
-  const double sqrt6 = std::sqrt(6.0);
   const S trace = Trace(t);
   const S p = -trace / 3.0;
-  const Vec6<S> t_hat = t / trace;
-  Vec6<S> t_star = t_hat;
-  for (int i = 0; i < 3; ++i) t_star[i] -= 1.0 / 3.0;
-  const S t_star2 = Contract(t_star, t_star);
-  S tan_psi(0.0);
-  S cos3theta(1.0);  // any value: F = 1 at tanψ = 0
-  if (autodiff::Value(t_star2) > kIsotropicTolerance) {
-    tan_psi = std::sqrt(3.0) * sqrt(t_star2);
-    cos3theta = -sqrt6 * Contract(Square(t_star), t_star) / (t_star2 * sqrt(t_star2));
-    if (autodiff::Value(cos3theta) > 1.0) cos3theta = S(1.0);
-    if (autodiff::Value(cos3theta) < -1.0) cos3theta = S(-1.0);
-  }
-  const S lode_denominator = 2.0 + sqrt2 * tan_psi * cos3theta;
-  if (!(autodiff::Value(lode_denominator) > 0)) {
-    return Fail(why, "stress obliquity outside the model's domain (2 + √2 tanψ cos3θ ≤ 0)");
-  }
-  const S radicand = tan_psi * tan_psi / 8.0 + (2.0 - tan_psi * tan_psi) / lode_denominator;
-  if (!(autodiff::Value(radicand) > 0)) {
-    return Fail(why, "stress obliquity outside the model's domain (F is not real)");
-  }
-  const S f = sqrt(radicand) - tan_psi / (2.0 * sqrt2);
-  if (!(autodiff::Value(f) > 0)) {
-    return Fail(why, "stress obliquity outside the model's domain (F ≤ 0)");
-  }
+  StressDirection<S> direction;
+  if (!ComputeStressDirection(t, &direction, why)) return false;
+  const Vec6<S>& t_hat = direction.t_hat;
+  const Vec6<S>& t_star = direction.t_star;
+  const S& f = direction.lode_factor;
 
   // Bauer's law and the density factors.
   const S pressure_ratio = 3.0 * p / c.granular_hardness;  // 3p/h_s
