@@ -666,50 +666,37 @@ TEST(ElementTestLimitPoint, StressControlledTriaxialEndsAtTheCriticalState) {
   }
 }
 
-TEST(PathFuzzing, HypoplasticClayNeverLeavesTheSbsNorProducesNaN) {
+// Fuzzes `model` with GRANASYM_FUZZ_PATHS paths (300 by default) from seed
+// GRANASYM_FUZZ_SEED + `seed_offset`, records and prints the totals, and
+// checks that most random paths are feasible (a fuzzer that only sees
+// failures tests nothing).
+void FuzzAndReport(const ConstitutiveModel& model, unsigned long seed_offset,
+                   const char* excursion_name) {
   const long paths = EnvironmentCount("GRANASYM_FUZZ_PATHS", 300);
-  const unsigned long seed = EnvironmentCount("GRANASYM_FUZZ_SEED", 20261123);
+  const unsigned long seed = EnvironmentCount("GRANASYM_FUZZ_SEED", 20261123) + seed_offset;
   FuzzTotals totals;
-  const HypoplasticClay london(testing_models::LondonClay());
-  FuzzModel(london, paths, seed, &totals);
-  RecordProperty("paths", std::to_string(totals.paths));
-  RecordProperty("reported_failures", std::to_string(totals.failures));
-  std::printf("hypoplastic clay: %ld paths, %ld reported failures, worst f_d/f_d^SBS - 1 = %.3g\n",
-              totals.paths, totals.failures, totals.worst_excursion);
-  // Most random paths are feasible; a fuzzer that only sees failures tests nothing.
+  FuzzModel(model, paths, seed, &totals);
+  ::testing::Test::RecordProperty("paths", std::to_string(totals.paths));
+  ::testing::Test::RecordProperty("reported_failures", std::to_string(totals.failures));
+  std::printf("%s: %ld paths, %ld reported failures, worst %s = %.3g\n", ToString(model.kind()),
+              totals.paths, totals.failures, excursion_name, totals.worst_excursion);
   if (totals.paths > 1) {
     EXPECT_LT(totals.failures, totals.paths / 2);
   }
+}
+
+TEST(PathFuzzing, HypoplasticClayNeverLeavesTheSbsNorProducesNaN) {
+  FuzzAndReport(HypoplasticClay(testing_models::LondonClay()), 0, "f_d/f_d^SBS - 1");
 }
 
 TEST(PathFuzzing, CamClayStaysInsideTheYieldSurfaceAndNeverProducesNaN) {
-  const long paths = EnvironmentCount("GRANASYM_FUZZ_PATHS", 300);
-  const unsigned long seed = EnvironmentCount("GRANASYM_FUZZ_SEED", 20261123) + 1;
-  FuzzTotals totals;
-  const ModifiedCamClay cam_clay(testing_models::CamClay());
-  FuzzModel(cam_clay, paths, seed, &totals);
-  RecordProperty("paths", std::to_string(totals.paths));
-  RecordProperty("reported_failures", std::to_string(totals.failures));
-  std::printf("Cam clay: %ld paths, %ld reported failures, worst f/(M p_c)^2 = %.3g\n",
-              totals.paths, totals.failures, totals.worst_excursion);
-  if (totals.paths > 1) {
-    EXPECT_LT(totals.failures, totals.paths / 2);
-  }
+  FuzzAndReport(ModifiedCamClay(testing_models::CamClay()), 1, "f/(M p_c)^2");
 }
 
+// The sand has no bounding surface here; every record must be admissible
+// (e > e_d(p) among others).
 TEST(PathFuzzing, HypoplasticSandStaysAdmissibleAndNeverProducesNaN) {
-  const long paths = EnvironmentCount("GRANASYM_FUZZ_PATHS", 300);
-  const unsigned long seed = EnvironmentCount("GRANASYM_FUZZ_SEED", 20261123) + 2;
-  FuzzTotals totals;
-  const HypoplasticSand sand(testing_models::HochstettenSand());
-  FuzzModel(sand, paths, seed, &totals);
-  RecordProperty("paths", std::to_string(totals.paths));
-  RecordProperty("reported_failures", std::to_string(totals.failures));
-  std::printf("hypoplastic sand: %ld paths, %ld reported failures\n", totals.paths,
-              totals.failures);
-  if (totals.paths > 1) {
-    EXPECT_LT(totals.failures, totals.paths / 2);
-  }
+  FuzzAndReport(HypoplasticSand(testing_models::HochstettenSand()), 2, "excursion (unchecked)");
 }
 
 }  // namespace
