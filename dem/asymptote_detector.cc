@@ -7,22 +7,25 @@
 namespace granasym::dem {
 namespace {
 
-// Least-squares slope of y(x) over samples [begin, end).
+// Least-squares slope of y(x) over samples [begin, end). The sums are taken
+// about the first sample, so that x without spread (constant p) gives
+// sxx == 0 exactly instead of a slope of rounding noise.
 template <typename X, typename Y>
 double Slope(const std::vector<AsymptoteDetector::Sample>& samples, size_t begin, size_t end, X x,
              Y y) {
+  const double x0 = x(samples[begin]), y0 = y(samples[begin]);
   double mean_x = 0, mean_y = 0;
   const double n = static_cast<double>(end - begin);
   for (size_t k = begin; k < end; ++k) {
-    mean_x += x(samples[k]);
-    mean_y += y(samples[k]);
+    mean_x += x(samples[k]) - x0;
+    mean_y += y(samples[k]) - y0;
   }
   mean_x /= n;
   mean_y /= n;
   double sxy = 0, sxx = 0;
   for (size_t k = begin; k < end; ++k) {
-    const double dx = x(samples[k]) - mean_x;
-    sxy += dx * (y(samples[k]) - mean_y);
+    const double dx = x(samples[k]) - x0 - mean_x;
+    sxy += dx * (y(samples[k]) - y0 - mean_y);
     sxx += dx * dx;
   }
   return sxx > 0 ? sxy / sxx : 0.0;
