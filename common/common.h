@@ -6,5 +6,6 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/progress.h"
+#include "common/provenance.h"
 #include "common/state_measures.h"
 #include "common/time_series.h"
