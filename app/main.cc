@@ -1,12 +1,14 @@
 // granasym: the command-line program. It parses and validates arguments and
 // calls the libraries; errors in user input end with a message and status 2.
-#include <CLI/CLI.hpp>
 #include <omp.h>
 
+#include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
+#include "app/progress.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/time_series.h"
@@ -24,6 +26,32 @@
 namespace granasym {
 namespace {
 
+// SIGINT/SIGTERM ask a running simulation to stop (it checkpoints, writes
+// its results and exits with status 130). The flag is the program's; the
+// libraries only see the stop request of RunOptions.
+volatile std::sig_atomic_t g_interrupt = 0;
+extern "C" void HandleSignal(int) { g_interrupt = 1; }
+
+// Installs the handlers for the duration of a run and restores the previous ones.
+class SignalGuard {
+ public:
+  SignalGuard() {
+    g_interrupt = 0;
+    previous_int_ = std::signal(SIGINT, HandleSignal);
+    previous_term_ = std::signal(SIGTERM, HandleSignal);
+  }
+  ~SignalGuard() {
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+  }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+ private:
+  void (*previous_int_)(int);
+  void (*previous_term_)(int);
+};
+
 void RegisterDemCommands(CLI::App& app) {
   CLI::App* dem = app.add_subcommand("dem", "discrete element runs on a periodic cell");
   dem->require_subcommand(1);
@@ -35,8 +63,10 @@ void RegisterDemCommands(CLI::App& app) {
   static std::string gsd_path, packing_out;
   static double cell_mm = 31.0;
   static int64_t count = 150000;
-  generate->add_option("--count", count, "number of spheres")->check(CLI::Range(int64_t{2}, int64_t{2000000000}));
-  generate->add_option("--cell-mm", cell_mm, "side of the periodic cube (mm)")->check(CLI::PositiveNumber);
+  generate->add_option("--count", count, "number of spheres")
+      ->check(CLI::Range(int64_t{2}, int64_t{2000000000}));
+  generate->add_option("--cell-mm", cell_mm, "side of the periodic cube (mm)")
+      ->check(CLI::PositiveNumber);
   generate->add_option("--gsd", gsd_path,
                        "grain-size table (CSV: diameter_mm,percent_passing_by_mass); default: "
                        "the reduced GSD of Zbraslav sand");
@@ -59,18 +89,36 @@ void RegisterDemCommands(CLI::App& app) {
   CLI::App* run = dem->add_subcommand("run", "run a scene file (TOML) and write one HDF5 result");
   static std::string scene_path;
   static dem::RunOptions run_options;
+  static bool quiet = false;
   run->add_option("scene", scene_path, "scene file (TOML)")->required()->check(CLI::ExistingFile);
   run->add_option("--out", run_options.output_path, "result file (HDF5)");
   run->add_option("--threads", run_options.threads, "OpenMP threads (default: the scene's)")
       ->check(CLI::Range(1, 1024));
   run->add_flag("--restart", run_options.restart,
                 "continue from the checkpoint written next to --out");
-  run->add_flag("--quiet", run_options.quiet, "no progress output");
+  run->add_flag("--quiet", quiet, "no progress output");
   run->add_flag("--keep-checkpoint", run_options.keep_checkpoint,
                 "keep the checkpoint after a completed run");
   run->callback([] {
     const dem::Scene scene = dem::Scene::Load(scene_path);
+    Progress::Options progress_options;
+    progress_options.plain_interval_s = scene.output.progress_interval_s;
+    progress_options.quiet = quiet;
+    Progress progress(progress_options);
+    const SignalGuard signals;
+    run_options.stop_requested = [](int64_t) { return g_interrupt != 0; };
+    if (!quiet) {
+      run_options.log = [&progress](const std::string& line) {
+        progress.Finish();
+        std::fprintf(stderr, "%s%s", line.c_str(),
+                     !line.empty() && line.back() == '\n' ? "" : "\n");
+      };
+      run_options.progress = [&progress](const dem::RunProgress& state) {
+        if (progress.Due()) progress.Report(state.OneLine());
+      };
+    }
     const dem::RunSummary summary = dem::RunScene(scene, run_options);
+    progress.Finish();
     std::printf("%s\nresults: %s\n", summary.OneLine().c_str(), run_options.output_path.c_str());
     if (summary.termination == dem::Termination::kInterrupted) throw CLI::RuntimeError(130);
     if (summary.termination == dem::Termination::kFailed) throw CLI::RuntimeError(3);
@@ -78,8 +126,8 @@ void RegisterDemCommands(CLI::App& app) {
 }
 
 void RegisterExportCommand(CLI::App& app) {
-  CLI::App* exporter =
-      app.add_subcommand("export", "export a result file: time series as CSV, final packing as text");
+  CLI::App* exporter = app.add_subcommand(
+      "export", "export a result file: time series as CSV, final packing as text");
   static std::string input, csv_path, packing_path;
   exporter->add_option("result", input, "result file (HDF5)")->required()->check(CLI::ExistingFile);
   exporter->add_option("--csv", csv_path, "write the time series as CSV with a header row");
@@ -108,8 +156,9 @@ void RegisterExportCommand(CLI::App& app) {
 }  // namespace granasym
 
 int main(int argc, char** argv) {
-  CLI::App app{"granasym: asymptotic behaviour of granular materials (DEM, constitutive models, "
-               "calibration)"};
+  CLI::App app{
+      "granasym: asymptotic behaviour of granular materials (DEM, constitutive models, "
+      "calibration)"};
   app.require_subcommand(1);
   granasym::RegisterDemCommands(app);
   granasym::RegisterExportCommand(app);

@@ -50,7 +50,6 @@ const Packing& DensePacking(size_t count) {
     const Scene scene = Scene::Parse(scene_text, "dense packing fixture", "");
     RunOptions options;
     options.output_path = path + ".h5";
-    options.quiet = true;
     const RunSummary summary = RunScene(scene, options);
     if (summary.termination != Termination::kCompleted) {
       throw std::runtime_error("dense packing fixture failed: " + summary.message);

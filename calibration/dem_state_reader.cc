@@ -8,8 +8,11 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/state_measures.h"
+#include "dem/run_record_names.h"
 
 namespace granasym::calibration {
+
+namespace record = ::granasym::dem::record;
 
 bool DemReadOptions::IsValid(std::string* why) const {
   if (!(ncl_min_p_kpa >= 0)) {
@@ -23,9 +26,10 @@ bool DemReadOptions::IsValid(std::string* why) const {
   for (size_t k = 0; k < asbs_ln_1_plus_e.size(); ++k) {
     const double v = asbs_ln_1_plus_e[k];
     if (!(std::isfinite(v) && v > 0)) {
-      *why = fmt::format("asbs_ln_1_plus_e[{}] = {} must be finite and > 0 (ln(1+e) of a void "
-                         "ratio e > 0)",
-                         k, v);
+      *why = fmt::format(
+          "asbs_ln_1_plus_e[{}] = {} must be finite and > 0 (ln(1+e) of a void "
+          "ratio e > 0)",
+          k, v);
       return false;
     }
   }
@@ -66,9 +70,8 @@ std::vector<size_t> LineRows(const std::vector<double>& p, int64_t first, int64_
   size_t next = 0;
   for (int k = 0; k < max_points; ++k) {
     const double target = lo + (hi - lo) * k / (max_points - 1);
-    while (next + 1 < candidates.size() &&
-           std::abs(std::log(p[candidates[next + 1]]) - target) <=
-               std::abs(std::log(p[candidates[next]]) - target)) {
+    while (next + 1 < candidates.size() && std::abs(std::log(p[candidates[next + 1]]) - target) <=
+                                               std::abs(std::log(p[candidates[next]]) - target)) {
       ++next;
     }
     if (rows.empty() || rows.back() != candidates[next]) rows.push_back(candidates[next]);
@@ -81,7 +84,7 @@ std::vector<size_t> LineRows(const std::vector<double>& p, int64_t first, int64_
 void AddAsbsPoints(const Hdf5File& file, const std::string& group, const std::string& where,
                    const AsymptoticStatePoint& asymptote, const DemReadOptions& options,
                    StateDataset* dataset) {
-  const char* kSlope = "asymptote_dln1pe_dlnp";
+  const char* kSlope = record::kAsymptoteDln1peDlnp;
   if (!file.HasAttribute(group, kSlope)) {
     dataset->warnings.push_back(fmt::format(
         "{}: no {} attribute (slope of the asymptotic line); no ASBS points taken", where, kSlope));
@@ -123,65 +126,73 @@ StateDataset ReadStatesDem(const std::string& path, const std::string& name,
   std::string why;
   GRANASYM_CHECK(options.IsValid(&why)) << why;
   const Hdf5File file = Hdf5File::OpenRead(path);
-  for (const char* required : {"/stages", "/series/p_kpa", "/series/e", "/series/psi_sigma_deg"}) {
+  const std::string series = record::kSeries;
+  const std::string p_column = series + "/" + record::kColumnMeanStress;
+  const std::string e_column = series + "/" + record::kColumnVoidRatio;
+  const std::string psi_column = series + "/" + record::kColumnPsiSigma;
+  for (const std::string& required :
+       {std::string(record::kStages), p_column, e_column, psi_column}) {
     if (!file.Exists(required)) {
       throw InputError(fmt::format("{}: not a granasym DEM result file (no {})", path, required));
     }
   }
-  const std::vector<double> p = file.ReadDoubles("/series/p_kpa");
-  const std::vector<double> e = file.ReadDoubles("/series/e");
-  const std::vector<double> psi_sigma = file.ReadDoubles("/series/psi_sigma_deg");
+  const std::vector<double> p = file.ReadDoubles(p_column);
+  const std::vector<double> e = file.ReadDoubles(e_column);
+  const std::vector<double> psi_sigma = file.ReadDoubles(psi_column);
 
   StateDataset dataset;
   dataset.name = name;
   dataset.origin = path;
   const double tolerance = options.kind_tolerance_deg * kDegree;
-  for (const std::string& stage : file.List("/stages")) {
-    const std::string group = "/stages/" + stage;
-    const std::string stage_name = file.ReadStringAttribute(group, "name");
+  for (const std::string& stage : file.List(record::kStages)) {
+    const std::string group = std::string(record::kStages) + "/" + stage;
+    const std::string stage_name = file.ReadStringAttribute(group, record::kStageName);
     const std::string where = fmt::format("{}:{} ({})", path, group, stage_name);
-    if (!file.HasAttribute(group, "psi_epsilon_deg")) continue;  // not a strain-path stage
-    const double psi_epsilon = file.ReadDoubleAttribute(group, "psi_epsilon_deg") * kDegree;
+    if (!file.HasAttribute(group, record::kStagePsiEpsilonDeg)) continue;  // not a strain path
+    const double psi_epsilon =
+        file.ReadDoubleAttribute(group, record::kStagePsiEpsilonDeg) * kDegree;
     AsymptoticStatePoint base;
     base.psi_epsilon = psi_epsilon;
     base.weight = options.weight;
     base.psi_sigma_uncertainty = options.psi_sigma_uncertainty_deg * kDegree;
     base.ln_volume_uncertainty = options.ln_volume_uncertainty;
-    const bool ran_detector = file.HasAttribute(group, "asymptote_detected");
-    if (ran_detector && file.ReadIntAttribute(group, "asymptote_detected") == 1) {
+    const bool ran_detector = file.HasAttribute(group, record::kAsymptoteDetected);
+    if (ran_detector && file.ReadIntAttribute(group, record::kAsymptoteDetected) == 1) {
       AsymptoticStatePoint point = base;
       point.kind = KindFromStretching(psi_epsilon, tolerance);
-      point.mean_stress = file.ReadDoubleAttribute(group, "asymptote_p_kpa");
-      point.void_ratio = file.ReadDoubleAttribute(group, "asymptote_e");
-      point.psi_sigma = file.ReadDoubleAttribute(group, "asymptote_psi_sigma_deg") * kDegree;
+      point.mean_stress = file.ReadDoubleAttribute(group, record::kAsymptoteMeanStressKpa);
+      point.void_ratio = file.ReadDoubleAttribute(group, record::kAsymptoteVoidRatio);
+      point.psi_sigma = file.ReadDoubleAttribute(group, record::kAsymptotePsiSigmaDeg) * kDegree;
       point.source = where;
       if (point.kind == StateKind::kUnloading) {
         dataset.warnings.push_back(where + ": an asymptote at psi_epsilon = 180 deg is not used");
         continue;
       }
       dataset.points.push_back(point);
-      if (!options.asbs_ln_1_plus_e.empty()) AddAsbsPoints(file, group, where, point, options, &dataset);
+      if (!options.asbs_ln_1_plus_e.empty())
+        AddAsbsPoints(file, group, where, point, options, &dataset);
       continue;
     }
     if (ran_detector) {
-      dataset.warnings.push_back(fmt::format(
-          "{}: no asymptote detected (stop reason: {}); stage skipped", where,
-          file.HasAttribute(group, "stop_reason") ? file.ReadStringAttribute(group, "stop_reason")
-                                                 : "unknown"));
+      dataset.warnings.push_back(
+          fmt::format("{}: no asymptote detected (stop reason: {}); stage skipped", where,
+                      file.HasAttribute(group, record::kStageStopReason)
+                          ? file.ReadStringAttribute(group, record::kStageStopReason)
+                          : "unknown"));
       continue;
     }
     const StateKind kind = KindFromStretching(psi_epsilon, tolerance);
     if (kind != StateKind::kNcl && kind != StateKind::kUnloading) continue;
-    const int64_t first = file.ReadIntAttribute(group, "first_row");
-    const int64_t last = file.ReadIntAttribute(group, "last_row");
+    const int64_t first = file.ReadIntAttribute(group, record::kStageFirstRow);
+    const int64_t last = file.ReadIntAttribute(group, record::kStageLastRow);
     const int direction = kind == StateKind::kNcl ? +1 : -1;
     const double min_p = kind == StateKind::kNcl ? options.ncl_min_p_kpa : 0.0;
     const std::vector<size_t> rows =
         LineRows(p, first, last, direction, min_p, options.max_line_points);
     if (kind == StateKind::kNcl && rows.size() < 2) {
-      dataset.warnings.push_back(fmt::format(
-          "{}: fewer than 2 rows with p >= {} kPa; no NCL points taken", where,
-          options.ncl_min_p_kpa));
+      dataset.warnings.push_back(
+          fmt::format("{}: fewer than 2 rows with p >= {} kPa; no NCL points taken", where,
+                      options.ncl_min_p_kpa));
     }
     for (size_t r : rows) {
       AsymptoticStatePoint point = base;
@@ -196,8 +207,8 @@ StateDataset ReadStatesDem(const std::string& path, const std::string& name,
   if (dataset.points.empty()) {
     std::string reasons;
     for (const std::string& w : dataset.warnings) reasons += "; " + w;
-    throw InputError(fmt::format("{}: no asymptotic states found (dataset '{}'){}", path, name,
-                                 reasons));
+    throw InputError(
+        fmt::format("{}: no asymptotic states found (dataset '{}'){}", path, name, reasons));
   }
   dataset.Validate();
   return dataset;

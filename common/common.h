@@ -5,7 +5,7 @@
 #include "common/csv_table.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
-#include "common/progress.h"
 #include "common/provenance.h"
+#include "common/stopwatch.h"
 #include "common/state_measures.h"
 #include "common/time_series.h"

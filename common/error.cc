@@ -10,7 +10,7 @@ CheckFailure::~CheckFailure() noexcept(false) {
   out << "internal check failed at " << file_ << ":" << line_ << ": (" << condition_ << ")";
   const std::string message = stream_.str();
   if (!message.empty()) out << ": " << message;
-  throw RuntimeError(out.str());
+  throw InvariantError(out.str());
 }
 
 }  // namespace granasym::internal

@@ -1,5 +1,9 @@
-// Errors: an always-on check macro for programming errors and the exception
-// type for bad user input (scene files, tables, CSV data, flags).
+// Errors, in three kinds that callers treat differently:
+//  - InputError: bad user input (scene files, tables, CSV data, flags);
+//  - RuntimeError: a numerical failure or a failed library/file-system call,
+//    which a run loop reports as a failed run with its results so far;
+//  - InvariantError: a programming error (a violated invariant, thrown by
+//    GRANASYM_CHECK), which no run loop swallows.
 #pragma once
 
 #include <sstream>
@@ -15,15 +19,22 @@ class InputError : public std::runtime_error {
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
 };
 
-// A failure of the program itself or of a library call (HDF5, the file system).
+// A numerical failure, or a failed call of a library (HDF5) or of the file system.
 class RuntimeError : public std::runtime_error {
  public:
   explicit RuntimeError(const std::string& message) : std::runtime_error(message) {}
 };
 
+// A violated invariant: a bug in granasym, never a property of the input.
+class InvariantError : public std::logic_error {
+ public:
+  explicit InvariantError(const std::string& message) : std::logic_error(message) {}
+};
+
 namespace internal {
-// Collects the message of a failed check and throws RuntimeError when the
+// Collects the message of a failed check and throws when the
 // full statement has been streamed (at the end of the full expression).
+// Throws InvariantError.
 class CheckFailure {
  public:
   CheckFailure(const char* file, int line, const char* condition);

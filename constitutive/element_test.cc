@@ -11,7 +11,7 @@
 #include <cmath>
 
 #include "common/error.h"
-#include "common/progress.h"
+#include "common/stopwatch.h"
 
 namespace granasym {
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/progress.h"
+#include "common/stopwatch.h"
 
 namespace granasym {
 

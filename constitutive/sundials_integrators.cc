@@ -19,7 +19,7 @@
 #include <limits>
 
 #include "common/error.h"
-#include "common/progress.h"
+#include "common/stopwatch.h"
 
 namespace granasym {
 

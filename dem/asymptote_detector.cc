@@ -1,10 +1,42 @@
 #include "dem/asymptote_detector.h"
 
 #include <cmath>
+#include <sstream>
 
+#include "common/canonical_text.h"
+#include "common/config.h"
 #include "common/state_measures.h"
 
 namespace granasym::dem {
+
+std::string AsymptoteCriterion::Describe() const {
+  std::ostringstream out;
+  out << "over the last " << window_strain << " of accumulated strain (samples every "
+      << sample_strain << "): fitted change of psi_sigma < " << psi_tolerance_deg
+      << " deg, and the changes of ln p over the two half-windows differ by < " << lnp_tolerance;
+  return out.str();
+}
+
+AsymptoteCriterion AsymptoteCriterion::Parse(const ConfigTable& a) {
+  AsymptoteCriterion c;
+  c.sample_strain = a.GetDouble("sample_strain", c.sample_strain, Range::Positive());
+  c.window_strain = a.GetDouble("window_strain", c.window_strain, Range::Positive());
+  c.psi_tolerance_deg = a.GetDouble("psi_tolerance_deg", c.psi_tolerance_deg, Range::Positive());
+  c.lnp_tolerance = a.GetDouble("lnp_tolerance", c.lnp_tolerance, Range::Positive());
+  if (c.window_strain < 8 * c.sample_strain) {
+    a.Fail("window_strain", "= " + std::to_string(c.window_strain) +
+                                " must be at least 8 times sample_strain (" +
+                                std::to_string(c.sample_strain) + ")");
+  }
+  return c;
+}
+
+void AsymptoteCriterion::Canonical(CanonicalText& text, const std::string& prefix) const {
+  text.Add(prefix + "sample_strain", sample_strain);
+  text.Add(prefix + "window_strain", window_strain);
+  text.Add(prefix + "psi_tolerance_deg", psi_tolerance_deg);
+  text.Add(prefix + "lnp_tolerance", lnp_tolerance);
+}
 namespace {
 
 // Least-squares slope of y(x) over samples [begin, end). The sums are taken

@@ -1,12 +1,33 @@
 // Detection of the asymptotic state reached under proportional straining,
-// with the stated criterion of AsymptoteCriterion (dem/scene.h).
+// with a stated criterion that is stored with every detected state.
 #pragma once
 
+#include <string>
 #include <vector>
 
-#include "dem/scene.h"
+namespace granasym {
+class CanonicalText;
+class ConfigTable;
+}  // namespace granasym
 
 namespace granasym::dem {
+
+// Asymptotic-state criterion (SPEC §5): over the last `window_strain` of
+// accumulated strain ∫‖D‖dt, sampled every `sample_strain`,
+//  (1) the fitted change of ψ_σ across the window is below psi_tolerance_deg,
+//  (2) the change of ln p across each half of the window differs between the
+//      halves by less than lnp_tolerance (d ln p/dε is stationary, so the
+//      state moves parallel to an asymptotic line, or stays at constant p).
+struct AsymptoteCriterion {
+  double sample_strain = 2e-3;
+  double window_strain = 0.1;
+  double psi_tolerance_deg = 0.5;
+  double lnp_tolerance = 0.02;
+  std::string Describe() const;
+  // Reads a [stage.asymptote] table (missing keys keep their defaults).
+  static AsymptoteCriterion Parse(const ConfigTable& table);
+  void Canonical(CanonicalText& text, const std::string& prefix) const;
+};
 
 class AsymptoteDetector {
  public:
@@ -18,11 +39,11 @@ class AsymptoteDetector {
   };
   struct Result {
     bool detected = false;
-    double psi_sigma = 0;          // mean over the window (rad)
-    double psi_change_deg = 0;     // fitted change across the window
+    double psi_sigma = 0;            // mean over the window (rad)
+    double psi_change_deg = 0;       // fitted change across the window
     double lnp_half_difference = 0;  // |Δln p (2nd half) − Δln p (1st half)|
-    double slope_lnp = 0;          // d ln p / dε over the window
-    double slope_lnv_lnp = 0;      // d ln(1+e) / d ln p over the window (−λ* on a line)
+    double slope_lnp = 0;            // d ln p / dε over the window
+    double slope_lnv_lnp = 0;        // d ln(1+e) / d ln p over the window (−λ* on a line)
   };
 
   explicit AsymptoteDetector(AsymptoteCriterion criterion = {}) : criterion_(criterion) {}

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "common/error.h"
-#include "common/progress.h"
+#include "common/stopwatch.h"
 #include "common/state_measures.h"
 
 namespace granasym::dem {

@@ -5,121 +5,21 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/canonical_text.h"
 #include "common/config.h"
 #include "common/error.h"
 #include "common/state_measures.h"
 
 namespace granasym::dem {
 
-std::string ToString(StageType type) {
-  switch (type) {
-    case StageType::kStrainPath: return "strain_path";
-    case StageType::kTriaxial: return "triaxial";
-    case StageType::kRest: return "rest";
-  }
-  return "unknown";
-}
-
-StageType StageTypeFromString(const std::string& name) {
-  for (StageType type : {StageType::kStrainPath, StageType::kTriaxial, StageType::kRest}) {
-    if (ToString(type) == name) return type;
-  }
-  throw InputError("unknown stage type '" + name + "': expected strain_path, triaxial or rest");
-}
-
-std::string AsymptoteCriterion::Describe() const {
-  std::ostringstream out;
-  out << "over the last " << window_strain << " of accumulated strain (samples every "
-      << sample_strain << "): fitted change of psi_sigma < " << psi_tolerance_deg
-      << " deg, and the changes of ln p over the two half-windows differ by < " << lnp_tolerance;
-  return out.str();
-}
-
 namespace {
 
-std::optional<double> OptionalDouble(const ConfigTable& table, const std::string& key, Range range) {
-  if (!table.Has(key)) return std::nullopt;
-  return table.GetDouble(key, range);
-}
-
-Stage ParseStage(const ConfigTable& table, size_t index) {
-  Stage stage;
-  stage.name = table.GetString("name", "stage" + std::to_string(index + 1));
-  const std::string type =
-      table.GetChoice("type", {"strain_path", "triaxial", "rest"}, "strain_path");
-  stage.type = StageTypeFromString(type);
-  switch (stage.type) {
-    case StageType::kStrainPath:
-      stage.psi_epsilon = table.GetDouble("psi_epsilon_deg", Range::Closed(-180, 180)) * kDegree;
-      stage.stretching_rate = table.GetDouble("stretching_rate", Range::Positive());
-      break;
-    case StageType::kTriaxial:
-      stage.axial_strain_rate = table.GetDouble("axial_strain_rate", Range::Any());
-      if (stage.axial_strain_rate == 0) {
-        table.Fail("axial_strain_rate", "= 0: must be non-zero (1/s, compression positive)");
-      }
-      stage.radial_stress_kpa = table.GetDouble("radial_stress_kpa", Range::Positive());
-      stage.stretching_rate = std::abs(stage.axial_strain_rate);
-      break;
-    case StageType::kRest:
-      stage.mean_stress_kpa = table.GetDouble("mean_stress_kpa", Range::Positive());
-      stage.stretching_rate = table.GetDouble("max_strain_rate", 10.0, Range::Positive());
-      break;
-  }
-  if (table.Has("control")) {
-    const ConfigTable control = table.GetTable("control");
-    stage.control.gain = control.GetDouble("gain", stage.control.gain, Range::Open(0, 1));
-    stage.control.integral_gain =
-        control.GetDouble("integral_gain", stage.control.integral_gain, Range::Closed(0, 1));
-    stage.control.max_rate_factor =
-        control.GetDouble("max_rate_factor", stage.control.max_rate_factor, Range::Positive());
-    stage.control.check_interval =
-        control.GetInt("check_interval", stage.control.check_interval, Range::AtLeast(1));
-  }
-  if (table.Has("asymptote")) {
-    const ConfigTable a = table.GetTable("asymptote");
-    AsymptoteCriterion& c = stage.asymptote;
-    c.sample_strain = a.GetDouble("sample_strain", c.sample_strain, Range::Positive());
-    c.window_strain = a.GetDouble("window_strain", c.window_strain, Range::Positive());
-    c.psi_tolerance_deg = a.GetDouble("psi_tolerance_deg", c.psi_tolerance_deg, Range::Positive());
-    c.lnp_tolerance = a.GetDouble("lnp_tolerance", c.lnp_tolerance, Range::Positive());
-    if (c.window_strain < 8 * c.sample_strain) {
-      a.Fail("window_strain", "= " + std::to_string(c.window_strain) +
-                                  " must be at least 8 times sample_strain (" +
-                                  std::to_string(c.sample_strain) + ")");
-    }
-    stage.detect_asymptote = true;
-  }
-  if (!table.Has("stop")) {
-    table.Fail("stop", "is missing: every stage needs a [stage.stop] table with at least one of "
-                       "mean_stress_kpa, axial_strain, volumetric_strain, shear_strain, "
-                       "strain_norm, time_s, steps, asymptote (rest stages stop at equilibrium)");
-  }
-  const ConfigTable stop = table.GetTable("stop");
-  StopConditions& s = stage.stop;
-  s.mean_stress_kpa = OptionalDouble(stop, "mean_stress_kpa", Range::Positive());
-  const std::string direction = stop.GetChoice("direction", {"auto", "rising", "falling"}, "auto");
-  s.mean_stress_direction = direction == "rising"    ? Direction::kRising
-                            : direction == "falling" ? Direction::kFalling
-                                                     : Direction::kAuto;
-  s.axial_strain = OptionalDouble(stop, "axial_strain", Range::Any());
-  s.volumetric_strain = OptionalDouble(stop, "volumetric_strain", Range::Any());
-  s.shear_strain = OptionalDouble(stop, "shear_strain", Range::Any());
-  s.strain_norm = OptionalDouble(stop, "strain_norm", Range::Positive());
-  s.time_s = OptionalDouble(stop, "time_s", Range::Positive());
-  if (stop.Has("steps")) s.steps = stop.GetInt("steps", Range::AtLeast(1));
-  s.asymptote = stop.GetBool("asymptote", false);
-  s.stress_tolerance = stop.GetDouble("stress_tolerance", s.stress_tolerance, Range::Open(0, 1));
-  s.unbalanced_force = stop.GetDouble("unbalanced_force", s.unbalanced_force, Range::Positive());
-  if (s.asymptote) stage.detect_asymptote = true;
-  const bool any = s.mean_stress_kpa || s.axial_strain || s.volumetric_strain || s.shear_strain ||
-                   s.strain_norm || s.time_s || s.steps || s.asymptote ||
-                   stage.type == StageType::kRest;
-  if (!any) {
-    stop.Fail("", "has no stop condition: give at least one of mean_stress_kpa, axial_strain, "
-                  "volumetric_strain, shear_strain, strain_norm, time_s, steps, asymptote");
-  }
-  return stage;
+void CanonicalMaterial(const Material& m, CanonicalText& text) {
+  text.Add("material.youngs_modulus_mpa", m.youngs_modulus * 1e-6);
+  text.Add("material.stiffness_ratio", m.stiffness_ratio);
+  text.Add("material.friction_angle_rad", m.friction_angle);
+  text.Add("material.density_kg_m3", m.density);
+  text.Add("material.local_damping", m.local_damping);
 }
 
 }  // namespace
@@ -146,16 +46,28 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
   };
 
   const ConfigTable sample = root.GetTable("sample");
-  if (sample.Has("packing") == sample.Has("generate")) {
-    sample.Fail("packing", "and [sample.generate]: give exactly one of them");
+  const int sources =
+      int{sample.Has("packing")} + int{sample.Has("generate")} + int{sample.Has("state")};
+  if (sources != 1) {
+    sample.Fail("packing",
+                "[sample.generate] and state: give exactly one of them (a packing "
+                "file, generation parameters, or the result file of a run to "
+                "continue from)");
+  }
+  if (sample.Has("state")) {
+    ParentState parent;
+    parent.path = resolve(sample.GetString("state"));
+    parent.stage = sample.GetString("stage", "");
+    scene.parent = parent;
+  } else if (sample.Has("stage")) {
+    sample.Fail("stage", "applies only to a sample that starts from a state (sample.state)");
   }
   if (sample.Has("packing")) {
     scene.packing_path = resolve(sample.GetString("packing"));
-  } else {
+  } else if (sample.Has("generate")) {
     const ConfigTable generate = sample.GetTable("generate");
     GenerationOptions options;
-    options.count =
-        static_cast<size_t>(generate.GetInt("count", 150000, Range::Closed(2, 2e9)));
+    options.count = static_cast<size_t>(generate.GetInt("count", 150000, Range::Closed(2, 2e9)));
     options.cell_size = generate.GetDouble("cell_size_mm", 31.0, Range::Positive()) * 1e-3;
     options.seed = static_cast<uint64_t>(generate.GetInt("seed", 1, Range::NonNegative()));
     options.max_attempts = static_cast<int>(
@@ -171,8 +83,8 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
         m.GetDouble("youngs_modulus_mpa", material.youngs_modulus * 1e-6, Range::Positive()) * 1e6;
     material.stiffness_ratio =
         m.GetDouble("stiffness_ratio", material.stiffness_ratio, Range::NonNegative());
-    material.friction_angle = m.GetDouble("friction_angle_rad", material.friction_angle,
-                                          {0.0, kPi / 2, true, false});
+    material.friction_angle =
+        m.GetDouble("friction_angle_rad", material.friction_angle, {0.0, kPi / 2, true, false});
     material.density = m.GetDouble("density_kg_m3", material.density, Range::Positive());
     material.local_damping =
         m.GetDouble("local_damping", material.local_damping, {0.0, 1.0, true, false});
@@ -184,20 +96,22 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
       n.Fail("time_step_s", "and time_step_fraction are both given: give one of them");
     }
     if (n.Has("time_step_s")) scene.time_step_s = n.GetDouble("time_step_s", Range::Positive());
-    scene.time_step_fraction = n.GetDouble("time_step_fraction", scene.time_step_fraction,
-                                           {0.0, 2.0 / kPi, false, true});
-    scene.skin_fraction = n.GetDouble("skin_fraction", scene.skin_fraction, {0.0, 2.0, false, true});
+    scene.time_step_fraction =
+        n.GetDouble("time_step_fraction", scene.time_step_fraction, {0.0, 2.0 / kPi, false, true});
+    scene.skin_fraction =
+        n.GetDouble("skin_fraction", scene.skin_fraction, {0.0, 2.0, false, true});
     scene.threads = static_cast<int>(n.GetInt("threads", 1, Range::Closed(1, 1024)));
   }
 
   if (root.Has("output")) {
     const ConfigTable o = root.GetTable("output");
     OutputOptions& output = scene.output;
-    output.interval_strain = o.GetDouble("interval_strain", output.interval_strain, Range::Positive());
+    output.interval_strain =
+        o.GetDouble("interval_strain", output.interval_strain, Range::Positive());
     output.interval_steps = o.GetInt("interval_steps", output.interval_steps, Range::NonNegative());
     output.overlap_histogram = o.GetBool("overlap_histogram", output.overlap_histogram);
-    output.histogram_bins =
-        static_cast<int>(o.GetInt("histogram_bins", output.histogram_bins, Range::Closed(1, 10000)));
+    output.histogram_bins = static_cast<int>(
+        o.GetInt("histogram_bins", output.histogram_bins, Range::Closed(1, 10000)));
     output.histogram_min = o.GetDouble("histogram_min", output.histogram_min, Range::Positive());
     output.histogram_max =
         o.GetDouble("histogram_max", output.histogram_max, Range::Open(output.histogram_min, 1.0));
@@ -205,6 +119,7 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
         o.GetDouble("checkpoint_interval_s", output.checkpoint_interval_s, Range::Positive());
     output.progress_interval_s =
         o.GetDouble("progress_interval_s", output.progress_interval_s, Range::Positive());
+    output.stage_states = o.GetBool("stage_states", output.stage_states);
   }
 
   const std::vector<ConfigTable> stages = root.GetTableArray("stage");
@@ -216,10 +131,48 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
   return scene;
 }
 
+std::string Scene::Canonical() const {
+  CanonicalText text;
+  if (parent) {
+    text.Add("sample.source", "state");
+    text.Add("sample.stage", parent->stage);
+  } else if (generate) {
+    text.Add("sample.source", "generate");
+    text.Add("sample.generate.count", static_cast<int64_t>(generate->count));
+    text.Add("sample.generate.cell_size_mm", generate->cell_size * 1e3);
+    text.Add("sample.generate.seed", static_cast<int64_t>(generate->seed));
+    text.Add("sample.generate.max_attempts", static_cast<int64_t>(generate->max_attempts));
+    text.Add("sample.generate.gsd", gsd_path.empty() ? "default" : "file");
+  } else {
+    text.Add("sample.source", "packing");
+  }
+  CanonicalMaterial(material, text);
+  if (time_step_s) {
+    text.Add("numerics.time_step_s", *time_step_s);
+  } else {
+    text.Add("numerics.time_step_fraction", time_step_fraction);
+  }
+  text.Add("numerics.skin_fraction", skin_fraction);
+  text.Add("output.interval_strain", output.interval_strain);
+  text.Add("output.interval_steps", output.interval_steps);
+  text.Add("output.overlap_histogram", output.overlap_histogram);
+  if (output.overlap_histogram) {
+    text.Add("output.histogram_bins", output.histogram_bins);
+    text.Add("output.histogram_min", output.histogram_min);
+    text.Add("output.histogram_max", output.histogram_max);
+  }
+  text.Add("output.stage_states", output.stage_states);
+  for (size_t k = 0; k < stages.size(); ++k) {
+    stages[k].Canonical(text, "stage[" + std::to_string(k) + "].");
+  }
+  return text.Text();
+}
+
 Packing Scene::BuildSample(GenerationReport* report) const {
+  GRANASYM_CHECK(!parent) << "the sample of a forked scene comes from its parent state";
   if (!packing_path.empty()) return Packing::ReadText(packing_path);
-  const GrainSizeDistribution gsd =
-      gsd_path.empty() ? GrainSizeDistribution::Default() : GrainSizeDistribution::ReadCsv(gsd_path);
+  const GrainSizeDistribution gsd = gsd_path.empty() ? GrainSizeDistribution::Default()
+                                                     : GrainSizeDistribution::ReadCsv(gsd_path);
   return GeneratePacking(gsd, *generate, report);
 }
 

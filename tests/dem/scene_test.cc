@@ -53,7 +53,7 @@ TEST(Scene, ValidSceneParsesWithUnitsConverted) {
   const Scene scene = Scene::Parse(kValid, "good.toml", "");
   EXPECT_DOUBLE_EQ(scene.material.youngs_modulus, 500e6);
   ASSERT_EQ(scene.stages.size(), 1u);
-  EXPECT_EQ(scene.stages[0].type, StageType::kStrainPath);
+  EXPECT_EQ(scene.stages[0].type(), "strain_path");
   EXPECT_DOUBLE_EQ(*scene.stages[0].stop.mean_stress_kpa, 100.0);
   EXPECT_EQ(ErrorOf(kValid), "");
 }

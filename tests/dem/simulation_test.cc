@@ -2,9 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
+#include <atomic>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <thread>
@@ -12,6 +11,7 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/time_series.h"
+#include "dem/run_record_names.h"
 #include "dem/scene.h"
 #include "test_util.h"
 
@@ -30,7 +30,6 @@ struct Result {
 Result RunText(const std::string& text, const std::string& name, RunOptions options = {}) {
   const Scene scene = Scene::Parse(text, name + ".toml", "");
   options.output_path = TempPath(name + ".h5");
-  options.quiet = true;
   Result result;
   result.summary = RunScene(scene, options);
   const Hdf5File file = Hdf5File::OpenRead(options.output_path);
@@ -124,7 +123,8 @@ TEST(Simulation, RestartContinuesBitIdentically) {
   ASSERT_EQ(straight.summary.termination, Termination::kCompleted);
   // Interrupt in the middle of the triaxial stage, then continue.
   RunOptions first;
-  first.interrupt_after_steps = straight.summary.steps - 700;
+  const int64_t stop_at = straight.summary.steps - 700;
+  first.stop_requested = [stop_at](int64_t step) { return step >= stop_at; };
   first.output_path = TempPath("restarted.h5");
   const Result interrupted = RunText(text, "restarted", first);
   ASSERT_EQ(interrupted.summary.termination, Termination::kInterrupted);
@@ -139,28 +139,61 @@ TEST(Simulation, RestartContinuesBitIdentically) {
   EXPECT_EQ(resumed.positions, straight.positions);
 }
 
-TEST(Simulation, SigintWritesACheckpointAndTheRunContinuesFromIt) {
+TEST(Simulation, AStopRequestWritesACheckpointAndTheRunContinuesFromIt) {
   const std::string text = SampleToml(1000, 5.8, 9) + kMultiStage;
-  const Scene scene = Scene::Parse(text, "sigint.toml", "");
+  const Scene scene = Scene::Parse(text, "stop_request.toml", "");
   RunOptions options;
-  options.output_path = TempPath("sigint.h5");
-  options.quiet = true;
+  options.output_path = TempPath("stop_request.h5");
   std::remove((options.output_path + ".ckpt").c_str());
+  // The request arrives from another thread, as a signal handler's flag would.
+  std::atomic<bool> requested{false};
+  std::atomic<int64_t> seen{0};
+  options.stop_requested = [&](int64_t step) {
+    seen = step;
+    return requested.load();
+  };
   RunSummary first;
   std::thread runner([&] { first = RunScene(scene, options); });
-  // Signal once the run is under way (the handler is process-wide).
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
-  std::raise(SIGINT);
+  while (seen.load() < 300) std::this_thread::yield();
+  requested = true;
   runner.join();
   ASSERT_EQ(first.termination, Termination::kInterrupted) << first.message;
+  EXPECT_GE(first.steps, 300);
   EXPECT_TRUE(std::filesystem::exists(options.output_path + ".ckpt"));
-  // The partial results are readable, and the run continues to the end.
-  EXPECT_GT(TimeSeries::Read(Hdf5File::OpenRead(options.output_path), "/series").rows(), 0u);
+  // The partial results are readable and say so; the run continues to the end.
+  const Hdf5File partial = Hdf5File::OpenRead(options.output_path);
+  EXPECT_GT(TimeSeries::Read(partial, "/series").rows(), 0u);
+  EXPECT_EQ(partial.ReadStringAttribute("/summary", "termination"), "interrupted");
   options.restart = true;
+  options.stop_requested = nullptr;
   const RunSummary second = RunScene(scene, options);
   EXPECT_EQ(second.termination, Termination::kCompleted) << second.message;
   EXPECT_GT(second.steps, first.steps);
   EXPECT_FALSE(std::filesystem::exists(options.output_path + ".ckpt"));
+}
+
+TEST(Simulation, ASummaryStartsAsNotRun) {
+  const RunSummary summary;
+  EXPECT_EQ(summary.termination, Termination::kNotRun);
+  EXPECT_EQ(ToString(summary.termination), "not_run");
+}
+
+TEST(Simulation, TwoRunsAtOnceInOneProcessGiveTheResultsOfRunsOneAfterTheOther) {
+  const std::string text = SampleToml(600, 4.9, 11) + kMultiStage;
+  const Result alone = RunText(text, "concurrent_alone");
+  ASSERT_EQ(alone.summary.termination, Termination::kCompleted) << alone.summary.message;
+  Result a, b;
+  std::thread first([&] { a = RunText(text, "concurrent_a"); });
+  std::thread second([&] { b = RunText(text, "concurrent_b"); });
+  first.join();
+  second.join();
+  for (const Result* r : {&a, &b}) {
+    ASSERT_EQ(r->summary.termination, Termination::kCompleted) << r->summary.message;
+    for (const auto& column : alone.series.columns()) {
+      EXPECT_EQ(r->series.Values(column.name), alone.series.Values(column.name)) << column.name;
+    }
+    EXPECT_EQ(r->positions, alone.positions);
+  }
 }
 
 TEST(Simulation, TriaxialControllerHoldsTheRadialStressWithinOnePercent) {
@@ -261,13 +294,15 @@ steps = 500
   EXPECT_EQ(file.ReadStringAttribute("/series/p_kpa", "units"), "kPa");
   EXPECT_EQ(file.ReadStringAttribute("/series/time_s", "units"), "s");
   EXPECT_EQ(file.ReadStringAttribute("/summary", "termination"), "completed");
+  EXPECT_EQ(file.ReadIntAttribute("/summary", "stages_completed"), 1);
   EXPECT_EQ(file.ReadIntAttribute("/summary", "steps"), 500);
   // The last row is the final state: 500 steps done, the cell of /final_state.
   EXPECT_EQ(result.series.Last("step"), 500);
   EXPECT_EQ(file.ReadDoubles("/final_state/cell")[0], result.series.Last("cell_x_m"));
   // The paper's quoted durations use one particle's mass; the reduced mass is √2 shorter.
   const double single = file.ReadDoubleAttribute("/summary", "contact_duration_min_single_mass_s");
-  const double reduced = file.ReadDoubleAttribute("/summary", "contact_duration_min_reduced_mass_s");
+  const double reduced =
+      file.ReadDoubleAttribute("/summary", "contact_duration_min_reduced_mass_s");
   EXPECT_NEAR(single / reduced, std::sqrt(2.0), 1e-12);
   EXPECT_NEAR(single, 1.5e-6, 0.1e-6);
   EXPECT_EQ(file.ReadString("/scene"), text);

@@ -1,5 +1,6 @@
-// Progress of long runs: an updating status line on a terminal, plain
-// periodic lines otherwise (logs, CI). Rate-limited by wall-clock time.
+// Progress of long runs on the command line: an updating status line on a
+// terminal, plain periodic lines otherwise (logs, CI), rate-limited by
+// wall-clock time. The libraries never print; they hand text to the program.
 #pragma once
 
 #include <chrono>
@@ -33,18 +34,6 @@ class Progress {
   bool is_terminal_;
   bool line_open_ = false;
   std::chrono::steady_clock::time_point last_;
-};
-
-// Wall-clock seconds since construction.
-class Stopwatch {
- public:
-  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
-  double Seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-
- private:
-  std::chrono::steady_clock::time_point start_;
 };
 
 }  // namespace granasym

@@ -1,0 +1,126 @@
+#include "dem/output_columns.h"
+
+#include <cmath>
+#include <limits>
+
+#include "dem/run_record_names.h"
+
+namespace granasym::dem {
+namespace {
+
+double Kpa(double pascal) { return pascal / kKiloPascal; }
+
+double InertialAt(const RowMeasures& row, double diameter) {
+  const double p = row.stress.mean();
+  return p > 0 ? InertialNumber(row.stretching, diameter, row.engine.material().density, p)
+               : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+RowMeasures::RowMeasures(const Engine& engine, int64_t stage,
+                         const std::array<double, 3>& reference_cell, double min_diameter,
+                         double max_diameter, const std::vector<double>* histogram_edges)
+    : engine(engine),
+      stage(stage),
+      stress(AxisymmetricFromTensor(engine.sums().stress)),
+      min_diameter(min_diameter),
+      max_diameter(max_diameter) {
+  const auto& gradient = engine.velocity_gradient();
+  rate = AxisymmetricRate{-gradient[0], -0.5 * (gradient[1] + gradient[2])};
+  stretching =
+      std::sqrt(gradient[0] * gradient[0] + gradient[1] * gradient[1] + gradient[2] * gradient[2]);
+  std::array<double, 3> strain;
+  for (int d = 0; d < 3; ++d) strain[d] = -std::log(engine.cell()[d] / reference_cell[d]);
+  eps_a = strain[0];
+  eps_r = 0.5 * (strain[1] + strain[2]);
+  void_ratio = engine.void_ratio();
+  contacts = MeasureContacts(engine, histogram_edges);
+}
+
+const std::vector<OutputColumn>& OutputColumns() {
+  using R = const RowMeasures&;
+  static const std::vector<OutputColumn> columns = {
+      {"time_s", "s", "simulated time", [](R r) { return r.engine.time(); }},
+      {record::kColumnStep, "1", "time step index",
+       [](R r) { return static_cast<double>(r.engine.step()); }},
+      {record::kColumnStage, "1", "stage index (0-based)",
+       [](R r) { return static_cast<double>(r.stage); }},
+      {"cell_x_m", "m", "cell side along axis 1 (vertical)",
+       [](R r) { return r.engine.cell()[0]; }},
+      {"cell_y_m", "m", "cell side along axis 2", [](R r) { return r.engine.cell()[1]; }},
+      {"cell_z_m", "m", "cell side along axis 3", [](R r) { return r.engine.cell()[2]; }},
+      {"sigma_11_kpa", "kPa", "Love-Weber stress, compression positive",
+       [](R r) { return Kpa(r.engine.sums().stress[0]); }},
+      {"sigma_22_kpa", "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[1]); }},
+      {"sigma_33_kpa", "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[2]); }},
+      {"sigma_12_kpa", "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[3]); }},
+      {"sigma_13_kpa", "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[4]); }},
+      {"sigma_23_kpa", "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[5]); }},
+      {"sigma_a_kpa", "kPa", "axial stress sigma_11", [](R r) { return Kpa(r.stress.axial); }},
+      {"sigma_r_kpa", "kPa", "radial stress (sigma_22 + sigma_33)/2",
+       [](R r) { return Kpa(r.stress.radial); }},
+      {record::kColumnMeanStress, "kPa", "mean stress", [](R r) { return Kpa(r.stress.mean()); }},
+      {"q_kpa", "kPa", "deviator sigma_a - sigma_r", [](R r) { return Kpa(r.stress.deviator()); }},
+      {record::kColumnPsiSigma, "deg", "stress obliquity angle in the Rendulic plane",
+       [](R r) { return r.stress.psi() / kDegree; }},
+      {"psi_epsilon_deg", "deg", "stretching direction in the Rendulic plane",
+       [](R r) { return r.rate.psi() / kDegree; }},
+      {"rate_a_per_s", "1/s", "axial strain rate, compression positive",
+       [](R r) { return r.rate.axial; }},
+      {"rate_r_per_s", "1/s", "radial strain rate, compression positive",
+       [](R r) { return r.rate.radial; }},
+      {"stretching_rate_per_s", "1/s", "norm of the stretching tensor |D|",
+       [](R r) { return r.stretching; }},
+      {"eps_a", "1", "axial logarithmic strain since the run start, compression positive",
+       [](R r) { return r.eps_a; }},
+      {"eps_r", "1", "radial logarithmic strain", [](R r) { return r.eps_r; }},
+      {"eps_v", "1", "volumetric strain eps_a + 2 eps_r",
+       [](R r) { return r.eps_a + 2 * r.eps_r; }},
+      {"eps_s", "1", "shear strain 2 (eps_a - eps_r)/3",
+       [](R r) { return 2.0 * (r.eps_a - r.eps_r) / 3.0; }},
+      {record::kColumnVoidRatio, "1", "void ratio V_cell/V_solid - 1",
+       [](R r) { return r.void_ratio; }},
+      {"ln_1_plus_e", "1", "ln(1 + e)", [](R r) { return std::log1p(r.void_ratio); }},
+      {"contacts", "1", "number of contacts",
+       [](R r) { return static_cast<double>(r.contacts.contacts); }},
+      {"coordination", "1", "coordination number 2C/N",
+       [](R r) { return r.contacts.coordination; }},
+      {"mechanical_coordination", "1", "coordination without rattlers",
+       [](R r) { return r.contacts.mechanical_coordination; }},
+      {record::kColumnOverlapMax, "1", "largest relative overlap u/(r_i + r_j)",
+       [](R r) { return r.contacts.overlap_max; }},
+      {"overlap_mean", "1", "mean relative overlap", [](R r) { return r.contacts.overlap_mean; }},
+      {"overlap_p50", "1", "median relative overlap", [](R r) { return r.contacts.overlap_p50; }},
+      {"overlap_p90", "1", "90th percentile of relative overlaps",
+       [](R r) { return r.contacts.overlap_p90; }},
+      {"overlap_p99", "1", "99th percentile of relative overlaps",
+       [](R r) { return r.contacts.overlap_p99; }},
+      {"inertial_number_dmin", "1", "|D| d sqrt(2 rho_s / p) for the smallest diameter",
+       [](R r) { return InertialAt(r, r.min_diameter); }},
+      {"inertial_number_dmax", "1", "same for the largest diameter",
+       [](R r) { return InertialAt(r, r.max_diameter); }},
+      {"kinetic_energy_j", "J", "kinetic energy of the fluctuating motion",
+       [](R r) { return KineticEnergy(r.engine); }},
+      {"unbalanced_force", "1", "mean net force / mean contact force",
+       [](R r) { return UnbalancedForceRatio(r.engine); }},
+  };
+  return columns;
+}
+
+std::vector<TimeSeries::Column> SeriesColumns() {
+  std::vector<TimeSeries::Column> columns;
+  for (const OutputColumn& column : OutputColumns()) {
+    columns.push_back({column.name, column.units, column.description});
+  }
+  return columns;
+}
+
+std::vector<double> RowValues(const RowMeasures& row) {
+  std::vector<double> values;
+  values.reserve(OutputColumns().size());
+  for (const OutputColumn& column : OutputColumns()) values.push_back(column.value(row));
+  return values;
+}
+
+}  // namespace granasym::dem

@@ -1,0 +1,486 @@
+#include "dem/run_record.h"
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "common/hdf5_file.h"
+#include "dem/run_record_names.h"
+
+namespace granasym::dem {
+namespace {
+
+struct TerminationName {
+  Termination termination;
+  const char* name;
+};
+constexpr TerminationName kTerminations[] = {{Termination::kNotRun, "not_run"},
+                                             {Termination::kCompleted, "completed"},
+                                             {Termination::kInterrupted, "interrupted"},
+                                             {Termination::kFailed, "failed"}};
+
+std::string Join(const std::string& group, const char* name) { return group + "/" + name; }
+
+std::vector<double> Flatten(const std::vector<Vec4>& values) {
+  std::vector<double> flat;
+  flat.reserve(values.size() * 4);
+  for (const Vec4& v : values) flat.insert(flat.end(), {v.x, v.y, v.z, v.w});
+  return flat;
+}
+
+std::vector<double> Flatten(const std::vector<Vec3>& values) {
+  std::vector<double> flat;
+  flat.reserve(values.size() * 3);
+  for (const Vec3& v : values) flat.insert(flat.end(), {v.x, v.y, v.z});
+  return flat;
+}
+
+std::vector<Vec4> ReadVec4(const Hdf5File& file, const std::string& name) {
+  size_t rows = 0, cols = 0;
+  const std::vector<double> flat = file.ReadMatrix(name, &rows, &cols);
+  if (rows > 0 && cols != 4) {
+    throw InputError(fmt::format("{}: {} has {} columns, expected 4", file.path(), name, cols));
+  }
+  std::vector<Vec4> values(rows);
+  for (size_t i = 0; i < rows; ++i) {
+    values[i] = {flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]};
+  }
+  return values;
+}
+
+std::vector<Vec3> ReadVec3(const Hdf5File& file, const std::string& name) {
+  size_t rows = 0, cols = 0;
+  const std::vector<double> flat = file.ReadMatrix(name, &rows, &cols);
+  if (rows > 0 && cols != 3) {
+    throw InputError(fmt::format("{}: {} has {} columns, expected 3", file.path(), name, cols));
+  }
+  std::vector<Vec3> values(rows);
+  for (size_t i = 0; i < rows; ++i) values[i] = {flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]};
+  return values;
+}
+
+void WriteVec4(Hdf5File& file, const std::string& name, const std::vector<Vec4>& values) {
+  file.WriteMatrix(name, Flatten(values), values.size(), 4);
+}
+
+void WriteVec3(Hdf5File& file, const std::string& name, const std::vector<Vec3>& values) {
+  file.WriteMatrix(name, Flatten(values), values.size(), 3);
+}
+
+std::vector<double> ToVector(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+std::array<double, 3> ReadArray3(const Hdf5File& file, const std::string& name) {
+  const std::vector<double> v = file.ReadDoubles(name);
+  if (v.size() != 3) {
+    throw InputError(fmt::format("{}: {} has {} values, expected 3", file.path(), name, v.size()));
+  }
+  return {v[0], v[1], v[2]};
+}
+
+}  // namespace
+
+std::string ToString(Termination termination) {
+  for (const TerminationName& entry : kTerminations) {
+    if (entry.termination == termination) return entry.name;
+  }
+  return "unknown";
+}
+
+Termination TerminationFromString(const std::string& name) {
+  for (const TerminationName& entry : kTerminations) {
+    if (name == entry.name) return entry.termination;
+  }
+  throw InputError("unknown run termination '" + name +
+                   "': expected not_run, completed, interrupted or failed");
+}
+
+std::string RunSummary::OneLine() const {
+  return fmt::format(
+      "{}: {} steps, {} particles, {:.4g} s simulated, {:.1f} s wall ({:.1f} s "
+      "loop), {:.3g} particle-steps/s ({:.3f} us per particle-step), {} threads, "
+      "{} list builds, {} rows: {}",
+      ToString(termination), steps, particles, simulated_time, wall_seconds, loop_seconds,
+      particle_steps_per_second,
+      particle_steps_per_second > 0 ? 1e6 / particle_steps_per_second : 0.0, threads,
+      neighbor_builds, rows, message);
+}
+
+AsymptoteRecord AsymptoteRecord::From(const AsymptoteDetector::Result& result, double p_kpa,
+                                      double e) {
+  AsymptoteRecord record;
+  record.detected = result.detected;
+  record.psi_sigma_deg = result.psi_sigma / kDegree;
+  record.psi_change_deg = result.psi_change_deg;
+  record.lnp_half_difference = result.lnp_half_difference;
+  record.dlnp_dstrain = result.slope_lnp;
+  record.dln1pe_dlnp = result.slope_lnv_lnp;
+  record.mean_stress_kpa = p_kpa;
+  record.void_ratio = e;
+  return record;
+}
+
+void WritePacking(Hdf5File& file, const std::string& group, const Packing& packing) {
+  std::vector<double> positions;
+  positions.reserve(packing.size() * 3);
+  for (const auto& x : packing.positions) positions.insert(positions.end(), {x[0], x[1], x[2]});
+  file.WriteDoubles(Join(group, record::kCell), ToVector(packing.cell), "m");
+  file.WriteMatrix(Join(group, record::kPositions), positions, packing.size(), 3, "m");
+  file.WriteDoubles(Join(group, record::kRadii), packing.radii, "m");
+}
+
+Packing ReadPacking(const Hdf5File& file, const std::string& group) {
+  if (!file.Exists(Join(group, record::kPositions))) {
+    throw InputError(file.path() + ": no packing in '" + group +
+                     "' (expected a granasym DEM result file)");
+  }
+  Packing packing;
+  packing.cell = ReadArray3(file, Join(group, record::kCell));
+  size_t rows = 0, cols = 0;
+  const std::vector<double> positions =
+      file.ReadMatrix(Join(group, record::kPositions), &rows, &cols);
+  packing.radii = file.ReadDoubles(Join(group, record::kRadii));
+  if (cols != 3 || rows != packing.radii.size()) {
+    throw InputError(fmt::format("{}: {} holds {}×{} positions for {} radii", file.path(), group,
+                                 rows, cols, packing.radii.size()));
+  }
+  packing.positions.resize(rows);
+  for (size_t i = 0; i < rows; ++i) {
+    packing.positions[i] = {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
+  }
+  return packing;
+}
+
+void WriteSample(Hdf5File& file, const Packing& packing, const GenerationReport* report) {
+  WritePacking(file, record::kSample, packing);
+  if (report) {
+    file.WriteDoubles(Join(record::kSample, record::kGsdDiameters), report->sieve_diameters, "m");
+    file.WriteDoubles(Join(record::kSample, record::kGsdTarget), report->target_passing, "%");
+    file.WriteDoubles(Join(record::kSample, record::kGsdAchieved), report->achieved_passing, "%");
+  }
+}
+
+bool ReadSample(const Hdf5File& file, Packing* packing, GenerationReport* report) {
+  *packing = ReadPacking(file, record::kSample);
+  const bool generated = file.Exists(Join(record::kSample, record::kGsdDiameters));
+  if (generated && report) {
+    report->count = packing->size();
+    report->sieve_diameters = file.ReadDoubles(Join(record::kSample, record::kGsdDiameters));
+    report->target_passing = file.ReadDoubles(Join(record::kSample, record::kGsdTarget));
+    report->achieved_passing = file.ReadDoubles(Join(record::kSample, record::kGsdAchieved));
+  }
+  return generated;
+}
+
+void WriteEngineState(Hdf5File& file, const std::string& group, const Engine::State& state,
+                      int threads) {
+  WriteVec4(file, Join(group, record::kStatePosition), state.position);
+  WriteVec4(file, Join(group, record::kStateVelocity), state.velocity);
+  WriteVec4(file, Join(group, record::kStateSpin), state.spin);
+  file.WriteInts(Join(group, record::kStateId), state.id);
+  file.WriteDoubles(Join(group, record::kStateCell), ToVector(state.cell), "m");
+  file.WriteDoubles(Join(group, record::kStateGradient), ToVector(state.gradient), "1/s");
+  file.SetAttribute(group, record::kStateTime, state.time);
+  file.SetAttribute(group, record::kStateStep, state.step);
+  file.SetAttribute(group, record::kStateMaxDisplacement, state.max_displacement);
+  file.SetAttribute(group, record::kStateForcesCurrent, int64_t{state.forces_current});
+  file.SetAttribute(group, record::kStateThreads, static_cast<int64_t>(threads));
+  const NeighborList::State& list = state.neighbors;
+  const std::string l = Join(group, record::kListGroup);
+  file.WriteInts(Join(l, record::kListOffsets), list.offsets);
+  file.WriteInts(Join(l, record::kListNeighbors),
+                 std::vector<int64_t>(list.neighbors.begin(), list.neighbors.end()));
+  WriteVec3(file, Join(l, record::kListShear), list.shear);
+  WriteVec4(file, Join(l, record::kListBuildPositions), list.build_positions);
+  file.WriteDoubles(Join(l, record::kListBuildCell), ToVector(list.build_cell), "m");
+  file.SetAttribute(l, record::kListSkin, list.skin);
+  file.SetAttribute(l, record::kListMaxRadius, list.max_radius);
+  file.SetAttribute(l, record::kListBuilds, list.builds);
+}
+
+Engine::State ReadEngineState(const Hdf5File& file, const std::string& group, int* threads) {
+  if (!file.Exists(Join(group, record::kStatePosition))) {
+    throw InputError(file.path() + ": no engine state in '" + group + "'");
+  }
+  Engine::State state;
+  state.position = ReadVec4(file, Join(group, record::kStatePosition));
+  state.velocity = ReadVec4(file, Join(group, record::kStateVelocity));
+  state.spin = ReadVec4(file, Join(group, record::kStateSpin));
+  state.id = file.ReadInts(Join(group, record::kStateId));
+  state.cell = ReadArray3(file, Join(group, record::kStateCell));
+  state.gradient = ReadArray3(file, Join(group, record::kStateGradient));
+  state.time = file.ReadDoubleAttribute(group, record::kStateTime);
+  state.step = file.ReadIntAttribute(group, record::kStateStep);
+  state.max_displacement = file.ReadDoubleAttribute(group, record::kStateMaxDisplacement);
+  state.forces_current = file.ReadIntAttribute(group, record::kStateForcesCurrent) != 0;
+  if (threads) *threads = static_cast<int>(file.ReadIntAttribute(group, record::kStateThreads));
+  const size_t n = state.position.size();
+  if (state.velocity.size() != n || state.spin.size() != n || state.id.size() != n) {
+    throw InputError(fmt::format(
+        "{}: engine state in '{}' has {} positions, {} velocities, {} "
+        "spins and {} ids",
+        file.path(), group, n, state.velocity.size(), state.spin.size(), state.id.size()));
+  }
+  NeighborList::State& list = state.neighbors;
+  const std::string l = Join(group, record::kListGroup);
+  list.offsets = file.ReadInts(Join(l, record::kListOffsets));
+  const std::vector<int64_t> neighbors = file.ReadInts(Join(l, record::kListNeighbors));
+  list.neighbors.assign(neighbors.begin(), neighbors.end());
+  list.shear = ReadVec3(file, Join(l, record::kListShear));
+  list.build_positions = ReadVec4(file, Join(l, record::kListBuildPositions));
+  list.build_cell = ReadArray3(file, Join(l, record::kListBuildCell));
+  list.skin = file.ReadDoubleAttribute(l, record::kListSkin);
+  list.max_radius = file.ReadDoubleAttribute(l, record::kListMaxRadius);
+  list.builds = file.ReadIntAttribute(l, record::kListBuilds);
+  if (list.offsets.size() != n + 1 ||
+      list.offsets.back() != static_cast<int64_t>(neighbors.size()) ||
+      (!list.shear.empty() && list.shear.size() != neighbors.size()) ||
+      list.build_positions.size() != n) {
+    throw InputError(fmt::format("{}: the neighbour list in '{}' does not match its {} particles",
+                                 file.path(), group, n));
+  }
+  return state;
+}
+
+void WriteFinalState(Hdf5File& file, const Engine& engine, int threads) {
+  const std::string group = record::kFinalState;
+  WritePacking(file, group, engine.CurrentPacking());
+  const size_t n = engine.size();
+  std::vector<double> v(3 * n), w(3 * n);
+  for (size_t k = 0; k < n; ++k) {
+    const size_t i = static_cast<size_t>(engine.ids()[k]);
+    const Vec4& velocity = engine.velocities()[k];
+    const Vec4& spin = engine.spins()[k];
+    v[3 * i] = velocity.x, v[3 * i + 1] = velocity.y, v[3 * i + 2] = velocity.z;
+    w[3 * i] = spin.x, w[3 * i + 1] = spin.y, w[3 * i + 2] = spin.z;
+  }
+  file.WriteMatrix(Join(group, record::kVelocities), v, n, 3, "m/s");
+  file.WriteMatrix(Join(group, record::kSpins), w, n, 3, "rad/s");
+  WriteEngineState(file, Join(group, record::kEngineGroup), engine.Save(), threads);
+}
+
+void WriteHistograms(Hdf5File& file, const std::vector<double>& edges,
+                     const std::vector<double>& rows) {
+  if (edges.empty()) return;
+  const size_t bins = edges.size() - 1;
+  const std::string g = record::kSeriesHistogram;
+  file.WriteDoubles(g + "/edges", edges, "1");
+  file.WriteMatrix(g + "/counts", rows, rows.size() / bins, bins, "1");
+  file.SetAttribute(g, "description",
+                    "relative overlap u/(r_i + r_j) counts per output row and bin");
+}
+
+std::vector<double> ReadHistogramRows(const Hdf5File& file) {
+  const std::string counts = std::string(record::kSeriesHistogram) + "/counts";
+  if (!file.Exists(counts)) return {};
+  size_t rows = 0, cols = 0;
+  return file.ReadMatrix(counts, &rows, &cols);
+}
+
+std::string StageGroup(size_t index) { return fmt::format("{}/{:03d}", record::kStages, index); }
+
+void WriteStageRecord(Hdf5File& file, const std::string& group, const StageRecord& stage,
+                      const StageSpec* spec, int threads) {
+  using namespace record;
+  file.CreateGroup(group);
+  file.SetAttribute(group, kStageName, stage.name);
+  file.SetAttribute(group, kStageType, stage.type);
+  file.SetAttribute(group, kStageFirstRow, stage.first_row);
+  file.SetAttribute(group, kStageLastRow, stage.last_row);
+  file.SetAttribute(group, kStageStopReason, stage.stop_reason);
+  if (stage.asymptote) {
+    const AsymptoteRecord& a = *stage.asymptote;
+    file.SetAttribute(group, kAsymptoteCriterion, stage.asymptote_criterion);
+    file.SetAttribute(group, kAsymptoteDetected, int64_t{a.detected});
+    file.SetAttribute(group, kAsymptotePsiSigmaDeg, a.psi_sigma_deg);
+    file.SetAttribute(group, kAsymptotePsiChangeDeg, a.psi_change_deg);
+    file.SetAttribute(group, kAsymptoteLnpHalfDifference, a.lnp_half_difference);
+    file.SetAttribute(group, kAsymptoteDlnpDstrain, a.dlnp_dstrain);
+    file.SetAttribute(group, kAsymptoteDln1peDlnp, a.dln1pe_dlnp);
+    file.SetAttribute(group, kAsymptoteMeanStressKpa, a.mean_stress_kpa);
+    file.SetAttribute(group, kAsymptoteVoidRatio, a.void_ratio);
+  }
+  if (spec) spec->Describe(file, group);
+  if (stage.end_state) {
+    WriteEngineState(file, Join(group, kStageEndState), *stage.end_state, threads);
+  }
+}
+
+StageRecord ReadStageRecord(const Hdf5File& file, const std::string& group) {
+  using namespace record;
+  StageRecord stage;
+  stage.name = file.ReadStringAttribute(group, kStageName);
+  stage.type = file.ReadStringAttribute(group, kStageType);
+  stage.first_row = file.ReadIntAttribute(group, kStageFirstRow);
+  stage.last_row = file.ReadIntAttribute(group, kStageLastRow);
+  stage.stop_reason = file.ReadStringAttribute(group, kStageStopReason);
+  if (file.HasAttribute(group, kAsymptoteDetected)) {
+    AsymptoteRecord a;
+    stage.asymptote_criterion = file.ReadStringAttribute(group, kAsymptoteCriterion);
+    a.detected = file.ReadIntAttribute(group, kAsymptoteDetected) != 0;
+    a.psi_sigma_deg = file.ReadDoubleAttribute(group, kAsymptotePsiSigmaDeg);
+    a.psi_change_deg = file.ReadDoubleAttribute(group, kAsymptotePsiChangeDeg);
+    a.lnp_half_difference = file.ReadDoubleAttribute(group, kAsymptoteLnpHalfDifference);
+    a.dlnp_dstrain = file.ReadDoubleAttribute(group, kAsymptoteDlnpDstrain);
+    a.dln1pe_dlnp = file.ReadDoubleAttribute(group, kAsymptoteDln1peDlnp);
+    a.mean_stress_kpa = file.ReadDoubleAttribute(group, kAsymptoteMeanStressKpa);
+    a.void_ratio = file.ReadDoubleAttribute(group, kAsymptoteVoidRatio);
+    stage.asymptote = a;
+  }
+  const std::string end = Join(group, kStageEndState);
+  if (file.Exists(end)) stage.end_state = ReadEngineState(file, end);
+  return stage;
+}
+
+void WriteStageRecords(Hdf5File& file, const std::vector<StageRecord>& records,
+                       const std::vector<Stage>& stages, int threads) {
+  file.CreateGroup(record::kStages);
+  for (size_t k = 0; k < records.size(); ++k) {
+    const StageSpec* spec = k < stages.size() ? stages[k].spec.get() : nullptr;
+    WriteStageRecord(file, StageGroup(k), records[k], spec, threads);
+  }
+}
+
+std::vector<StageRecord> ReadStageRecords(const Hdf5File& file) {
+  std::vector<StageRecord> records;
+  if (!file.Exists(record::kStages)) return records;
+  for (const std::string& name : file.List(record::kStages)) {
+    records.push_back(ReadStageRecord(file, std::string(record::kStages) + "/" + name));
+  }
+  return records;
+}
+
+void WriteSummary(Hdf5File& file, const RunSummary& summary, const ContactDurations& durations) {
+  using namespace record;
+  const std::string s = kSummary;
+  file.CreateGroup(s);
+  file.SetAttribute(s, kTermination, ToString(summary.termination));
+  file.SetAttribute(s, kMessage, summary.message);
+  file.SetAttribute(s, kReport, summary.OneLine());
+  file.SetAttribute(s, kSteps, summary.steps);
+  file.SetAttribute(s, kParticles, summary.particles);
+  file.SetAttribute(s, kSimulatedTime, summary.simulated_time);
+  file.SetAttribute(s, kWallSeconds, summary.wall_seconds);
+  file.SetAttribute(s, kLoopSeconds, summary.loop_seconds);
+  file.SetAttribute(s, kParticleStepsPerSecond, summary.particle_steps_per_second);
+  file.SetAttribute(s, kNeighborBuilds, summary.neighbor_builds);
+  file.SetAttribute(s, kThreads, static_cast<int64_t>(summary.threads));
+  file.SetAttribute(s, kRows, summary.rows);
+  file.SetAttribute(s, kStagesCompleted, summary.stages_completed);
+  file.SetAttribute(s, kTimeStep, summary.time_step);
+  file.SetAttribute(s, kContactDurationMinReduced, durations.smallest_reduced_mass);
+  file.SetAttribute(s, kContactDurationMaxReduced, durations.largest_reduced_mass);
+  file.SetAttribute(s, kContactDurationMinSingle, durations.smallest_single_mass);
+  file.SetAttribute(s, kContactDurationMaxSingle, durations.largest_single_mass);
+  file.SetAttribute(s, kCriticalTimeStep, durations.critical_time_step);
+  file.SetAttribute(s, kTimeStepOverContactDuration,
+                    summary.time_step / durations.smallest_reduced_mass);
+}
+
+RunSummary ReadSummary(const Hdf5File& file) {
+  using namespace record;
+  const std::string s = kSummary;
+  if (!file.HasAttribute(s, kTermination)) {
+    throw InputError(file.path() + ": no " + s + " (expected a granasym DEM result file)");
+  }
+  RunSummary summary;
+  summary.termination = TerminationFromString(file.ReadStringAttribute(s, kTermination));
+  summary.message = file.ReadStringAttribute(s, kMessage);
+  summary.steps = file.ReadIntAttribute(s, kSteps);
+  summary.particles = file.ReadIntAttribute(s, kParticles);
+  summary.simulated_time = file.ReadDoubleAttribute(s, kSimulatedTime);
+  summary.wall_seconds = file.ReadDoubleAttribute(s, kWallSeconds);
+  summary.loop_seconds = file.ReadDoubleAttribute(s, kLoopSeconds);
+  summary.particle_steps_per_second = file.ReadDoubleAttribute(s, kParticleStepsPerSecond);
+  summary.neighbor_builds = file.ReadIntAttribute(s, kNeighborBuilds);
+  summary.threads = static_cast<int>(file.ReadIntAttribute(s, kThreads));
+  summary.rows = file.ReadIntAttribute(s, kRows);
+  summary.stages_completed = file.ReadIntAttribute(s, kStagesCompleted);
+  summary.time_step = file.ReadDoubleAttribute(s, kTimeStep);
+  return summary;
+}
+
+void WriteRunner(Hdf5File& file, const RunnerRecord& runner) {
+  const std::string r = record::kRunner;
+  const StageClock& clock = runner.clock;
+  file.CreateGroup(r);
+  file.SetAttribute(r, "stage", runner.stage);
+  file.SetAttribute(r, "stage_started", int64_t{runner.stage_started});
+  file.SetAttribute(r, "stage_start_step", clock.start_step);
+  file.SetAttribute(r, "stage_start_time", clock.start_time);
+  file.SetAttribute(r, "stage_start_p", clock.start_p_kpa);
+  file.SetAttribute(r, "stage_strain_norm", clock.strain_norm);
+  file.SetAttribute(r, "next_sample_strain", clock.next_sample_strain);
+  file.SetAttribute(r, "stage_first_row", clock.first_row);
+  file.WriteDoubles(r + "/stage_start_cell", ToVector(clock.start_cell));
+  file.SetAttribute(r, "strain_since_output", runner.strain_since_output);
+  file.SetAttribute(r, "steps_since_output", runner.steps_since_output);
+  file.WriteDoubles(r + "/controller_state", runner.controller_state);
+  std::vector<double> samples;
+  for (const auto& sample : runner.detector_samples) {
+    samples.insert(samples.end(),
+                   {sample.strain, sample.psi_sigma, sample.log_p, sample.log_volume});
+  }
+  file.WriteMatrix(r + "/detector_samples", samples, runner.detector_samples.size(), 4);
+}
+
+RunnerRecord ReadRunner(const Hdf5File& file) {
+  const std::string r = record::kRunner;
+  RunnerRecord runner;
+  StageClock& clock = runner.clock;
+  runner.stage = file.ReadIntAttribute(r, "stage");
+  runner.stage_started = file.ReadIntAttribute(r, "stage_started") != 0;
+  clock.start_step = file.ReadIntAttribute(r, "stage_start_step");
+  clock.start_time = file.ReadDoubleAttribute(r, "stage_start_time");
+  clock.start_p_kpa = file.ReadDoubleAttribute(r, "stage_start_p");
+  clock.strain_norm = file.ReadDoubleAttribute(r, "stage_strain_norm");
+  clock.next_sample_strain = file.ReadDoubleAttribute(r, "next_sample_strain");
+  clock.first_row = file.ReadIntAttribute(r, "stage_first_row");
+  clock.start_cell = ReadArray3(file, r + "/stage_start_cell");
+  runner.strain_since_output = file.ReadDoubleAttribute(r, "strain_since_output");
+  runner.steps_since_output = file.ReadIntAttribute(r, "steps_since_output");
+  runner.controller_state = file.ReadDoubles(r + "/controller_state");
+  size_t rows = 0, cols = 0;
+  const std::vector<double> samples = file.ReadMatrix(r + "/detector_samples", &rows, &cols);
+  for (size_t k = 0; k < rows; ++k) {
+    runner.detector_samples.push_back(
+        {samples[4 * k], samples[4 * k + 1], samples[4 * k + 2], samples[4 * k + 3]});
+  }
+  return runner;
+}
+
+void WriteProvenance(Hdf5File& file, const Provenance& p) {
+  using namespace record;
+  const std::string g = kProvenance;
+  file.CreateGroup(g);
+  file.SetAttribute(g, kProgramVersion, p.program_version);
+  file.SetAttribute(g, kSceneSha256, p.scene_sha256);
+  file.WriteString(Join(g, kSceneCanonical), p.scene_canonical);
+  file.SetAttribute(g, kStartKind, p.start_kind);
+  file.SetAttribute(g, kStartSha256, p.start_sha256);
+  file.SetAttribute(g, kParentFile, p.parent_file);
+  file.SetAttribute(g, kParentStage, p.parent_stage);
+  file.SetAttribute(g, kParentSceneSha256, p.parent_scene_sha256);
+  file.SetAttribute(g, kThreads, p.threads);
+  file.SetAttribute(g, kCpuModel, p.cpu_model);
+}
+
+Provenance ReadProvenance(const Hdf5File& file) {
+  using namespace record;
+  const std::string g = kProvenance;
+  if (!file.HasAttribute(g, kSceneSha256)) {
+    throw InputError(file.path() + ": no " + g + " (written by granasym since the run layer)");
+  }
+  Provenance p;
+  p.program_version = file.ReadStringAttribute(g, kProgramVersion);
+  p.scene_sha256 = file.ReadStringAttribute(g, kSceneSha256);
+  p.scene_canonical = file.ReadString(Join(g, kSceneCanonical));
+  p.start_kind = file.ReadStringAttribute(g, kStartKind);
+  p.start_sha256 = file.ReadStringAttribute(g, kStartSha256);
+  p.parent_file = file.ReadStringAttribute(g, kParentFile);
+  p.parent_stage = file.ReadStringAttribute(g, kParentStage);
+  p.parent_scene_sha256 = file.ReadStringAttribute(g, kParentSceneSha256);
+  p.threads = file.ReadIntAttribute(g, kThreads);
+  p.cpu_model = file.ReadStringAttribute(g, kCpuModel);
+  return p;
+}
+
+}  // namespace granasym::dem

@@ -1,0 +1,134 @@
+// The records of a DEM run, each with one writer and one reader shared by the
+// result file and the checkpoint (names: dem/run_record_names.h): the scene,
+// the sample, the series with its histograms, the stage records with their
+// asymptotes and end states, the summary, the exact engine state (particles,
+// cell, neighbour list with its pair order and shear history), the runner's
+// own state and the provenance.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/time_series.h"
+#include "dem/asymptote_detector.h"
+#include "dem/engine.h"
+#include "dem/packing.h"
+#include "dem/stage.h"
+
+namespace granasym {
+class Hdf5File;
+}
+
+namespace granasym::dem {
+
+enum class Termination { kNotRun, kCompleted, kInterrupted, kFailed };
+std::string ToString(Termination termination);
+Termination TerminationFromString(const std::string& name);  // InputError if unknown
+
+struct RunSummary {
+  Termination termination = Termination::kNotRun;
+  std::string message = "not run";
+  int64_t steps = 0;  // steps taken in total (including before a restart or fork)
+  int64_t particles = 0;
+  double simulated_time = 0;  // (s)
+  double wall_seconds = 0;    // this invocation
+  double loop_seconds = 0;    // time-stepping only, this invocation
+  double particle_steps_per_second = 0;
+  int64_t neighbor_builds = 0;
+  int64_t rows = 0;
+  int64_t stages_completed = 0;
+  int threads = 1;
+  double time_step = 0;
+  std::string OneLine() const;
+};
+
+// The detected asymptotic state of a stage, in the units of the file.
+struct AsymptoteRecord {
+  bool detected = false;
+  double psi_sigma_deg = 0;        // mean over the window
+  double psi_change_deg = 0;       // fitted change across the window
+  double lnp_half_difference = 0;  // |Δln p (2nd half) − Δln p (1st half)|
+  double dlnp_dstrain = 0;         // d ln p / dε over the window
+  double dln1pe_dlnp = 0;          // d ln(1+e) / d ln p over the window (−λ* on a line)
+  double mean_stress_kpa = 0;      // p and e at the stage end
+  double void_ratio = 0;
+  static AsymptoteRecord From(const AsymptoteDetector::Result& result, double p_kpa, double e);
+};
+
+// One finished stage.
+struct StageRecord {
+  std::string name, type;
+  int64_t first_row = 0, last_row = 0;
+  std::string stop_reason;
+  std::optional<AsymptoteRecord> asymptote;  // when the detector ran
+  std::string asymptote_criterion;
+  std::optional<Engine::State> end_state;  // the state the next stage starts from, when kept
+};
+
+// The runner's state besides the engine (checkpoint only).
+struct RunnerRecord {
+  int64_t stage = 0;  // index of the current stage
+  bool stage_started = false;
+  StageClock clock;
+  double strain_since_output = 0;
+  int64_t steps_since_output = 0;
+  std::vector<double> controller_state;
+  std::vector<AsymptoteDetector::Sample> detector_samples;
+};
+
+struct Provenance {
+  std::string program_version;
+  std::string scene_canonical;  // the parsed, defaulted scene
+  std::string scene_sha256;     // of scene_canonical
+  std::string start_kind;       // "generated", "packing" or "state"
+  std::string start_sha256;     // of the starting packing or parent state
+  std::string parent_file, parent_stage, parent_scene_sha256;  // forks only
+  int64_t threads = 0;
+  std::string cpu_model;
+};
+
+// The sample and, when generated, its GSD comparison (report may be null).
+void WriteSample(Hdf5File& file, const Packing& packing, const GenerationReport* report);
+// Reads /sample; returns true and fills `report` (may be null) when it was generated.
+bool ReadSample(const Hdf5File& file, Packing* packing, GenerationReport* report);
+
+void WritePacking(Hdf5File& file, const std::string& group, const Packing& packing);
+Packing ReadPacking(const Hdf5File& file, const std::string& group);
+
+void WriteEngineState(Hdf5File& file, const std::string& group, const Engine::State& state,
+                      int threads);
+Engine::State ReadEngineState(const Hdf5File& file, const std::string& group,
+                              int* threads = nullptr);
+// The current packing, velocities and spins in input order, and the exact
+// engine state below group/engine.
+void WriteFinalState(Hdf5File& file, const Engine& engine, int threads);
+
+// Histograms of relative overlaps: bin edges and rows × bins counts.
+void WriteHistograms(Hdf5File& file, const std::vector<double>& edges,
+                     const std::vector<double>& rows);
+std::vector<double> ReadHistogramRows(const Hdf5File& file);
+
+// `stage` (may be null) adds the stage type's own keys; `threads` is stored
+// with the end state (bit-identical continuations need the same count).
+void WriteStageRecord(Hdf5File& file, const std::string& group, const StageRecord& record,
+                      const StageSpec* stage, int threads);
+StageRecord ReadStageRecord(const Hdf5File& file, const std::string& group);
+// All records below /stages, in order.
+void WriteStageRecords(Hdf5File& file, const std::vector<StageRecord>& records,
+                       const std::vector<Stage>& stages, int threads);
+std::vector<StageRecord> ReadStageRecords(const Hdf5File& file);
+std::string StageGroup(size_t index);  // "/stages/007"
+
+void WriteSummary(Hdf5File& file, const RunSummary& summary, const ContactDurations& durations);
+RunSummary ReadSummary(const Hdf5File& file);
+
+void WriteRunner(Hdf5File& file, const RunnerRecord& runner);
+RunnerRecord ReadRunner(const Hdf5File& file);
+
+void WriteProvenance(Hdf5File& file, const Provenance& provenance);
+Provenance ReadProvenance(const Hdf5File& file);
+
+}  // namespace granasym::dem

@@ -1,0 +1,143 @@
+// The names of the groups, datasets, attributes and series columns of a DEM
+// run record: the result file RUN.h5 and its checkpoint RUN.h5.ckpt. Every
+// writer and reader (dem/run_record.cc, calibration/dem_state_reader.cc, the
+// tests) uses these constants, so that renaming one breaks the build, not a
+// user. Header-only, no dependencies: readers outside dem/ include it alone.
+//
+// Result file (all stresses kPa, compression positive):
+//   /scene                 the scene text as given (attribute origin)
+//   /series/<column>       one dataset per output column, with `units`
+//   /series_histogram      relative-overlap histograms, when requested
+//   /stages/<NNN>          per stage: name, type, rows, stop reason, the
+//                          asymptote record, the type's own keys, and (when
+//                          kept) its end state under end_state/
+//   /summary               termination, message, counters, times, time step,
+//                          contact durations
+//   /final_state           the packing at the end (input order): cell,
+//                          positions, radii, velocities, spins; and the exact
+//                          engine state under engine/
+//   /sample                the initial packing of the lineage (and its GSD)
+//   /provenance            program version, hashes, threads, CPU
+// Checkpoint: /scene, /sample, /engine, /runner, /series, /histogram_rows,
+//   /stages (the records of the stages done).
+#pragma once
+
+namespace granasym::dem::record {
+
+// Top-level groups and datasets.
+inline constexpr char kScene[] = "/scene";
+inline constexpr char kSceneOrigin[] = "origin";
+inline constexpr char kSeries[] = "/series";
+inline constexpr char kSeriesHistogram[] = "/series_histogram";
+inline constexpr char kStages[] = "/stages";
+inline constexpr char kSummary[] = "/summary";
+inline constexpr char kFinalState[] = "/final_state";
+inline constexpr char kSample[] = "/sample";
+inline constexpr char kProvenance[] = "/provenance";
+// Checkpoint only.
+inline constexpr char kEngine[] = "/engine";
+inline constexpr char kRunner[] = "/runner";
+inline constexpr char kHistogramRows[] = "/histogram_rows";
+
+// Series columns that other code reads by name.
+inline constexpr char kColumnStep[] = "step";
+inline constexpr char kColumnStage[] = "stage";
+inline constexpr char kColumnMeanStress[] = "p_kpa";
+inline constexpr char kColumnVoidRatio[] = "e";
+inline constexpr char kColumnPsiSigma[] = "psi_sigma_deg";
+inline constexpr char kColumnOverlapMax[] = "overlap_max";
+
+// Attributes of /stages/<NNN>.
+inline constexpr char kStageName[] = "name";
+inline constexpr char kStageType[] = "type";
+inline constexpr char kStageFirstRow[] = "first_row";
+inline constexpr char kStageLastRow[] = "last_row";
+inline constexpr char kStageStopReason[] = "stop_reason";
+inline constexpr char kStageEndState[] = "end_state";  // subgroup
+inline constexpr char kAsymptoteCriterion[] = "asymptote_criterion";
+inline constexpr char kAsymptoteDetected[] = "asymptote_detected";
+inline constexpr char kAsymptotePsiSigmaDeg[] = "asymptote_psi_sigma_deg";
+inline constexpr char kAsymptotePsiChangeDeg[] = "asymptote_psi_change_deg";
+inline constexpr char kAsymptoteLnpHalfDifference[] = "asymptote_lnp_half_difference";
+inline constexpr char kAsymptoteDlnpDstrain[] = "asymptote_dlnp_dstrain";
+inline constexpr char kAsymptoteDln1peDlnp[] = "asymptote_dln1pe_dlnp";
+inline constexpr char kAsymptoteMeanStressKpa[] = "asymptote_p_kpa";
+inline constexpr char kAsymptoteVoidRatio[] = "asymptote_e";
+// The stage types' own keys.
+inline constexpr char kStagePsiEpsilonDeg[] = "psi_epsilon_deg";
+inline constexpr char kStageStretchingRate[] = "stretching_rate_per_s";
+inline constexpr char kStageAxialStrainRate[] = "axial_strain_rate_per_s";
+inline constexpr char kStageRadialStressKpa[] = "radial_stress_kpa";
+inline constexpr char kStageMeanStressKpa[] = "mean_stress_kpa";
+
+// Attributes of /summary.
+inline constexpr char kTermination[] = "termination";
+inline constexpr char kMessage[] = "message";
+inline constexpr char kReport[] = "report";
+inline constexpr char kSteps[] = "steps";
+inline constexpr char kParticles[] = "particles";
+inline constexpr char kSimulatedTime[] = "simulated_time_s";
+inline constexpr char kWallSeconds[] = "wall_s";
+inline constexpr char kLoopSeconds[] = "loop_wall_s";
+inline constexpr char kParticleStepsPerSecond[] = "particle_steps_per_s";
+inline constexpr char kNeighborBuilds[] = "neighbor_builds";
+inline constexpr char kThreads[] = "threads";
+inline constexpr char kRows[] = "rows";
+inline constexpr char kStagesCompleted[] = "stages_completed";
+inline constexpr char kTimeStep[] = "time_step_s";
+inline constexpr char kContactDurationMinReduced[] = "contact_duration_min_reduced_mass_s";
+inline constexpr char kContactDurationMaxReduced[] = "contact_duration_max_reduced_mass_s";
+inline constexpr char kContactDurationMinSingle[] = "contact_duration_min_single_mass_s";
+inline constexpr char kContactDurationMaxSingle[] = "contact_duration_max_single_mass_s";
+inline constexpr char kCriticalTimeStep[] = "critical_time_step_s";
+inline constexpr char kTimeStepOverContactDuration[] = "time_step_over_min_contact_duration";
+
+// A packing (/sample, /final_state): datasets.
+inline constexpr char kCell[] = "cell";
+inline constexpr char kPositions[] = "positions";
+inline constexpr char kRadii[] = "radii";
+inline constexpr char kVelocities[] = "velocities";
+inline constexpr char kSpins[] = "spins";
+inline constexpr char kGsdDiameters[] = "gsd_diameters";
+inline constexpr char kGsdTarget[] = "gsd_target_percent";
+inline constexpr char kGsdAchieved[] = "gsd_achieved_percent";
+
+// The exact engine state (/engine in the checkpoint, engine/ below
+// /final_state and end_state/ of a stage): particles in the engine's order
+// with their ids, the cell, the neighbour list with its pair order and shear
+// history, so that a run continued from it is bit-identical.
+inline constexpr char kEngineGroup[] = "engine";
+inline constexpr char kStatePosition[] = "position";  // N×4 scaled x, y, z and radius
+inline constexpr char kStateVelocity[] = "velocity";  // N×4 fluctuation and 1/m
+inline constexpr char kStateSpin[] = "spin";          // N×4 spin and 1/I
+inline constexpr char kStateId[] = "id";              // input index of each particle
+inline constexpr char kStateCell[] = "cell";
+inline constexpr char kStateGradient[] = "gradient";
+inline constexpr char kStateTime[] = "time";
+inline constexpr char kStateStep[] = "step";
+inline constexpr char kStateMaxDisplacement[] = "max_displacement";
+inline constexpr char kStateForcesCurrent[] = "forces_current";
+inline constexpr char kStateThreads[] = "threads";
+inline constexpr char kStateReferenceCell[] = "reference_cell";  // strains count from it
+inline constexpr char kListGroup[] = "list";
+inline constexpr char kListOffsets[] = "offsets";
+inline constexpr char kListNeighbors[] = "neighbors";
+inline constexpr char kListShear[] = "shear";
+inline constexpr char kListBuildPositions[] = "build_positions";
+inline constexpr char kListBuildCell[] = "build_cell";
+inline constexpr char kListSkin[] = "skin";
+inline constexpr char kListMaxRadius[] = "max_radius";
+inline constexpr char kListBuilds[] = "builds";
+
+// Attributes of /provenance.
+inline constexpr char kProgramVersion[] = "program_version";
+inline constexpr char kSceneSha256[] = "scene_sha256";
+inline constexpr char kSceneCanonical[] = "scene_canonical";  // dataset: the hashed text
+inline constexpr char kStartKind[] = "start_kind";            // generated | packing | state
+inline constexpr char kStartSha256[] = "start_sha256";
+inline constexpr char kParentFile[] = "parent_file";
+inline constexpr char kParentStage[] = "parent_stage";
+inline constexpr char kParentSceneSha256[] = "parent_scene_sha256";
+inline constexpr char kCpuModel[] = "cpu_model";
+
+}  // namespace granasym::dem::record

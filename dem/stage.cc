@@ -1,0 +1,206 @@
+#include "dem/stage.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "common/canonical_text.h"
+#include "common/config.h"
+#include "common/error.h"
+#include "common/state_measures.h"
+#include "dem/rest_stage.h"
+#include "dem/strain_path_stage.h"
+#include "dem/triaxial_stage.h"
+
+namespace granasym::dem {
+namespace {
+
+// The stage types: the spelling of `type` and the parser of its keys. A new
+// loading mode adds its line here.
+struct StageTypeEntry {
+  const char* name;
+  std::shared_ptr<const StageSpec> (*parse)(const ConfigTable& table);
+};
+constexpr StageTypeEntry kStageTypes[] = {
+    {"strain_path", &StrainPathStage::Parse},
+    {"triaxial", &TriaxialStage::Parse},
+    {"rest", &RestStage::Parse},
+};
+
+struct DirectionName {
+  Direction direction;
+  const char* name;
+};
+constexpr DirectionName kDirections[] = {
+    {Direction::kAuto, "auto"}, {Direction::kRising, "rising"}, {Direction::kFalling, "falling"}};
+
+const char* ToString(Direction direction) {
+  for (const DirectionName& entry : kDirections) {
+    if (entry.direction == direction) return entry.name;
+  }
+  return "unknown";
+}
+
+std::optional<double> OptionalDouble(const ConfigTable& table, const std::string& key,
+                                     Range range) {
+  if (!table.Has(key)) return std::nullopt;
+  return table.GetDouble(key, range);
+}
+
+StopConditions ParseStop(const ConfigTable& stop) {
+  StopConditions s;
+  s.mean_stress_kpa = OptionalDouble(stop, "mean_stress_kpa", Range::Positive());
+  std::vector<std::string> directions;
+  for (const DirectionName& entry : kDirections) directions.push_back(entry.name);
+  const std::string direction = stop.GetChoice("direction", directions, "auto");
+  for (const DirectionName& entry : kDirections) {
+    if (direction == entry.name) s.mean_stress_direction = entry.direction;
+  }
+  s.axial_strain = OptionalDouble(stop, "axial_strain", Range::Any());
+  s.volumetric_strain = OptionalDouble(stop, "volumetric_strain", Range::Any());
+  s.shear_strain = OptionalDouble(stop, "shear_strain", Range::Any());
+  s.strain_norm = OptionalDouble(stop, "strain_norm", Range::Positive());
+  s.time_s = OptionalDouble(stop, "time_s", Range::Positive());
+  if (stop.Has("steps")) s.steps = stop.GetInt("steps", Range::AtLeast(1));
+  s.asymptote = stop.GetBool("asymptote", false);
+  return s;
+}
+
+bool StepsOrTimeDone(const StopConditions& stop, const StageClock& clock, const Engine& engine) {
+  if (stop.steps && clock.steps(engine) >= *stop.steps) return true;
+  const double elapsed = engine.time() - clock.start_time;
+  return stop.time_s && elapsed >= *stop.time_s * (1 - 1e-12);
+}
+
+}  // namespace
+
+double MeanStressKpa(const Engine::Sums& sums) {
+  return AxisymmetricFromTensor(sums.stress).mean() / kKiloPascal;
+}
+
+bool StopConditions::any() const {
+  return mean_stress_kpa || axial_strain || volumetric_strain || shear_strain || strain_norm ||
+         time_s || steps || asymptote;
+}
+
+void StopConditions::Canonical(CanonicalText& text, const std::string& prefix) const {
+  auto optional = [&](const char* key, const std::optional<double>& value) {
+    if (value) text.Add(prefix + key, *value);
+  };
+  optional("mean_stress_kpa", mean_stress_kpa);
+  if (mean_stress_kpa) text.Add(prefix + "direction", ToString(mean_stress_direction));
+  optional("axial_strain", axial_strain);
+  optional("volumetric_strain", volumetric_strain);
+  optional("shear_strain", shear_strain);
+  optional("strain_norm", strain_norm);
+  optional("time_s", time_s);
+  if (steps) text.Add(prefix + "steps", *steps);
+  text.Add(prefix + "asymptote", asymptote);
+}
+
+ControlOptions ControlOptions::Parse(const ConfigTable& control) {
+  ControlOptions c;
+  c.gain = control.GetDouble("gain", c.gain, Range::Open(0, 1));
+  c.integral_gain = control.GetDouble("integral_gain", c.integral_gain, Range::Closed(0, 1));
+  c.max_rate_factor = control.GetDouble("max_rate_factor", c.max_rate_factor, Range::Positive());
+  return c;
+}
+
+void ControlOptions::Canonical(CanonicalText& text, const std::string& prefix) const {
+  text.Add(prefix + "gain", gain);
+  text.Add(prefix + "integral_gain", integral_gain);
+  text.Add(prefix + "max_rate_factor", max_rate_factor);
+}
+
+void Stage::Canonical(CanonicalText& text, const std::string& prefix) const {
+  text.Add(prefix + "name", name);
+  text.Add(prefix + "type", type());
+  spec->Canonical(text, prefix);
+  stop.Canonical(text, prefix + "stop.");
+  text.Add(prefix + "detect_asymptote", detect_asymptote);
+  if (detect_asymptote) asymptote.Canonical(text, prefix + "asymptote.");
+}
+
+std::string StageTypeNames() {
+  std::string names;
+  const size_t count = std::size(kStageTypes);
+  for (size_t k = 0; k < count; ++k) {
+    names += k == 0 ? "" : (k + 1 == count ? " or " : ", ");
+    names += kStageTypes[k].name;
+  }
+  return names;
+}
+
+Stage ParseStage(const ConfigTable& table, size_t index) {
+  Stage stage;
+  stage.name = table.GetString("name", "stage" + std::to_string(index + 1));
+  std::vector<std::string> types;
+  for (const StageTypeEntry& entry : kStageTypes) types.push_back(entry.name);
+  const std::string type = table.GetChoice("type", types, "strain_path");
+  for (const StageTypeEntry& entry : kStageTypes) {
+    if (type == entry.name) stage.spec = entry.parse(table);
+  }
+  GRANASYM_CHECK(stage.spec) << "no parser for stage type " << type;
+  if (table.Has("asymptote")) {
+    stage.asymptote = AsymptoteCriterion::Parse(table.GetTable("asymptote"));
+    stage.detect_asymptote = true;
+  }
+  if (!table.Has("stop")) {
+    table.Fail("stop",
+               "is missing: every stage needs a [stage.stop] table with at least one of "
+               "mean_stress_kpa, axial_strain, volumetric_strain, shear_strain, "
+               "strain_norm, time_s, steps, asymptote (rest stages stop at equilibrium)");
+  }
+  const ConfigTable stop = table.GetTable("stop");
+  stage.stop = ParseStop(stop);
+  if (stage.stop.asymptote) stage.detect_asymptote = true;
+  if (!stage.stop.any() && !stage.spec->StopsByItself()) {
+    stop.Fail("",
+              "has no stop condition: give at least one of mean_stress_kpa, axial_strain, "
+              "volumetric_strain, shear_strain, strain_norm, time_s, steps, asymptote");
+  }
+  return stage;
+}
+
+std::optional<std::string> MeanStressStop(const StopConditions& stop, const StageClock& clock,
+                                          double p) {
+  if (!stop.mean_stress_kpa) return std::nullopt;
+  Direction direction = stop.mean_stress_direction;
+  if (direction == Direction::kAuto) {
+    direction =
+        clock.start_p_kpa < *stop.mean_stress_kpa ? Direction::kRising : Direction::kFalling;
+  }
+  if ((direction == Direction::kRising && p >= *stop.mean_stress_kpa) ||
+      (direction == Direction::kFalling && p <= *stop.mean_stress_kpa)) {
+    return fmt::format("mean stress reached {:.6g} kPa (target {:.6g} kPa, {})", p,
+                       *stop.mean_stress_kpa, ToString(direction));
+  }
+  return std::nullopt;
+}
+
+bool StrainOrDurationStopReached(const StopConditions& stop, const StageClock& clock,
+                                 const Engine& engine) {
+  std::array<double, 3> strain;
+  for (int d = 0; d < 3; ++d) strain[d] = -std::log(engine.cell()[d] / clock.start_cell[d]);
+  const double axial = strain[0], radial = 0.5 * (strain[1] + strain[2]);
+  auto reached = [](std::optional<double> target, double value) {
+    if (!target) return false;
+    return *target >= 0 ? value >= *target : value <= *target;
+  };
+  if (reached(stop.axial_strain, axial)) return true;
+  if (reached(stop.volumetric_strain, axial + 2 * radial)) return true;
+  if (reached(stop.shear_strain, 2.0 * (axial - radial) / 3.0)) return true;
+  if (stop.strain_norm && clock.strain_norm >= *stop.strain_norm) return true;
+  return StepsOrTimeDone(stop, clock, engine);
+}
+
+std::string StrainOrDurationReason(const StopConditions& stop, const StageClock& clock,
+                                   const Engine& engine) {
+  if (StepsOrTimeDone(stop, clock, engine)) {
+    return stop.steps ? fmt::format("{} steps done", *stop.steps)
+                      : fmt::format("stage time {:.6g} s reached", *stop.time_s);
+  }
+  return "strain target reached";
+}
+
+}  // namespace granasym::dem

@@ -1,0 +1,146 @@
+// A loading stage of a DEM run: its parsed keys (a StageSpec of one stage
+// type), the stop conditions every stage shares, and the controller that
+// drives the cell while the stage runs.
+//
+// Adding a loading mode: write one file pair `<mode>_stage.h/.cc` with a
+// StageSpec (its keys, parsed from the [[stage]] table, its canonical text
+// and its description for the result file) and a StageController (start,
+// whether it needs the stress this step, the velocity gradient it applies,
+// its own stop check, its checkpointed state), and add its parser to the
+// table in stage.cc. The run loop (simulation.cc) does not change.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dem/asymptote_detector.h"
+#include "dem/engine.h"
+
+namespace granasym {
+class CanonicalText;
+class ConfigTable;
+class Hdf5File;
+}  // namespace granasym
+
+namespace granasym::dem {
+
+enum class Direction { kAuto, kRising, kFalling };
+
+// Stop conditions shared by all stage types ([stage.stop]); any one ends the stage.
+struct StopConditions {
+  std::optional<double> mean_stress_kpa;
+  Direction mean_stress_direction = Direction::kAuto;
+  // Stage-relative logarithmic strains, compression positive; reached when crossed.
+  std::optional<double> axial_strain, volumetric_strain, shear_strain;
+  std::optional<double> strain_norm;  // ∫‖D‖dt within the stage (> 0)
+  std::optional<double> time_s;       // stage duration (s)
+  std::optional<int64_t> steps;       // stage steps
+  bool asymptote = false;             // stop when the asymptotic state is detected
+  bool any() const;
+  void Canonical(CanonicalText& text, const std::string& prefix) const;
+};
+
+// Where the current stage started and how far it has gone: what the stop
+// conditions and controllers measure against. Checkpointed.
+struct StageClock {
+  int64_t start_step = 0;
+  double start_time = 0;
+  std::array<double, 3> start_cell{};
+  double start_p_kpa = std::numeric_limits<double>::quiet_NaN();  // first p measured
+  double strain_norm = 0;                                         // ∫‖D‖dt since the start
+  double next_sample_strain = 0;                                  // of the asymptote detector
+  int64_t first_row = 0;
+  int64_t steps(const Engine& engine) const { return engine.step() - start_step; }
+};
+
+// Mean stress of the last stress sums (kPa, compression positive).
+double MeanStressKpa(const Engine::Sums& sums);
+
+// Stress controllers ([stage.control]). Rates are compression positive; the
+// affine (Voigt) stiffness C of the contact network converts a stress error
+// into a strain increment, so the law is dimensionally consistent and
+// independent of the material's scale: Δε = gain · (σ* − σ)/C per step.
+struct ControlOptions {
+  // Fraction of the stress error removed per step by the affine stiffness;
+  // the true, relaxed stiffness is lower, so this bounds the correction.
+  double gain = 0.2;
+  // Integral gain per step on the same strain error (removes steady errors).
+  double integral_gain = 0.01;
+  // Largest controlled strain rate as a multiple of the stage's rate scale.
+  double max_rate_factor = 2.0;
+  static ControlOptions Parse(const ConfigTable& table);  // missing keys keep defaults
+  void Canonical(CanonicalText& text, const std::string& prefix) const;
+};
+
+// What a stage type does while its stage runs. Created at the stage start.
+class StageController {
+ public:
+  virtual ~StageController() = default;
+  // The velocity gradient D at the start of the stage (continuum sign, 1/s).
+  virtual std::array<double, 3> Start() = 0;
+  // Whether the force evaluation of this step must sum the stress (for the
+  // controller or its stop check) and the affine stiffness.
+  virtual bool NeedsStress(int64_t stage_steps) const = 0;
+  virtual bool NeedsStiffness() const = 0;
+  // The velocity gradient from the stress just measured; nullopt keeps it.
+  virtual std::optional<std::array<double, 3>> Control(const Engine::Sums& sums,
+                                                       double time_step) = 0;
+  // A stop of the stage type's own (e.g. equilibrium), checked on steps
+  // with stress after the shared conditions; the reason, or nullopt.
+  virtual std::optional<std::string> CheckStop(const Engine& engine, int64_t stage_steps) const {
+    return std::nullopt;
+  }
+  // Internal state (e.g. integral terms) for checkpoints.
+  virtual std::vector<double> SaveState() const { return {}; }
+  virtual void RestoreState(const std::vector<double>& state) {}
+};
+
+// The parsed keys of one stage type.
+class StageSpec {
+ public:
+  virtual ~StageSpec() = default;
+  virtual std::string type() const = 0;  // the spelling of `type` in scene files
+  // True when the type ends its stage without a [stage.stop] condition.
+  virtual bool StopsByItself() const { return false; }
+  virtual std::unique_ptr<StageController> MakeController() const = 0;
+  // The type's keys for the canonical scene (`prefix` ends with '.').
+  virtual void Canonical(CanonicalText& text, const std::string& prefix) const = 0;
+  // Attributes of the stage's record in the result file.
+  virtual void Describe(Hdf5File& file, const std::string& group) const = 0;
+};
+
+struct Stage {
+  std::string name;
+  std::shared_ptr<const StageSpec> spec;
+  StopConditions stop;
+  AsymptoteCriterion asymptote;
+  bool detect_asymptote = false;  // run the detector (always on with stop.asymptote)
+
+  std::string type() const { return spec->type(); }
+  template <typename Spec>
+  const Spec* As() const {
+    return dynamic_cast<const Spec*>(spec.get());
+  }
+  void Canonical(CanonicalText& text, const std::string& prefix) const;
+};
+
+// Reads one [[stage]] table (index k for the default name "stage<k+1>").
+Stage ParseStage(const ConfigTable& table, size_t index);
+// "strain_path, triaxial or rest": the types the parser knows.
+std::string StageTypeNames();
+
+// The shared stop conditions, in the order of their reasons: the mean-stress
+// target (needs stress), then strains, the strain norm, steps and time.
+std::optional<std::string> MeanStressStop(const StopConditions& stop, const StageClock& clock,
+                                          double p_kpa);
+bool StrainOrDurationStopReached(const StopConditions& stop, const StageClock& clock,
+                                 const Engine& engine);
+std::string StrainOrDurationReason(const StopConditions& stop, const StageClock& clock,
+                                   const Engine& engine);
+
+}  // namespace granasym::dem

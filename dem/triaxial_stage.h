@@ -1,0 +1,22 @@
+// Drained triaxial stage: a constant axial strain rate ε̇_a with the radial
+// stress σ_r held at a target by a PI controller on the radial strain rate.
+#pragma once
+
+#include "dem/stage.h"
+
+namespace granasym::dem {
+
+class TriaxialStage final : public StageSpec {
+ public:
+  double axial_strain_rate = 0;  // ε̇_a, compression positive, non-zero (1/s)
+  double radial_stress_kpa = 0;  // σ_r target (kPa)
+  ControlOptions control;        // rate scale of max_rate_factor: |ε̇_a|
+
+  static std::shared_ptr<const StageSpec> Parse(const ConfigTable& table);
+  std::string type() const override { return "triaxial"; }
+  std::unique_ptr<StageController> MakeController() const override;
+  void Canonical(CanonicalText& text, const std::string& prefix) const override;
+  void Describe(Hdf5File& file, const std::string& group) const override;
+};
+
+}  // namespace granasym::dem

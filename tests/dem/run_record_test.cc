@@ -1,0 +1,222 @@
+// Runs that fork from saved states, the provenance of result files, and the
+// records shared by result files and checkpoints.
+#include "dem/run_record.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+
+#include "common/error.h"
+#include "common/hdf5_file.h"
+#include "common/time_series.h"
+#include "dem/run_record_names.h"
+#include "dem/scene.h"
+#include "dem/simulation.h"
+#include "test_util.h"
+
+namespace granasym::dem {
+namespace {
+
+using testing::SampleToml;
+
+// Per process: ctest may run the tests of this file in parallel processes.
+std::string TempPath(const std::string& name) {
+  return testing::TempPath(std::to_string(getpid()) + "_" + name);
+}
+
+const char* kStageA = R"(
+[[stage]]
+name = "ncl"
+psi_epsilon_deg = 0.0
+stretching_rate = 167.0
+[stage.stop]
+mean_stress_kpa = 150.0
+)";
+
+const char* kStageB = R"(
+[[stage]]
+name = "triaxial"
+type = "triaxial"
+axial_strain_rate = 136.355
+radial_stress_kpa = 150.0
+[stage.stop]
+axial_strain = 0.02
+)";
+
+const char* kOutput = "[output]\ninterval_strain = 0.004\n";
+
+RunSummary RunToFile(const std::string& text, const std::string& name, int threads = 2) {
+  const Scene scene = Scene::Parse(text, name + ".toml", "");
+  RunOptions options;
+  options.output_path = TempPath(name + ".h5");
+  options.threads = threads;
+  const RunSummary summary = RunScene(scene, options);
+  EXPECT_EQ(summary.termination, Termination::kCompleted) << name << ": " << summary.message;
+  return summary;
+}
+
+TimeSeries SeriesOf(const std::string& name) {
+  return TimeSeries::Read(Hdf5File::OpenRead(TempPath(name + ".h5")), record::kSeries);
+}
+
+std::string ForkScene(const std::string& parent, const std::string& stage) {
+  std::string text = "[sample]\nstate = '" + TempPath(parent + ".h5") + "'\n";
+  if (!stage.empty()) text += "stage = '" + stage + "'\n";
+  return text + "[numerics]\ntime_step_s = 1.2e-7\n" + kOutput + kStageB;
+}
+
+// Rows of `series` whose stage column equals `stage`.
+std::vector<size_t> RowsOfStage(const TimeSeries& series, double stage) {
+  std::vector<size_t> rows;
+  const auto& column = series.Values(record::kColumnStage);
+  for (size_t r = 0; r < column.size(); ++r) {
+    if (column[r] == stage) rows.push_back(r);
+  }
+  return rows;
+}
+
+// B's rows of the straight run against the rows of the fork: the same bytes
+// in every column; the stage column counts the stages of each scene.
+void ExpectSameRows(const TimeSeries& straight, const TimeSeries& fork) {
+  const std::vector<size_t> b = RowsOfStage(straight, 1);
+  ASSERT_EQ(b.size(), fork.rows());
+  ASSERT_GT(b.size(), 5u);
+  for (const auto& column : straight.columns()) {
+    const auto& expected = straight.Values(column.name);
+    const auto& actual = fork.Values(column.name);
+    for (size_t k = 0; k < b.size(); ++k) {
+      if (column.name == record::kColumnStage) {
+        EXPECT_EQ(actual[k], 0.0);
+      } else {
+        ASSERT_EQ(std::memcmp(&expected[b[k]], &actual[k], sizeof(double)), 0)
+            << column.name << " row " << k << ": " << expected[b[k]] << " vs " << actual[k];
+      }
+    }
+  }
+}
+
+class Fork : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    const std::string sample = SampleToml(600, 4.9, 21);
+    RunToFile(sample + kOutput + kStageA + kStageB, "fork_straight");
+    RunToFile(sample + kOutput + kStageA, "fork_parent");
+  }
+};
+
+TEST_F(Fork, FromTheFinalStateOfAnotherRunGivesTheSameBytesAsOneRun) {
+  RunToFile(ForkScene("fork_parent", ""), "fork_child");
+  ExpectSameRows(SeriesOf("fork_straight"), SeriesOf("fork_child"));
+  // The final states agree as well.
+  const Hdf5File a = Hdf5File::OpenRead(TempPath("fork_straight.h5"));
+  const Hdf5File b = Hdf5File::OpenRead(TempPath("fork_child.h5"));
+  size_t rows = 0, cols = 0;
+  EXPECT_EQ(a.ReadMatrix("/final_state/positions", &rows, &cols),
+            b.ReadMatrix("/final_state/positions", &rows, &cols));
+}
+
+TEST_F(Fork, FromAStageEndGivesTheSameBytesAsOneRun) {
+  RunToFile(ForkScene("fork_straight", "ncl"), "fork_stage_child");
+  ExpectSameRows(SeriesOf("fork_straight"), SeriesOf("fork_stage_child"));
+  // The last stage of a completed run forks from its final state.
+  RunToFile(ForkScene("fork_parent", "ncl"), "fork_last_stage_child");
+  ExpectSameRows(SeriesOf("fork_straight"), SeriesOf("fork_last_stage_child"));
+}
+
+TEST_F(Fork, RecordsItsParentInTheProvenance) {
+  RunToFile(ForkScene("fork_straight", "ncl"), "fork_provenance");
+  const Hdf5File parent = Hdf5File::OpenRead(TempPath("fork_straight.h5"));
+  const Hdf5File child = Hdf5File::OpenRead(TempPath("fork_provenance.h5"));
+  const Provenance p = ReadProvenance(parent);
+  const Provenance c = ReadProvenance(child);
+  EXPECT_EQ(p.start_kind, "generated");
+  EXPECT_EQ(c.start_kind, "state");
+  EXPECT_EQ(c.parent_stage, "ncl");
+  EXPECT_EQ(c.parent_file, TempPath("fork_straight.h5"));
+  EXPECT_EQ(c.parent_scene_sha256, p.scene_sha256);
+  EXPECT_EQ(c.start_sha256.size(), 64u);
+  EXPECT_NE(c.start_sha256, p.start_sha256);
+  EXPECT_EQ(c.threads, 2);
+  EXPECT_FALSE(c.program_version.empty());
+  EXPECT_FALSE(c.cpu_model.empty());
+}
+
+TEST_F(Fork, BadParentsAreRejectedWithTheReason) {
+  auto error_of = [](const std::string& text, const std::string& out) {
+    try {
+      const Scene scene = Scene::Parse(text, "child.toml", "");
+      RunOptions options;
+      options.output_path = out;
+      RunScene(scene, options);
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string();
+  };
+  const std::string unknown = error_of(ForkScene("fork_straight", "nothing"), TempPath("x.h5"));
+  EXPECT_NE(unknown.find("no completed stage named 'nothing'"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("'ncl'"), std::string::npos) << unknown;
+  const std::string missing = error_of(ForkScene("fork_absent", ""), TempPath("x.h5"));
+  EXPECT_NE(missing.find("does not exist"), std::string::npos) << missing;
+  const std::string self = error_of(ForkScene("fork_parent", ""), TempPath("fork_parent.h5"));
+  EXPECT_NE(self.find("no output overwrites an input"), std::string::npos) << self;
+  const std::string both = error_of(
+      "[sample]\nstate = 'a.h5'\npacking = 'b.txt'\n" + std::string(kStageB), TempPath("x.h5"));
+  EXPECT_NE(both.find("exactly one"), std::string::npos) << both;
+  const std::string stray = error_of(SampleToml() + "[sample]\nstage = 'ncl'\n", TempPath("x.h5"));
+  EXPECT_FALSE(stray.empty());
+}
+
+TEST(Provenance, TheSceneHashIgnoresFormattingAndExplicitDefaults) {
+  const std::string base = SampleToml(200, 3.5, 1) + kOutput + kStageA;
+  const Scene a = Scene::Parse(base, "a.toml", "");
+  const Scene b = Scene::Parse(
+      "# a comment\n" + SampleToml(200, 3.5, 1) + kOutput + "\n\n" + kStageA, "b.toml", "");
+  EXPECT_EQ(a.Canonical(), b.Canonical());
+  const Scene explicit_default = Scene::Parse(
+      SampleToml(200, 3.5, 1) + kOutput + "[material]\nlocal_damping = 0.5\n" + kStageA, "c.toml",
+      "");
+  EXPECT_EQ(a.Canonical(), explicit_default.Canonical());
+  const Scene other = Scene::Parse(SampleToml(200, 3.5, 2) + kOutput + kStageA, "d.toml", "");
+  EXPECT_NE(a.Canonical(), other.Canonical());
+  EXPECT_NE(a.Canonical().find("stage[0].stop.mean_stress_kpa = 150"), std::string::npos)
+      << a.Canonical();
+}
+
+TEST(RunRecord, TheEngineStateRoundTripsThroughAFile) {
+  RunToFile(SampleToml(300, 3.9, 5) + kOutput + kStageA, "record_roundtrip");
+  const Hdf5File file = Hdf5File::OpenRead(TempPath("record_roundtrip.h5"));
+  const Engine::State state = ReadEngineState(file, "/final_state/engine");
+  const std::string copy = TempPath("record_copy.h5");
+  {
+    Hdf5File out = Hdf5File::CreateAtomic(copy);
+    WriteEngineState(out, "/state", state, 3);
+    out.Commit();
+  }
+  int threads = 0;
+  const Engine::State again = ReadEngineState(Hdf5File::OpenRead(copy), "/state", &threads);
+  EXPECT_EQ(threads, 3);
+  EXPECT_EQ(again.id, state.id);
+  EXPECT_EQ(again.position.size(), 300u);
+  for (size_t i = 0; i < state.position.size(); ++i) {
+    EXPECT_EQ(std::memcmp(&again.position[i], &state.position[i], sizeof(Vec4)), 0);
+    EXPECT_EQ(std::memcmp(&again.velocity[i], &state.velocity[i], sizeof(Vec4)), 0);
+  }
+  EXPECT_EQ(again.neighbors.offsets, state.neighbors.offsets);
+  EXPECT_EQ(again.neighbors.neighbors, state.neighbors.neighbors);
+  EXPECT_EQ(again.neighbors.shear.size(), state.neighbors.shear.size());
+  EXPECT_TRUE(again.forces_current);  // the run ended on a stop, not after a step
+  const RunSummary summary = ReadSummary(file);
+  EXPECT_EQ(summary.termination, Termination::kCompleted);
+  EXPECT_EQ(summary.stages_completed, 1);
+  const std::vector<StageRecord> records = ReadStageRecords(file);
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(records[0].name, "ncl");
+  EXPECT_EQ(records[0].type, "strain_path");
+  EXPECT_FALSE(records[0].end_state);  // the last stage's end is the final state
+}
+
+}  // namespace
+}  // namespace granasym::dem
