@@ -13,22 +13,6 @@
 
 namespace granasym {
 
-const char* ToString(CamClayStressPoint::Method method) {
-  return method == CamClayStressPoint::Method::kModifiedEuler ? "modified_euler"
-                                                              : "return_mapping";
-}
-
-bool FromString(const std::string& name, CamClayStressPoint::Method* method) {
-  if (name == "modified_euler") {
-    *method = CamClayStressPoint::Method::kModifiedEuler;
-  } else if (name == "return_mapping") {
-    *method = CamClayStressPoint::Method::kReturnMapping;
-  } else {
-    return false;
-  }
-  return true;
-}
-
 bool CamClayStressPoint::Options::IsValid(std::string* why) const {
   auto fail = [why](const std::string& message) {
     if (why != nullptr) *why = message;

@@ -31,69 +31,6 @@ bool Fail(std::string* why, const std::string& message) {
 
 }  // namespace
 
-const char* ToString(ComponentControl control) {
-  return control == ComponentControl::kStretching ? "stretching" : "stress_rate";
-}
-
-bool FromString(const std::string& name, ComponentControl* control) {
-  if (name == "stretching") {
-    *control = ComponentControl::kStretching;
-  } else if (name == "stress_rate") {
-    *control = ComponentControl::kStressRate;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-const char* ToString(StopKind kind) {
-  switch (kind) {
-    case StopKind::kMeanStress:
-      return "mean_stress";
-    case StopKind::kAxialStrain:
-      return "axial_strain";
-    case StopKind::kVolumetricStrain:
-      return "volumetric_strain";
-    case StopKind::kShearStrain:
-      return "shear_strain";
-    case StopKind::kStrainPath:
-      return "strain_path";
-    case StopKind::kStressRatio:
-      return "stress_ratio";
-    case StopKind::kAsymptote:
-      return "asymptote";
-  }
-  return "unknown";
-}
-
-bool FromString(const std::string& name, StopKind* kind) {
-  for (StopKind candidate :
-       {StopKind::kMeanStress, StopKind::kAxialStrain, StopKind::kVolumetricStrain,
-        StopKind::kShearStrain, StopKind::kStrainPath, StopKind::kStressRatio,
-        StopKind::kAsymptote}) {
-    if (name == ToString(candidate)) {
-      *kind = candidate;
-      return true;
-    }
-  }
-  return false;
-}
-
-const char* ToString(DriveMethod method) {
-  return method == DriveMethod::kRateIntegration ? "rate_integration" : "stress_point";
-}
-
-bool FromString(const std::string& name, DriveMethod* method) {
-  if (name == "rate_integration") {
-    *method = DriveMethod::kRateIntegration;
-  } else if (name == "stress_point") {
-    *method = DriveMethod::kStressPoint;
-  } else {
-    return false;
-  }
-  return true;
-}
-
 LoadingStage LoadingStage::Proportional(double psi_epsilon, double stretching_rate,
                                         double duration) {
   LoadingStage stage;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "common/state_measures.h"
 #include "constitutive/cam_clay_stress_point.h"
 #include "constitutive/constitutive_model.h"
@@ -23,8 +24,13 @@
 namespace granasym {
 
 enum class ComponentControl { kStretching, kStressRate };
-const char* ToString(ComponentControl control);
-bool FromString(const std::string& name, ComponentControl* control);
+template <>
+struct EnumNames<ComponentControl> {
+  static constexpr EnumEntry<ComponentControl> kEntries[] = {
+      {ComponentControl::kStretching, "stretching", "the stretching is prescribed"},
+      {ComponentControl::kStressRate, "stress_rate", "the stress rate is prescribed"},
+  };
+};
 
 enum class StopKind {
   kMeanStress,         // p reaches value (kPa)
@@ -35,8 +41,19 @@ enum class StopKind {
   kStressRatio,        // q/p reaches value
   kAsymptote,          // |dψ_σ/ds| + |d ln OCR/ds| falls to value (per unit strain path)
 };
-const char* ToString(StopKind kind);
-bool FromString(const std::string& name, StopKind* kind);
+template <>
+struct EnumNames<StopKind> {
+  static constexpr EnumEntry<StopKind> kEntries[] = {
+      {StopKind::kMeanStress, "mean_stress", "p reaches the value (kPa)"},
+      {StopKind::kAxialStrain, "axial_strain", "the axial strain reaches the value"},
+      {StopKind::kVolumetricStrain, "volumetric_strain", "the volumetric strain reaches the value"},
+      {StopKind::kShearStrain, "shear_strain", "2(eps_a - eps_r)/3 reaches the value"},
+      {StopKind::kStrainPath, "strain_path", "the strain path length reaches the value"},
+      {StopKind::kStressRatio, "stress_ratio", "q/p reaches the value"},
+      {StopKind::kAsymptote, "asymptote",
+       "|dpsi_sigma/ds| + |d ln OCR/ds| falls to the value (per unit strain path)"},
+  };
+};
 
 struct StopCondition {
   StopKind kind = StopKind::kMeanStress;
@@ -91,8 +108,14 @@ enum class DriveMethod {
   kRateIntegration,    // the rate form with an Integrator (all models)
   kStressPoint,        // strain increments through CamClayStressPoint (Cam clay only)
 };
-const char* ToString(DriveMethod method);
-bool FromString(const std::string& name, DriveMethod* method);
+template <>
+struct EnumNames<DriveMethod> {
+  static constexpr EnumEntry<DriveMethod> kEntries[] = {
+      {DriveMethod::kRateIntegration, "rate_integration", "the rate form with an integrator"},
+      {DriveMethod::kStressPoint, "stress_point",
+       "strain increments through a stress-point algorithm (Cam clay only)"},
+  };
+};
 
 // The default integrator of each model, chosen from the work-precision study
 // (bench/README.md, "Chosen defaults"; bench/constitutive_work_precision):

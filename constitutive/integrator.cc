@@ -11,63 +11,7 @@
 
 namespace granasym {
 
-const char* ToString(IntegratorKind kind) {
-  switch (kind) {
-    case IntegratorKind::kCvodeBdf:
-      return "cvode_bdf";
-    case IntegratorKind::kCvodeAdams:
-      return "cvode_adams";
-    case IntegratorKind::kArkodeErk:
-      return "arkode_erk";
-    case IntegratorKind::kArkodeDirk:
-      return "arkode_dirk";
-    case IntegratorKind::kRkf23:
-      return "rkf23";
-  }
-  return "unknown";
-}
-
-std::vector<IntegratorKind> AllIntegratorKinds() {
-  return {IntegratorKind::kCvodeBdf, IntegratorKind::kCvodeAdams, IntegratorKind::kArkodeErk,
-          IntegratorKind::kArkodeDirk, IntegratorKind::kRkf23};
-}
-
-bool FromString(const std::string& name, IntegratorKind* kind) {
-  for (IntegratorKind candidate : AllIntegratorKinds()) {
-    if (name == ToString(candidate)) {
-      *kind = candidate;
-      return true;
-    }
-  }
-  return false;
-}
-
-const char* ToString(JacobianKind kind) {
-  return kind == JacobianKind::kExact ? "exact" : "finite_difference";
-}
-
-bool FromString(const std::string& name, JacobianKind* kind) {
-  if (name == "exact") {
-    *kind = JacobianKind::kExact;
-  } else if (name == "finite_difference") {
-    *kind = JacobianKind::kFiniteDifference;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-const char* ToString(TerminationType type) {
-  switch (type) {
-    case TerminationType::kReachedEnd:
-      return "reached_end";
-    case TerminationType::kRootFound:
-      return "root_found";
-    case TerminationType::kFailure:
-      return "failure";
-  }
-  return "unknown";
-}
+std::vector<IntegratorKind> AllIntegratorKinds() { return EnumValues<IntegratorKind>(); }
 
 bool IntegratorOptions::IsValid(std::string* why) const {
   auto fail = [why](const std::string& message) {

@@ -75,21 +75,6 @@ bool CamClayRate(const ModifiedCamClay::Parameters& c, const Vec6<S>& t, const S
 
 }  // namespace
 
-const char* ToString(ModifiedCamClay::CompressionForm form) {
-  return form == ModifiedCamClay::CompressionForm::kLogLog ? "log_log" : "semi_log";
-}
-
-bool FromString(const std::string& name, ModifiedCamClay::CompressionForm* form) {
-  if (name == "log_log") {
-    *form = ModifiedCamClay::CompressionForm::kLogLog;
-  } else if (name == "semi_log") {
-    *form = ModifiedCamClay::CompressionForm::kSemiLog;
-  } else {
-    return false;
-  }
-  return true;
-}
-
 bool ModifiedCamClay::Parameters::IsValid(std::string* why) const {
   auto fail = [why](const std::string& message) { return Fail(why, message); };
   if (!(critical_state_ratio > 0 && critical_state_ratio < 3.0)) {

@@ -11,6 +11,7 @@
 
 #include <string>
 
+#include "common/enum_names.h"
 #include "constitutive/constitutive_model.h"
 
 namespace granasym {
@@ -100,7 +101,12 @@ class ModifiedCamClay : public ConstitutiveModel {
   Parameters parameters_;
 };
 
-const char* ToString(ModifiedCamClay::CompressionForm form);
-bool FromString(const std::string& name, ModifiedCamClay::CompressionForm* form);
+template <>
+struct EnumNames<ModifiedCamClay::CompressionForm> {
+  static constexpr EnumEntry<ModifiedCamClay::CompressionForm> kEntries[] = {
+      {ModifiedCamClay::CompressionForm::kLogLog, "log_log", "ln(1+e)-ln p: lambda*, kappa*, N"},
+      {ModifiedCamClay::CompressionForm::kSemiLog, "semi_log", "e-ln p: lambda, kappa, e_N"},
+  };
+};
 
 }  // namespace granasym

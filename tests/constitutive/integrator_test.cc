@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "constitutive/element_test.h"
+#include "tests/common/enum_spellings.h"
 #include "tests/constitutive/test_models.h"
 
 namespace granasym {
@@ -68,6 +69,21 @@ TEST(Integrator, NamesRoundTrip) {
   }
   IntegratorKind unused;
   EXPECT_FALSE(FromString("euler", &unused));
+}
+
+// Test files, HDF5 attributes and the benchmark scripts use these spellings.
+TEST(Integrator, NamesAreSpelledAsInFilesAndResults) {
+  ExpectSpellings<IntegratorKind>({{IntegratorKind::kCvodeBdf, "cvode_bdf"},
+                                   {IntegratorKind::kCvodeAdams, "cvode_adams"},
+                                   {IntegratorKind::kArkodeErk, "arkode_erk"},
+                                   {IntegratorKind::kArkodeDirk, "arkode_dirk"},
+                                   {IntegratorKind::kRkf23, "rkf23"}});
+  EXPECT_EQ(AllIntegratorKinds(), EnumValues<IntegratorKind>());
+  ExpectSpellings<JacobianKind>(
+      {{JacobianKind::kExact, "exact"}, {JacobianKind::kFiniteDifference, "finite_difference"}});
+  ExpectSpellings<TerminationType>({{TerminationType::kReachedEnd, "reached_end"},
+                                    {TerminationType::kRootFound, "root_found"},
+                                    {TerminationType::kFailure, "failure"}});
 }
 
 struct OrderCase {

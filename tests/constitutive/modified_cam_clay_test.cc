@@ -10,6 +10,7 @@
 #include "constitutive/asymptotic_states.h"
 #include "constitutive/cam_clay_stress_point.h"
 #include "constitutive/element_test.h"
+#include "tests/common/enum_spellings.h"
 #include "tests/constitutive/test_models.h"
 
 namespace granasym {
@@ -51,6 +52,16 @@ TEST(ModifiedCamClay, RejectsInvalidParameters) {
   p = CamClay();
   p.poisson_ratio = 0.5;
   EXPECT_FALSE(p.IsValid(&why));
+}
+
+// Model files ([model] form, [integration] stress_point) use these spellings.
+TEST(ModifiedCamClay, NamesAreSpelledAsInFiles) {
+  ExpectSpellings<ModifiedCamClay::CompressionForm>(
+      {{ModifiedCamClay::CompressionForm::kLogLog, "log_log"},
+       {ModifiedCamClay::CompressionForm::kSemiLog, "semi_log"}});
+  ExpectSpellings<CamClayStressPoint::Method>(
+      {{CamClayStressPoint::Method::kModifiedEuler, "modified_euler"},
+       {CamClayStressPoint::Method::kReturnMapping, "return_mapping"}});
 }
 
 TEST(CamClayStressPointOptions, DefaultOptionsAreValid) {
