@@ -60,6 +60,7 @@
 #include "calibration/model_parameters.h"
 #include "calibration/nlopt_fitter.h"
 #include "common/config.h"
+#include "common/enum_names.h"
 
 namespace granasym::calibration {
 
@@ -80,7 +81,26 @@ struct ParameterChoice {
 };
 
 enum class FitMethod { kCeres, kNlopt, kBoth };
-const char* ToString(FitMethod method);
+
+}  // namespace granasym::calibration
+
+namespace granasym {
+template <>
+struct EnumNames<calibration::FitMethod> {
+  using M = calibration::FitMethod;
+  static constexpr EnumEntry<M> kEntries[] = {
+      {M::kCeres, "ceres", "Ceres least squares from the starting values"},
+      {M::kNlopt, "nlopt", "NLopt global search and a local polish"},
+      {M::kBoth, "both", "both, and the two optima compared"},
+  };
+};
+}  // namespace granasym
+
+namespace granasym::calibration {
+
+// The name-table functions (common/enum_names.h) for this namespace's enums.
+using granasym::FromString;
+using granasym::ToString;
 
 struct CalibrationConfig {
   std::string origin;  // the calibration file

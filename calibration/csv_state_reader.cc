@@ -107,8 +107,7 @@ void CheckColumns(const CsvTable& table, const CsvReadOptions& options) {
 bool CsvReadOptions::IsValid(std::string* why) const {
   StateKind parsed;
   if (kind != "auto" && !FromString(kind, &parsed)) {
-    *why = fmt::format("kind = '{}' must be auto, ncl, csl, compression, extension, asbs or "
-                       "unloading", kind);
+    *why = fmt::format("kind = '{}' must be auto, {}", kind, AllowedNames<StateKind>());
     return false;
   }
   return ValidReaderSettings(kind_tolerance_deg, psi_sigma_uncertainty_deg, ln_volume_uncertainty,

@@ -11,18 +11,6 @@
 
 namespace granasym::calibration {
 
-const char* ToString(FitTermination termination) {
-  switch (termination) {
-    case FitTermination::kConverged:
-      return "converged";
-    case FitTermination::kNoConvergence:
-      return "no_convergence";
-    case FitTermination::kFailure:
-      return "failure";
-  }
-  return "unknown";
-}
-
 std::string FitSummary::Report() const {
   return fmt::format("{}: {} after {} iterations, {} evaluations, cost {:.6g} -> {:.6g}, {:.3f} s{}",
                      fitter, ToString(termination), iterations, evaluations, initial_cost,

@@ -16,11 +16,31 @@
 #include <vector>
 
 #include "calibration/calibration_problem.h"
+#include "common/enum_names.h"
 
 namespace granasym::calibration {
 
 enum class FitTermination { kConverged, kNoConvergence, kFailure };
-const char* ToString(FitTermination termination);
+
+}  // namespace granasym::calibration
+
+namespace granasym {
+template <>
+struct EnumNames<calibration::FitTermination> {
+  using T = calibration::FitTermination;
+  static constexpr EnumEntry<T> kEntries[] = {
+      {T::kConverged, "converged", "a convergence criterion was met"},
+      {T::kNoConvergence, "no_convergence", "stopped before a convergence criterion was met"},
+      {T::kFailure, "failure", "the fit failed (see the message)"},
+  };
+};
+}  // namespace granasym
+
+namespace granasym::calibration {
+
+// The name-table functions (common/enum_names.h) for this namespace's enums.
+using granasym::FromString;
+using granasym::ToString;
 
 struct FitSummary {
   std::string fitter;  // "ceres", "nlopt:crs2+bobyqa", ...

@@ -86,53 +86,6 @@ bool RunNlopt(nlopt::opt& opt, std::vector<double>* u, double* value, std::strin
 
 }  // namespace
 
-const char* ToString(GlobalAlgorithm algorithm) {
-  switch (algorithm) {
-    case GlobalAlgorithm::kCrs2:
-      return "crs2";
-    case GlobalAlgorithm::kIsres:
-      return "isres";
-    case GlobalAlgorithm::kDirectL:
-      return "direct_l";
-    case GlobalAlgorithm::kMlsl:
-      return "mlsl";
-  }
-  return "unknown";
-}
-
-bool FromString(const std::string& name, GlobalAlgorithm* algorithm) {
-  for (GlobalAlgorithm a : {GlobalAlgorithm::kCrs2, GlobalAlgorithm::kIsres,
-                            GlobalAlgorithm::kDirectL, GlobalAlgorithm::kMlsl}) {
-    if (name == ToString(a)) {
-      *algorithm = a;
-      return true;
-    }
-  }
-  return false;
-}
-
-const char* ToString(LocalPolish polish) {
-  switch (polish) {
-    case LocalPolish::kNone:
-      return "none";
-    case LocalPolish::kBobyqa:
-      return "bobyqa";
-    case LocalPolish::kCeres:
-      return "ceres";
-  }
-  return "unknown";
-}
-
-bool FromString(const std::string& name, LocalPolish* polish) {
-  for (LocalPolish p : {LocalPolish::kNone, LocalPolish::kBobyqa, LocalPolish::kCeres}) {
-    if (name == ToString(p)) {
-      *polish = p;
-      return true;
-    }
-  }
-  return false;
-}
-
 bool NloptFitter::Options::IsValid(std::string* why) const {
   if (starts < 1 || starts > 1000) {
     *why = fmt::format("starts = {} must be in [1, 1000]", starts);

@@ -10,35 +10,6 @@
 
 namespace granasym::calibration {
 
-namespace {
-struct KindName {
-  StateKind kind;
-  const char* name;
-};
-constexpr KindName kKindNames[] = {
-    {StateKind::kNcl, "ncl"},           {StateKind::kCsl, "csl"},
-    {StateKind::kCompression, "compression"}, {StateKind::kExtension, "extension"},
-    {StateKind::kAsbs, "asbs"},         {StateKind::kUnloading, "unloading"},
-};
-}  // namespace
-
-const char* ToString(StateKind kind) {
-  for (const KindName& k : kKindNames) {
-    if (k.kind == kind) return k.name;
-  }
-  return "unknown";
-}
-
-bool FromString(const std::string& name, StateKind* kind) {
-  for (const KindName& k : kKindNames) {
-    if (name == k.name) {
-      *kind = k.kind;
-      return true;
-    }
-  }
-  return false;
-}
-
 StateKind KindFromStretching(double psi_epsilon, double tolerance) {
   if (std::abs(psi_epsilon) <= tolerance) return StateKind::kNcl;
   if (std::abs(psi_epsilon - 0.5 * kPi) <= tolerance) return StateKind::kCsl;

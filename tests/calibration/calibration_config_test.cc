@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "synthetic_data.h"
+#include "tests/common/enum_spellings.h"
 
 namespace granasym::calibration {
 namespace {
@@ -90,6 +91,52 @@ TEST(CalibrationConfig, RejectsTheSandModelKind) {
                  "kind");
   ExpectRejected(Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"hypoplastic_sand\""),
                  "modified_cam_clay");
+}
+
+// Calibration files and the HDF5 record use these spellings.
+TEST(CalibrationConfig, NamesAreSpelledAsInFilesAndResults) {
+  ExpectSpellings<FitMethod>(
+      {{FitMethod::kCeres, "ceres"}, {FitMethod::kNlopt, "nlopt"}, {FitMethod::kBoth, "both"}});
+  ExpectSpellings<AsymptoteMethod>(
+      {{AsymptoteMethod::kAnalytic, "analytic"}, {AsymptoteMethod::kIntegrated, "integrated"}});
+  ExpectSpellings<GlobalAlgorithm>({{GlobalAlgorithm::kCrs2, "crs2"},
+                                    {GlobalAlgorithm::kIsres, "isres"},
+                                    {GlobalAlgorithm::kDirectL, "direct_l"},
+                                    {GlobalAlgorithm::kMlsl, "mlsl"}});
+  ExpectSpellings<LocalPolish>({{LocalPolish::kNone, "none"},
+                                {LocalPolish::kBobyqa, "bobyqa"},
+                                {LocalPolish::kCeres, "ceres"}});
+  ExpectSpellings<FitTermination>({{FitTermination::kConverged, "converged"},
+                                   {FitTermination::kNoConvergence, "no_convergence"},
+                                   {FitTermination::kFailure, "failure"}});
+}
+
+TEST(CalibrationConfig, ReadsEveryNameAndListsTheAllowedOnes) {
+  const std::string nlopt =
+      Replace(kConfig, "starts = 2", "starts = 2\nalgorithm = \"direct_l\"\npolish = \"none\"");
+  const std::string text =
+      Replace(Replace(Replace(nlopt, "kind = \"hypoplastic_clay\"",
+                              "kind = \"modified_cam_clay\"\nasymptotes = \"integrated\""),
+                      "method = \"both\"", "method = \"nlopt\""),
+              "csv = \"states.csv\"", "csv = \"states.csv\"\nkind = \"asbs\"");
+  const CalibrationConfig c = ReadCalibrationConfig(ConfigTable::ParseString(
+      Replace(text, "[parameters.r]", "[parameters.poisson_ratio]"), "/d/calib.toml"));
+  EXPECT_EQ(c.model, ModelKind::kModifiedCamClay);
+  EXPECT_EQ(c.predictor.method, AsymptoteMethod::kIntegrated);
+  EXPECT_EQ(c.method, FitMethod::kNlopt);
+  EXPECT_EQ(c.nlopt.algorithm, GlobalAlgorithm::kDirectL);
+  EXPECT_EQ(c.nlopt.polish, LocalPolish::kNone);
+  EXPECT_EQ(c.datasets[0].csv.kind, "asbs");
+
+  ExpectRejected(Replace(kConfig, "method = \"both\"", "method = \"simplex\""),
+                 "key 'fitter.method' = 'simplex' is not valid: expected ceres, nlopt or both");
+  ExpectRejected(Replace(kConfig, "starts = 2", "starts = 2\npolish = \"lbfgs\""),
+                 "expected none, bobyqa or ceres");
+  ExpectRejected(Replace(kConfig, "csv = \"states.csv\"", "csv = \"states.csv\"\nkind = \"nel\""),
+                 "key 'dataset[0].kind' = 'nel' is not valid: expected auto, ncl, csl, "
+                 "compression, extension, asbs or unloading");
+  ExpectRejected(Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"hypoplastic_sand\""),
+                 "expected hypoplastic_clay or modified_cam_clay");
 }
 
 TEST(CalibrationConfig, ReadsAndChecksAsbsValuesOfADemDataset) {
