@@ -66,7 +66,8 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
                fmt::format("lower = {} must be below upper = {}", lower, upper));
       }
       if (choice.free && choice.has_value && !(choice.value >= lower && choice.value <= upper)) {
-        t.Fail("value", fmt::format("value = {} lies outside [{}, {}]", choice.value, lower, upper));
+        t.Fail("value",
+               fmt::format("value = {} lies outside [{}, {}]", choice.value, lower, upper));
       }
       config.parameters.push_back(choice);
     }
@@ -80,7 +81,8 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
     DatasetConfig d;
     d.name = t.GetString("name", fmt::format("dataset{}", k + 1));
     const bool has_dem = t.Has("dem"), has_csv = t.Has("csv");
-    if (has_dem == has_csv) t.Fail("csv", "give exactly one of dem = \"RUN.h5\" and csv = \"FILE.csv\"");
+    if (has_dem == has_csv)
+      t.Fail("csv", "give exactly one of dem = \"RUN.h5\" and csv = \"FILE.csv\"");
     d.is_dem = has_dem;
     d.path = Resolve(config.origin, has_dem ? t.GetString("dem") : t.GetString("csv"));
     const double weight = t.GetDouble("weight", 1.0, Range::Positive());
@@ -97,7 +99,8 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
         // Each value: ln(1+e) of a void ratio e > 0; NaN fails Range::Contains.
         d.dem.asbs_ln_1_plus_e = t.GetDoubles("asbs_ln_1_plus_e", Range::Positive());
         if (d.dem.asbs_ln_1_plus_e.empty()) {
-          t.Fail("asbs_ln_1_plus_e", "is empty: give at least one ln(1+e) value or leave the key out");
+          t.Fail("asbs_ln_1_plus_e",
+                 "is empty: give at least one ln(1+e) value or leave the key out");
         }
       }
     } else {
@@ -118,14 +121,15 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
   if (root.Has("fitter")) {
     const ConfigTable f = root.GetTable("fitter");
     config.method = f.GetEnum("method", config.method);
-    config.ceres.max_iterations =
-        static_cast<int>(f.GetInt("max_iterations", config.ceres.max_iterations, Range::Closed(1, 1e6)));
+    config.ceres.max_iterations = static_cast<int>(
+        f.GetInt("max_iterations", config.ceres.max_iterations, Range::Closed(1, 1e6)));
     config.ceres.uncertainty.scale_by_residual_variance = f.GetBool(
         "scale_by_residual_variance", config.ceres.uncertainty.scale_by_residual_variance);
     if (f.Has("nlopt")) {
       const ConfigTable t = f.GetTable("nlopt");
       config.nlopt.algorithm = t.GetEnum("algorithm", config.nlopt.algorithm);
-      config.nlopt.starts = static_cast<int>(t.GetInt("starts", config.nlopt.starts, Range::Closed(1, 1000)));
+      config.nlopt.starts =
+          static_cast<int>(t.GetInt("starts", config.nlopt.starts, Range::Closed(1, 1000)));
       config.nlopt.max_evaluations = static_cast<int>(
           t.GetInt("max_evaluations", config.nlopt.max_evaluations, Range::Closed(10, 1e8)));
       config.nlopt.seed = static_cast<uint64_t>(t.GetInt("seed", 1, Range::NonNegative()));

@@ -19,11 +19,11 @@
 //   weight = 1.0                  # multiplies the squared residuals
 //   psi_sigma_uncertainty_deg = 0.5
 //   ln_1_plus_e_uncertainty = 0.002
-//   kind = "auto"                 # csv: auto | ncl | csl | compression | extension | asbs | unloading
-//   ignore_columns = "q_kpa,t_s"  # csv: comma-separated columns to skip
-//   ncl_min_p_kpa = 50.0          # dem: lowest p of NCL rows
-//   max_line_points = 12          # dem: most NCL/unloading rows per stage
-//   asbs_ln_1_plus_e = [0.55, 0.58]  # dem, optional: ASBS cross-section points
+//   kind = "auto"                 # csv: auto | ncl | csl | compression | extension | asbs |
+//   unloading ignore_columns = "q_kpa,t_s"  # csv: comma-separated columns to skip ncl_min_p_kpa
+//   = 50.0          # dem: lowest p of NCL rows max_line_points = 12          # dem: most
+//   NCL/unloading rows per stage asbs_ln_1_plus_e = [0.55, 0.58]  # dem, optional: ASBS
+//   cross-section points
 //                                 #   at these ln(1+e) (each finite and > 0),
 //                                 #   one per value and detected asymptote,
 //                                 #   along the stage's asymptotic line

@@ -47,7 +47,7 @@ struct FitSummary {
   FitTermination termination = FitTermination::kFailure;
   std::string message;
   int iterations = 0;
-  long evaluations = 0;  // residual-vector evaluations
+  long evaluations = 0;       // residual-vector evaluations
   double initial_cost = 0.0;  // ½ Σ r² of the weighted residuals
   double final_cost = 0.0;
   double wall_seconds = 0.0;
@@ -77,8 +77,8 @@ struct FitResult {
   FitSummary summary;
   std::vector<double> values;  // full parameter vector (model_parameters.h order)
   std::vector<int> free_indices;
-  Eigen::MatrixXd covariance;   // free × free, in the parameters' units
-  Eigen::MatrixXd correlation;  // free × free
+  Eigen::MatrixXd covariance;           // free × free, in the parameters' units
+  Eigen::MatrixXd correlation;          // free × free
   std::vector<double> standard_errors;  // free order; NaN when not determined
   std::vector<double> lower_95, upper_95;
   double residual_variance = 1.0;  // s²

@@ -78,8 +78,8 @@ bool RunNlopt(nlopt::opt& opt, std::vector<double>* u, double* value, std::strin
     *message = "nlopt: roundoff limited (the result is usable)";
     return true;
   } catch (const std::exception& error) {
-    *message = fmt::format("nlopt::opt::optimize ({}) failed: {}", opt.get_algorithm_name(),
-                           error.what());
+    *message =
+        fmt::format("nlopt::opt::optimize ({}) failed: {}", opt.get_algorithm_name(), error.what());
     return false;
   }
 }
@@ -117,8 +117,8 @@ FitResult NloptFitter::Fit(const CalibrationProblem& problem) const {
   const long evaluations0 = problem.evaluations();
   const unsigned n = static_cast<unsigned>(problem.num_free());
   FitResult result;
-  result.summary.fitter = fmt::format("nlopt:{}+{}", ToString(options_.algorithm),
-                                      ToString(options_.polish));
+  result.summary.fitter =
+      fmt::format("nlopt:{}+{}", ToString(options_.algorithm), ToString(options_.polish));
   Objective objective{&problem, problem.FreeLower(), problem.FreeUpper(), &result.history, ""};
   const std::vector<double> start = problem.FreeStart();
   result.summary.initial_cost = problem.Cost(start);

@@ -65,7 +65,7 @@ class NloptFitter {
     LocalPolish polish = LocalPolish::kBobyqa;
     int polish_max_evaluations = 4000;
     double polish_relative_tolerance = 1e-12;  // BOBYQA xtol_rel in the unit cube
-    CeresFitter::Options ceres;  // used when polish = kCeres
+    CeresFitter::Options ceres;                // used when polish = kCeres
     UncertaintyOptions uncertainty;
     bool IsValid(std::string* why) const;
   };

@@ -64,7 +64,7 @@ struct AsymptoticStatePoint {
 };
 
 struct StateDataset {
-  std::string name;  // from the calibration file or the file name
+  std::string name;    // from the calibration file or the file name
   std::string origin;  // file read
   std::vector<AsymptoticStatePoint> points;
   std::vector<std::string> warnings;  // e.g. stages without a detected asymptote

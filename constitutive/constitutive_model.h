@@ -65,8 +65,8 @@ class ConstitutiveModel {
                     Matrix6* tangent, std::string* why) const = 0;
 
   // Exact derivatives of the rates (automatic differentiation of the same code).
-  virtual bool Jacobian(const ModelState& state, const Vector6& stretching,
-                        RateJacobian* jacobian, std::string* why) const = 0;
+  virtual bool Jacobian(const ModelState& state, const Vector6& stretching, RateJacobian* jacobian,
+                        std::string* why) const = 0;
 
   // Whether the model is defined at this state (compressive stress, ...).
   virtual bool IsAdmissible(const ModelState& state, std::string* why) const = 0;

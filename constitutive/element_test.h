@@ -33,13 +33,13 @@ struct EnumNames<ComponentControl> {
 };
 
 enum class StopKind {
-  kMeanStress,         // p reaches value (kPa)
-  kAxialStrain,        // ε_a reaches value
-  kVolumetricStrain,   // ε_v reaches value
-  kShearStrain,        // ε_s = 2(ε_a − ε_r)/3 reaches value
-  kStrainPath,         // ∫‖D‖dt reaches value
-  kStressRatio,        // q/p reaches value
-  kAsymptote,          // |dψ_σ/ds| + |d ln OCR/ds| falls to value (per unit strain path)
+  kMeanStress,        // p reaches value (kPa)
+  kAxialStrain,       // ε_a reaches value
+  kVolumetricStrain,  // ε_v reaches value
+  kShearStrain,       // ε_s = 2(ε_a − ε_r)/3 reaches value
+  kStrainPath,        // ∫‖D‖dt reaches value
+  kStressRatio,       // q/p reaches value
+  kAsymptote,         // |dψ_σ/ds| + |d ln OCR/ds| falls to value (per unit strain path)
 };
 template <>
 struct EnumNames<StopKind> {
@@ -62,12 +62,9 @@ struct StopCondition {
 
 struct LoadingStage {
   std::string name;
-  std::array<ComponentControl, 6> control{ComponentControl::kStretching,
-                                          ComponentControl::kStretching,
-                                          ComponentControl::kStretching,
-                                          ComponentControl::kStretching,
-                                          ComponentControl::kStretching,
-                                          ComponentControl::kStretching};
+  std::array<ComponentControl, 6> control{
+      ComponentControl::kStretching, ComponentControl::kStretching, ComponentControl::kStretching,
+      ComponentControl::kStretching, ComponentControl::kStretching, ComponentControl::kStretching};
   // Compression positive: stretching (1/s) for kStretching components, stress
   // rate (kPa/s) for kStressRate components.
   SymTensor rate{0, 0, 0, 0, 0, 0};
@@ -99,14 +96,14 @@ struct LoadingStage {
 // the Cam clay yield surface).
 ModelState InitialStateFromVoidRatio(const ConstitutiveModel& model, double mean_stress,
                                      double psi_sigma, double void_ratio);
-ModelState InitialStateFromOcr(const ConstitutiveModel& model, double mean_stress,
-                               double psi_sigma, double ocr);
+ModelState InitialStateFromOcr(const ConstitutiveModel& model, double mean_stress, double psi_sigma,
+                               double ocr);
 // Axisymmetric tension-positive stress tensor for p and ψ_σ.
 Vector6 AxisymmetricStressTensor(double mean_stress, double psi_sigma);
 
 enum class DriveMethod {
-  kRateIntegration,    // the rate form with an Integrator (all models)
-  kStressPoint,        // strain increments through CamClayStressPoint (Cam clay only)
+  kRateIntegration,  // the rate form with an Integrator (all models)
+  kStressPoint,      // strain increments through CamClayStressPoint (Cam clay only)
 };
 template <>
 struct EnumNames<DriveMethod> {
@@ -162,14 +159,14 @@ struct ElementTestOptions {
 
 // One recorded point, compression positive.
 struct ElementTestRecord {
-  double time = 0.0;          // s, cumulative over stages
-  SymTensor stress{};         // kPa
+  double time = 0.0;   // s, cumulative over stages
+  SymTensor stress{};  // kPa
   double void_ratio = 0.0;
-  SymTensor strain{};         // logarithmic strain ∫D dt
-  double strain_path = 0.0;   // ∫‖D‖ dt
-  SymTensor stretching{};     // D at this point (1/s)
+  SymTensor strain{};        // logarithmic strain ∫D dt
+  double strain_path = 0.0;  // ∫‖D‖ dt
+  SymTensor stretching{};    // D at this point (1/s)
   std::vector<double> internal;
-  double ocr = 0.0;           // p_e*/p
+  double ocr = 0.0;  // p_e*/p
   int stage = 0;
 };
 

@@ -69,16 +69,13 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
       table.Fail("critical_state_ratio",
                  "give exactly one of critical_state_ratio (M) and phi_c_deg");
     }
-    p.critical_state_ratio = has_m ? table.GetDouble("critical_state_ratio", Range::Open(0.0, 3.0))
-                                   : CriticalStateRatio(table.GetDouble("phi_c_deg",
-                                                                        kFrictionAngleDeg) *
-                                                        kDegree);
-    const std::string lambda_key = p.form == ModifiedCamClay::CompressionForm::kLogLog
-                                       ? "lambda_star"
-                                       : "lambda";
-    const std::string kappa_key = p.form == ModifiedCamClay::CompressionForm::kLogLog
-                                      ? "kappa_star"
-                                      : "kappa";
+    p.critical_state_ratio =
+        has_m ? table.GetDouble("critical_state_ratio", Range::Open(0.0, 3.0))
+              : CriticalStateRatio(table.GetDouble("phi_c_deg", kFrictionAngleDeg) * kDegree);
+    const std::string lambda_key =
+        p.form == ModifiedCamClay::CompressionForm::kLogLog ? "lambda_star" : "lambda";
+    const std::string kappa_key =
+        p.form == ModifiedCamClay::CompressionForm::kLogLog ? "kappa_star" : "kappa";
     p.lambda = table.GetDouble(lambda_key, Range::Positive());
     p.kappa = table.GetDouble(kappa_key, Range::Positive());
     if (!(p.kappa < p.lambda)) {
@@ -96,8 +93,7 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
     }
     p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, Range::Positive());
     p.yield_tolerance = table.GetDouble("yield_tolerance", 1e-9, Range::Open(0.0, 1e-2));
-    p.rate_form_band =
-        table.GetDouble("rate_form_band", p.rate_form_band, Range::Open(0.0, 1e-2));
+    p.rate_form_band = table.GetDouble("rate_form_band", p.rate_form_band, Range::Open(0.0, 1e-2));
     if (!p.IsValid(&why)) table.Fail(lambda_key, why);
     model = std::make_unique<ModifiedCamClay>(p);
   }
@@ -143,8 +139,8 @@ std::vector<LoadingStage> ReadStages(const ConfigTable& root) {
     } else {
       const std::vector<double> values = table.GetDoubles("rate");
       if (values.size() != 6) {
-        table.Fail("rate", fmt::format("needs 6 values (Voigt 11,22,33,12,13,23), got {}",
-                                       values.size()));
+        table.Fail("rate",
+                   fmt::format("needs 6 values (Voigt 11,22,33,12,13,23), got {}", values.size()));
       }
       stage.duration = duration;
       stage.name = ToString(LoadingStageType::kMixed);
@@ -161,7 +157,8 @@ std::vector<LoadingStage> ReadStages(const ConfigTable& root) {
       }
     }
     stage.name = table.GetString("name", stage.name);
-    stage.output_points = static_cast<int>(table.GetInt("output_points", 100, Range::Closed(1, 1e6)));
+    stage.output_points =
+        static_cast<int>(table.GetInt("output_points", 100, Range::Closed(1, 1e6)));
     if (table.Has("stop")) {
       const ConfigTable stop = table.GetTable("stop");
       // The keys are the StopKind names; the mean stress carries its unit.
@@ -192,12 +189,12 @@ ElementTestOptions ReadElementTestOptions(const ConfigTable& table) {
   options.integrator.arkode_order = static_cast<int>(
       table.GetInt("arkode_order", options.integrator.arkode_order, Range::Closed(2, 8)));
   options.stress_point.method = table.GetEnum("stress_point", options.stress_point.method);
-  options.stress_point.tolerance =
-      table.GetDouble("stress_point_tolerance", options.stress_point.tolerance, Range::Open(0, 0.1));
-  options.max_strain_increment = table.GetDouble("max_strain_increment",
-                                                 options.max_strain_increment, Range::Open(0, 0.1));
-  options.limit_point_condition = table.GetDouble(
-      "limit_point_condition", options.limit_point_condition, Range::Open(0, 0.1));
+  options.stress_point.tolerance = table.GetDouble(
+      "stress_point_tolerance", options.stress_point.tolerance, Range::Open(0, 0.1));
+  options.max_strain_increment =
+      table.GetDouble("max_strain_increment", options.max_strain_increment, Range::Open(0, 0.1));
+  options.limit_point_condition =
+      table.GetDouble("limit_point_condition", options.limit_point_condition, Range::Open(0, 0.1));
   std::string why;
   if (!options.IsValid(&why)) table.Fail("method", why);
   return options;
@@ -250,7 +247,8 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
   file->SetAttribute(group, "report", summary.Report());
   file->SetAttribute(group, "steps", static_cast<int64_t>(summary.totals.steps));
   file->SetAttribute(group, "rejected_steps", static_cast<int64_t>(summary.totals.rejected_steps));
-  file->SetAttribute(group, "rhs_evaluations", static_cast<int64_t>(summary.totals.rhs_evaluations));
+  file->SetAttribute(group, "rhs_evaluations",
+                     static_cast<int64_t>(summary.totals.rhs_evaluations));
   file->SetAttribute(group, "wall_time_s", summary.totals.wall_time_s);
   for (size_t k = 0; k < summary.stages.size(); ++k) {
     const std::string stage_group = fmt::format("{}/stages/{}", group, k);
@@ -262,10 +260,9 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
 }
 
 void WriteElementTestCsv(const ElementTestResult& result, const std::string& path) {
-  std::vector<std::string> columns = {"time_s",        "stress_a_kpa",  "stress_r_kpa",
-                                      "p_kpa",         "q_kpa",         "void_ratio",
-                                      "strain_a",      "strain_r",      "strain_path",
-                                      "psi_sigma_deg", "psi_epsilon_deg", "ocr"};
+  std::vector<std::string> columns = {"time_s",      "stress_a_kpa",  "stress_r_kpa",    "p_kpa",
+                                      "q_kpa",       "void_ratio",    "strain_a",        "strain_r",
+                                      "strain_path", "psi_sigma_deg", "psi_epsilon_deg", "ocr"};
   std::vector<std::vector<double>> values(columns.size());
   for (const ElementTestRecord& r : result.history) {
     const AxisymmetricStress s = RecordStress(r);

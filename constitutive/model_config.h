@@ -59,7 +59,7 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
 void WriteElementTestCsv(const ElementTestResult& result, const std::string& path);
 
 struct AsymptoteTable {
-  std::vector<AsymptoticState> analytic;   // hypoplastic clay only (analytic ASBS)
+  std::vector<AsymptoticState> analytic;  // hypoplastic clay only (analytic ASBS)
   std::vector<IntegratedAsymptote> integrated;
 };
 // Computes what an asymptotes file asks for ([model], [asymptotes]).

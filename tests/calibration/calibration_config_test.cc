@@ -40,8 +40,10 @@ max_evaluations = 800
 
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
   const size_t at = text.find(from);
-  if (at == std::string::npos) ADD_FAILURE() << "no '" << from << "'";
-  else text.replace(at, from.size(), to);
+  if (at == std::string::npos)
+    ADD_FAILURE() << "no '" << from << "'";
+  else
+    text.replace(at, from.size(), to);
   return text;
 }
 
@@ -57,7 +59,8 @@ void ExpectRejected(const std::string& text, const std::string& expected) {
 }
 
 TEST(CalibrationConfig, ReadsAValidFile) {
-  const CalibrationConfig c = ReadCalibrationConfig(ConfigTable::ParseString(kConfig, "/d/calib.toml"));
+  const CalibrationConfig c =
+      ReadCalibrationConfig(ConfigTable::ParseString(kConfig, "/d/calib.toml"));
   EXPECT_EQ(c.model, ModelKind::kHypoplasticClay);
   EXPECT_EQ(c.method, FitMethod::kBoth);
   ASSERT_EQ(c.datasets.size(), 1u);
@@ -78,9 +81,9 @@ TEST(CalibrationConfig, RejectsBadFilesNamingTheKey) {
   ExpectRejected(Replace(kConfig, "csv = \"states.csv\"", "dem = \"a.h5\"\ncsv = \"b.csv\""),
                  "exactly one");
   ExpectRejected(Replace(kConfig, "starts = 2", "starts = 0"), "starts");
-  ExpectRejected(Replace(kConfig, "psi_sigma_uncertainty_deg = 0.3",
-                         "psi_sigma_uncertainty_deg = -1"),
-                 "psi_sigma_uncertainty_deg");
+  ExpectRejected(
+      Replace(kConfig, "psi_sigma_uncertainty_deg = 0.3", "psi_sigma_uncertainty_deg = -1"),
+      "psi_sigma_uncertainty_deg");
   ExpectRejected("[model]\nkind = \"hypoplastic_clay\"\n", "dataset");
 }
 
@@ -203,8 +206,8 @@ TEST(CalibrationConfig, RunsAWholeCalibrationAndWritesItsRecord) {
 
 TEST(CalibrationConfig, RefusesTooFewPointsForTheFreeParameters) {
   CsvReadOptions options;
-  const StateDataset tiny = ParseStatesCsv(
-      "p_kpa,e,psi_sigma_deg,psi_epsilon_deg\n100,0.8,0,0\n", "tiny.csv", "tiny", options);
+  const StateDataset tiny = ParseStatesCsv("p_kpa,e,psi_sigma_deg,psi_epsilon_deg\n100,0.8,0,0\n",
+                                           "tiny.csv", "tiny", options);
   try {
     CalibrationProblem problem({tiny}, ModelParameters::Defaults(ModelKind::kHypoplasticClay),
                                PredictorOptions());

@@ -105,8 +105,8 @@ TEST_P(ConvergenceOrder, FixedStepErrorsShrinkAtTheMethodOrder) {
   options.fixed_step = 1.0 / 40;
   const double fine = FinalError(options);
   const double observed = std::log2(coarse / fine);
-  EXPECT_NEAR(observed, c.expected, 0.35) << ToString(c.kind) << " errors " << coarse << " "
-                                          << fine;
+  EXPECT_NEAR(observed, c.expected, 0.35)
+      << ToString(c.kind) << " errors " << coarse << " " << fine;
 }
 
 INSTANTIATE_TEST_SUITE_P(AllIntegrators, ConvergenceOrder,
@@ -193,8 +193,8 @@ TEST(Integrator, AllAgreeOnAHypoplasticDrainedTriaxialPath) {
       options.integrator.absolute_tolerance = 1e-10;
       const ElementTestResult result = ElementTest(model, options).Run(initial, {stage});
       ASSERT_TRUE(result.summary.success()) << result.summary.Report();
-      const double difference = (result.final_state.stress - reference.stress).norm() /
-                                reference.stress.norm();
+      const double difference =
+          (result.final_state.stress - reference.stress).norm() / reference.stress.norm();
       EXPECT_LT(difference, 1e-6) << ToString(kind) << " " << ToString(jacobian);
       EXPECT_NEAR(result.final_state.void_ratio, reference.void_ratio, 1e-7) << ToString(kind);
     }

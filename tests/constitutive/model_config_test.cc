@@ -124,7 +124,8 @@ kappa_star = 0.12
 n_intercept = 1.4
 )";
   ExpectRejected(cam_clay, "kappa_star");
-  ExpectRejected(Replace(cam_clay, "critical_state_ratio = 0.9", "phi_c_deg = 25.0\ncritical_state_ratio = 0.9"),
+  ExpectRejected(Replace(cam_clay, "critical_state_ratio = 0.9",
+                         "phi_c_deg = 25.0\ncritical_state_ratio = 0.9"),
                  "critical_state_ratio");
 }
 
@@ -158,7 +159,7 @@ axial_strain = 0.05
   EXPECT_EQ(stages[0].control[1], ComponentControl::kStressRate);
   const ElementTestResult result = ElementTest(*model, ElementTestOptions()).Run(initial, stages);
   ASSERT_TRUE(result.summary.success()) << result.summary.Report();
-  EXPECT_NEAR(result.history.back().strain[0], 0.05, 1e-9);  // exact stop
+  EXPECT_NEAR(result.history.back().strain[0], 0.05, 1e-9);              // exact stop
   EXPECT_NEAR(RecordStress(result.history.back()).radial, 100.0, 1e-6);  // radial stress held
 
   const std::string path =

@@ -75,8 +75,8 @@ TEST(ElementTestOptions, DefaultOptionsAreValid) {
 }
 
 TEST(ModifiedCamClay, IsotropicLoadingFollowsTheNclWithEveryDrive) {
-  for (auto form : {ModifiedCamClay::CompressionForm::kLogLog,
-                    ModifiedCamClay::CompressionForm::kSemiLog}) {
+  for (auto form :
+       {ModifiedCamClay::CompressionForm::kLogLog, ModifiedCamClay::CompressionForm::kSemiLog}) {
     ModifiedCamClay::Parameters parameters = CamClay();
     parameters.form = form;
     if (form == ModifiedCamClay::CompressionForm::kSemiLog) {
@@ -111,8 +111,8 @@ TEST(ModifiedCamClay, DrainedAndUndrainedShearEndOnTheCslWithOcrC) {
   const double ocr_c = std::pow(2.0, (CamClay().lambda - CamClay().kappa) / CamClay().lambda);
   for (bool drained : {true, false}) {
     const ModelState initial = InitialStateFromOcr(model, 200.0, 0.0, 1.0);
-    LoadingStage stage = drained ? LoadingStage::ConstantRadialStress(1.0, 6.0)
-                                 : LoadingStage::Isochoric(1.0, 6.0);
+    LoadingStage stage =
+        drained ? LoadingStage::ConstantRadialStress(1.0, 6.0) : LoadingStage::Isochoric(1.0, 6.0);
     stage.stops.push_back({StopKind::kAsymptote, 1e-8});
     const ElementTestResult result = ElementTest(model, RateOptions()).Run(initial, {stage});
     ASSERT_TRUE(result.summary.success()) << result.summary.Report();
