@@ -16,21 +16,6 @@
 
 namespace granasym::calibration {
 
-const char* ToString(AsymptoteMethod method) {
-  return method == AsymptoteMethod::kAnalytic ? "analytic" : "integrated";
-}
-
-bool FromString(const std::string& name, AsymptoteMethod* method) {
-  if (name == "analytic") {
-    *method = AsymptoteMethod::kAnalytic;
-  } else if (name == "integrated") {
-    *method = AsymptoteMethod::kIntegrated;
-  } else {
-    return false;
-  }
-  return true;
-}
-
 bool PredictorOptions::IsValid(std::string* why) const {
   if (curve_points < 10) {
     *why = fmt::format("curve_points = {} must be >= 10", curve_points);

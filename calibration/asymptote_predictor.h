@@ -19,14 +19,32 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "constitutive/asymptotic_states.h"
 #include "constitutive/constitutive_model.h"
 
 namespace granasym::calibration {
 
 enum class AsymptoteMethod { kAnalytic, kIntegrated };
-const char* ToString(AsymptoteMethod method);
-bool FromString(const std::string& name, AsymptoteMethod* method);
+
+}  // namespace granasym::calibration
+
+namespace granasym {
+template <>
+struct EnumNames<calibration::AsymptoteMethod> {
+  using M = calibration::AsymptoteMethod;
+  static constexpr EnumEntry<M> kEntries[] = {
+      {M::kAnalytic, "analytic", "closed-form asymptotic states (default)"},
+      {M::kIntegrated, "integrated", "proportional stretching until stationary (slow reference)"},
+  };
+};
+}  // namespace granasym
+
+namespace granasym::calibration {
+
+// The name-table functions (common/enum_names.h) for this namespace's enums.
+using granasym::FromString;
+using granasym::ToString;
 
 struct PredictorOptions {
   AsymptoteMethod method = AsymptoteMethod::kAnalytic;

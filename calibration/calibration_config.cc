@@ -10,18 +10,6 @@
 
 namespace granasym::calibration {
 
-const char* ToString(FitMethod method) {
-  switch (method) {
-    case FitMethod::kCeres:
-      return "ceres";
-    case FitMethod::kNlopt:
-      return "nlopt";
-    case FitMethod::kBoth:
-      return "both";
-  }
-  return "unknown";
-}
-
 namespace {
 
 std::string Resolve(const std::string& base, const std::string& path) {
@@ -48,11 +36,10 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
   CalibrationConfig config;
   config.origin = root.origin();
   const ConfigTable model = root.GetTable("model");
-  const std::string kind =
-      model.GetChoice("kind", {"hypoplastic_clay", "modified_cam_clay"}, "hypoplastic_clay");
-  FromString(kind, &config.model);
-  FromString(model.GetChoice("asymptotes", {"analytic", "integrated"}, "analytic"),
-             &config.predictor.method);
+  // Calibration fits the clay models only.
+  config.model = model.GetEnum("kind", ModelKind::kHypoplasticClay,
+                               {ModelKind::kHypoplasticClay, ModelKind::kModifiedCamClay});
+  config.predictor.method = model.GetEnum("asymptotes", AsymptoteMethod::kAnalytic);
 
   const ModelParameters defaults = ModelParameters::Defaults(config.model);
   if (root.Has("parameters")) {
@@ -79,7 +66,8 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
                fmt::format("lower = {} must be below upper = {}", lower, upper));
       }
       if (choice.free && choice.has_value && !(choice.value >= lower && choice.value <= upper)) {
-        t.Fail("value", fmt::format("value = {} lies outside [{}, {}]", choice.value, lower, upper));
+        t.Fail("value",
+               fmt::format("value = {} lies outside [{}, {}]", choice.value, lower, upper));
       }
       config.parameters.push_back(choice);
     }
@@ -93,7 +81,8 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
     DatasetConfig d;
     d.name = t.GetString("name", fmt::format("dataset{}", k + 1));
     const bool has_dem = t.Has("dem"), has_csv = t.Has("csv");
-    if (has_dem == has_csv) t.Fail("csv", "give exactly one of dem = \"RUN.h5\" and csv = \"FILE.csv\"");
+    if (has_dem == has_csv)
+      t.Fail("csv", "give exactly one of dem = \"RUN.h5\" and csv = \"FILE.csv\"");
     d.is_dem = has_dem;
     d.path = Resolve(config.origin, has_dem ? t.GetString("dem") : t.GetString("csv"));
     const double weight = t.GetDouble("weight", 1.0, Range::Positive());
@@ -110,15 +99,20 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
         // Each value: ln(1+e) of a void ratio e > 0; NaN fails Range::Contains.
         d.dem.asbs_ln_1_plus_e = t.GetDoubles("asbs_ln_1_plus_e", Range::Positive());
         if (d.dem.asbs_ln_1_plus_e.empty()) {
-          t.Fail("asbs_ln_1_plus_e", "is empty: give at least one ln(1+e) value or leave the key out");
+          t.Fail("asbs_ln_1_plus_e",
+                 "is empty: give at least one ln(1+e) value or leave the key out");
         }
       }
     } else {
       d.csv.weight = weight;
       d.csv.psi_sigma_uncertainty_deg = u_psi;
       d.csv.ln_volume_uncertainty = u_v;
-      d.csv.kind = t.GetChoice(
-          "kind", {"auto", "ncl", "csl", "compression", "extension", "asbs", "unloading"}, "auto");
+      // "auto" or one StateKind name.
+      d.csv.kind = t.GetString("kind", d.csv.kind);
+      if (d.csv.kind != "auto" && !FromString<StateKind>(d.csv.kind)) {
+        t.Fail("kind",
+               "= '" + d.csv.kind + "' is not valid: expected auto, " + AllowedNames<StateKind>());
+      }
       d.csv.ignore_columns = SplitComma(t.GetString("ignore_columns", ""));
     }
     config.datasets.push_back(d);
@@ -126,22 +120,20 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
 
   if (root.Has("fitter")) {
     const ConfigTable f = root.GetTable("fitter");
-    const std::string method = f.GetChoice("method", {"ceres", "nlopt", "both"}, "ceres");
-    config.method = method == "ceres" ? FitMethod::kCeres
-                                      : method == "nlopt" ? FitMethod::kNlopt : FitMethod::kBoth;
-    config.ceres.max_iterations =
-        static_cast<int>(f.GetInt("max_iterations", config.ceres.max_iterations, Range::Closed(1, 1e6)));
+    config.method = f.GetEnum("method", config.method);
+    config.ceres.max_iterations = static_cast<int>(
+        f.GetInt("max_iterations", config.ceres.max_iterations, Range::Closed(1, 1e6)));
     config.ceres.uncertainty.scale_by_residual_variance = f.GetBool(
         "scale_by_residual_variance", config.ceres.uncertainty.scale_by_residual_variance);
     if (f.Has("nlopt")) {
       const ConfigTable t = f.GetTable("nlopt");
-      FromString(t.GetChoice("algorithm", {"crs2", "isres", "direct_l", "mlsl"}, "crs2"),
-                 &config.nlopt.algorithm);
-      config.nlopt.starts = static_cast<int>(t.GetInt("starts", config.nlopt.starts, Range::Closed(1, 1000)));
+      config.nlopt.algorithm = t.GetEnum("algorithm", config.nlopt.algorithm);
+      config.nlopt.starts =
+          static_cast<int>(t.GetInt("starts", config.nlopt.starts, Range::Closed(1, 1000)));
       config.nlopt.max_evaluations = static_cast<int>(
           t.GetInt("max_evaluations", config.nlopt.max_evaluations, Range::Closed(10, 1e8)));
       config.nlopt.seed = static_cast<uint64_t>(t.GetInt("seed", 1, Range::NonNegative()));
-      FromString(t.GetChoice("polish", {"bobyqa", "ceres", "none"}, "bobyqa"), &config.nlopt.polish);
+      config.nlopt.polish = t.GetEnum("polish", config.nlopt.polish);
     }
     config.nlopt.uncertainty = config.ceres.uncertainty;
     config.nlopt.ceres = config.ceres;

@@ -19,11 +19,11 @@
 //   weight = 1.0                  # multiplies the squared residuals
 //   psi_sigma_uncertainty_deg = 0.5
 //   ln_1_plus_e_uncertainty = 0.002
-//   kind = "auto"                 # csv: auto | ncl | csl | compression | extension | asbs | unloading
-//   ignore_columns = "q_kpa,t_s"  # csv: comma-separated columns to skip
-//   ncl_min_p_kpa = 50.0          # dem: lowest p of NCL rows
-//   max_line_points = 12          # dem: most NCL/unloading rows per stage
-//   asbs_ln_1_plus_e = [0.55, 0.58]  # dem, optional: ASBS cross-section points
+//   kind = "auto"                 # csv: auto | ncl | csl | compression | extension | asbs |
+//   unloading ignore_columns = "q_kpa,t_s"  # csv: comma-separated columns to skip ncl_min_p_kpa
+//   = 50.0          # dem: lowest p of NCL rows max_line_points = 12          # dem: most
+//   NCL/unloading rows per stage asbs_ln_1_plus_e = [0.55, 0.58]  # dem, optional: ASBS
+//   cross-section points
 //                                 #   at these ln(1+e) (each finite and > 0),
 //                                 #   one per value and detected asymptote,
 //                                 #   along the stage's asymptotic line
@@ -60,6 +60,7 @@
 #include "calibration/model_parameters.h"
 #include "calibration/nlopt_fitter.h"
 #include "common/config.h"
+#include "common/enum_names.h"
 
 namespace granasym::calibration {
 
@@ -80,7 +81,26 @@ struct ParameterChoice {
 };
 
 enum class FitMethod { kCeres, kNlopt, kBoth };
-const char* ToString(FitMethod method);
+
+}  // namespace granasym::calibration
+
+namespace granasym {
+template <>
+struct EnumNames<calibration::FitMethod> {
+  using M = calibration::FitMethod;
+  static constexpr EnumEntry<M> kEntries[] = {
+      {M::kCeres, "ceres", "Ceres least squares from the starting values"},
+      {M::kNlopt, "nlopt", "NLopt global search and a local polish"},
+      {M::kBoth, "both", "both, and the two optima compared"},
+  };
+};
+}  // namespace granasym
+
+namespace granasym::calibration {
+
+// The name-table functions (common/enum_names.h) for this namespace's enums.
+using granasym::FromString;
+using granasym::ToString;
 
 struct CalibrationConfig {
   std::string origin;  // the calibration file

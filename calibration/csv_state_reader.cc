@@ -107,8 +107,7 @@ void CheckColumns(const CsvTable& table, const CsvReadOptions& options) {
 bool CsvReadOptions::IsValid(std::string* why) const {
   StateKind parsed;
   if (kind != "auto" && !FromString(kind, &parsed)) {
-    *why = fmt::format("kind = '{}' must be auto, ncl, csl, compression, extension, asbs or "
-                       "unloading", kind);
+    *why = fmt::format("kind = '{}' must be auto, {}", kind, AllowedNames<StateKind>());
     return false;
   }
   return ValidReaderSettings(kind_tolerance_deg, psi_sigma_uncertainty_deg, ln_volume_uncertainty,
@@ -135,8 +134,9 @@ StateDataset ParseStatesCsv(const std::string& text, const std::string& origin,
   if (!psi_s && !q) Missing(table, "stress direction (psi_sigma_deg, psi_sigma_rad or q_kpa)");
   const auto psi_e = FindQuantity(table, "psi_epsilon_");
   if (!psi_e && (automatic || forced != StateKind::kAsbs)) {
-    Missing(table, "stretching direction (psi_epsilon_deg or psi_epsilon_rad; only kind = \"asbs\" "
-                   "datasets may omit it)");
+    Missing(table,
+            "stretching direction (psi_epsilon_deg or psi_epsilon_rad; only kind = \"asbs\" "
+            "datasets may omit it)");
   }
   const auto weight = FindPlain(table, "weight");
   const auto u_psi = FindPlain(table, "psi_sigma_uncertainty_deg");
@@ -156,8 +156,8 @@ StateDataset ParseStatesCsv(const std::string& text, const std::string& origin,
     point.void_ratio = e ? row[*e] : std::exp(row[*ln_v]) - 1.0;
     point.psi_sigma = psi_s ? row[psi_s->first] * psi_s->second
                             : std::atan2(std::sqrt(2.0) * row[q->first], 3.0 * point.mean_stress);
-    point.psi_epsilon = psi_e ? row[psi_e->first] * psi_e->second
-                              : std::numeric_limits<double>::quiet_NaN();
+    point.psi_epsilon =
+        psi_e ? row[psi_e->first] * psi_e->second : std::numeric_limits<double>::quiet_NaN();
     if (automatic) {
       if (!std::isfinite(point.psi_epsilon)) {
         throw InputError(fmt::format("{}: column '{}' is {}: not a number", point.source,
@@ -173,8 +173,8 @@ StateDataset ParseStatesCsv(const std::string& text, const std::string& origin,
     point.ln_volume_uncertainty = u_v ? row[*u_v] : options.ln_volume_uncertainty;
     // Name the column of a non-finite value before the generic validation.
     for (size_t c = 0; c < row.size(); ++c) {
-      const bool unused_stretching = !automatic && forced == StateKind::kAsbs && psi_e &&
-                                     c == psi_e->first;
+      const bool unused_stretching =
+          !automatic && forced == StateKind::kAsbs && psi_e && c == psi_e->first;
       if (!std::isfinite(row[c]) && !unused_stretching &&
           std::find(options.ignore_columns.begin(), options.ignore_columns.end(),
                     table.columns[c]) == options.ignore_columns.end()) {

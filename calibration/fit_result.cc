@@ -11,22 +11,11 @@
 
 namespace granasym::calibration {
 
-const char* ToString(FitTermination termination) {
-  switch (termination) {
-    case FitTermination::kConverged:
-      return "converged";
-    case FitTermination::kNoConvergence:
-      return "no_convergence";
-    case FitTermination::kFailure:
-      return "failure";
-  }
-  return "unknown";
-}
-
 std::string FitSummary::Report() const {
-  return fmt::format("{}: {} after {} iterations, {} evaluations, cost {:.6g} -> {:.6g}, {:.3f} s{}",
-                     fitter, ToString(termination), iterations, evaluations, initial_cost,
-                     final_cost, wall_seconds, message.empty() ? "" : " (" + message + ")");
+  return fmt::format(
+      "{}: {} after {} iterations, {} evaluations, cost {:.6g} -> {:.6g}, {:.3f} s{}", fitter,
+      ToString(termination), iterations, evaluations, initial_cost, final_cost, wall_seconds,
+      message.empty() ? "" : " (" + message + ")");
 }
 
 bool UncertaintyOptions::IsValid(std::string* why) const {
@@ -58,9 +47,9 @@ double StudentQuantile(double probability, int dof) {
                                -1.328068155288572e+01};
     static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01,
                                -2.400758277161838e+00, -2.549732539343734e+00,
-                               4.374664141464968e+00, 2.938163982698783e+00};
-    static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01,
-                               2.445134137142996e+00, 3.754408661907416e+00};
+                               4.374664141464968e+00,  2.938163982698783e+00};
+    static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
+                               3.754408661907416e+00};
     double x;
     if (q < 0.02425) {
       const double t = std::sqrt(-2 * std::log(q));
@@ -106,7 +95,8 @@ void ComputeUncertainty(const CalibrationProblem& problem, const UncertaintyOpti
   if (clamped > 0) {
     result->warnings.push_back(fmt::format(
         "{} states have a psi_epsilon outside the model's asymptote range (the range end is "
-        "used)", clamped));
+        "used)",
+        clamped));
   }
 
   std::vector<double> x(static_cast<size_t>(n));
@@ -140,9 +130,9 @@ void ComputeUncertainty(const CalibrationProblem& problem, const UncertaintyOpti
     } else if (ok_minus) {
       jacobian.col(k) = (r0 - rm) / h;
     } else {
-      result->warnings.push_back(fmt::format(
-          "{}: the model is undefined on both sides of the result ({}); no uncertainty",
-          spec.name, why));
+      result->warnings.push_back(
+          fmt::format("{}: the model is undefined on both sides of the result ({}); no uncertainty",
+                      spec.name, why));
       jacobian.col(k).setZero();
     }
   }
@@ -157,8 +147,9 @@ void ComputeUncertainty(const CalibrationProblem& problem, const UncertaintyOpti
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(scaled, Eigen::ComputeThinV);
   const Eigen::VectorXd sv = svd.singularValues();
   const double smax = sv.size() > 0 ? sv[0] : 0.0;
-  result->condition_number = sv.size() > 0 && sv[sv.size() - 1] > 0 ? smax / sv[sv.size() - 1]
-                                                                     : std::numeric_limits<double>::infinity();
+  result->condition_number = sv.size() > 0 && sv[sv.size() - 1] > 0
+                                 ? smax / sv[sv.size() - 1]
+                                 : std::numeric_limits<double>::infinity();
   Eigen::MatrixXd inverse = Eigen::MatrixXd::Zero(n, n);
   std::vector<bool> undetermined(static_cast<size_t>(n), false);
   for (int i = 0; i < sv.size(); ++i) {
@@ -185,13 +176,14 @@ void ComputeUncertainty(const CalibrationProblem& problem, const UncertaintyOpti
         "ill-conditioned Jacobian (condition number {:.3g}): strongly correlated parameters",
         result->condition_number));
   }
-  result->covariance = result->residual_variance * scale.asDiagonal() * inverse * scale.asDiagonal();
+  result->covariance =
+      result->residual_variance * scale.asDiagonal() * inverse * scale.asDiagonal();
   result->correlation = Eigen::MatrixXd::Identity(n, n);
   result->standard_errors.assign(static_cast<size_t>(n), nan);
   result->lower_95.assign(static_cast<size_t>(n), nan);
   result->upper_95.assign(static_cast<size_t>(n), nan);
-  const double t = result->degrees_of_freedom > 0 ? StudentQuantile(0.975, result->degrees_of_freedom)
-                                                  : nan;
+  const double t =
+      result->degrees_of_freedom > 0 ? StudentQuantile(0.975, result->degrees_of_freedom) : nan;
   for (int k = 0; k < n; ++k) {
     if (undetermined[k]) continue;
     const double se = std::sqrt(std::max(0.0, result->covariance(k, k)));

@@ -16,18 +16,38 @@
 #include <vector>
 
 #include "calibration/calibration_problem.h"
+#include "common/enum_names.h"
 
 namespace granasym::calibration {
 
 enum class FitTermination { kConverged, kNoConvergence, kFailure };
-const char* ToString(FitTermination termination);
+
+}  // namespace granasym::calibration
+
+namespace granasym {
+template <>
+struct EnumNames<calibration::FitTermination> {
+  using T = calibration::FitTermination;
+  static constexpr EnumEntry<T> kEntries[] = {
+      {T::kConverged, "converged", "a convergence criterion was met"},
+      {T::kNoConvergence, "no_convergence", "stopped before a convergence criterion was met"},
+      {T::kFailure, "failure", "the fit failed (see the message)"},
+  };
+};
+}  // namespace granasym
+
+namespace granasym::calibration {
+
+// The name-table functions (common/enum_names.h) for this namespace's enums.
+using granasym::FromString;
+using granasym::ToString;
 
 struct FitSummary {
   std::string fitter;  // "ceres", "nlopt:crs2+bobyqa", ...
   FitTermination termination = FitTermination::kFailure;
   std::string message;
   int iterations = 0;
-  long evaluations = 0;  // residual-vector evaluations
+  long evaluations = 0;       // residual-vector evaluations
   double initial_cost = 0.0;  // ½ Σ r² of the weighted residuals
   double final_cost = 0.0;
   double wall_seconds = 0.0;
@@ -57,8 +77,8 @@ struct FitResult {
   FitSummary summary;
   std::vector<double> values;  // full parameter vector (model_parameters.h order)
   std::vector<int> free_indices;
-  Eigen::MatrixXd covariance;   // free × free, in the parameters' units
-  Eigen::MatrixXd correlation;  // free × free
+  Eigen::MatrixXd covariance;           // free × free, in the parameters' units
+  Eigen::MatrixXd correlation;          // free × free
   std::vector<double> standard_errors;  // free order; NaN when not determined
   std::vector<double> lower_95, upper_95;
   double residual_variance = 1.0;  // s²

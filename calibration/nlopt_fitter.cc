@@ -78,60 +78,13 @@ bool RunNlopt(nlopt::opt& opt, std::vector<double>* u, double* value, std::strin
     *message = "nlopt: roundoff limited (the result is usable)";
     return true;
   } catch (const std::exception& error) {
-    *message = fmt::format("nlopt::opt::optimize ({}) failed: {}", opt.get_algorithm_name(),
-                           error.what());
+    *message =
+        fmt::format("nlopt::opt::optimize ({}) failed: {}", opt.get_algorithm_name(), error.what());
     return false;
   }
 }
 
 }  // namespace
-
-const char* ToString(GlobalAlgorithm algorithm) {
-  switch (algorithm) {
-    case GlobalAlgorithm::kCrs2:
-      return "crs2";
-    case GlobalAlgorithm::kIsres:
-      return "isres";
-    case GlobalAlgorithm::kDirectL:
-      return "direct_l";
-    case GlobalAlgorithm::kMlsl:
-      return "mlsl";
-  }
-  return "unknown";
-}
-
-bool FromString(const std::string& name, GlobalAlgorithm* algorithm) {
-  for (GlobalAlgorithm a : {GlobalAlgorithm::kCrs2, GlobalAlgorithm::kIsres,
-                            GlobalAlgorithm::kDirectL, GlobalAlgorithm::kMlsl}) {
-    if (name == ToString(a)) {
-      *algorithm = a;
-      return true;
-    }
-  }
-  return false;
-}
-
-const char* ToString(LocalPolish polish) {
-  switch (polish) {
-    case LocalPolish::kNone:
-      return "none";
-    case LocalPolish::kBobyqa:
-      return "bobyqa";
-    case LocalPolish::kCeres:
-      return "ceres";
-  }
-  return "unknown";
-}
-
-bool FromString(const std::string& name, LocalPolish* polish) {
-  for (LocalPolish p : {LocalPolish::kNone, LocalPolish::kBobyqa, LocalPolish::kCeres}) {
-    if (name == ToString(p)) {
-      *polish = p;
-      return true;
-    }
-  }
-  return false;
-}
 
 bool NloptFitter::Options::IsValid(std::string* why) const {
   if (starts < 1 || starts > 1000) {
@@ -164,8 +117,8 @@ FitResult NloptFitter::Fit(const CalibrationProblem& problem) const {
   const long evaluations0 = problem.evaluations();
   const unsigned n = static_cast<unsigned>(problem.num_free());
   FitResult result;
-  result.summary.fitter = fmt::format("nlopt:{}+{}", ToString(options_.algorithm),
-                                      ToString(options_.polish));
+  result.summary.fitter =
+      fmt::format("nlopt:{}+{}", ToString(options_.algorithm), ToString(options_.polish));
   Objective objective{&problem, problem.FreeLower(), problem.FreeUpper(), &result.history, ""};
   const std::vector<double> start = problem.FreeStart();
   result.summary.initial_cost = problem.Cost(start);

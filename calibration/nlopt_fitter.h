@@ -16,16 +16,42 @@
 #include "calibration/calibration_problem.h"
 #include "calibration/ceres_fitter.h"
 #include "calibration/fit_result.h"
+#include "common/enum_names.h"
 
 namespace granasym::calibration {
 
 enum class GlobalAlgorithm { kCrs2, kIsres, kDirectL, kMlsl };
-const char* ToString(GlobalAlgorithm algorithm);
-bool FromString(const std::string& name, GlobalAlgorithm* algorithm);
-
 enum class LocalPolish { kNone, kBobyqa, kCeres };
-const char* ToString(LocalPolish polish);
-bool FromString(const std::string& name, LocalPolish* polish);
+
+}  // namespace granasym::calibration
+
+namespace granasym {
+template <>
+struct EnumNames<calibration::GlobalAlgorithm> {
+  using A = calibration::GlobalAlgorithm;
+  static constexpr EnumEntry<A> kEntries[] = {
+      {A::kCrs2, "crs2", "controlled random search with local mutation"},
+      {A::kIsres, "isres", "improved stochastic ranking evolution strategy"},
+      {A::kDirectL, "direct_l", "locally biased DIRECT"},
+      {A::kMlsl, "mlsl", "multi-level single-linkage, low-discrepancy starts"},
+  };
+};
+template <>
+struct EnumNames<calibration::LocalPolish> {
+  using P = calibration::LocalPolish;
+  static constexpr EnumEntry<P> kEntries[] = {
+      {P::kNone, "none", "no local polish"},
+      {P::kBobyqa, "bobyqa", "NLopt BOBYQA"},
+      {P::kCeres, "ceres", "Ceres from the best global point"},
+  };
+};
+}  // namespace granasym
+
+namespace granasym::calibration {
+
+// The name-table functions (common/enum_names.h) for this namespace's enums.
+using granasym::FromString;
+using granasym::ToString;
 
 class NloptFitter {
  public:
@@ -39,7 +65,7 @@ class NloptFitter {
     LocalPolish polish = LocalPolish::kBobyqa;
     int polish_max_evaluations = 4000;
     double polish_relative_tolerance = 1e-12;  // BOBYQA xtol_rel in the unit cube
-    CeresFitter::Options ceres;  // used when polish = kCeres
+    CeresFitter::Options ceres;                // used when polish = kCeres
     UncertaintyOptions uncertainty;
     bool IsValid(std::string* why) const;
   };

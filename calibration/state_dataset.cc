@@ -10,35 +10,6 @@
 
 namespace granasym::calibration {
 
-namespace {
-struct KindName {
-  StateKind kind;
-  const char* name;
-};
-constexpr KindName kKindNames[] = {
-    {StateKind::kNcl, "ncl"},           {StateKind::kCsl, "csl"},
-    {StateKind::kCompression, "compression"}, {StateKind::kExtension, "extension"},
-    {StateKind::kAsbs, "asbs"},         {StateKind::kUnloading, "unloading"},
-};
-}  // namespace
-
-const char* ToString(StateKind kind) {
-  for (const KindName& k : kKindNames) {
-    if (k.kind == kind) return k.name;
-  }
-  return "unknown";
-}
-
-bool FromString(const std::string& name, StateKind* kind) {
-  for (const KindName& k : kKindNames) {
-    if (name == k.name) {
-      *kind = k.kind;
-      return true;
-    }
-  }
-  return false;
-}
-
 StateKind KindFromStretching(double psi_epsilon, double tolerance) {
   if (std::abs(psi_epsilon) <= tolerance) return StateKind::kNcl;
   if (std::abs(psi_epsilon - 0.5 * kPi) <= tolerance) return StateKind::kCsl;
@@ -61,8 +32,8 @@ void StateDataset::Validate() const {
   const double highest = std::atan(std::sqrt(2.0));
   for (const AsymptoticStatePoint& point : points) {
     auto fail = [&](const char* field, double value, const char* valid) {
-      throw InputError(fmt::format("dataset '{}': {}: {} = {:.6g} is invalid ({})", name, point.source,
-                                   field, value, valid));
+      throw InputError(fmt::format("dataset '{}': {}: {} = {:.6g} is invalid ({})", name,
+                                   point.source, field, value, valid));
     };
     if (!(std::isfinite(point.mean_stress) && point.mean_stress > 0)) {
       fail("p_kpa", point.mean_stress, "a finite mean stress > 0 kPa");
@@ -70,7 +41,8 @@ void StateDataset::Validate() const {
     if (!(std::isfinite(point.void_ratio) && point.void_ratio > 0)) {
       fail("e", point.void_ratio, "a finite void ratio > 0");
     }
-    if (!(std::isfinite(point.psi_sigma) && point.psi_sigma > lowest && point.psi_sigma < highest)) {
+    if (!(std::isfinite(point.psi_sigma) && point.psi_sigma > lowest &&
+          point.psi_sigma < highest)) {
       fail("psi_sigma_deg", point.psi_sigma / kDegree,
            "finite, in (-35.26, 54.74) deg: between sigma_a = 0 and sigma_r = 0");
     }

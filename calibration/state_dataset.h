@@ -11,12 +11,35 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
+
 namespace granasym::calibration {
 
 enum class StateKind { kNcl, kCsl, kCompression, kExtension, kAsbs, kUnloading };
-const char* ToString(StateKind kind);
-// Returns false for an unknown name.
-bool FromString(const std::string& name, StateKind* kind);
+
+}  // namespace granasym::calibration
+
+namespace granasym {
+template <>
+struct EnumNames<calibration::StateKind> {
+  using K = calibration::StateKind;
+  static constexpr EnumEntry<K> kEntries[] = {
+      {K::kNcl, "ncl", "isotropic normal compression line (psi_epsilon = 0)"},
+      {K::kCsl, "csl", "critical state line (psi_epsilon = 90 deg)"},
+      {K::kCompression, "compression", "asymptotic state with 0 < psi_epsilon < 90 deg"},
+      {K::kExtension, "extension", "normal extension line (psi_epsilon > 90 deg or < 0)"},
+      {K::kAsbs, "asbs", "point of an ASBS cross-section (no psi_epsilon)"},
+      {K::kUnloading, "unloading", "isotropic unloading branch (starting value of kappa* only)"},
+  };
+};
+}  // namespace granasym
+
+namespace granasym::calibration {
+
+// The name-table functions (common/enum_names.h) for this namespace's enums.
+using granasym::FromString;
+using granasym::ToString;
+
 // The kind an asymptotic state at ψ_ε (rad) belongs to; `tolerance` (rad)
 // decides what counts as exactly 0°, 90° and 180°.
 StateKind KindFromStretching(double psi_epsilon, double tolerance);
@@ -41,7 +64,7 @@ struct AsymptoticStatePoint {
 };
 
 struct StateDataset {
-  std::string name;  // from the calibration file or the file name
+  std::string name;    // from the calibration file or the file name
   std::string origin;  // file read
   std::vector<AsymptoticStatePoint> points;
   std::vector<std::string> warnings;  // e.g. stages without a detected asymptote

@@ -3,6 +3,7 @@
 
 #include "common/config.h"
 #include "common/csv_table.h"
+#include "common/enum_names.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/provenance.h"

@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
+
 namespace toml {
 template <typename, template <typename...> class, template <typename...> class>
 class basic_value;
@@ -57,9 +59,24 @@ class ConfigTable {
   int64_t GetInt(const std::string& key, int64_t fallback, Range range) const;
   bool GetBool(const std::string& key, bool fallback) const;
   std::string GetString(const std::string& key, const std::string& fallback) const;
-  // A string that must be one of `allowed`.
+  // A string that must be one of `allowed`. Prefer GetEnum: enumerations
+  // carry their own name table (common/enum_names.h).
   std::string GetChoice(const std::string& key, const std::vector<std::string>& allowed,
                         const std::string& fallback) const;
+  // A value of the enumeration E named as in its EnumNames table; an unknown
+  // name fails with the file, key, value and the allowed names, e.g.
+  //   f.toml: key 'integration.jacobian' = 'exakt' is not valid: expected exact or
+  //   finite_difference
+  // Required key:
+  template <typename E>
+  E GetEnum(const std::string& key) const;
+  // Optional key with a default:
+  template <typename E>
+  E GetEnum(const std::string& key, E fallback) const;
+  // Optional key where only `allowed` (a subset of the table) is valid here,
+  // e.g. the model kinds that calibration can fit.
+  template <typename E>
+  E GetEnum(const std::string& key, E fallback, const std::vector<E>& allowed) const;
   std::vector<double> GetDoubles(const std::string& key, Range range = Range::Any()) const;
 
   ConfigTable GetTable(const std::string& key) const;
@@ -86,5 +103,29 @@ class ConfigTable {
   std::string prefix_;
   std::shared_ptr<const std::string> origin_;
 };
+
+template <typename E>
+E ConfigTable::GetEnum(const std::string& key) const {
+  if (!Has(key)) Fail(key, "is missing: expected " + AllowedNames<E>());
+  return GetEnum(key, E{}, EnumValues<E>());
+}
+
+template <typename E>
+E ConfigTable::GetEnum(const std::string& key, E fallback) const {
+  return GetEnum(key, fallback, EnumValues<E>());
+}
+
+template <typename E>
+E ConfigTable::GetEnum(const std::string& key, E fallback, const std::vector<E>& allowed) const {
+  if (!Has(key)) return fallback;
+  const std::string name = GetString(key);
+  const std::optional<E> value = FromString<E>(name);
+  if (value) {
+    for (E candidate : allowed) {
+      if (candidate == *value) return candidate;
+    }
+  }
+  Fail(key, "= '" + name + "' is not valid: expected " + AllowedNames(allowed));
+}
 
 }  // namespace granasym

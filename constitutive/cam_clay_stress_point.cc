@@ -13,22 +13,6 @@
 
 namespace granasym {
 
-const char* ToString(CamClayStressPoint::Method method) {
-  return method == CamClayStressPoint::Method::kModifiedEuler ? "modified_euler"
-                                                              : "return_mapping";
-}
-
-bool FromString(const std::string& name, CamClayStressPoint::Method* method) {
-  if (name == "modified_euler") {
-    *method = CamClayStressPoint::Method::kModifiedEuler;
-  } else if (name == "return_mapping") {
-    *method = CamClayStressPoint::Method::kReturnMapping;
-  } else {
-    return false;
-  }
-  return true;
-}
-
 bool CamClayStressPoint::Options::IsValid(std::string* why) const {
   auto fail = [why](const std::string& message) {
     if (why != nullptr) *why = message;
@@ -54,8 +38,7 @@ CamClayStressPoint::CamClayStressPoint(const ModifiedCamClay& model, const Optio
 }
 
 CamClayStressPoint::Summary CamClayStressPoint::Update(const Vector6& strain_increment,
-                                                       ModelState* state,
-                                                       Matrix6* tangent) const {
+                                                       ModelState* state, Matrix6* tangent) const {
   std::string why;
   Summary summary;
   if (!strain_increment.allFinite()) {
@@ -78,8 +61,7 @@ CamClayStressPoint::Summary CamClayStressPoint::Update(const Vector6& strain_inc
   return summary;
 }
 
-ModelState CamClayStressPoint::ElasticPath(const ModelState& state,
-                                           const Vector6& strain_increment,
+ModelState CamClayStressPoint::ElasticPath(const ModelState& state, const Vector6& strain_increment,
                                            double fraction) const {
   const ModifiedCamClay::Parameters& c = model_.parameters();
   const Vector6 increment = fraction * strain_increment;
@@ -103,9 +85,8 @@ ModelState CamClayStressPoint::ElasticPath(const ModelState& state,
     // 1+e = (1+e0) exp(α' trΔε), d ln p = −(1+e) trΔε dα'/κ.
     const double one_plus_e0 = 1.0 + state.void_ratio;
     auto log_p = [&](double a) {
-      return std::abs(trace) > 0
-                 ? std::log(p0) - one_plus_e0 * std::expm1(a * trace) / c.kappa
-                 : std::log(p0);
+      return std::abs(trace) > 0 ? std::log(p0) - one_plus_e0 * std::expm1(a * trace) / c.kappa
+                                 : std::log(p0);
     };
     p = std::exp(log_p(fraction));
     if (c.elasticity == ModifiedCamClay::Elasticity::kPoissonRatio) {
@@ -131,10 +112,12 @@ ModelState CamClayStressPoint::ElasticPath(const ModelState& state,
   return out;
 }
 
-CamClayStressPoint::Summary CamClayStressPoint::UpdateModifiedEuler(
-    const Vector6& strain_increment, ModelState* state, Matrix6* tangent) const {
+CamClayStressPoint::Summary CamClayStressPoint::UpdateModifiedEuler(const Vector6& strain_increment,
+                                                                    ModelState* state,
+                                                                    Matrix6* tangent) const {
   Summary summary;
-  const double m2 = model_.parameters().critical_state_ratio * model_.parameters().critical_state_ratio;
+  const double m2 =
+      model_.parameters().critical_state_ratio * model_.parameters().critical_state_ratio;
   const double yield_tolerance = model_.parameters().yield_tolerance;
   auto scaled_f = [&](const ModelState& s) {
     return model_.YieldFunction(s.stress, s.internal[0]) / (m2 * s.internal[0] * s.internal[0]);
@@ -264,10 +247,12 @@ CamClayStressPoint::Summary CamClayStressPoint::UpdateModifiedEuler(
         corrector.stress += 0.5 * (first.stress_rate + second.stress_rate);
         corrector.internal += 0.5 * (first.internal_rate + second.internal_rate);
         corrector.void_ratio = predictor.void_ratio;
-        const double stress_error = 0.5 * FrobeniusNorm<double>(second.stress_rate - first.stress_rate) /
+        const double stress_error = 0.5 *
+                                    FrobeniusNorm<double>(second.stress_rate - first.stress_rate) /
                                     FrobeniusNorm<double>(corrector.stress);
-        const double hardening_error =
-            0.5 * std::abs(second.internal_rate[0] - first.internal_rate[0]) / corrector.internal[0];
+        const double hardening_error = 0.5 *
+                                       std::abs(second.internal_rate[0] - first.internal_rate[0]) /
+                                       corrector.internal[0];
         error = std::max(stress_error, hardening_error);
         ok = std::isfinite(error) && model_.IsAdmissible(corrector, &why);
       }
@@ -275,7 +260,8 @@ CamClayStressPoint::Summary CamClayStressPoint::UpdateModifiedEuler(
         ++summary.rejected_substeps;
         step *= ok ? std::max(0.9 * std::sqrt(options_.tolerance / error), 0.1) : 0.25;
         if (step < 1e-14) {
-          summary.message = "substep below 1e-14 of the increment" + (why.empty() ? "" : ": " + why);
+          summary.message =
+              "substep below 1e-14 of the increment" + (why.empty() ? "" : ": " + why);
           return summary;
         }
         continue;
@@ -287,7 +273,8 @@ CamClayStressPoint::Summary CamClayStressPoint::UpdateModifiedEuler(
       }
       ++summary.substeps;
       done += step;
-      const double growth = error > 0 ? std::min(0.9 * std::sqrt(options_.tolerance / error), 1.1) : 1.1;
+      const double growth =
+          error > 0 ? std::min(0.9 * std::sqrt(options_.tolerance / error), 1.1) : 1.1;
       step = std::min(step * std::max(growth, 0.1), 1.0 - done);
     }
   }
@@ -347,8 +334,8 @@ Eigen::Matrix<S, 8, 1> ReturnResidual(const ReturnData& data, const Vec6<S>& str
   const S p_target =
       data.mean_stress_start * exp(-(volume_change - plastic_volume_change) / c.kappa);
   const S shear = c.elasticity == ModifiedCamClay::Elasticity::kPoissonRatio
-                      ? S(p_target / kappa_star * (3.0 * (1.0 - 2.0 * c.poisson_ratio) /
-                                                   (2.0 * (1.0 + c.poisson_ratio))))
+                      ? S(p_target / kappa_star *
+                          (3.0 * (1.0 - 2.0 * c.poisson_ratio) / (2.0 * (1.0 + c.poisson_ratio))))
                       : S(c.shear_modulus);
   const Vec6<S> s_target = data.deviator_start.cast<S>() + 2.0 * shear * Deviator(elastic_strain);
   Eigen::Matrix<S, 8, 1> residual;
@@ -390,7 +377,8 @@ CamClayStressPoint::Summary CamClayStressPoint::UpdateReturnMapping(const Vector
     }
     const Ad log_pc = autodiff::Variable<kSize>(x[6], 6);
     const Ad multiplier = autodiff::Variable<kSize>(x[7], 7);
-    const Eigen::Matrix<Ad, 8, 1> r = ReturnResidual<Ad>(data, stress, log_pc, multiplier, increment);
+    const Eigen::Matrix<Ad, 8, 1> r =
+        ReturnResidual<Ad>(data, stress, log_pc, multiplier, increment);
     for (int i = 0; i < 8; ++i) {
       (*residual)[i] = r[i].value();
       d_x->row(i) = r[i].derivatives().head<8>().transpose();
@@ -447,12 +435,14 @@ CamClayStressPoint::Summary CamClayStressPoint::UpdateReturnMapping(const Vector
       }
     }
     if (!converged) {
-      summary.message = fmt::format("return mapping did not converge in {} iterations (residual {:.3g})",
-                                    options_.max_iterations, residual.cwiseAbs().maxCoeff());
+      summary.message =
+          fmt::format("return mapping did not converge in {} iterations (residual {:.3g})",
+                      options_.max_iterations, residual.cwiseAbs().maxCoeff());
       return summary;
     }
     if (!(x[7] >= 0)) {
-      summary.message = fmt::format("return mapping gave a negative plastic multiplier {:.3g}", x[7]);
+      summary.message =
+          fmt::format("return mapping gave a negative plastic multiplier {:.3g}", x[7]);
       return summary;
     }
     evaluate(x, &residual, &d_x, &d_strain);

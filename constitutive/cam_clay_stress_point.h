@@ -15,6 +15,7 @@
 
 #include <string>
 
+#include "common/enum_names.h"
 #include "constitutive/modified_cam_clay.h"
 
 namespace granasym {
@@ -67,7 +68,14 @@ class CamClayStressPoint {
   Options options_;
 };
 
-const char* ToString(CamClayStressPoint::Method method);
-bool FromString(const std::string& name, CamClayStressPoint::Method* method);
+template <>
+struct EnumNames<CamClayStressPoint::Method> {
+  static constexpr EnumEntry<CamClayStressPoint::Method> kEntries[] = {
+      {CamClayStressPoint::Method::kModifiedEuler, "modified_euler",
+       "Sloan's modified Euler with drift correction"},
+      {CamClayStressPoint::Method::kReturnMapping, "return_mapping",
+       "implicit return mapping with the consistent tangent"},
+  };
+};
 
 }  // namespace granasym

@@ -12,14 +12,21 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "constitutive/voigt.h"
 
 namespace granasym {
 
 enum class ModelKind { kHypoplasticClay, kModifiedCamClay, kHypoplasticSand };
-const char* ToString(ModelKind kind);
-// Returns false for an unknown name.
-bool FromString(const std::string& name, ModelKind* kind);
+template <>
+struct EnumNames<ModelKind> {
+  static constexpr EnumEntry<ModelKind> kEntries[] = {
+      {ModelKind::kHypoplasticClay, "hypoplastic_clay", "Masin (2005) hypoplastic model for clays"},
+      {ModelKind::kModifiedCamClay, "modified_cam_clay", "Modified Cam clay (Roscoe & Burland)"},
+      {ModelKind::kHypoplasticSand, "hypoplastic_sand",
+       "von Wolffersdorff (1996) hypoplastic model for sands"},
+  };
+};
 
 // The state of a material point. `stress` is tension positive in kPa.
 struct ModelState {
@@ -58,8 +65,8 @@ class ConstitutiveModel {
                     Matrix6* tangent, std::string* why) const = 0;
 
   // Exact derivatives of the rates (automatic differentiation of the same code).
-  virtual bool Jacobian(const ModelState& state, const Vector6& stretching,
-                        RateJacobian* jacobian, std::string* why) const = 0;
+  virtual bool Jacobian(const ModelState& state, const Vector6& stretching, RateJacobian* jacobian,
+                        std::string* why) const = 0;
 
   // Whether the model is defined at this state (compressive stress, ...).
   virtual bool IsAdmissible(const ModelState& state, std::string* why) const = 0;

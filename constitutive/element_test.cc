@@ -18,11 +18,11 @@ namespace granasym {
 namespace {
 
 // Layout of the ODE state y.
-constexpr int kStress = 0;      // T, tension positive (6)
-constexpr int kLogVolume = 6;   // ln(1 + e)
-constexpr int kStrain = 7;      // ∫D dt, tension positive (6)
-constexpr int kPath = 13;       // ∫‖D‖ dt
-constexpr int kInternal = 14;   // model internal variables
+constexpr int kStress = 0;     // T, tension positive (6)
+constexpr int kLogVolume = 6;  // ln(1 + e)
+constexpr int kStrain = 7;     // ∫D dt, tension positive (6)
+constexpr int kPath = 13;      // ∫‖D‖ dt
+constexpr int kInternal = 14;  // model internal variables
 
 bool Fail(std::string* why, const std::string& message) {
   if (why != nullptr) *why = message;
@@ -30,69 +30,6 @@ bool Fail(std::string* why, const std::string& message) {
 }
 
 }  // namespace
-
-const char* ToString(ComponentControl control) {
-  return control == ComponentControl::kStretching ? "stretching" : "stress_rate";
-}
-
-bool FromString(const std::string& name, ComponentControl* control) {
-  if (name == "stretching") {
-    *control = ComponentControl::kStretching;
-  } else if (name == "stress_rate") {
-    *control = ComponentControl::kStressRate;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-const char* ToString(StopKind kind) {
-  switch (kind) {
-    case StopKind::kMeanStress:
-      return "mean_stress";
-    case StopKind::kAxialStrain:
-      return "axial_strain";
-    case StopKind::kVolumetricStrain:
-      return "volumetric_strain";
-    case StopKind::kShearStrain:
-      return "shear_strain";
-    case StopKind::kStrainPath:
-      return "strain_path";
-    case StopKind::kStressRatio:
-      return "stress_ratio";
-    case StopKind::kAsymptote:
-      return "asymptote";
-  }
-  return "unknown";
-}
-
-bool FromString(const std::string& name, StopKind* kind) {
-  for (StopKind candidate :
-       {StopKind::kMeanStress, StopKind::kAxialStrain, StopKind::kVolumetricStrain,
-        StopKind::kShearStrain, StopKind::kStrainPath, StopKind::kStressRatio,
-        StopKind::kAsymptote}) {
-    if (name == ToString(candidate)) {
-      *kind = candidate;
-      return true;
-    }
-  }
-  return false;
-}
-
-const char* ToString(DriveMethod method) {
-  return method == DriveMethod::kRateIntegration ? "rate_integration" : "stress_point";
-}
-
-bool FromString(const std::string& name, DriveMethod* method) {
-  if (name == "rate_integration") {
-    *method = DriveMethod::kRateIntegration;
-  } else if (name == "stress_point") {
-    *method = DriveMethod::kStressPoint;
-  } else {
-    return false;
-  }
-  return true;
-}
 
 LoadingStage LoadingStage::Proportional(double psi_epsilon, double stretching_rate,
                                         double duration) {
@@ -158,14 +95,14 @@ LoadingStage ResolveStage(const LoadingStage& stage, double mean_stress) {
 
 Vector6 AxisymmetricStressTensor(double mean_stress, double psi_sigma) {
   const double q = 3.0 * mean_stress * std::tan(psi_sigma) / std::sqrt(2.0);
-  const SymTensor compression{mean_stress + 2.0 * q / 3.0, mean_stress - q / 3.0,
-                              mean_stress - q / 3.0, 0, 0, 0};
+  const SymTensor compression{
+      mean_stress + 2.0 * q / 3.0, mean_stress - q / 3.0, mean_stress - q / 3.0, 0, 0, 0};
   return ToVector(FlipSign(compression));
 }
 
 namespace {
-ModelState CheckedInitialState(const ConstitutiveModel& model, double mean_stress,
-                               double psi_sigma, double void_ratio) {
+ModelState CheckedInitialState(const ConstitutiveModel& model, double mean_stress, double psi_sigma,
+                               double void_ratio) {
   if (!(mean_stress > 0)) {
     throw InputError(fmt::format("initial mean stress p = {} kPa must be > 0", mean_stress));
   }
@@ -201,8 +138,8 @@ ModelState InitialStateFromVoidRatio(const ConstitutiveModel& model, double mean
   return CheckedInitialState(model, mean_stress, psi_sigma, void_ratio);
 }
 
-ModelState InitialStateFromOcr(const ConstitutiveModel& model, double mean_stress,
-                               double psi_sigma, double ocr) {
+ModelState InitialStateFromOcr(const ConstitutiveModel& model, double mean_stress, double psi_sigma,
+                               double ocr) {
   if (!(ocr > 0)) throw InputError(fmt::format("initial OCR = {} must be > 0", ocr));
   return CheckedInitialState(model, mean_stress, psi_sigma,
                              model.VoidRatioForOcr(mean_stress, ocr));
@@ -241,11 +178,12 @@ bool ElementTestOptions::IsValid(std::string* why) const {
     return Fail(why, fmt::format("control_tolerance = {} must be in (0, 1e-3)", control_tolerance));
   }
   if (!(limit_point_condition > 0 && limit_point_condition < 0.1)) {
-    return Fail(why, fmt::format("limit_point_condition = {} must be in (0, 0.1)",
-                                 limit_point_condition));
+    return Fail(
+        why, fmt::format("limit_point_condition = {} must be in (0, 0.1)", limit_point_condition));
   }
   if (!(control_max_iterations > 0)) {
-    return Fail(why, fmt::format("control_max_iterations = {} must be > 0", control_max_iterations));
+    return Fail(why,
+                fmt::format("control_max_iterations = {} must be > 0", control_max_iterations));
   }
   if (!(max_strain_increment > 0 && max_strain_increment <= 0.1)) {
     return Fail(why,
@@ -328,9 +266,8 @@ class StageOde : public OdeSystem {
         -stress[4], -stress[5], -stress[2];
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> principal;
     principal.computeDirect(compression, Eigen::EigenvaluesOnly);
-    const double stress_scale =
-        std::clamp(std::sqrt(3.0) * principal.eigenvalues().minCoeff(), kCutoffScaleFloor * norm,
-                   norm);
+    const double stress_scale = std::clamp(std::sqrt(3.0) * principal.eigenvalues().minCoeff(),
+                                           kCutoffScaleFloor * norm, norm);
     for (int i = 0; i < 6; ++i) scale[kStress + i] = stress_scale;
     for (int i = kInternal; i < dimension(); ++i) scale[i] = std::max(norm, std::abs(y[i]));
   }
@@ -359,13 +296,14 @@ class StageOde : public OdeSystem {
     auto evaluate = [&](const Vector6& candidate, ModelRate* r, Matrix6* t,
                         Eigen::VectorXd* res) -> bool {
       if (!model_.Rate(state, candidate, r, t, &failure_)) return false;
-      for (int k = 0; k < n; ++k) (*res)[k] = r->stress_rate[unknown_[k]] - prescribed_[unknown_[k]];
+      for (int k = 0; k < n; ++k)
+        (*res)[k] = r->stress_rate[unknown_[k]] - prescribed_[unknown_[k]];
       return true;
     };
     if (!evaluate(d, rate, &tangent, &residual)) return false;
     for (int iteration = 0; iteration < options_.control_max_iterations; ++iteration) {
-      const double scale = rate->stress_rate.cwiseAbs().maxCoeff() +
-                           prescribed_.cwiseAbs().maxCoeff() + 1e-300;
+      const double scale =
+          rate->stress_rate.cwiseAbs().maxCoeff() + prescribed_.cwiseAbs().maxCoeff() + 1e-300;
       if (residual.cwiseAbs().maxCoeff() <= options_.control_tolerance * scale) {
         return Accept(d, tangent, stretching, tangent_out);
       }
@@ -728,8 +666,7 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
     auto solve = [&](const Vector6& trial, ModelState* out, Matrix6* tangent,
                      Eigen::VectorXd* residual) -> bool {
       *out = start;
-      const CamClayStressPoint::Summary update =
-          stress_point.Update(trial, out, tangent);
+      const CamClayStressPoint::Summary update = stress_point.Update(trial, out, tangent);
       ++summary.rhs_evaluations;
       summary.nonlinear_iterations += update.iterations;
       summary.rejected_steps += update.rejected_substeps;
@@ -746,7 +683,8 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
     };
     ModelState end;
     Eigen::VectorXd residual;
-    const bool consistent = stress_point.options().method == CamClayStressPoint::Method::kReturnMapping;
+    const bool consistent =
+        stress_point.options().method == CamClayStressPoint::Method::kReturnMapping;
     Matrix6 tangent;
     if (!solve(strain, &end, n > 0 && consistent ? &tangent : nullptr, &residual)) return false;
     for (int iteration = 0; n > 0; ++iteration) {
@@ -754,8 +692,10 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
           std::max((end.stress - start.stress).cwiseAbs().maxCoeff(), 1e-12 * start.stress.norm());
       if (residual.cwiseAbs().maxCoeff() <= options.control_tolerance * 10 * scale) break;
       if (iteration == options.control_max_iterations) {
-        *why = fmt::format("mixed control of the strain increment did not converge (residual "
-                           "{:.3g} kPa)", residual.cwiseAbs().maxCoeff());
+        *why = fmt::format(
+            "mixed control of the strain increment did not converge (residual "
+            "{:.3g} kPa)",
+            residual.cwiseAbs().maxCoeff());
         return false;
       }
       Eigen::MatrixXd block(n, n);
@@ -826,8 +766,9 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
     // can fail, and the stage crept on for ever; the step limit ends it.
     if (summary.steps >= options.integrator.max_steps) {
       summary.termination = TerminationType::kFailure;
-      summary.message = fmt::format("more than integrator.max_steps = {} increments at t = {:.6g} s",
-                                    options.integrator.max_steps, t);
+      summary.message =
+          fmt::format("more than integrator.max_steps = {} increments at t = {:.6g} s",
+                      options.integrator.max_steps, t);
       break;
     }
     double h = std::min(h_current, stage.duration - t);
@@ -934,8 +875,8 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
   if (options_.method == DriveMethod::kRateIntegration) {
     integrator = Integrator::Create(options_.integrator);
   } else {
-    stress_point = std::make_unique<CamClayStressPoint>(
-        static_cast<const ModifiedCamClay&>(model_), options_.stress_point);
+    stress_point = std::make_unique<CamClayStressPoint>(static_cast<const ModifiedCamClay&>(model_),
+                                                        options_.stress_point);
   }
 
   double time = 0.0;
@@ -1005,14 +946,15 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
                 there.void_ratio, options_.limit_point_condition);
             break;
           }
-          const bool switched = part.termination == TerminationType::kRootFound &&
-                                part.root_index >= ode.num_stops();
+          const bool switched =
+              part.termination == TerminationType::kRootFound && part.root_index >= ode.num_stops();
           if (!switched) break;
           if (piece == kMaxSwitches) {
             stage_summary.termination = TerminationType::kFailure;
             stage_summary.root_index = -1;
             stage_summary.message = fmt::format(
-                "more than {} crossings of the model's switching surfaces (chattering at t = {:.6g})",
+                "more than {} crossings of the model's switching surfaces (chattering at t = "
+                "{:.6g})",
                 kMaxSwitches, part.final_time);
             break;
           }
@@ -1064,9 +1006,9 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
         y = y_start;
       }
       summary.termination = TerminationType::kFailure;
-      summary.message = fmt::format("stage {} ({}): {}", k, stage.name,
-                                    stage_summary.message.empty() ? "failed"
-                                                                  : stage_summary.message);
+      summary.message =
+          fmt::format("stage {} ({}): {}", k, stage.name,
+                      stage_summary.message.empty() ? "failed" : stage_summary.message);
       summary.stages.back().integration.termination = TerminationType::kFailure;
       break;
     }

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "common/state_measures.h"
 #include "constitutive/cam_clay_stress_point.h"
 #include "constitutive/constitutive_model.h"
@@ -23,20 +24,36 @@
 namespace granasym {
 
 enum class ComponentControl { kStretching, kStressRate };
-const char* ToString(ComponentControl control);
-bool FromString(const std::string& name, ComponentControl* control);
+template <>
+struct EnumNames<ComponentControl> {
+  static constexpr EnumEntry<ComponentControl> kEntries[] = {
+      {ComponentControl::kStretching, "stretching", "the stretching is prescribed"},
+      {ComponentControl::kStressRate, "stress_rate", "the stress rate is prescribed"},
+  };
+};
 
 enum class StopKind {
-  kMeanStress,         // p reaches value (kPa)
-  kAxialStrain,        // ε_a reaches value
-  kVolumetricStrain,   // ε_v reaches value
-  kShearStrain,        // ε_s = 2(ε_a − ε_r)/3 reaches value
-  kStrainPath,         // ∫‖D‖dt reaches value
-  kStressRatio,        // q/p reaches value
-  kAsymptote,          // |dψ_σ/ds| + |d ln OCR/ds| falls to value (per unit strain path)
+  kMeanStress,        // p reaches value (kPa)
+  kAxialStrain,       // ε_a reaches value
+  kVolumetricStrain,  // ε_v reaches value
+  kShearStrain,       // ε_s = 2(ε_a − ε_r)/3 reaches value
+  kStrainPath,        // ∫‖D‖dt reaches value
+  kStressRatio,       // q/p reaches value
+  kAsymptote,         // |dψ_σ/ds| + |d ln OCR/ds| falls to value (per unit strain path)
 };
-const char* ToString(StopKind kind);
-bool FromString(const std::string& name, StopKind* kind);
+template <>
+struct EnumNames<StopKind> {
+  static constexpr EnumEntry<StopKind> kEntries[] = {
+      {StopKind::kMeanStress, "mean_stress", "p reaches the value (kPa)"},
+      {StopKind::kAxialStrain, "axial_strain", "the axial strain reaches the value"},
+      {StopKind::kVolumetricStrain, "volumetric_strain", "the volumetric strain reaches the value"},
+      {StopKind::kShearStrain, "shear_strain", "2(eps_a - eps_r)/3 reaches the value"},
+      {StopKind::kStrainPath, "strain_path", "the strain path length reaches the value"},
+      {StopKind::kStressRatio, "stress_ratio", "q/p reaches the value"},
+      {StopKind::kAsymptote, "asymptote",
+       "|dpsi_sigma/ds| + |d ln OCR/ds| falls to the value (per unit strain path)"},
+  };
+};
 
 struct StopCondition {
   StopKind kind = StopKind::kMeanStress;
@@ -45,12 +62,9 @@ struct StopCondition {
 
 struct LoadingStage {
   std::string name;
-  std::array<ComponentControl, 6> control{ComponentControl::kStretching,
-                                          ComponentControl::kStretching,
-                                          ComponentControl::kStretching,
-                                          ComponentControl::kStretching,
-                                          ComponentControl::kStretching,
-                                          ComponentControl::kStretching};
+  std::array<ComponentControl, 6> control{
+      ComponentControl::kStretching, ComponentControl::kStretching, ComponentControl::kStretching,
+      ComponentControl::kStretching, ComponentControl::kStretching, ComponentControl::kStretching};
   // Compression positive: stretching (1/s) for kStretching components, stress
   // rate (kPa/s) for kStressRate components.
   SymTensor rate{0, 0, 0, 0, 0, 0};
@@ -82,17 +96,23 @@ struct LoadingStage {
 // the Cam clay yield surface).
 ModelState InitialStateFromVoidRatio(const ConstitutiveModel& model, double mean_stress,
                                      double psi_sigma, double void_ratio);
-ModelState InitialStateFromOcr(const ConstitutiveModel& model, double mean_stress,
-                               double psi_sigma, double ocr);
+ModelState InitialStateFromOcr(const ConstitutiveModel& model, double mean_stress, double psi_sigma,
+                               double ocr);
 // Axisymmetric tension-positive stress tensor for p and ψ_σ.
 Vector6 AxisymmetricStressTensor(double mean_stress, double psi_sigma);
 
 enum class DriveMethod {
-  kRateIntegration,    // the rate form with an Integrator (all models)
-  kStressPoint,        // strain increments through CamClayStressPoint (Cam clay only)
+  kRateIntegration,  // the rate form with an Integrator (all models)
+  kStressPoint,      // strain increments through CamClayStressPoint (Cam clay only)
 };
-const char* ToString(DriveMethod method);
-bool FromString(const std::string& name, DriveMethod* method);
+template <>
+struct EnumNames<DriveMethod> {
+  static constexpr EnumEntry<DriveMethod> kEntries[] = {
+      {DriveMethod::kRateIntegration, "rate_integration", "the rate form with an integrator"},
+      {DriveMethod::kStressPoint, "stress_point",
+       "strain increments through a stress-point algorithm (Cam clay only)"},
+  };
+};
 
 // The default integrator of each model, chosen from the work-precision study
 // (bench/README.md, "Chosen defaults"; bench/constitutive_work_precision):
@@ -139,14 +159,14 @@ struct ElementTestOptions {
 
 // One recorded point, compression positive.
 struct ElementTestRecord {
-  double time = 0.0;          // s, cumulative over stages
-  SymTensor stress{};         // kPa
+  double time = 0.0;   // s, cumulative over stages
+  SymTensor stress{};  // kPa
   double void_ratio = 0.0;
-  SymTensor strain{};         // logarithmic strain ∫D dt
-  double strain_path = 0.0;   // ∫‖D‖ dt
-  SymTensor stretching{};     // D at this point (1/s)
+  SymTensor strain{};        // logarithmic strain ∫D dt
+  double strain_path = 0.0;  // ∫‖D‖ dt
+  SymTensor stretching{};    // D at this point (1/s)
   std::vector<double> internal;
-  double ocr = 0.0;           // p_e*/p
+  double ocr = 0.0;  // p_e*/p
   int stage = 0;
 };
 

@@ -11,63 +11,7 @@
 
 namespace granasym {
 
-const char* ToString(IntegratorKind kind) {
-  switch (kind) {
-    case IntegratorKind::kCvodeBdf:
-      return "cvode_bdf";
-    case IntegratorKind::kCvodeAdams:
-      return "cvode_adams";
-    case IntegratorKind::kArkodeErk:
-      return "arkode_erk";
-    case IntegratorKind::kArkodeDirk:
-      return "arkode_dirk";
-    case IntegratorKind::kRkf23:
-      return "rkf23";
-  }
-  return "unknown";
-}
-
-std::vector<IntegratorKind> AllIntegratorKinds() {
-  return {IntegratorKind::kCvodeBdf, IntegratorKind::kCvodeAdams, IntegratorKind::kArkodeErk,
-          IntegratorKind::kArkodeDirk, IntegratorKind::kRkf23};
-}
-
-bool FromString(const std::string& name, IntegratorKind* kind) {
-  for (IntegratorKind candidate : AllIntegratorKinds()) {
-    if (name == ToString(candidate)) {
-      *kind = candidate;
-      return true;
-    }
-  }
-  return false;
-}
-
-const char* ToString(JacobianKind kind) {
-  return kind == JacobianKind::kExact ? "exact" : "finite_difference";
-}
-
-bool FromString(const std::string& name, JacobianKind* kind) {
-  if (name == "exact") {
-    *kind = JacobianKind::kExact;
-  } else if (name == "finite_difference") {
-    *kind = JacobianKind::kFiniteDifference;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-const char* ToString(TerminationType type) {
-  switch (type) {
-    case TerminationType::kReachedEnd:
-      return "reached_end";
-    case TerminationType::kRootFound:
-      return "root_found";
-    case TerminationType::kFailure:
-      return "failure";
-  }
-  return "unknown";
-}
+std::vector<IntegratorKind> AllIntegratorKinds() { return EnumValues<IntegratorKind>(); }
 
 bool IntegratorOptions::IsValid(std::string* why) const {
   auto fail = [why](const std::string& message) {
@@ -81,7 +25,8 @@ bool IntegratorOptions::IsValid(std::string* why) const {
     return fail(fmt::format("absolute_tolerance = {} must be > 0", absolute_tolerance));
   }
   if (!(max_steps > 0)) return fail(fmt::format("max_steps = {} must be > 0", max_steps));
-  if (!(initial_step >= 0)) return fail(fmt::format("initial_step = {} must be >= 0", initial_step));
+  if (!(initial_step >= 0))
+    return fail(fmt::format("initial_step = {} must be >= 0", initial_step));
   if (!(max_step >= 0)) return fail(fmt::format("max_step = {} must be >= 0", max_step));
   if (!(fixed_step >= 0)) return fail(fmt::format("fixed_step = {} must be >= 0", fixed_step));
   if (kind == IntegratorKind::kArkodeErk && !(arkode_order >= 2 && arkode_order <= 8)) {
@@ -92,12 +37,12 @@ bool IntegratorOptions::IsValid(std::string* why) const {
   }
   const int max_cvode_order = kind == IntegratorKind::kCvodeAdams ? 12 : 5;
   if (!(cvode_max_order >= 1 && cvode_max_order <= max_cvode_order)) {
-    return fail(fmt::format("cvode_max_order = {} must be in [1, {}]", cvode_max_order,
-                            max_cvode_order));
+    return fail(
+        fmt::format("cvode_max_order = {} must be in [1, {}]", cvode_max_order, max_cvode_order));
   }
   if (!(rkf23_min_step_fraction > 0 && rkf23_min_step_fraction < 1)) {
-    return fail(fmt::format("rkf23_min_step_fraction = {} must be in (0, 1)",
-                            rkf23_min_step_fraction));
+    return fail(
+        fmt::format("rkf23_min_step_fraction = {} must be in (0, 1)", rkf23_min_step_fraction));
   }
   return true;
 }

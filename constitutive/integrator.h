@@ -10,21 +10,43 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "constitutive/ode_system.h"
 
 namespace granasym {
 
 enum class IntegratorKind { kCvodeBdf, kCvodeAdams, kArkodeErk, kArkodeDirk, kRkf23 };
-const char* ToString(IntegratorKind kind);
-bool FromString(const std::string& name, IntegratorKind* kind);
+template <>
+struct EnumNames<IntegratorKind> {
+  static constexpr EnumEntry<IntegratorKind> kEntries[] = {
+      {IntegratorKind::kCvodeBdf, "cvode_bdf", "CVODE BDF with Newton and a dense solver"},
+      {IntegratorKind::kCvodeAdams, "cvode_adams", "CVODE Adams-Moulton with fixed point"},
+      {IntegratorKind::kArkodeErk, "arkode_erk", "ARKODE adaptive explicit Runge-Kutta"},
+      {IntegratorKind::kArkodeDirk, "arkode_dirk", "ARKODE DIRK with Newton and a dense solver"},
+      {IntegratorKind::kRkf23, "rkf23", "Runge-Kutta-Fehlberg 2(3) of Masin's reference codes"},
+  };
+};
+// Every kind, in table order (EnumValues<IntegratorKind>()).
 std::vector<IntegratorKind> AllIntegratorKinds();
 
 enum class JacobianKind { kExact, kFiniteDifference };
-const char* ToString(JacobianKind kind);
-bool FromString(const std::string& name, JacobianKind* kind);
+template <>
+struct EnumNames<JacobianKind> {
+  static constexpr EnumEntry<JacobianKind> kEntries[] = {
+      {JacobianKind::kExact, "exact", "automatic differentiation"},
+      {JacobianKind::kFiniteDifference, "finite_difference", "difference quotients"},
+  };
+};
 
 enum class TerminationType { kReachedEnd, kRootFound, kFailure };
-const char* ToString(TerminationType type);
+template <>
+struct EnumNames<TerminationType> {
+  static constexpr EnumEntry<TerminationType> kEntries[] = {
+      {TerminationType::kReachedEnd, "reached_end", "integrated to the end time"},
+      {TerminationType::kRootFound, "root_found", "stopped at the crossing of a root function"},
+      {TerminationType::kFailure, "failure", "the integrator failed (see the message)"},
+  };
+};
 
 // Defaults chosen from the work-precision study (bench/README.md,
 // bench/constitutive_work_precision, 7 paths × 2 models): the element-test

@@ -19,10 +19,7 @@ const Range kFrictionAngleDeg = Range::Open(0.0, 90.0);
 }
 
 std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
-  const std::string kind_name = table.GetChoice(
-      "kind", {"hypoplastic_clay", "modified_cam_clay", "hypoplastic_sand"}, "hypoplastic_clay");
-  ModelKind kind;
-  FromString(kind_name, &kind);
+  const ModelKind kind = table.GetEnum("kind", ModelKind::kHypoplasticClay);
   std::unique_ptr<ConstitutiveModel> model;
   std::string why;
   if (kind == ModelKind::kHypoplasticClay) {
@@ -65,24 +62,20 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
     model = std::make_unique<HypoplasticSand>(p);
   } else {
     ModifiedCamClay::Parameters p;
-    const std::string form = table.GetChoice("form", {"log_log", "semi_log"}, "log_log");
-    FromString(form, &p.form);
+    p.form = table.GetEnum("form", ModifiedCamClay::CompressionForm::kLogLog);
     const bool has_m = table.Has("critical_state_ratio");
     const bool has_phi = table.Has("phi_c_deg");
     if (has_m == has_phi) {
       table.Fail("critical_state_ratio",
                  "give exactly one of critical_state_ratio (M) and phi_c_deg");
     }
-    p.critical_state_ratio = has_m ? table.GetDouble("critical_state_ratio", Range::Open(0.0, 3.0))
-                                   : CriticalStateRatio(table.GetDouble("phi_c_deg",
-                                                                        kFrictionAngleDeg) *
-                                                        kDegree);
-    const std::string lambda_key = p.form == ModifiedCamClay::CompressionForm::kLogLog
-                                       ? "lambda_star"
-                                       : "lambda";
-    const std::string kappa_key = p.form == ModifiedCamClay::CompressionForm::kLogLog
-                                      ? "kappa_star"
-                                      : "kappa";
+    p.critical_state_ratio =
+        has_m ? table.GetDouble("critical_state_ratio", Range::Open(0.0, 3.0))
+              : CriticalStateRatio(table.GetDouble("phi_c_deg", kFrictionAngleDeg) * kDegree);
+    const std::string lambda_key =
+        p.form == ModifiedCamClay::CompressionForm::kLogLog ? "lambda_star" : "lambda";
+    const std::string kappa_key =
+        p.form == ModifiedCamClay::CompressionForm::kLogLog ? "kappa_star" : "kappa";
     p.lambda = table.GetDouble(lambda_key, Range::Positive());
     p.kappa = table.GetDouble(kappa_key, Range::Positive());
     if (!(p.kappa < p.lambda)) {
@@ -100,8 +93,7 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
     }
     p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, Range::Positive());
     p.yield_tolerance = table.GetDouble("yield_tolerance", 1e-9, Range::Open(0.0, 1e-2));
-    p.rate_form_band =
-        table.GetDouble("rate_form_band", p.rate_form_band, Range::Open(0.0, 1e-2));
+    p.rate_form_band = table.GetDouble("rate_form_band", p.rate_form_band, Range::Open(0.0, 1e-2));
     if (!p.IsValid(&why)) table.Fail(lambda_key, why);
     model = std::make_unique<ModifiedCamClay>(p);
   }
@@ -126,35 +118,32 @@ ModelState ReadInitialState(const ConstitutiveModel& model, const ConfigTable& t
 std::vector<LoadingStage> ReadStages(const ConfigTable& root) {
   std::vector<LoadingStage> stages;
   for (const ConfigTable& table : root.GetTableArray("stage")) {
-    const std::string type = table.GetChoice(
-        "type",
-        {"proportional", "constant_radial_stress", "isochoric", "oedometric", "isotropic", "mixed"},
-        "proportional");
+    const LoadingStageType type = table.GetEnum("type", LoadingStageType::kProportional);
     const double rate = table.GetDouble("stretching_rate", 1.0, Range::Positive());
     const double duration = table.GetDouble("duration_s", 1.0, Range::Positive());
     LoadingStage stage;
-    if (type == "proportional") {
+    if (type == LoadingStageType::kProportional) {
       stage = LoadingStage::Proportional(
           table.GetDouble("psi_epsilon_deg", Range::Closed(-180, 180)) * kDegree, rate, duration);
-    } else if (type == "constant_radial_stress") {
+    } else if (type == LoadingStageType::kConstantRadialStress) {
       stage = LoadingStage::ConstantRadialStress(table.GetDouble("axial_rate", rate, Range::Any()),
                                                  duration);
-    } else if (type == "isochoric") {
+    } else if (type == LoadingStageType::kIsochoric) {
       stage = LoadingStage::Isochoric(table.GetDouble("axial_rate", rate, Range::Any()), duration);
-    } else if (type == "oedometric") {
+    } else if (type == LoadingStageType::kOedometric) {
       stage = LoadingStage::Oedometric(table.GetDouble("axial_rate", rate, Range::Any()), duration);
-    } else if (type == "isotropic") {
+    } else if (type == LoadingStageType::kIsotropic) {
       stage = LoadingStage::IsotropicToMeanStress(
           table.GetDouble("target_mean_stress_kpa", Range::Positive()), rate);
       if (table.Has("duration_s")) stage.duration = duration;
     } else {
       const std::vector<double> values = table.GetDoubles("rate");
       if (values.size() != 6) {
-        table.Fail("rate", fmt::format("needs 6 values (Voigt 11,22,33,12,13,23), got {}",
-                                       values.size()));
+        table.Fail("rate",
+                   fmt::format("needs 6 values (Voigt 11,22,33,12,13,23), got {}", values.size()));
       }
       stage.duration = duration;
-      stage.name = "mixed";
+      stage.name = ToString(LoadingStageType::kMixed);
       for (int i = 0; i < 6; ++i) stage.rate[i] = values[i];
       std::vector<double> stress_controlled;
       if (table.Has("stress_controlled")) {
@@ -168,18 +157,14 @@ std::vector<LoadingStage> ReadStages(const ConfigTable& root) {
       }
     }
     stage.name = table.GetString("name", stage.name);
-    stage.output_points = static_cast<int>(table.GetInt("output_points", 100, Range::Closed(1, 1e6)));
+    stage.output_points =
+        static_cast<int>(table.GetInt("output_points", 100, Range::Closed(1, 1e6)));
     if (table.Has("stop")) {
       const ConfigTable stop = table.GetTable("stop");
-      const std::vector<std::pair<std::string, StopKind>> keys = {
-          {"mean_stress_kpa", StopKind::kMeanStress},
-          {"axial_strain", StopKind::kAxialStrain},
-          {"volumetric_strain", StopKind::kVolumetricStrain},
-          {"shear_strain", StopKind::kShearStrain},
-          {"strain_path", StopKind::kStrainPath},
-          {"stress_ratio", StopKind::kStressRatio},
-          {"asymptote", StopKind::kAsymptote}};
-      for (const auto& [key, kind] : keys) {
+      // The keys are the StopKind names; the mean stress carries its unit.
+      for (StopKind kind : EnumValues<StopKind>()) {
+        const std::string key =
+            std::string(ToString(kind)) + (kind == StopKind::kMeanStress ? "_kpa" : "");
         if (stop.Has(key)) {
           const Range range = kind == StopKind::kAsymptote ? Range::Open(0.0, 1e-2) : Range::Any();
           stage.stops.push_back({kind, stop.GetDouble(key, range)});
@@ -194,30 +179,22 @@ std::vector<LoadingStage> ReadStages(const ConfigTable& root) {
 
 ElementTestOptions ReadElementTestOptions(const ConfigTable& table) {
   ElementTestOptions options;
-  const std::string method =
-      table.GetChoice("method", {"rate_integration", "stress_point"}, "rate_integration");
-  FromString(method, &options.method);
-  std::vector<std::string> kinds;
-  for (IntegratorKind kind : AllIntegratorKinds()) kinds.push_back(ToString(kind));
-  FromString(table.GetChoice("integrator", kinds, ToString(options.integrator.kind)),
-             &options.integrator.kind);
-  FromString(table.GetChoice("jacobian", {"exact", "finite_difference"}, "exact"),
-             &options.integrator.jacobian);
+  options.method = table.GetEnum("method", options.method);
+  options.integrator.kind = table.GetEnum("integrator", options.integrator.kind);
+  options.integrator.jacobian = table.GetEnum("jacobian", options.integrator.jacobian);
   options.integrator.relative_tolerance = table.GetDouble(
       "relative_tolerance", options.integrator.relative_tolerance, Range::Open(0.0, 1.0));
   options.integrator.absolute_tolerance = table.GetDouble(
       "absolute_tolerance", options.integrator.absolute_tolerance, Range::Positive());
   options.integrator.arkode_order = static_cast<int>(
       table.GetInt("arkode_order", options.integrator.arkode_order, Range::Closed(2, 8)));
-  FromString(table.GetChoice("stress_point", {"modified_euler", "return_mapping"},
-                             ToString(options.stress_point.method)),
-             &options.stress_point.method);
-  options.stress_point.tolerance =
-      table.GetDouble("stress_point_tolerance", options.stress_point.tolerance, Range::Open(0, 0.1));
-  options.max_strain_increment = table.GetDouble("max_strain_increment",
-                                                 options.max_strain_increment, Range::Open(0, 0.1));
-  options.limit_point_condition = table.GetDouble(
-      "limit_point_condition", options.limit_point_condition, Range::Open(0, 0.1));
+  options.stress_point.method = table.GetEnum("stress_point", options.stress_point.method);
+  options.stress_point.tolerance = table.GetDouble(
+      "stress_point_tolerance", options.stress_point.tolerance, Range::Open(0, 0.1));
+  options.max_strain_increment =
+      table.GetDouble("max_strain_increment", options.max_strain_increment, Range::Open(0, 0.1));
+  options.limit_point_condition =
+      table.GetDouble("limit_point_condition", options.limit_point_condition, Range::Open(0, 0.1));
   std::string why;
   if (!options.IsValid(&why)) table.Fail("method", why);
   return options;
@@ -270,7 +247,8 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
   file->SetAttribute(group, "report", summary.Report());
   file->SetAttribute(group, "steps", static_cast<int64_t>(summary.totals.steps));
   file->SetAttribute(group, "rejected_steps", static_cast<int64_t>(summary.totals.rejected_steps));
-  file->SetAttribute(group, "rhs_evaluations", static_cast<int64_t>(summary.totals.rhs_evaluations));
+  file->SetAttribute(group, "rhs_evaluations",
+                     static_cast<int64_t>(summary.totals.rhs_evaluations));
   file->SetAttribute(group, "wall_time_s", summary.totals.wall_time_s);
   for (size_t k = 0; k < summary.stages.size(); ++k) {
     const std::string stage_group = fmt::format("{}/stages/{}", group, k);
@@ -282,10 +260,9 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
 }
 
 void WriteElementTestCsv(const ElementTestResult& result, const std::string& path) {
-  std::vector<std::string> columns = {"time_s",        "stress_a_kpa",  "stress_r_kpa",
-                                      "p_kpa",         "q_kpa",         "void_ratio",
-                                      "strain_a",      "strain_r",      "strain_path",
-                                      "psi_sigma_deg", "psi_epsilon_deg", "ocr"};
+  std::vector<std::string> columns = {"time_s",      "stress_a_kpa",  "stress_r_kpa",    "p_kpa",
+                                      "q_kpa",       "void_ratio",    "strain_a",        "strain_r",
+                                      "strain_path", "psi_sigma_deg", "psi_epsilon_deg", "ocr"};
   std::vector<std::vector<double>> values(columns.size());
   for (const ElementTestRecord& r : result.history) {
     const AxisymmetricStress s = RecordStress(r);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/config.h"
+#include "common/enum_names.h"
 #include "common/hdf5_file.h"
 #include "constitutive/asymptotic_states.h"
 #include "constitutive/constitutive_model.h"
@@ -21,6 +22,31 @@ namespace granasym {
 std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& model_table);
 // [initial] table: mean_stress_kpa, psi_sigma_deg, and void_ratio or ocr.
 ModelState ReadInitialState(const ConstitutiveModel& model, const ConfigTable& initial_table);
+// The `type` of a [[stage]]: which LoadingStage helper makes it.
+enum class LoadingStageType {
+  kProportional,
+  kConstantRadialStress,
+  kIsochoric,
+  kOedometric,
+  kIsotropic,
+  kMixed,
+};
+template <>
+struct EnumNames<LoadingStageType> {
+  static constexpr EnumEntry<LoadingStageType> kEntries[] = {
+      {LoadingStageType::kProportional, "proportional",
+       "proportional stretching at psi_epsilon_deg and stretching_rate"},
+      {LoadingStageType::kConstantRadialStress, "constant_radial_stress",
+       "drained triaxial: axial_rate prescribed, radial stress held"},
+      {LoadingStageType::kIsochoric, "isochoric", "axial_rate prescribed at constant volume"},
+      {LoadingStageType::kOedometric, "oedometric", "axial_rate prescribed, no radial strain"},
+      {LoadingStageType::kIsotropic, "isotropic",
+       "isotropic loading or unloading to target_mean_stress_kpa"},
+      {LoadingStageType::kMixed, "mixed",
+       "six Voigt rates; stress_controlled lists the stress-rate components"},
+  };
+};
+
 // [[stage]] array of the root table.
 std::vector<LoadingStage> ReadStages(const ConfigTable& root);
 // [integration] table (optional keys; defaults of ElementTestOptions).
@@ -33,7 +59,7 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
 void WriteElementTestCsv(const ElementTestResult& result, const std::string& path);
 
 struct AsymptoteTable {
-  std::vector<AsymptoticState> analytic;   // hypoplastic clay only (analytic ASBS)
+  std::vector<AsymptoticState> analytic;  // hypoplastic clay only (analytic ASBS)
   std::vector<IntegratedAsymptote> integrated;
 };
 // Computes what an asymptotes file asks for ([model], [asymptotes]).

@@ -36,10 +36,10 @@ bool CamClayRate(const ModifiedCamClay::Parameters& c, const Vec6<S>& t, const S
     kappa = c.kappa / one_plus_e;
   }
   const S bulk = p / kappa;
-  const S shear = c.elasticity == ModifiedCamClay::Elasticity::kPoissonRatio
-                      ? S(bulk * (3.0 * (1.0 - 2.0 * c.poisson_ratio) /
-                                  (2.0 * (1.0 + c.poisson_ratio))))
-                      : S(c.shear_modulus);
+  const S shear =
+      c.elasticity == ModifiedCamClay::Elasticity::kPoissonRatio
+          ? S(bulk * (3.0 * (1.0 - 2.0 * c.poisson_ratio) / (2.0 * (1.0 + c.poisson_ratio))))
+          : S(c.shear_modulus);
   auto elastic = [&](const Vec6<S>& x) -> Vec6<S> {
     Vec6<S> out = (2.0 * shear) * x;
     const S volumetric = (bulk - 2.0 * shear / 3.0) * Trace(x);
@@ -74,21 +74,6 @@ bool CamClayRate(const ModifiedCamClay::Parameters& c, const Vec6<S>& t, const S
 }
 
 }  // namespace
-
-const char* ToString(ModifiedCamClay::CompressionForm form) {
-  return form == ModifiedCamClay::CompressionForm::kLogLog ? "log_log" : "semi_log";
-}
-
-bool FromString(const std::string& name, ModifiedCamClay::CompressionForm* form) {
-  if (name == "log_log") {
-    *form = ModifiedCamClay::CompressionForm::kLogLog;
-  } else if (name == "semi_log") {
-    *form = ModifiedCamClay::CompressionForm::kSemiLog;
-  } else {
-    return false;
-  }
-  return true;
-}
 
 bool ModifiedCamClay::Parameters::IsValid(std::string* why) const {
   auto fail = [why](const std::string& message) { return Fail(why, message); };
@@ -260,11 +245,10 @@ Matrix6 ModifiedCamClay::ElasticStiffness(const Vector6& stress, double void_rat
   double lambda, kappa;
   CompressionSlopes(void_ratio, &lambda, &kappa);
   const double bulk = MeanStress(stress) / kappa;
-  const double shear =
-      parameters_.elasticity == Elasticity::kPoissonRatio
-          ? bulk * 3.0 * (1.0 - 2.0 * parameters_.poisson_ratio) /
-                (2.0 * (1.0 + parameters_.poisson_ratio))
-          : parameters_.shear_modulus;
+  const double shear = parameters_.elasticity == Elasticity::kPoissonRatio
+                           ? bulk * 3.0 * (1.0 - 2.0 * parameters_.poisson_ratio) /
+                                 (2.0 * (1.0 + parameters_.poisson_ratio))
+                           : parameters_.shear_modulus;
   return 2.0 * shear * Matrix6::Identity() +
          (bulk - 2.0 * shear / 3.0) * DyadMatrix<double>(IdentityVoigt(), IdentityVoigt());
 }
@@ -288,8 +272,8 @@ double ModifiedCamClay::PreconsolidationFromElasticLine(double mean_stress,
                                                         double void_ratio) const {
   const double lambda = parameters_.lambda;
   const double kappa = parameters_.kappa;
-  const double volume = parameters_.form == CompressionForm::kLogLog ? std::log1p(void_ratio)
-                                                                      : void_ratio;
+  const double volume =
+      parameters_.form == CompressionForm::kLogLog ? std::log1p(void_ratio) : void_ratio;
   const double log_ratio = std::log(mean_stress / parameters_.reference_pressure);
   // volume = N − λ ln(p_c/p_r) + κ ln(p_c/p_r) − κ ln(p/p_r)
   return parameters_.reference_pressure *
@@ -309,8 +293,8 @@ void ModifiedCamClay::Switches(const ModelState& state, double* values) const {
   const double p_c = state.internal.size() == 1 ? state.internal[0] : 0.0;
   const double m = parameters_.critical_state_ratio;
   const double scale = m * m * p_c * p_c;
-  values[0] = scale > 0 ? YieldFunction(state.stress, p_c) / scale + 0.5 * parameters_.rate_form_band
-                        : 1.0;
+  values[0] =
+      scale > 0 ? YieldFunction(state.stress, p_c) / scale + 0.5 * parameters_.rate_form_band : 1.0;
 }
 
 void ModifiedCamClay::SignConstraints(Vector6* stress_codes,

@@ -11,6 +11,7 @@
 
 #include <string>
 
+#include "common/enum_names.h"
 #include "constitutive/constitutive_model.h"
 
 namespace granasym {
@@ -29,10 +30,10 @@ class ModifiedCamClay : public ConstitutiveModel {
     double kappa = 0.0;
     double n_intercept = 0.0;
     Elasticity elasticity = Elasticity::kPoissonRatio;
-    double poisson_ratio = 0.25;  // ν, used with kPoissonRatio
-    double shear_modulus = 0.0;   // G (kPa), used with kConstantShearModulus
-    double reference_pressure = 1.0;     // p_r (kPa)
-    double minimum_mean_stress = 1e-9;   // kPa; below this the state is inadmissible
+    double poisson_ratio = 0.25;        // ν, used with kPoissonRatio
+    double shear_modulus = 0.0;         // G (kPa), used with kConstantShearModulus
+    double reference_pressure = 1.0;    // p_r (kPa)
+    double minimum_mean_stress = 1e-9;  // kPa; below this the state is inadmissible
     // A state counts as on the yield surface when f ≥ −yield_tolerance (M p_c)²;
     // the stress-point algorithms also use it as their drift tolerance.
     double yield_tolerance = 1e-9;
@@ -81,7 +82,7 @@ class ModifiedCamClay : public ConstitutiveModel {
   std::string Describe() const override;
 
   // Pieces used by the stress-point algorithms (tension-positive stress, kPa).
-  double YieldFunction(const Vector6& stress, double preconsolidation) const;  // kPa²
+  double YieldFunction(const Vector6& stress, double preconsolidation) const;   // kPa²
   Vector6 YieldGradient(const Vector6& stress, double preconsolidation) const;  // ∂f/∂T
   // ∂f/∂p_c = −M² p.
   double YieldGradientPreconsolidation(const Vector6& stress) const;
@@ -100,7 +101,12 @@ class ModifiedCamClay : public ConstitutiveModel {
   Parameters parameters_;
 };
 
-const char* ToString(ModifiedCamClay::CompressionForm form);
-bool FromString(const std::string& name, ModifiedCamClay::CompressionForm* form);
+template <>
+struct EnumNames<ModifiedCamClay::CompressionForm> {
+  static constexpr EnumEntry<ModifiedCamClay::CompressionForm> kEntries[] = {
+      {ModifiedCamClay::CompressionForm::kLogLog, "log_log", "ln(1+e)-ln p: lambda*, kappa*, N"},
+      {ModifiedCamClay::CompressionForm::kSemiLog, "semi_log", "e-ln p: lambda, kappa, e_N"},
+  };
+};
 
 }  // namespace granasym

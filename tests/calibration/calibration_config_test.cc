@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "synthetic_data.h"
+#include "tests/common/enum_spellings.h"
 
 namespace granasym::calibration {
 namespace {
@@ -39,8 +40,10 @@ max_evaluations = 800
 
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
   const size_t at = text.find(from);
-  if (at == std::string::npos) ADD_FAILURE() << "no '" << from << "'";
-  else text.replace(at, from.size(), to);
+  if (at == std::string::npos)
+    ADD_FAILURE() << "no '" << from << "'";
+  else
+    text.replace(at, from.size(), to);
   return text;
 }
 
@@ -56,7 +59,8 @@ void ExpectRejected(const std::string& text, const std::string& expected) {
 }
 
 TEST(CalibrationConfig, ReadsAValidFile) {
-  const CalibrationConfig c = ReadCalibrationConfig(ConfigTable::ParseString(kConfig, "/d/calib.toml"));
+  const CalibrationConfig c =
+      ReadCalibrationConfig(ConfigTable::ParseString(kConfig, "/d/calib.toml"));
   EXPECT_EQ(c.model, ModelKind::kHypoplasticClay);
   EXPECT_EQ(c.method, FitMethod::kBoth);
   ASSERT_EQ(c.datasets.size(), 1u);
@@ -77,9 +81,9 @@ TEST(CalibrationConfig, RejectsBadFilesNamingTheKey) {
   ExpectRejected(Replace(kConfig, "csv = \"states.csv\"", "dem = \"a.h5\"\ncsv = \"b.csv\""),
                  "exactly one");
   ExpectRejected(Replace(kConfig, "starts = 2", "starts = 0"), "starts");
-  ExpectRejected(Replace(kConfig, "psi_sigma_uncertainty_deg = 0.3",
-                         "psi_sigma_uncertainty_deg = -1"),
-                 "psi_sigma_uncertainty_deg");
+  ExpectRejected(
+      Replace(kConfig, "psi_sigma_uncertainty_deg = 0.3", "psi_sigma_uncertainty_deg = -1"),
+      "psi_sigma_uncertainty_deg");
   ExpectRejected("[model]\nkind = \"hypoplastic_clay\"\n", "dataset");
 }
 
@@ -90,6 +94,52 @@ TEST(CalibrationConfig, RejectsTheSandModelKind) {
                  "kind");
   ExpectRejected(Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"hypoplastic_sand\""),
                  "modified_cam_clay");
+}
+
+// Calibration files and the HDF5 record use these spellings.
+TEST(CalibrationConfig, NamesAreSpelledAsInFilesAndResults) {
+  ExpectSpellings<FitMethod>(
+      {{FitMethod::kCeres, "ceres"}, {FitMethod::kNlopt, "nlopt"}, {FitMethod::kBoth, "both"}});
+  ExpectSpellings<AsymptoteMethod>(
+      {{AsymptoteMethod::kAnalytic, "analytic"}, {AsymptoteMethod::kIntegrated, "integrated"}});
+  ExpectSpellings<GlobalAlgorithm>({{GlobalAlgorithm::kCrs2, "crs2"},
+                                    {GlobalAlgorithm::kIsres, "isres"},
+                                    {GlobalAlgorithm::kDirectL, "direct_l"},
+                                    {GlobalAlgorithm::kMlsl, "mlsl"}});
+  ExpectSpellings<LocalPolish>({{LocalPolish::kNone, "none"},
+                                {LocalPolish::kBobyqa, "bobyqa"},
+                                {LocalPolish::kCeres, "ceres"}});
+  ExpectSpellings<FitTermination>({{FitTermination::kConverged, "converged"},
+                                   {FitTermination::kNoConvergence, "no_convergence"},
+                                   {FitTermination::kFailure, "failure"}});
+}
+
+TEST(CalibrationConfig, ReadsEveryNameAndListsTheAllowedOnes) {
+  const std::string nlopt =
+      Replace(kConfig, "starts = 2", "starts = 2\nalgorithm = \"direct_l\"\npolish = \"none\"");
+  const std::string text =
+      Replace(Replace(Replace(nlopt, "kind = \"hypoplastic_clay\"",
+                              "kind = \"modified_cam_clay\"\nasymptotes = \"integrated\""),
+                      "method = \"both\"", "method = \"nlopt\""),
+              "csv = \"states.csv\"", "csv = \"states.csv\"\nkind = \"asbs\"");
+  const CalibrationConfig c = ReadCalibrationConfig(ConfigTable::ParseString(
+      Replace(text, "[parameters.r]", "[parameters.poisson_ratio]"), "/d/calib.toml"));
+  EXPECT_EQ(c.model, ModelKind::kModifiedCamClay);
+  EXPECT_EQ(c.predictor.method, AsymptoteMethod::kIntegrated);
+  EXPECT_EQ(c.method, FitMethod::kNlopt);
+  EXPECT_EQ(c.nlopt.algorithm, GlobalAlgorithm::kDirectL);
+  EXPECT_EQ(c.nlopt.polish, LocalPolish::kNone);
+  EXPECT_EQ(c.datasets[0].csv.kind, "asbs");
+
+  ExpectRejected(Replace(kConfig, "method = \"both\"", "method = \"simplex\""),
+                 "key 'fitter.method' = 'simplex' is not valid: expected ceres, nlopt or both");
+  ExpectRejected(Replace(kConfig, "starts = 2", "starts = 2\npolish = \"lbfgs\""),
+                 "expected none, bobyqa or ceres");
+  ExpectRejected(Replace(kConfig, "csv = \"states.csv\"", "csv = \"states.csv\"\nkind = \"nel\""),
+                 "key 'dataset[0].kind' = 'nel' is not valid: expected auto, ncl, csl, "
+                 "compression, extension, asbs or unloading");
+  ExpectRejected(Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"hypoplastic_sand\""),
+                 "expected hypoplastic_clay or modified_cam_clay");
 }
 
 TEST(CalibrationConfig, ReadsAndChecksAsbsValuesOfADemDataset) {
@@ -156,8 +206,8 @@ TEST(CalibrationConfig, RunsAWholeCalibrationAndWritesItsRecord) {
 
 TEST(CalibrationConfig, RefusesTooFewPointsForTheFreeParameters) {
   CsvReadOptions options;
-  const StateDataset tiny = ParseStatesCsv(
-      "p_kpa,e,psi_sigma_deg,psi_epsilon_deg\n100,0.8,0,0\n", "tiny.csv", "tiny", options);
+  const StateDataset tiny = ParseStatesCsv("p_kpa,e,psi_sigma_deg,psi_epsilon_deg\n100,0.8,0,0\n",
+                                           "tiny.csv", "tiny", options);
   try {
     CalibrationProblem problem({tiny}, ModelParameters::Defaults(ModelKind::kHypoplasticClay),
                                PredictorOptions());

@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/state_measures.h"
+#include "tests/common/enum_spellings.h"
 
 namespace granasym::calibration {
 namespace {
@@ -28,6 +29,9 @@ TEST(CsvStateReader, DefaultOptionsAreValid) {
   bad.kind = "critical";
   EXPECT_FALSE(bad.IsValid(&why));
   EXPECT_NE(why.find("kind"), std::string::npos);
+  EXPECT_NE(why.find("must be auto, ncl, csl, compression, extension, asbs or unloading"),
+            std::string::npos)
+      << why;
 }
 
 TEST(CsvStateReader, ReadsDocumentedColumnsAndConvertsUnits) {
@@ -130,6 +134,16 @@ TEST(StateDataset, KindsFollowTheStretchingDirection) {
     EXPECT_EQ(std::string(ToString(kind)), name);
   }
   EXPECT_FALSE(FromString("nel", &kind));
+}
+
+// CSV kind settings, the HDF5 record and the plot data use these spellings.
+TEST(StateDataset, KindNamesAreSpelledAsInFilesAndResults) {
+  ExpectSpellings<StateKind>({{StateKind::kNcl, "ncl"},
+                              {StateKind::kCsl, "csl"},
+                              {StateKind::kCompression, "compression"},
+                              {StateKind::kExtension, "extension"},
+                              {StateKind::kAsbs, "asbs"},
+                              {StateKind::kUnloading, "unloading"}});
 }
 
 }  // namespace

@@ -5,10 +5,27 @@
 
 #include <cmath>
 
+#include "tests/common/enum_spellings.h"
 #include "tests/constitutive/test_models.h"
 
 namespace granasym {
 namespace {
+
+// Test files ([integration] method) and the HDF5 stage attributes ("stop")
+// use these spellings.
+TEST(ElementTest, NamesAreSpelledAsInFilesAndResults) {
+  ExpectSpellings<ComponentControl>({{ComponentControl::kStretching, "stretching"},
+                                     {ComponentControl::kStressRate, "stress_rate"}});
+  ExpectSpellings<StopKind>({{StopKind::kMeanStress, "mean_stress"},
+                             {StopKind::kAxialStrain, "axial_strain"},
+                             {StopKind::kVolumetricStrain, "volumetric_strain"},
+                             {StopKind::kShearStrain, "shear_strain"},
+                             {StopKind::kStrainPath, "strain_path"},
+                             {StopKind::kStressRatio, "stress_ratio"},
+                             {StopKind::kAsymptote, "asymptote"}});
+  ExpectSpellings<DriveMethod>({{DriveMethod::kRateIntegration, "rate_integration"},
+                                {DriveMethod::kStressPoint, "stress_point"}});
+}
 
 TEST(ElementTest, AxisymmetricStressTensorHasTheRequestedPAndPsi) {
   const Vector6 t = AxisymmetricStressTensor(150.0, 0.3);

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "constitutive/element_test.h"
+#include "tests/common/enum_spellings.h"
 #include "tests/constitutive/test_models.h"
 
 namespace granasym {
@@ -70,6 +71,21 @@ TEST(Integrator, NamesRoundTrip) {
   EXPECT_FALSE(FromString("euler", &unused));
 }
 
+// Test files, HDF5 attributes and the benchmark scripts use these spellings.
+TEST(Integrator, NamesAreSpelledAsInFilesAndResults) {
+  ExpectSpellings<IntegratorKind>({{IntegratorKind::kCvodeBdf, "cvode_bdf"},
+                                   {IntegratorKind::kCvodeAdams, "cvode_adams"},
+                                   {IntegratorKind::kArkodeErk, "arkode_erk"},
+                                   {IntegratorKind::kArkodeDirk, "arkode_dirk"},
+                                   {IntegratorKind::kRkf23, "rkf23"}});
+  EXPECT_EQ(AllIntegratorKinds(), EnumValues<IntegratorKind>());
+  ExpectSpellings<JacobianKind>(
+      {{JacobianKind::kExact, "exact"}, {JacobianKind::kFiniteDifference, "finite_difference"}});
+  ExpectSpellings<TerminationType>({{TerminationType::kReachedEnd, "reached_end"},
+                                    {TerminationType::kRootFound, "root_found"},
+                                    {TerminationType::kFailure, "failure"}});
+}
+
 struct OrderCase {
   IntegratorKind kind;
   int order;  // method order requested
@@ -89,8 +105,8 @@ TEST_P(ConvergenceOrder, FixedStepErrorsShrinkAtTheMethodOrder) {
   options.fixed_step = 1.0 / 40;
   const double fine = FinalError(options);
   const double observed = std::log2(coarse / fine);
-  EXPECT_NEAR(observed, c.expected, 0.35) << ToString(c.kind) << " errors " << coarse << " "
-                                          << fine;
+  EXPECT_NEAR(observed, c.expected, 0.35)
+      << ToString(c.kind) << " errors " << coarse << " " << fine;
 }
 
 INSTANTIATE_TEST_SUITE_P(AllIntegrators, ConvergenceOrder,
@@ -177,8 +193,8 @@ TEST(Integrator, AllAgreeOnAHypoplasticDrainedTriaxialPath) {
       options.integrator.absolute_tolerance = 1e-10;
       const ElementTestResult result = ElementTest(model, options).Run(initial, {stage});
       ASSERT_TRUE(result.summary.success()) << result.summary.Report();
-      const double difference = (result.final_state.stress - reference.stress).norm() /
-                                reference.stress.norm();
+      const double difference =
+          (result.final_state.stress - reference.stress).norm() / reference.stress.norm();
       EXPECT_LT(difference, 1e-6) << ToString(kind) << " " << ToString(jacobian);
       EXPECT_NEAR(result.final_state.void_ratio, reference.void_ratio, 1e-7) << ToString(kind);
     }

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "common/error.h"
+#include "tests/common/enum_spellings.h"
 
 namespace granasym {
 namespace {
@@ -45,6 +46,70 @@ TEST(ModelConfig, ReadsAValidHypoplasticModel) {
   EXPECT_NO_THROW(root.CheckNoUnknownKeys());
 }
 
+TEST(ModelConfig, NamesAreSpelledAsInFiles) {
+  ExpectSpellings<ModelKind>({{ModelKind::kHypoplasticClay, "hypoplastic_clay"},
+                              {ModelKind::kModifiedCamClay, "modified_cam_clay"},
+                              {ModelKind::kHypoplasticSand, "hypoplastic_sand"}});
+  ExpectSpellings<LoadingStageType>(
+      {{LoadingStageType::kProportional, "proportional"},
+       {LoadingStageType::kConstantRadialStress, "constant_radial_stress"},
+       {LoadingStageType::kIsochoric, "isochoric"},
+       {LoadingStageType::kOedometric, "oedometric"},
+       {LoadingStageType::kIsotropic, "isotropic"},
+       {LoadingStageType::kMixed, "mixed"}});
+}
+
+TEST(ModelConfig, UnknownNamesListTheAllowedOnes) {
+  ExpectRejected(Replace(kClay, "kind = \"hypoplastic_clay\"", "kind = \"clay\""),
+                 "key 'model.kind' = 'clay' is not valid: expected hypoplastic_clay, "
+                 "modified_cam_clay or hypoplastic_sand");
+  const ConfigTable integration =
+      ConfigTable::ParseString("[integration]\nintegrator = \"euler\"\n", "test.toml")
+          .GetTable("integration");
+  try {
+    ReadElementTestOptions(integration);
+    FAIL() << "accepted integrator = euler";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("test.toml"), std::string::npos) << message;
+    EXPECT_NE(message.find("'integration.integrator' = 'euler'"), std::string::npos) << message;
+    EXPECT_NE(message.find("cvode_bdf, cvode_adams, arkode_erk, arkode_dirk or rkf23"),
+              std::string::npos)
+        << message;
+  }
+}
+
+// The stop keys are the StopKind names, the mean stress with its unit.
+TEST(ModelConfig, ReadsEveryStopKey) {
+  const ConfigTable root = ConfigTable::ParseString(R"(
+[[stage]]
+type = "isochoric"
+[stage.stop]
+mean_stress_kpa = 50.0
+axial_strain = 0.1
+volumetric_strain = 0.2
+shear_strain = 0.3
+strain_path = 0.4
+stress_ratio = 0.5
+asymptote = 1e-6
+)",
+                                                    "test.toml");
+  const std::vector<LoadingStage> stages = ReadStages(root);
+  EXPECT_NO_THROW(root.CheckNoUnknownKeys());
+  ASSERT_EQ(stages.size(), 1u);
+  const std::vector<StopCondition>& stops = stages[0].stops;
+  ASSERT_EQ(stops.size(), 7u);
+  const std::vector<std::pair<StopKind, double>> expected = {
+      {StopKind::kMeanStress, 50.0},      {StopKind::kAxialStrain, 0.1},
+      {StopKind::kVolumetricStrain, 0.2}, {StopKind::kShearStrain, 0.3},
+      {StopKind::kStrainPath, 0.4},       {StopKind::kStressRatio, 0.5},
+      {StopKind::kAsymptote, 1e-6}};
+  for (size_t i = 0; i < stops.size(); ++i) {
+    EXPECT_EQ(stops[i].kind, expected[i].first) << i;
+    EXPECT_DOUBLE_EQ(stops[i].value, expected[i].second) << i;
+  }
+}
+
 TEST(ModelConfig, RejectsBadParameterFiles) {
   ExpectRejected(Replace(kClay, "kappa_star = 0.016", "kappa_star = 0.11"), "kappa_star");
   ExpectRejected(Replace(kClay, "phi_c_deg = 22.6", "phi_c_deg = 90.5"), "phi_c_deg");
@@ -59,7 +124,8 @@ kappa_star = 0.12
 n_intercept = 1.4
 )";
   ExpectRejected(cam_clay, "kappa_star");
-  ExpectRejected(Replace(cam_clay, "critical_state_ratio = 0.9", "phi_c_deg = 25.0\ncritical_state_ratio = 0.9"),
+  ExpectRejected(Replace(cam_clay, "critical_state_ratio = 0.9",
+                         "phi_c_deg = 25.0\ncritical_state_ratio = 0.9"),
                  "critical_state_ratio");
 }
 
@@ -93,7 +159,7 @@ axial_strain = 0.05
   EXPECT_EQ(stages[0].control[1], ComponentControl::kStressRate);
   const ElementTestResult result = ElementTest(*model, ElementTestOptions()).Run(initial, stages);
   ASSERT_TRUE(result.summary.success()) << result.summary.Report();
-  EXPECT_NEAR(result.history.back().strain[0], 0.05, 1e-9);  // exact stop
+  EXPECT_NEAR(result.history.back().strain[0], 0.05, 1e-9);              // exact stop
   EXPECT_NEAR(RecordStress(result.history.back()).radial, 100.0, 1e-6);  // radial stress held
 
   const std::string path =

@@ -10,6 +10,7 @@
 #include "constitutive/asymptotic_states.h"
 #include "constitutive/cam_clay_stress_point.h"
 #include "constitutive/element_test.h"
+#include "tests/common/enum_spellings.h"
 #include "tests/constitutive/test_models.h"
 
 namespace granasym {
@@ -53,6 +54,16 @@ TEST(ModifiedCamClay, RejectsInvalidParameters) {
   EXPECT_FALSE(p.IsValid(&why));
 }
 
+// Model files ([model] form, [integration] stress_point) use these spellings.
+TEST(ModifiedCamClay, NamesAreSpelledAsInFiles) {
+  ExpectSpellings<ModifiedCamClay::CompressionForm>(
+      {{ModifiedCamClay::CompressionForm::kLogLog, "log_log"},
+       {ModifiedCamClay::CompressionForm::kSemiLog, "semi_log"}});
+  ExpectSpellings<CamClayStressPoint::Method>(
+      {{CamClayStressPoint::Method::kModifiedEuler, "modified_euler"},
+       {CamClayStressPoint::Method::kReturnMapping, "return_mapping"}});
+}
+
 TEST(CamClayStressPointOptions, DefaultOptionsAreValid) {
   std::string why;
   EXPECT_TRUE(CamClayStressPoint::Options().IsValid(&why)) << why;
@@ -64,8 +75,8 @@ TEST(ElementTestOptions, DefaultOptionsAreValid) {
 }
 
 TEST(ModifiedCamClay, IsotropicLoadingFollowsTheNclWithEveryDrive) {
-  for (auto form : {ModifiedCamClay::CompressionForm::kLogLog,
-                    ModifiedCamClay::CompressionForm::kSemiLog}) {
+  for (auto form :
+       {ModifiedCamClay::CompressionForm::kLogLog, ModifiedCamClay::CompressionForm::kSemiLog}) {
     ModifiedCamClay::Parameters parameters = CamClay();
     parameters.form = form;
     if (form == ModifiedCamClay::CompressionForm::kSemiLog) {
@@ -100,8 +111,8 @@ TEST(ModifiedCamClay, DrainedAndUndrainedShearEndOnTheCslWithOcrC) {
   const double ocr_c = std::pow(2.0, (CamClay().lambda - CamClay().kappa) / CamClay().lambda);
   for (bool drained : {true, false}) {
     const ModelState initial = InitialStateFromOcr(model, 200.0, 0.0, 1.0);
-    LoadingStage stage = drained ? LoadingStage::ConstantRadialStress(1.0, 6.0)
-                                 : LoadingStage::Isochoric(1.0, 6.0);
+    LoadingStage stage =
+        drained ? LoadingStage::ConstantRadialStress(1.0, 6.0) : LoadingStage::Isochoric(1.0, 6.0);
     stage.stops.push_back({StopKind::kAsymptote, 1e-8});
     const ElementTestResult result = ElementTest(model, RateOptions()).Run(initial, {stage});
     ASSERT_TRUE(result.summary.success()) << result.summary.Report();
