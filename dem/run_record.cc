@@ -9,15 +9,6 @@
 namespace granasym::dem {
 namespace {
 
-struct TerminationName {
-  Termination termination;
-  const char* name;
-};
-constexpr TerminationName kTerminations[] = {{Termination::kNotRun, "not_run"},
-                                             {Termination::kCompleted, "completed"},
-                                             {Termination::kInterrupted, "interrupted"},
-                                             {Termination::kFailed, "failed"}};
-
 std::string Join(const std::string& group, const char* name) { return group + "/" + name; }
 
 std::vector<double> Flatten(const std::vector<Vec4>& values) {
@@ -77,21 +68,6 @@ std::array<double, 3> ReadArray3(const Hdf5File& file, const std::string& name) 
 }
 
 }  // namespace
-
-std::string ToString(Termination termination) {
-  for (const TerminationName& entry : kTerminations) {
-    if (entry.termination == termination) return entry.name;
-  }
-  return "unknown";
-}
-
-Termination TerminationFromString(const std::string& name) {
-  for (const TerminationName& entry : kTerminations) {
-    if (name == entry.name) return entry.termination;
-  }
-  throw InputError("unknown run termination '" + name +
-                   "': expected not_run, completed, interrupted or failed");
-}
 
 std::string RunSummary::OneLine() const {
   return fmt::format(
@@ -382,7 +358,13 @@ RunSummary ReadSummary(const Hdf5File& file) {
     throw InputError(file.path() + ": no " + s + " (expected a granasym DEM result file)");
   }
   RunSummary summary;
-  summary.termination = TerminationFromString(file.ReadStringAttribute(s, kTermination));
+  const std::string termination = file.ReadStringAttribute(s, kTermination);
+  const std::optional<Termination> known = FromString<Termination>(termination);
+  if (!known) {
+    throw InputError(fmt::format("{}: {} attribute {} = '{}' is not one of {}", file.path(), s,
+                                 kTermination, termination, AllowedNames<Termination>()));
+  }
+  summary.termination = *known;
   summary.message = file.ReadStringAttribute(s, kMessage);
   summary.steps = file.ReadIntAttribute(s, kSteps);
   summary.particles = file.ReadIntAttribute(s, kParticles);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "common/time_series.h"
 #include "dem/asymptote_detector.h"
 #include "dem/engine.h"
@@ -25,8 +26,19 @@ class Hdf5File;
 namespace granasym::dem {
 
 enum class Termination { kNotRun, kCompleted, kInterrupted, kFailed };
-std::string ToString(Termination termination);
-Termination TerminationFromString(const std::string& name);  // InputError if unknown
+}  // namespace granasym::dem
+
+template <>
+struct granasym::EnumNames<granasym::dem::Termination> {
+  static constexpr EnumEntry<dem::Termination> kEntries[] = {
+      {dem::Termination::kNotRun, "not_run", "the run has not started"},
+      {dem::Termination::kCompleted, "completed", "all stages completed"},
+      {dem::Termination::kInterrupted, "interrupted", "stopped on request; continue with --restart"},
+      {dem::Termination::kFailed, "failed", "a numerical failure; results up to it are kept"},
+  };
+};
+
+namespace granasym::dem {
 
 struct RunSummary {
   Termination termination = Termination::kNotRun;

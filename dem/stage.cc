@@ -27,20 +27,6 @@ constexpr StageTypeEntry kStageTypes[] = {
     {"rest", &RestStage::Parse},
 };
 
-struct DirectionName {
-  Direction direction;
-  const char* name;
-};
-constexpr DirectionName kDirections[] = {
-    {Direction::kAuto, "auto"}, {Direction::kRising, "rising"}, {Direction::kFalling, "falling"}};
-
-const char* ToString(Direction direction) {
-  for (const DirectionName& entry : kDirections) {
-    if (entry.direction == direction) return entry.name;
-  }
-  return "unknown";
-}
-
 std::optional<double> OptionalDouble(const ConfigTable& table, const std::string& key,
                                      Range range) {
   if (!table.Has(key)) return std::nullopt;
@@ -50,12 +36,7 @@ std::optional<double> OptionalDouble(const ConfigTable& table, const std::string
 StopConditions ParseStop(const ConfigTable& stop) {
   StopConditions s;
   s.mean_stress_kpa = OptionalDouble(stop, "mean_stress_kpa", Range::Positive());
-  std::vector<std::string> directions;
-  for (const DirectionName& entry : kDirections) directions.push_back(entry.name);
-  const std::string direction = stop.GetChoice("direction", directions, "auto");
-  for (const DirectionName& entry : kDirections) {
-    if (direction == entry.name) s.mean_stress_direction = entry.direction;
-  }
+  s.mean_stress_direction = stop.GetEnum("direction", Direction::kAuto);
   s.axial_strain = OptionalDouble(stop, "axial_strain", Range::Any());
   s.volumetric_strain = OptionalDouble(stop, "volumetric_strain", Range::Any());
   s.shear_strain = OptionalDouble(stop, "shear_strain", Range::Any());

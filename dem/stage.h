@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "dem/asymptote_detector.h"
 #include "dem/engine.h"
 
@@ -29,7 +30,25 @@ class Hdf5File;
 
 namespace granasym::dem {
 
+// The name tables of common/enum_names.h serve dem/'s enumerations too.
+using granasym::FromString;
+using granasym::ToString;
+
+// Which way the mean stress must cross its stop target; auto: away from the
+// stage's first p.
 enum class Direction { kAuto, kRising, kFalling };
+}  // namespace granasym::dem
+
+template <>
+struct granasym::EnumNames<granasym::dem::Direction> {
+  static constexpr EnumEntry<dem::Direction> kEntries[] = {
+      {dem::Direction::kAuto, "auto", "away from the stage's first mean stress"},
+      {dem::Direction::kRising, "rising"},
+      {dem::Direction::kFalling, "falling"},
+  };
+};
+
+namespace granasym::dem {
 
 // Stop conditions shared by all stage types ([stage.stop]); any one ends the stage.
 struct StopConditions {
