@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cstring>
+
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "dem/run_record_names.h"
@@ -11,50 +13,29 @@ namespace {
 
 std::string Join(const std::string& group, const char* name) { return group + "/" + name; }
 
-std::vector<double> Flatten(const std::vector<Vec4>& values) {
-  std::vector<double> flat;
-  flat.reserve(values.size() * 4);
-  for (const Vec4& v : values) flat.insert(flat.end(), {v.x, v.y, v.z, v.w});
-  return flat;
+// Vec3 and Vec4 are plain rows of 3 and 4 doubles, stored as N×3 and N×4.
+template <typename Vec>
+constexpr size_t kWidth = sizeof(Vec) / sizeof(double);
+
+template <typename Vec>
+void WriteRows(Hdf5File& file, const std::string& name, const std::vector<Vec>& values) {
+  static_assert(sizeof(Vec) == kWidth<Vec> * sizeof(double), "rows of doubles only");
+  std::vector<double> flat(values.size() * kWidth<Vec>);
+  if (!flat.empty()) std::memcpy(flat.data(), values.data(), flat.size() * sizeof(double));
+  file.WriteMatrix(name, flat, values.size(), kWidth<Vec>);
 }
 
-std::vector<double> Flatten(const std::vector<Vec3>& values) {
-  std::vector<double> flat;
-  flat.reserve(values.size() * 3);
-  for (const Vec3& v : values) flat.insert(flat.end(), {v.x, v.y, v.z});
-  return flat;
-}
-
-std::vector<Vec4> ReadVec4(const Hdf5File& file, const std::string& name) {
+template <typename Vec>
+std::vector<Vec> ReadRows(const Hdf5File& file, const std::string& name) {
   size_t rows = 0, cols = 0;
   const std::vector<double> flat = file.ReadMatrix(name, &rows, &cols);
-  if (rows > 0 && cols != 4) {
-    throw InputError(fmt::format("{}: {} has {} columns, expected 4", file.path(), name, cols));
+  if (rows > 0 && cols != kWidth<Vec>) {
+    throw InputError(
+        fmt::format("{}: {} has {} columns, expected {}", file.path(), name, cols, kWidth<Vec>));
   }
-  std::vector<Vec4> values(rows);
-  for (size_t i = 0; i < rows; ++i) {
-    values[i] = {flat[4 * i], flat[4 * i + 1], flat[4 * i + 2], flat[4 * i + 3]};
-  }
+  std::vector<Vec> values(rows);
+  if (rows > 0) std::memcpy(values.data(), flat.data(), flat.size() * sizeof(double));
   return values;
-}
-
-std::vector<Vec3> ReadVec3(const Hdf5File& file, const std::string& name) {
-  size_t rows = 0, cols = 0;
-  const std::vector<double> flat = file.ReadMatrix(name, &rows, &cols);
-  if (rows > 0 && cols != 3) {
-    throw InputError(fmt::format("{}: {} has {} columns, expected 3", file.path(), name, cols));
-  }
-  std::vector<Vec3> values(rows);
-  for (size_t i = 0; i < rows; ++i) values[i] = {flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]};
-  return values;
-}
-
-void WriteVec4(Hdf5File& file, const std::string& name, const std::vector<Vec4>& values) {
-  file.WriteMatrix(name, Flatten(values), values.size(), 4);
-}
-
-void WriteVec3(Hdf5File& file, const std::string& name, const std::vector<Vec3>& values) {
-  file.WriteMatrix(name, Flatten(values), values.size(), 3);
 }
 
 std::vector<double> ToVector(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
@@ -148,9 +129,9 @@ bool ReadSample(const Hdf5File& file, Packing* packing, GenerationReport* report
 
 void WriteEngineState(Hdf5File& file, const std::string& group, const Engine::State& state,
                       int threads) {
-  WriteVec4(file, Join(group, record::kStatePosition), state.position);
-  WriteVec4(file, Join(group, record::kStateVelocity), state.velocity);
-  WriteVec4(file, Join(group, record::kStateSpin), state.spin);
+  WriteRows(file, Join(group, record::kStatePosition), state.position);
+  WriteRows(file, Join(group, record::kStateVelocity), state.velocity);
+  WriteRows(file, Join(group, record::kStateSpin), state.spin);
   file.WriteInts(Join(group, record::kStateId), state.id);
   file.WriteDoubles(Join(group, record::kStateCell), ToVector(state.cell), "m");
   file.WriteDoubles(Join(group, record::kStateGradient), ToVector(state.gradient), "1/s");
@@ -164,8 +145,8 @@ void WriteEngineState(Hdf5File& file, const std::string& group, const Engine::St
   file.WriteInts(Join(l, record::kListOffsets), list.offsets);
   file.WriteInts(Join(l, record::kListNeighbors),
                  std::vector<int64_t>(list.neighbors.begin(), list.neighbors.end()));
-  WriteVec3(file, Join(l, record::kListShear), list.shear);
-  WriteVec4(file, Join(l, record::kListBuildPositions), list.build_positions);
+  WriteRows(file, Join(l, record::kListShear), list.shear);
+  WriteRows(file, Join(l, record::kListBuildPositions), list.build_positions);
   file.WriteDoubles(Join(l, record::kListBuildCell), ToVector(list.build_cell), "m");
   file.SetAttribute(l, record::kListSkin, list.skin);
   file.SetAttribute(l, record::kListMaxRadius, list.max_radius);
@@ -177,9 +158,9 @@ Engine::State ReadEngineState(const Hdf5File& file, const std::string& group, in
     throw InputError(file.path() + ": no engine state in '" + group + "'");
   }
   Engine::State state;
-  state.position = ReadVec4(file, Join(group, record::kStatePosition));
-  state.velocity = ReadVec4(file, Join(group, record::kStateVelocity));
-  state.spin = ReadVec4(file, Join(group, record::kStateSpin));
+  state.position = ReadRows<Vec4>(file, Join(group, record::kStatePosition));
+  state.velocity = ReadRows<Vec4>(file, Join(group, record::kStateVelocity));
+  state.spin = ReadRows<Vec4>(file, Join(group, record::kStateSpin));
   state.id = file.ReadInts(Join(group, record::kStateId));
   state.cell = ReadArray3(file, Join(group, record::kStateCell));
   state.gradient = ReadArray3(file, Join(group, record::kStateGradient));
@@ -200,8 +181,8 @@ Engine::State ReadEngineState(const Hdf5File& file, const std::string& group, in
   list.offsets = file.ReadInts(Join(l, record::kListOffsets));
   const std::vector<int64_t> neighbors = file.ReadInts(Join(l, record::kListNeighbors));
   list.neighbors.assign(neighbors.begin(), neighbors.end());
-  list.shear = ReadVec3(file, Join(l, record::kListShear));
-  list.build_positions = ReadVec4(file, Join(l, record::kListBuildPositions));
+  list.shear = ReadRows<Vec3>(file, Join(l, record::kListShear));
+  list.build_positions = ReadRows<Vec4>(file, Join(l, record::kListBuildPositions));
   list.build_cell = ReadArray3(file, Join(l, record::kListBuildCell));
   list.skin = file.ReadDoubleAttribute(l, record::kListSkin);
   list.max_radius = file.ReadDoubleAttribute(l, record::kListMaxRadius);

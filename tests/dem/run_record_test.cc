@@ -26,25 +26,8 @@ std::string TempPath(const std::string& name) {
   return testing::TempPath(std::to_string(getpid()) + "_" + name);
 }
 
-const char* kStageA = R"(
-[[stage]]
-name = "ncl"
-psi_epsilon_deg = 0.0
-stretching_rate = 167.0
-[stage.stop]
-mean_stress_kpa = 150.0
-)";
-
-const char* kStageB = R"(
-[[stage]]
-name = "triaxial"
-type = "triaxial"
-axial_strain_rate = 136.355
-radial_stress_kpa = 150.0
-[stage.stop]
-axial_strain = 0.02
-)";
-
+const std::string kStageA = testing::NclStage(150.0);
+const std::string kStageB = testing::TriaxialStage(150.0, 0.02);
 const char* kOutput = "[output]\ninterval_strain = 0.004\n";
 
 RunSummary RunToFile(const std::string& text, const std::string& name, int threads = 2) {
@@ -162,8 +145,8 @@ TEST_F(Fork, BadParentsAreRejectedWithTheReason) {
   EXPECT_NE(missing.find("does not exist"), std::string::npos) << missing;
   const std::string self = error_of(ForkScene("fork_parent", ""), TempPath("fork_parent.h5"));
   EXPECT_NE(self.find("no output overwrites an input"), std::string::npos) << self;
-  const std::string both = error_of(
-      "[sample]\nstate = 'a.h5'\npacking = 'b.txt'\n" + std::string(kStageB), TempPath("x.h5"));
+  const std::string both =
+      error_of("[sample]\nstate = 'a.h5'\npacking = 'b.txt'\n" + kStageB, TempPath("x.h5"));
   EXPECT_NE(both.find("exactly one"), std::string::npos) << both;
   const std::string stray = error_of(SampleToml() + "[sample]\nstage = 'ncl'\n", TempPath("x.h5"));
   EXPECT_FALSE(stray.empty());

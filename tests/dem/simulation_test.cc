@@ -18,8 +18,10 @@
 namespace granasym::dem {
 namespace {
 
+using testing::NclStage;
 using testing::SampleToml;
 using testing::TempPath;
+using testing::TriaxialStage;
 
 struct Result {
   RunSummary summary;
@@ -89,23 +91,8 @@ mean_stress_kpa = 1000.0
   EXPECT_LT(sxy / sxx, 0.0);
 }
 
-const char* kMultiStage = R"(
-[output]
-interval_strain = 0.004
-[[stage]]
-name = "ncl"
-psi_epsilon_deg = 0.0
-stretching_rate = 167.0
-[stage.stop]
-mean_stress_kpa = 150.0
-[[stage]]
-name = "triaxial"
-type = "triaxial"
-axial_strain_rate = 136.355
-radial_stress_kpa = 150.0
-[stage.stop]
-axial_strain = 0.04
-)";
+const std::string kMultiStage =
+    "[output]\ninterval_strain = 0.004\n" + NclStage(150.0) + TriaxialStage(150.0, 0.04);
 
 TEST(Simulation, SameSeedAndThreadCountGiveIdenticalResults) {
   RunOptions options;
