@@ -9,6 +9,7 @@
 #include "common/config.h"
 #include "common/error.h"
 #include "common/state_measures.h"
+#include "dem/stage_types.h"
 
 namespace granasym::dem {
 

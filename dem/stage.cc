@@ -8,24 +8,9 @@
 #include "common/config.h"
 #include "common/error.h"
 #include "common/state_measures.h"
-#include "dem/rest_stage.h"
-#include "dem/strain_path_stage.h"
-#include "dem/triaxial_stage.h"
 
 namespace granasym::dem {
 namespace {
-
-// The stage types: the spelling of `type` and the parser of its keys. A new
-// loading mode adds its line here.
-struct StageTypeEntry {
-  const char* name;
-  std::shared_ptr<const StageSpec> (*parse)(const ConfigTable& table);
-};
-constexpr StageTypeEntry kStageTypes[] = {
-    {"strain_path", &StrainPathStage::Parse},
-    {"triaxial", &TriaxialStage::Parse},
-    {"rest", &RestStage::Parse},
-};
 
 std::optional<double> OptionalDouble(const ConfigTable& table, const std::string& key,
                                      Range range) {
@@ -33,7 +18,15 @@ std::optional<double> OptionalDouble(const ConfigTable& table, const std::string
   return table.GetDouble(key, range);
 }
 
-StopConditions ParseStop(const ConfigTable& stop) {
+bool StepsOrTimeDone(const StopConditions& stop, const StageClock& clock, const Engine& engine) {
+  if (stop.steps && clock.steps(engine) >= *stop.steps) return true;
+  const double elapsed = engine.time() - clock.start_time;
+  return stop.time_s && elapsed >= *stop.time_s * (1 - 1e-12);
+}
+
+}  // namespace
+
+StopConditions StopConditions::Parse(const ConfigTable& stop) {
   StopConditions s;
   s.mean_stress_kpa = OptionalDouble(stop, "mean_stress_kpa", Range::Positive());
   s.mean_stress_direction = stop.GetEnum("direction", Direction::kAuto);
@@ -46,14 +39,6 @@ StopConditions ParseStop(const ConfigTable& stop) {
   s.asymptote = stop.GetBool("asymptote", false);
   return s;
 }
-
-bool StepsOrTimeDone(const StopConditions& stop, const StageClock& clock, const Engine& engine) {
-  if (stop.steps && clock.steps(engine) >= *stop.steps) return true;
-  const double elapsed = engine.time() - clock.start_time;
-  return stop.time_s && elapsed >= *stop.time_s * (1 - 1e-12);
-}
-
-}  // namespace
 
 double MeanStressKpa(const Engine::Sums& sums) {
   return AxisymmetricFromTensor(sums.stress).mean() / kKiloPascal;
@@ -100,47 +85,6 @@ void Stage::Canonical(CanonicalText& text, const std::string& prefix) const {
   stop.Canonical(text, prefix + "stop.");
   text.Add(prefix + "detect_asymptote", detect_asymptote);
   if (detect_asymptote) asymptote.Canonical(text, prefix + "asymptote.");
-}
-
-std::string StageTypeNames() {
-  std::string names;
-  const size_t count = std::size(kStageTypes);
-  for (size_t k = 0; k < count; ++k) {
-    names += k == 0 ? "" : (k + 1 == count ? " or " : ", ");
-    names += kStageTypes[k].name;
-  }
-  return names;
-}
-
-Stage ParseStage(const ConfigTable& table, size_t index) {
-  Stage stage;
-  stage.name = table.GetString("name", "stage" + std::to_string(index + 1));
-  std::vector<std::string> types;
-  for (const StageTypeEntry& entry : kStageTypes) types.push_back(entry.name);
-  const std::string type = table.GetChoice("type", types, "strain_path");
-  for (const StageTypeEntry& entry : kStageTypes) {
-    if (type == entry.name) stage.spec = entry.parse(table);
-  }
-  GRANASYM_CHECK(stage.spec) << "no parser for stage type " << type;
-  if (table.Has("asymptote")) {
-    stage.asymptote = AsymptoteCriterion::Parse(table.GetTable("asymptote"));
-    stage.detect_asymptote = true;
-  }
-  if (!table.Has("stop")) {
-    table.Fail("stop",
-               "is missing: every stage needs a [stage.stop] table with at least one of "
-               "mean_stress_kpa, axial_strain, volumetric_strain, shear_strain, "
-               "strain_norm, time_s, steps, asymptote (rest stages stop at equilibrium)");
-  }
-  const ConfigTable stop = table.GetTable("stop");
-  stage.stop = ParseStop(stop);
-  if (stage.stop.asymptote) stage.detect_asymptote = true;
-  if (!stage.stop.any() && !stage.spec->StopsByItself()) {
-    stop.Fail("",
-              "has no stop condition: give at least one of mean_stress_kpa, axial_strain, "
-              "volumetric_strain, shear_strain, strain_norm, time_s, steps, asymptote");
-  }
-  return stage;
 }
 
 std::optional<std::string> MeanStressStop(const StopConditions& stop, const StageClock& clock,

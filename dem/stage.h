@@ -7,7 +7,7 @@
 // and its description for the result file) and a StageController (start,
 // whether it needs the stress this step, the velocity gradient it applies,
 // its own stop check, its checkpointed state), and add its parser to the
-// table in stage.cc. The run loop (simulation.cc) does not change.
+// table in stage_types.cc. The run loop (simulation.cc) does not change.
 #pragma once
 
 #include <array>
@@ -61,6 +61,7 @@ struct StopConditions {
   std::optional<int64_t> steps;       // stage steps
   bool asymptote = false;             // stop when the asymptotic state is detected
   bool any() const;
+  static StopConditions Parse(const ConfigTable& stop);  // a [stage.stop] table
   void Canonical(CanonicalText& text, const std::string& prefix) const;
 };
 
@@ -147,11 +148,6 @@ struct Stage {
   }
   void Canonical(CanonicalText& text, const std::string& prefix) const;
 };
-
-// Reads one [[stage]] table (index k for the default name "stage<k+1>").
-Stage ParseStage(const ConfigTable& table, size_t index);
-// "strain_path, triaxial or rest": the types the parser knows.
-std::string StageTypeNames();
 
 // The shared stop conditions, in the order of their reasons: the mean-stress
 // target (needs stress), then strains, the strain norm, steps and time.
