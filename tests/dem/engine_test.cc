@@ -92,13 +92,13 @@ TEST(ContactLaw, SlidingIsCappedAtTheCoulombLimitAgainstTheMotion) {
   pair.centre_velocity = {0, 1.0, 0};  // j slides along +y
   Vec3 shear{};
   // One small increment: elastic, F_s = k_s Δu_s on i along +y.
-  LinearCundallStrack::Result result = law.Evaluate<true>(pair, shear);
+  LinearCundallStrack::Result result = law.Evaluate<true>(pair, {shear});
   shear = result.shear;
   const double k_n = law.NormalStiffness(r, r);
   EXPECT_NEAR(shear.y, 0.3 * k_n * 1.0 * 1e-7, 1e-18);
   // Keep sliding until the cap: |F_s| = μ F_n, along the motion of j (drags i).
   for (int k = 0; k < 2000; ++k) {
-    result = law.Evaluate<true>(pair, shear);
+    result = law.Evaluate<true>(pair, {shear});
     shear = result.shear;
   }
   EXPECT_NEAR(Norm(shear), mu * k_n * overlap, 1e-12 * mu * k_n * overlap);
@@ -153,7 +153,7 @@ TEST(ContactLaw, VectorisedBatchAgreesWithTheScalarEvaluator) {
   law.EvaluateBatch<true>(batch, count);
   int sliding = 0;
   for (int k = 0; k < count; ++k) {
-    const LinearCundallStrack::Result r = law.Evaluate<true>(pairs[k], shears[k]);
+    const LinearCundallStrack::Result r = law.Evaluate<true>(pairs[k], {shears[k]});
     const double scale = Norm(r.force_i);
     EXPECT_NEAR(batch.fx[k], r.force_i.x, 1e-12 * scale) << k;
     EXPECT_NEAR(batch.fy[k], r.force_i.y, 1e-12 * scale) << k;
@@ -183,7 +183,7 @@ TEST(ContactLaw, RigidRotationOfThePairKeepsTheShearForceMagnitude) {
     pair.radius_i = pair.radius_j = r;
     pair.centre_velocity = (w * d) * Vec3{-n.y, n.x, 0};
     pair.spin_i = pair.spin_j = {0, 0, w};
-    shear = law.Evaluate<true>(pair, shear).shear;
+    shear = law.Evaluate<true>(pair, {shear}).shear;
     angle += w * 1e-6;
   }
   // The force turned with the pair (0.1 rad) and kept its magnitude.
