@@ -11,7 +11,11 @@
 namespace granasym::dem {
 namespace {
 
-enum Flag : unsigned { kFriction = 1, kDamping = 2, kStress = 4, kStiffness = 8, kFrozen = 16 };
+// What a force kernel also does besides the forces (friction is a separate
+// template parameter, see ComputeForcesWith).
+enum ForceFlag : unsigned { kStress = 1, kStiffness = 2, kFrozen = 4 };
+// What the integrator does besides the translations.
+enum IntegrateFlag : unsigned { kRotation = 1, kDamping = 2 };
 
 // Minimum image of a scaled separation: delta minus its nearest integer,
 // rounded by adding and subtracting 1.5·2^52 (exact for |delta| < 2^51 in the
@@ -41,83 +45,50 @@ inline void Kick(const Vec4& load, double dt, double chi, Vec4* velocity) {
   v.z += dt * az;
 }
 
-double SphereMass(double radius, double density) {
-  return density * 4.0 / 3.0 * kPi * radius * radius * radius;
-}
-
 }  // namespace
-
-bool Material::IsValid(std::string* why) const {
-  if (!(youngs_modulus > 0)) return *why = "youngs_modulus must be > 0", false;
-  if (!(stiffness_ratio >= 0)) return *why = "stiffness_ratio must be >= 0", false;
-  if (!(friction_angle >= 0 && friction_angle < kPi / 2)) {
-    return *why = "friction_angle must be in [0, pi/2) rad", false;
-  }
-  if (!(density > 0)) return *why = "density must be > 0", false;
-  if (!(local_damping >= 0 && local_damping < 1)) {
-    return *why = "local_damping must be in [0, 1)", false;
-  }
-  return true;
-}
-
-LinearCundallStrack::Params Material::ContactParams() const {
-  return {youngs_modulus, stiffness_ratio, std::tan(friction_angle)};
-}
-
-bool LinearCundallStrack::Params::IsValid(std::string* why) const {
-  if (!(youngs_modulus > 0)) return *why = "youngs_modulus must be > 0", false;
-  if (!(stiffness_ratio >= 0)) return *why = "stiffness_ratio must be >= 0", false;
-  if (!(friction_coefficient >= 0)) return *why = "friction_coefficient must be >= 0", false;
-  return true;
-}
 
 bool Engine::Options::IsValid(std::string* why) const {
   if (!(time_step > 0)) return *why = "time_step must be > 0", false;
-  if (!(skin_fraction > 0 && skin_fraction <= 2)) return *why = "skin_fraction must be in (0, 2]", false;
+  if (!(skin_fraction > 0 && skin_fraction <= 2))
+    return *why = "skin_fraction must be in (0, 2]", false;
   if (threads < 1) return *why = "threads must be >= 1", false;
   return true;
 }
 
-ContactDurations ComputeContactDurations(const std::vector<double>& radii,
-                                         const Material& material) {
-  GRANASYM_CHECK(!radii.empty());
-  const auto [smallest, largest] = std::minmax_element(radii.begin(), radii.end());
-  auto duration = [&](double r, bool reduced) {
-    const double k_n = material.youngs_modulus * r;  // 2E r r/(2r)
-    const double m = SphereMass(r, material.density);
-    return kPi / std::sqrt(k_n / (reduced ? 0.5 * m : m));
-  };
-  ContactDurations d;
-  d.smallest_reduced_mass = duration(*smallest, true);
-  d.largest_reduced_mass = duration(*largest, true);
-  d.smallest_single_mass = duration(*smallest, false);
-  d.largest_single_mass = duration(*largest, false);
-  // The two smallest spheres form the stiffest pair relative to their mass.
-  std::vector<double> two(2);
-  std::partial_sort_copy(radii.begin(), radii.end(), two.begin(), two.end());
-  if (radii.size() == 1) two[1] = two[0];
-  const double k_n = 2.0 * material.youngs_modulus * two[0] * two[1] / (two[0] + two[1]);
-  const double inverse_mass =
-      1.0 / SphereMass(two[0], material.density) + 1.0 / SphereMass(two[1], material.density);
-  const double factor =
-      material.friction_angle > 0 ? std::max(1.0, 3.5 * material.stiffness_ratio) : 1.0;
-  d.critical_time_step = 2.0 / std::sqrt(k_n * inverse_mass * factor);
-  return d;
+Engine::Law Engine::MakeLaw(const Material& material, double time_step) {
+  const bool rolling = material.has_rolling_resistance();
+  switch (material.contact_law) {
+    case ContactLaw::kLinear:
+      if (rolling) {
+        using Rolling = RollingResistance<LinearCundallStrack>;
+        return Rolling(Rolling::Params::FromMaterial(material), time_step);
+      }
+      return LinearCundallStrack(LinearCundallStrack::Params::FromMaterial(material), time_step);
+    case ContactLaw::kHertzMindlin:
+      if (rolling) {
+        using Rolling = RollingResistance<HertzMindlin>;
+        return Rolling(Rolling::Params::FromMaterial(material), time_step);
+      }
+      return HertzMindlin(HertzMindlin::Params::FromMaterial(material), time_step);
+  }
+  GRANASYM_CHECK(false) << "unknown contact law";
+  return LinearCundallStrack({}, time_step);
 }
 
 Engine::Engine(const Packing& packing, const Material& material, const Options& options)
     : material_(material),
       options_(options),
-      law_(material.ContactParams(), options.time_step),
+      law_(MakeLaw(material, options.time_step)),
       cell_(packing.cell) {
   std::string why;
   if (!material.IsValid(&why)) throw InputError("material: " + why);
   if (!options.IsValid(&why)) throw InputError("engine options: " + why);
   GRANASYM_CHECK(packing.size() > 0) << "empty packing";
   GRANASYM_CHECK(packing.size() < (size_t{1} << 31)) << "too many particles for 32-bit indices";
-  friction_ = material.friction_angle > 0 && material.stiffness_ratio > 0;
+  friction_ = material.has_friction();
   damping_ = material.local_damping > 0;
   neighbors_.set_track_shear(friction_);
+  neighbors_.set_track_rolling(material.has_rolling_resistance());
   const size_t n = packing.size();
   const double min_radius = *std::min_element(packing.radii.begin(), packing.radii.end());
   skin_ = options.skin_fraction * 2.0 * min_radius;
@@ -132,13 +103,15 @@ Engine::Engine(const Packing& packing, const Material& material, const Options& 
     int64_t index = 0;
     for (int d = 0; d < 3; ++d) {
       const double s = packing.positions[i][d] / cell_[d];
-      index = index * bins[d] + std::min(bins[d] - 1, static_cast<int>((s - std::floor(s)) * bins[d]));
+      index =
+          index * bins[d] + std::min(bins[d] - 1, static_cast<int>((s - std::floor(s)) * bins[d]));
     }
     bin[i] = index;
   }
   std::vector<int64_t> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int64_t a, int64_t b) { return bin[a] < bin[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int64_t a, int64_t b) { return bin[a] < bin[b]; });
 
   position_.resize(n);
   velocity_.resize(n);
@@ -182,9 +155,16 @@ void Engine::SetSpin(size_t i, Vec3 w) {
   spin_[i].z = w.z;
 }
 
-template <unsigned kFlags>
-void Engine::ComputeForcesImpl() {
-  constexpr bool kUseFriction = (kFlags & kFriction) != 0;
+void Engine::SetInverseMassAndInertia(size_t i, double inverse_mass, double inverse_inertia) {
+  GRANASYM_CHECK(inverse_mass >= 0 && inverse_inertia >= 0);
+  velocity_[i].w = inverse_mass;
+  spin_[i].w = inverse_inertia;
+}
+
+template <class PairLaw, bool kUseFriction, unsigned kFlags>
+void Engine::ComputeForcesImpl(const PairLaw& law) {
+  constexpr bool kRolling = PairLaw::kRollingHistory;
+  static_assert(kUseFriction || !kRolling, "rolling resistance needs friction");
   constexpr bool kSumStress = (kFlags & kStress) != 0;
   constexpr bool kSumStiffness = (kFlags & kStiffness) != 0;
   constexpr bool kReevaluate = (kFlags & kFrozen) != 0;
@@ -196,6 +176,7 @@ void Engine::ComputeForcesImpl() {
   const int32_t* neighbor = neighbors_.neighbors().data();
   const int32_t* owner = neighbors_.owners().data();
   Vec3* shear = kUseFriction ? neighbors_.shear().data() : nullptr;
+  Vec3* rolling = kRolling ? neighbors_.rolling().data() : nullptr;
   const Vec4* position = position_.data();
   const Vec4* velocity = velocity_.data();
   const Vec4* spin = spin_.data();
@@ -220,9 +201,9 @@ void Engine::ComputeForcesImpl() {
     // their kinematics into structure-of-arrays form and evaluate the
     // contact law in one vectorised loop. (3) Scatter forces and torques.
     ContactBlock& b = blocks_[t];
-    LinearCundallStrack::Batch& batch = b.batch;
+    ContactBatch& batch = b.batch;
     const int64_t pair_end = offsets[end];
-    constexpr int kBlock = LinearCundallStrack::Batch::kSize;
+    constexpr int kBlock = ContactBatch::kSize;
     for (int64_t p0 = offsets[begin]; p0 < pair_end; p0 += kBlock) {
       const int64_t p1 = std::min<int64_t>(p0 + kBlock, pair_end);
       int count = 0;
@@ -254,20 +235,26 @@ void Engine::ComputeForcesImpl() {
           const Vec3& stored = shear[p];
           const bool loaded = (stored.x != 0.0) | (stored.y != 0.0) | (stored.z != 0.0);
           if (loaded & !touching) shear[p] = Vec3{};
+          if constexpr (kRolling) {
+            const Vec3& moment = rolling[p];
+            const bool rolled = (moment.x != 0.0) | (moment.y != 0.0) | (moment.z != 0.0);
+            if (rolled & !touching) rolling[p] = Vec3{};
+          }
         }
       }
       if constexpr (kReevaluate) {
         // Forces again at unchanged positions (rare): the scalar evaluator
         // with the stored shear forces.
         for (int k = 0; k < count; ++k) {
-          LinearCundallStrack::Pair pair;
+          ContactPair pair;
           pair.branch = {batch.bx[k], batch.by[k], batch.bz[k]};
           pair.distance = std::sqrt(batch.d2[k]);
           pair.radius_i = batch.ri[k];
           pair.radius_j = batch.rj[k];
-          const Vec3 stored = kUseFriction ? shear[b.pair[k]] : Vec3{};
-          const LinearCundallStrack::Result r =
-              law_.Evaluate<kUseFriction, true>(pair, stored);
+          ContactHistory stored;
+          if constexpr (kUseFriction) stored.shear = shear[b.pair[k]];
+          if constexpr (kRolling) stored.rolling = rolling[b.pair[k]];
+          const ContactResult r = law.template Evaluate<kUseFriction, true>(pair, stored);
           batch.fx[k] = r.force_i.x;
           batch.fy[k] = r.force_i.y;
           batch.fz[k] = r.force_i.z;
@@ -286,6 +273,12 @@ void Engine::ComputeForcesImpl() {
             batch.sx[k] = stored.x;
             batch.sy[k] = stored.y;
             batch.sz[k] = stored.z;
+            if constexpr (kRolling) {
+              const Vec3 moment = rolling[b.pair[k]];
+              batch.rmx[k] = moment.x;
+              batch.rmy[k] = moment.y;
+              batch.rmz[k] = moment.z;
+            }
             const Vec4 vi = velocity[i], vj = velocity[j];
             batch.vx[k] = vj.x - vi.x + gx * batch.bx[k];
             batch.vy[k] = vj.y - vi.y + gy * batch.by[k];
@@ -299,7 +292,7 @@ void Engine::ComputeForcesImpl() {
             batch.wjz[k] = wj.z;
           }
         }
-        law_.EvaluateBatch<kUseFriction>(batch, count);
+        law.template EvaluateBatch<kUseFriction>(batch, count);
       }
       for (int k = 0; k < count; ++k) {
         const int32_t i = b.i[k], j = b.j[k];
@@ -311,7 +304,10 @@ void Engine::ComputeForcesImpl() {
         force[j].y -= f.y;
         force[j].z -= f.z;
         if constexpr (kUseFriction) {
-          if constexpr (!kReevaluate) shear[b.pair[k]] = {batch.sx[k], batch.sy[k], batch.sz[k]};
+          if constexpr (!kReevaluate) {
+            shear[b.pair[k]] = {batch.sx[k], batch.sy[k], batch.sz[k]};
+            if constexpr (kRolling) rolling[b.pair[k]] = {batch.rmx[k], batch.rmy[k], batch.rmz[k]};
+          }
           torque[i].x += batch.tix[k];
           torque[i].y += batch.tiy[k];
           torque[i].z += batch.tiz[k];
@@ -335,10 +331,11 @@ void Engine::ComputeForcesImpl() {
           ++local.contacts;
         }
         if constexpr (kSumStiffness) {
-          // Affine response of the normal force: dσ_aa/dε_bb = (1/V) Σ k_n l_a² l_b² / |l|².
-          const double weight = law_.NormalStiffness(batch.ri[k], batch.rj[k]) / distance2;
-          const double xx = branch.x * branch.x, yy = branch.y * branch.y,
-                       zz = branch.z * branch.z;
+          // Affine response of the normal force: dσ_aa/dε_bb = (1/V) Σ k_n l_a² l_b² / |l|²
+          // with the tangent k_n (the rolling and shear springs are left out).
+          const double weight =
+              law.NormalStiffness(batch.ri[k], batch.rj[k], std::sqrt(distance2)) / distance2;
+          const double xx = branch.x * branch.x, yy = branch.y * branch.y, zz = branch.z * branch.z;
           local.stiffness[0] += weight * xx * xx;
           local.stiffness[1] += weight * yy * yy;
           local.stiffness[2] += weight * zz * zz;
@@ -389,6 +386,33 @@ void Engine::ComputeForcesImpl() {
   }
 }
 
+template <class PairLaw>
+void Engine::ComputeForcesWith(const PairLaw& law, unsigned flags) {
+  // The reachable kernels only: a re-evaluation at unchanged positions is
+  // needed only with a shear history, and a law with rolling resistance is
+  // only chosen with friction.
+  using Kernel = void (Engine::*)(const PairLaw&);
+  static constexpr Kernel kWithFriction[8] = {
+      &Engine::ComputeForcesImpl<PairLaw, true, 0>, &Engine::ComputeForcesImpl<PairLaw, true, 1>,
+      &Engine::ComputeForcesImpl<PairLaw, true, 2>, &Engine::ComputeForcesImpl<PairLaw, true, 3>,
+      &Engine::ComputeForcesImpl<PairLaw, true, 4>, &Engine::ComputeForcesImpl<PairLaw, true, 5>,
+      &Engine::ComputeForcesImpl<PairLaw, true, 6>, &Engine::ComputeForcesImpl<PairLaw, true, 7>};
+  if (friction_) {
+    (this->*kWithFriction[flags])(law);
+    return;
+  }
+  if constexpr (PairLaw::kRollingHistory) {
+    GRANASYM_CHECK(false) << "rolling resistance without friction";
+  } else {
+    static constexpr Kernel kWithoutFriction[4] = {&Engine::ComputeForcesImpl<PairLaw, false, 0>,
+                                                   &Engine::ComputeForcesImpl<PairLaw, false, 1>,
+                                                   &Engine::ComputeForcesImpl<PairLaw, false, 2>,
+                                                   &Engine::ComputeForcesImpl<PairLaw, false, 3>};
+    GRANASYM_CHECK(flags < 4);
+    (this->*kWithoutFriction[flags])(law);
+  }
+}
+
 void Engine::ComputeForces(Request request) {
   // The integrator accumulates a cheap upper bound of the displacements,
   // Σ Δt max_i |v_i|; only when that bound calls for a rebuild is the exact
@@ -407,30 +431,16 @@ void Engine::ComputeForces(Request request) {
     max_displacement_ = 0.0;
   }
   // A second evaluation at unchanged positions must not slide the contacts
-  // again: it reuses the shear forces of the first.
-  const unsigned flags = (friction_ ? kFriction : 0u) | (request.stress ? kStress : 0u) |
-                         (request.stiffness ? kStiffness : 0u) |
+  // again: it reuses the shear forces (and rolling moments) of the first.
+  const unsigned flags = (request.stress ? kStress : 0u) | (request.stiffness ? kStiffness : 0u) |
                          (forces_current_ && friction_ ? kFrozen : 0u);
-  using Kernel = void (Engine::*)();
-  static constexpr Kernel kKernels[32] = {
-#define GRANASYM_KERNEL(k) &Engine::ComputeForcesImpl<k>
-      GRANASYM_KERNEL(0),  GRANASYM_KERNEL(1),  GRANASYM_KERNEL(2),  GRANASYM_KERNEL(3),
-      GRANASYM_KERNEL(4),  GRANASYM_KERNEL(5),  GRANASYM_KERNEL(6),  GRANASYM_KERNEL(7),
-      GRANASYM_KERNEL(8),  GRANASYM_KERNEL(9),  GRANASYM_KERNEL(10), GRANASYM_KERNEL(11),
-      GRANASYM_KERNEL(12), GRANASYM_KERNEL(13), GRANASYM_KERNEL(14), GRANASYM_KERNEL(15),
-      GRANASYM_KERNEL(16), GRANASYM_KERNEL(17), GRANASYM_KERNEL(18), GRANASYM_KERNEL(19),
-      GRANASYM_KERNEL(20), GRANASYM_KERNEL(21), GRANASYM_KERNEL(22), GRANASYM_KERNEL(23),
-      GRANASYM_KERNEL(24), GRANASYM_KERNEL(25), GRANASYM_KERNEL(26), GRANASYM_KERNEL(27),
-      GRANASYM_KERNEL(28), GRANASYM_KERNEL(29), GRANASYM_KERNEL(30), GRANASYM_KERNEL(31)
-#undef GRANASYM_KERNEL
-  };
-  (this->*kKernels[flags])();
+  std::visit([&](const auto& law) { ComputeForcesWith(law, flags); }, law_);
   forces_current_ = true;
 }
 
 template <unsigned kFlags>
 void Engine::IntegrateImpl() {
-  constexpr bool kUseFriction = (kFlags & kFriction) != 0;
+  constexpr bool kUseFriction = (kFlags & kRotation) != 0;
   constexpr bool kUseDamping = (kFlags & kDamping) != 0;
   const int64_t n = static_cast<int64_t>(position_.size());
   const double dt = options_.time_step;
@@ -462,7 +472,7 @@ void Engine::Integrate() {
   using Kernel = void (Engine::*)();
   static constexpr Kernel kKernels[4] = {&Engine::IntegrateImpl<0>, &Engine::IntegrateImpl<1>,
                                          &Engine::IntegrateImpl<2>, &Engine::IntegrateImpl<3>};
-  const unsigned flags = (friction_ ? kFriction : 0u) | (damping_ ? kDamping : 0u);
+  const unsigned flags = (friction_ ? kRotation : 0u) | (damping_ ? kDamping : 0u);
   (this->*kKernels[flags])();
 }
 

@@ -1,60 +1,43 @@
 // The DEM engine: spheres in a periodic box deformed by a homogeneous,
-// diagonal velocity gradient; linear Cundall–Strack contacts; leapfrog time
-// integration with Cundall's local damping of the fluctuating motion.
+// diagonal velocity gradient; pairwise contact laws (material.h: linear
+// Cundall–Strack by default, Hertz–Mindlin, optional rolling resistance);
+// leapfrog time integration with Cundall's local damping of the fluctuating
+// motion.
 //
 // Kinematics (SPEC §4). Positions are stored scaled by the cell sides,
 // x = H s with H = diag(L); a particle's velocity is its fluctuation v plus
 // the affine field D x, so that ds/dt = H⁻¹ v and the cell follows
-// dH/dt = D H, integrated exactly over each step (H ← exp(Δt D) H). The affine motion carries no inertia (the usual choice for
-// periodic cells); Newton's law and damping act on the fluctuation:
+// dH/dt = D H, integrated exactly over each step (H ← exp(Δt D) H). The
+// affine motion carries no inertia (the usual choice for periodic cells);
+// Newton's law and damping act on the fluctuation:
 //   a = F/m,  a_k ← a_k (1 − χ sign(a_k (v_k + a_k Δt/2))),  v ← v + Δt a,
 //   s ← s + Δt H⁻¹ v, and the same for spins with torques (no orientation is
 // kept: spheres). Contacts see the image velocity D l of the branch vector.
 //
-// Features a scene does not use are compiled out: the pair loop and the
-// integrator are instantiated for every combination of friction (shear
-// history, torques, spins), damping, stress summation and stiffness summation,
-// and one of them is chosen per step.
+// Features a scene does not use are compiled out: the pair loop is a template
+// on the contact law (contact_law.h) and is instantiated for every reachable
+// combination of friction (shear history, torques, spins), stress summation,
+// stiffness summation and re-evaluation at unchanged positions; the
+// integrator for friction and damping; one of each is chosen per step.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "common/state_measures.h"
 #include "dem/contact_law.h"
+#include "dem/hertz_mindlin.h"
+#include "dem/linear_cundall_strack.h"
+#include "dem/material.h"
 #include "dem/neighbor_list.h"
 #include "dem/packing.h"
+#include "dem/rolling_resistance.h"
 #include "dem/vec.h"
 
 namespace granasym::dem {
-
-struct Material {
-  double youngs_modulus = 500e6;  // E (Pa)
-  double stiffness_ratio = 0.3;   // ν = k_s/k_n
-  double friction_angle = 0.5;    // φ (rad); μ = tan φ
-  double density = 2650.0;        // ρ_s (kg/m³)
-  double local_damping = 0.5;     // χ in [0, 1)
-  bool IsValid(std::string* why) const;
-  LinearCundallStrack::Params ContactParams() const;
-  bool has_friction() const { return friction_angle > 0 && stiffness_ratio > 0; }
-};
-
-// Contact durations of an undamped pair t_c = π / sqrt(k_n/m) (paper Eq. 3),
-// for the smallest and largest spheres, with both mass conventions of SPEC §4.
-struct ContactDurations {
-  double smallest_reduced_mass = 0;  // m_12 = m_i m_j/(m_i + m_j), two smallest spheres (s)
-  double largest_reduced_mass = 0;
-  double smallest_single_mass = 0;   // m_12 = m (the paper's quoted values)
-  double largest_single_mass = 0;
-  // Stability limit of the leapfrog scheme for the stiffest pair, 2/ω_max,
-  // ω_max² = k_n (1/m_i + 1/m_j) max(1, 3.5 ν) (the factor 3.5 = 1 + r²m/I
-  // couples sliding with rolling) (s).
-  double critical_time_step = 0;
-};
-ContactDurations ComputeContactDurations(const std::vector<double>& radii,
-                                         const Material& material);
 
 class Engine {
  public:
@@ -75,7 +58,7 @@ class Engine {
 
   // Sums from the last force evaluation that asked for them.
   struct Sums {
-    SymTensor stress{};   // σ, compression positive, Voigt order (Pa)
+    SymTensor stress{};  // σ, compression positive, Voigt order (Pa)
     // Affine stiffness dσ_aa/dε_bb (compression positive) for a, b in 1..3,
     // Voigt-like order 11, 22, 33, 12, 13, 23 of the index pair (a, b) (Pa).
     std::array<double, 6> stiffness{};
@@ -128,6 +111,10 @@ class Engine {
   // For tests and initial conditions.
   void SetVelocity(size_t i, Vec3 velocity);
   void SetSpin(size_t i, Vec3 spin);
+  // Overrides the inverse mass (1/kg) and inverse moment of inertia
+  // (1/(kg m²)) of sphere i; 0 holds its centre or its spin fixed (they are
+  // the w of velocities() and spins(), so Save/Restore carry them).
+  void SetInverseMassAndInertia(size_t i, double inverse_mass, double inverse_inertia);
 
   // The current packing (positions wrapped into the cell), in input order.
   Packing CurrentPacking() const;
@@ -147,14 +134,21 @@ class Engine {
   void Restore(State state);
 
  private:
-  template <unsigned kFlags>
-  void ComputeForcesImpl();
+  // The contact laws a material can select (material.h).
+  using Law = std::variant<LinearCundallStrack, HertzMindlin,
+                           RollingResistance<LinearCundallStrack>, RollingResistance<HertzMindlin>>;
+  static Law MakeLaw(const Material& material, double time_step);
+
+  template <class PairLaw>
+  void ComputeForcesWith(const PairLaw& law, unsigned flags);
+  template <class PairLaw, bool kUseFriction, unsigned kFlags>
+  void ComputeForcesImpl(const PairLaw& law);
   template <unsigned kFlags>
   void IntegrateImpl();
 
   Material material_;
   Options options_;
-  LinearCundallStrack law_;
+  Law law_;
   std::array<double, 3> cell_{};
   std::array<double, 3> gradient_{};
   double time_ = 0;
@@ -174,10 +168,10 @@ class Engine {
   std::vector<Sums> thread_sums_;
   // Per-thread scratch of the pair loop: a block of touching pairs.
   struct ContactBlock {
-    static constexpr int kSize = LinearCundallStrack::Batch::kSize;
+    static constexpr int kSize = ContactBatch::kSize;
     int32_t i[kSize], j[kSize];
     int64_t pair[kSize];
-    LinearCundallStrack::Batch batch;
+    ContactBatch batch;
   };
   std::vector<ContactBlock> blocks_;
   NeighborList neighbors_;

@@ -9,8 +9,8 @@
 
 namespace granasym::dem {
 
-void NeighborList::Build(const std::vector<Vec4>& s, const std::array<double, 3>& cell,
-                         double skin, int threads) {
+void NeighborList::Build(const std::vector<Vec4>& s, const std::array<double, 3>& cell, double skin,
+                         int threads) {
   const int64_t n = static_cast<int64_t>(s.size());
   double max_radius = 0.0;
   for (const Vec4& p : s) max_radius = std::max(max_radius, p.w);
@@ -51,8 +51,10 @@ void NeighborList::Build(const std::vector<Vec4>& s, const std::array<double, 3>
   // Unique neighbouring bins of each axis offset.
   std::array<std::vector<int>, 3> offsets_of_axis;
   for (int d = 0; d < 3; ++d) {
-    if (bins[d] >= 3) offsets_of_axis[d] = {-1, 0, 1};
-    else offsets_of_axis[d] = {0};
+    if (bins[d] >= 3)
+      offsets_of_axis[d] = {-1, 0, 1};
+    else
+      offsets_of_axis[d] = {0};
   }
 
   // Each thread lists the pairs of a contiguous range of i, ascending j per i.
@@ -103,31 +105,40 @@ void NeighborList::Build(const std::vector<Vec4>& s, const std::array<double, 3>
       position += static_cast<int64_t>(local.size());
     }
   }
-  // Carry the shear history of pairs present in both lists (sorted merge).
-  std::vector<Vec3> shear;
-  if (track_shear_) {
-    shear.assign(neighbors.size(), Vec3{});
-    if (!offsets_.empty() && static_cast<int64_t>(offsets_.size()) == n + 1) {
-#pragma omp parallel for num_threads(thread_count) schedule(static)
-      for (int64_t i = 0; i < n; ++i) {
-        int64_t a = offsets_[i];
-        const int64_t a_end = offsets_[i + 1];
-        for (int64_t p = offsets[i]; p < offsets[i + 1]; ++p) {
-          while (a < a_end && neighbors_[a] < neighbors[p]) ++a;
-          if (a < a_end && neighbors_[a] == neighbors[p]) shear[p] = shear_[a];
-        }
-      }
-    }
-  }
+  // Carry the history of pairs present in both lists.
+  std::vector<Vec3> shear, rolling;
+  if (track_shear_) shear = CarryHistory(shear_, offsets, neighbors, thread_count);
+  if (track_rolling_) rolling = CarryHistory(rolling_, offsets, neighbors, thread_count);
   offsets_ = std::move(offsets);
   neighbors_ = std::move(neighbors);
   shear_ = std::move(shear);
+  rolling_ = std::move(rolling);
   DeriveOwners();
   build_positions_ = s;
   build_cell_ = cell;
   skin_ = skin;
   max_radius_ = max_radius;
   ++builds_;
+}
+
+std::vector<Vec3> NeighborList::CarryHistory(const std::vector<Vec3>& history,
+                                             const std::vector<int64_t>& offsets,
+                                             const std::vector<int32_t>& neighbors,
+                                             int threads) const {
+  std::vector<Vec3> carried(neighbors.size(), Vec3{});
+  const int64_t n = static_cast<int64_t>(offsets.size()) - 1;
+  // A first build, or a history of another list (restored from elsewhere), has nothing to carry.
+  if (offsets_.size() != offsets.size() || history.size() != neighbors_.size()) return carried;
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int64_t i = 0; i < n; ++i) {
+    int64_t a = offsets_[i];
+    const int64_t a_end = offsets_[i + 1];
+    for (int64_t p = offsets[i]; p < offsets[i + 1]; ++p) {
+      while (a < a_end && neighbors_[a] < neighbors[p]) ++a;
+      if (a < a_end && neighbors_[a] == neighbors[p]) carried[p] = history[a];
+    }
+  }
+  return carried;
 }
 
 bool NeighborList::NeedsRebuild(double max_displacement, const std::array<double, 3>& cell) const {
@@ -157,18 +168,35 @@ double NeighborList::MetricFactor() const {
 }
 
 NeighborList::State NeighborList::Save() const {
-  return {offsets_, neighbors_, shear_, build_positions_, build_cell_, skin_, max_radius_, builds_};
+  return {offsets_,    neighbors_, shear_,      rolling_, build_positions_,
+          build_cell_, skin_,      max_radius_, builds_};
 }
 
 void NeighborList::Restore(State state) {
   offsets_ = std::move(state.offsets);
   neighbors_ = std::move(state.neighbors);
   shear_ = std::move(state.shear);
+  rolling_ = std::move(state.rolling);
   build_positions_ = std::move(state.build_positions);
   build_cell_ = state.build_cell;
   skin_ = state.skin;
   max_radius_ = state.max_radius;
   builds_ = state.builds;
+  // A state saved with another material (a fork that adds or drops friction
+  // or rolling resistance) carries a history this list does not keep, or
+  // none where it keeps one: drop it, or start every pair from zero.
+  auto adapt = [&](std::vector<Vec3>& history, bool tracked, const char* what) {
+    if (!tracked) {
+      history.clear();
+    } else if (history.empty()) {
+      history.assign(neighbors_.size(), Vec3{});
+    }
+    GRANASYM_CHECK(history.size() == (tracked ? neighbors_.size() : 0))
+        << "the restored list has " << history.size() << " " << what << " for " << neighbors_.size()
+        << " pairs";
+  };
+  adapt(shear_, track_shear_, "shear forces");
+  adapt(rolling_, track_rolling_, "rolling moments");
   DeriveOwners();
 }
 

@@ -1,10 +1,12 @@
 // Verlet neighbour list of a periodic, affinely deforming box, built from a
-// cell list; carries the shear-force history of each pair across rebuilds.
+// cell list; carries the contact history of each pair (shear force, rolling
+// moment) across rebuilds.
 //
 // Half list in CSR form: for particle i the neighbours j > i lie in
 // neighbors()[offsets()[i] .. offsets()[i+1]), ascending, each with its stored
-// shear force. A pair is listed when its minimum-image gap is below the skin.
-// The list stays valid while (Rebuild criterion, rigorous for a diagonal cell)
+// shear force and (with rolling resistance) rolling moment. A pair is listed when its minimum-image
+// gap is below the skin. The list stays valid while (Rebuild criterion, rigorous for a diagonal
+// cell)
 //   2 max_i |δx_i| + ε (2 r_max + skin) < skin,
 // δx_i being the non-affine displacement since the build measured in the
 // current metric and ε the largest relative change of a cell side.
@@ -44,12 +46,17 @@ class NeighborList {
   const std::vector<int32_t>& owners() const { return owners_; }
   std::vector<Vec3>& shear() { return shear_; }
   const std::vector<Vec3>& shear() const { return shear_; }
+  // Rolling moment on i of each pair (N m); empty unless tracked.
+  std::vector<Vec3>& rolling() { return rolling_; }
+  const std::vector<Vec3>& rolling() const { return rolling_; }
   size_t pair_count() const { return neighbors_.size(); }
   int64_t builds() const { return builds_; }
   double skin() const { return skin_; }
 
-  // Keep or drop the shear history (a scene without friction keeps none).
+  // Keep or drop the shear history (a scene without friction keeps none) and
+  // the rolling-moment history (kept only with rolling resistance).
   void set_track_shear(bool track) { track_shear_ = track; }
+  void set_track_rolling(bool track) { track_rolling_ = track; }
 
   // Complete state for checkpoints, so that a restart continues with the
   // same pair order (and therefore bit-identical sums).
@@ -57,6 +64,7 @@ class NeighborList {
     std::vector<int64_t> offsets;
     std::vector<int32_t> neighbors;
     std::vector<Vec3> shear;
+    std::vector<Vec3> rolling;  // empty unless tracked
     std::vector<Vec4> build_positions;
     std::array<double, 3> build_cell{};
     double skin = 0, max_radius = 0;
@@ -67,16 +75,23 @@ class NeighborList {
 
  private:
   void DeriveOwners();
+  // The history of pairs present in both the current list and the new one
+  // (sorted merge per i); zero for new pairs.
+  std::vector<Vec3> CarryHistory(const std::vector<Vec3>& history,
+                                 const std::vector<int64_t>& offsets,
+                                 const std::vector<int32_t>& neighbors, int threads) const;
   std::vector<int64_t> offsets_;
   std::vector<int32_t> neighbors_;
   std::vector<int32_t> owners_;
   std::vector<Vec3> shear_;
+  std::vector<Vec3> rolling_;
   std::vector<Vec4> build_positions_;  // scaled positions and radius at the build
   std::array<double, 3> build_cell_{};
   double skin_ = 0;
   double max_radius_ = 0;
   int64_t builds_ = 0;
   bool track_shear_ = true;
+  bool track_rolling_ = false;
 };
 
 }  // namespace granasym::dem

@@ -146,6 +146,7 @@ void WriteEngineState(Hdf5File& file, const std::string& group, const Engine::St
   file.WriteInts(Join(l, record::kListNeighbors),
                  std::vector<int64_t>(list.neighbors.begin(), list.neighbors.end()));
   WriteRows(file, Join(l, record::kListShear), list.shear);
+  WriteRows(file, Join(l, record::kListRolling), list.rolling);
   WriteRows(file, Join(l, record::kListBuildPositions), list.build_positions);
   file.WriteDoubles(Join(l, record::kListBuildCell), ToVector(list.build_cell), "m");
   file.SetAttribute(l, record::kListSkin, list.skin);
@@ -182,6 +183,7 @@ Engine::State ReadEngineState(const Hdf5File& file, const std::string& group, in
   const std::vector<int64_t> neighbors = file.ReadInts(Join(l, record::kListNeighbors));
   list.neighbors.assign(neighbors.begin(), neighbors.end());
   list.shear = ReadRows<Vec3>(file, Join(l, record::kListShear));
+  list.rolling = ReadRows<Vec3>(file, Join(l, record::kListRolling));
   list.build_positions = ReadRows<Vec4>(file, Join(l, record::kListBuildPositions));
   list.build_cell = ReadArray3(file, Join(l, record::kListBuildCell));
   list.skin = file.ReadDoubleAttribute(l, record::kListSkin);
@@ -190,6 +192,7 @@ Engine::State ReadEngineState(const Hdf5File& file, const std::string& group, in
   if (list.offsets.size() != n + 1 ||
       list.offsets.back() != static_cast<int64_t>(neighbors.size()) ||
       (!list.shear.empty() && list.shear.size() != neighbors.size()) ||
+      (!list.rolling.empty() && list.rolling.size() != neighbors.size()) ||
       list.build_positions.size() != n) {
     throw InputError(fmt::format("{}: the neighbour list in '{}' does not match its {} particles",
                                  file.path(), group, n));

@@ -13,18 +13,6 @@
 
 namespace granasym::dem {
 
-namespace {
-
-void CanonicalMaterial(const Material& m, CanonicalText& text) {
-  text.Add("material.youngs_modulus_mpa", m.youngs_modulus * 1e-6);
-  text.Add("material.stiffness_ratio", m.stiffness_ratio);
-  text.Add("material.friction_angle_rad", m.friction_angle);
-  text.Add("material.density_kg_m3", m.density);
-  text.Add("material.local_damping", m.local_damping);
-}
-
-}  // namespace
-
 Scene Scene::Load(const std::string& path) {
   std::ifstream file(path);
   if (!file) throw InputError("cannot open scene file '" + path + "'");
@@ -77,19 +65,7 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
     scene.generate = options;
   }
 
-  if (root.Has("material")) {
-    const ConfigTable m = root.GetTable("material");
-    Material& material = scene.material;
-    material.youngs_modulus =
-        m.GetDouble("youngs_modulus_mpa", material.youngs_modulus * 1e-6, Range::Positive()) * 1e6;
-    material.stiffness_ratio =
-        m.GetDouble("stiffness_ratio", material.stiffness_ratio, Range::NonNegative());
-    material.friction_angle =
-        m.GetDouble("friction_angle_rad", material.friction_angle, {0.0, kPi / 2, true, false});
-    material.density = m.GetDouble("density_kg_m3", material.density, Range::Positive());
-    material.local_damping =
-        m.GetDouble("local_damping", material.local_damping, {0.0, 1.0, true, false});
-  }
+  if (root.Has("material")) scene.material = ParseMaterial(root.GetTable("material"));
 
   if (root.Has("numerics")) {
     const ConfigTable n = root.GetTable("numerics");
@@ -147,7 +123,7 @@ std::string Scene::Canonical() const {
   } else {
     text.Add("sample.source", "packing");
   }
-  CanonicalMaterial(material, text);
+  material.Canonical(text, "material.");
   if (time_step_s) {
     text.Add("numerics.time_step_s", *time_step_s);
   } else {

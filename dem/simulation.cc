@@ -51,6 +51,7 @@ std::string HashEngineState(const Engine::State& state) {
   HashVector(hash, state.neighbors.offsets);
   HashVector(hash, state.neighbors.neighbors);
   HashVector(hash, state.neighbors.shear);
+  HashVector(hash, state.neighbors.rolling);
   return hash.HexDigest();
 }
 

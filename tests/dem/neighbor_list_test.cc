@@ -496,5 +496,69 @@ TEST(NeighborList, CellSmallerThanTwiceTheReachIsAnError) {
   EXPECT_THROW(list.Build(s, cell, skin, 1), RuntimeError);
 }
 
+// Four spheres of radius 0.5 mm in a row along x, 0.9 mm apart, in a 10 mm
+// cell (scaled positions).
+std::vector<Vec4> FourInARow(double last_x = 0.37) {
+  return {{0.10, 0.5, 0.5, 0.5e-3},
+          {0.19, 0.5, 0.5, 0.5e-3},
+          {0.28, 0.5, 0.5, 0.5e-3},
+          {last_x, 0.5, 0.5, 0.5e-3}};
+}
+
+TEST(NeighborList, ShearAndRollingHistoriesAreCarriedAcrossRebuilds) {
+  const std::array<double, 3> cell = {0.01, 0.01, 0.01};
+  NeighborList list;
+  list.set_track_shear(true);
+  list.set_track_rolling(true);
+  list.Build(FourInARow(), cell, 0.1e-3, 1);
+  ASSERT_EQ(list.pair_count(), 3u);  // neighbours only: 0-1, 1-2, 2-3
+  ASSERT_EQ(list.rolling().size(), 3u);
+  for (size_t p = 0; p < 3; ++p) {
+    list.shear()[p] = {1.0 + p, 0, 0};
+    list.rolling()[p] = {0, 0, 10.0 + p};
+  }
+  // Sphere 3 moves away: its pair leaves the list, the others keep their history.
+  list.Build(FourInARow(0.50), cell, 0.1e-3, 2);
+  ASSERT_EQ(list.pair_count(), 2u);
+  EXPECT_EQ(list.shear()[1].x, 2.0);
+  EXPECT_EQ(list.rolling()[0].z, 10.0);
+  EXPECT_EQ(list.rolling()[1].z, 11.0);
+  // It comes back: a new pair starts without history.
+  list.Build(FourInARow(), cell, 0.1e-3, 1);
+  ASSERT_EQ(list.pair_count(), 3u);
+  EXPECT_EQ(list.rolling()[1].z, 11.0);
+  EXPECT_EQ(list.rolling()[2].z, 0.0);
+  EXPECT_EQ(list.shear()[2].x, 0.0);
+
+  NeighborList restored;
+  restored.set_track_rolling(true);
+  restored.Restore(list.Save());
+  EXPECT_EQ(restored.rolling()[1].z, 11.0);
+  // A state saved without rolling resistance (a fork that adds it) starts
+  // every pair from zero; a history of the wrong length is a broken state.
+  NeighborList::State without = list.Save();
+  without.rolling.clear();
+  restored.Restore(without);
+  ASSERT_EQ(restored.rolling().size(), 3u);
+  EXPECT_EQ(restored.rolling()[1].z, 0.0);
+  NeighborList::State broken = list.Save();
+  broken.rolling.pop_back();
+  EXPECT_THROW(restored.Restore(broken), InvariantError);
+  // A list that does not keep a history drops the saved one.
+  NeighborList frictionless;
+  frictionless.set_track_shear(false);
+  frictionless.Restore(list.Save());
+  EXPECT_TRUE(frictionless.shear().empty());
+  EXPECT_TRUE(frictionless.rolling().empty());
+}
+
+TEST(NeighborList, KeepsNoRollingHistoryUnlessTracked) {
+  NeighborList list;
+  list.Build(FourInARow(), {0.01, 0.01, 0.01}, 0.1e-3, 1);
+  EXPECT_EQ(list.pair_count(), 3u);
+  EXPECT_EQ(list.shear().size(), 3u);  // tracked by default
+  EXPECT_TRUE(list.rolling().empty());
+}
+
 }  // namespace
 }  // namespace granasym::dem

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 
@@ -150,6 +151,25 @@ TEST_F(Fork, BadParentsAreRejectedWithTheReason) {
   EXPECT_NE(both.find("exactly one"), std::string::npos) << both;
   const std::string stray = error_of(SampleToml() + "[sample]\nstage = 'ncl'\n", TempPath("x.h5"));
   EXPECT_FALSE(stray.empty());
+}
+
+TEST(ForkWithAnotherMaterial, StartsTheHistoriesTheParentDidNotKeepFromZero) {
+  // A frictionless parent keeps no shear history; the child adds friction and
+  // rolling resistance, so both histories start at zero in every pair.
+  RunToFile(SampleToml(300, 3.9, 8) + "[material]\nfriction_angle_rad = 0.0\n" + kOutput +
+                kStageA,
+            "fork_frictionless_parent");
+  std::string child = ForkScene("fork_frictionless_parent", "");
+  child += "[material]\nfriction_angle_rad = 0.5\nrolling_friction = 0.1\n";
+  const RunSummary summary = RunToFile(child, "fork_frictional_child");
+  EXPECT_GT(summary.steps, 0);
+  const Hdf5File file = Hdf5File::OpenRead(TempPath("fork_frictional_child.h5"));
+  const Engine::State state = ReadEngineState(file, "/final_state/engine");
+  EXPECT_EQ(state.neighbors.shear.size(), state.neighbors.neighbors.size());
+  EXPECT_EQ(state.neighbors.rolling.size(), state.neighbors.neighbors.size());
+  double largest = 0;
+  for (const Vec3& f : state.neighbors.shear) largest = std::max(largest, Norm(f));
+  EXPECT_GT(largest, 0.0);  // the child's contacts built up shear forces
 }
 
 TEST(Provenance, TheSceneHashIgnoresFormattingAndExplicitDefaults) {
