@@ -70,7 +70,12 @@ class Simulation {
   void StartStage();
   void AddRow();
   void FinishStage(const std::string& reason);
-  RunSummary Loop(RunSummary& summary, double& loop_seconds);
+  // How the loop ended.
+  struct Outcome {
+    Termination termination;
+    std::string message;
+  };
+  Outcome Loop(const RunSummary& summary, double& loop_seconds);
   RunSummary Finish(RunSummary& summary, Termination termination, const std::string& message,
                     double loop_seconds, int64_t first_step, const Stopwatch& wall);
   void WriteResults(const RunSummary& summary) const;
@@ -411,9 +416,9 @@ RunSummary Simulation::Run() {
   Termination termination;
   std::string message;
   try {
-    const RunSummary end = Loop(summary, loop_seconds);
-    termination = end.termination;
-    message = end.message;
+    const Outcome outcome = Loop(summary, loop_seconds);
+    termination = outcome.termination;
+    message = outcome.message;
   } catch (const RuntimeError& error) {
     // Keep what was computed: results and a checkpoint of the last state.
     termination = Termination::kFailed;
@@ -424,13 +429,7 @@ RunSummary Simulation::Run() {
 
 // One iteration per step: measure what is due, let the controller act on
 // it, check the stops, write the row, then advance (or end the stage there).
-RunSummary Simulation::Loop(RunSummary& summary, double& loop_seconds) {
-  auto end = [&](Termination termination, std::string message) {
-    RunSummary result = summary;
-    result.termination = termination;
-    result.message = std::move(message);
-    return result;
-  };
+Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_seconds) {
   Stopwatch since_checkpoint;
   const double dt = engine_->time_step();
   const OutputOptions& output = scene_.output;
@@ -460,10 +459,10 @@ RunSummary Simulation::Loop(RunSummary& summary, double& loop_seconds) {
       p = MeanStressKpa(engine_->sums());
       if (!std::isfinite(p)) {
         loop_seconds += step_clock.Seconds();
-        return end(Termination::kFailed,
-                   fmt::format("non-finite stress at step {}: the motion became unstable (time "
-                               "step {:.3g} s too large for the contact stiffness?)",
-                               engine_->step(), dt));
+        return Outcome{Termination::kFailed,
+                       fmt::format("non-finite stress at step {}: the motion became unstable (time "
+                                   "step {:.3g} s too large for the contact stiffness?)",
+                                   engine_->step(), dt)};
       }
       if (std::isnan(clock.start_p_kpa)) clock.start_p_kpa = p;
       if (const auto gradient = controller_->Control(engine_->sums(), dt)) {
@@ -496,10 +495,10 @@ RunSummary Simulation::Loop(RunSummary& summary, double& loop_seconds) {
       const double overlap = series_.Last(record::kColumnOverlapMax);
       if (overlap > 0.5) {
         loop_seconds += step_clock.Seconds();
-        return end(Termination::kFailed,
-                   fmt::format("relative overlap {:.3g} above 0.5 at step {}: spheres "
-                               "interpenetrate (loading too fast or time step too large)",
-                               overlap, engine_->step()));
+        return Outcome{Termination::kFailed,
+                       fmt::format("relative overlap {:.3g} above 0.5 at step {}: spheres "
+                                   "interpenetrate (loading too fast or time step too large)",
+                                   overlap, engine_->step())};
       }
     }
     if (reason) {
@@ -519,8 +518,9 @@ RunSummary Simulation::Loop(RunSummary& summary, double& loop_seconds) {
 
     if (!done()) ReportProgress();
     if (options_.stop_requested && options_.stop_requested(engine_->step())) {
-      return end(Termination::kInterrupted,
-                 fmt::format("interrupted at step {}; continue with --restart", engine_->step()));
+      return Outcome{
+          Termination::kInterrupted,
+          fmt::format("interrupted at step {}; continue with --restart", engine_->step())};
     }
     if ((engine_->step() & 255) == 0 &&
         since_checkpoint.Seconds() >= output.checkpoint_interval_s) {
@@ -534,7 +534,7 @@ RunSummary Simulation::Loop(RunSummary& summary, double& loop_seconds) {
       since_checkpoint = Stopwatch();
     }
   }
-  return end(Termination::kCompleted, "all stages completed");
+  return Outcome{Termination::kCompleted, "all stages completed"};
 }
 
 }  // namespace
