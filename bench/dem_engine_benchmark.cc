@@ -1,6 +1,11 @@
 // Cost of one DEM time step per particle on a dense packing (coordination
 // number >= 4) with the paper's material: friction, rotations and local
 // damping on, ψ_ε = 0° loading at ‖D‖ = 167 1/s, Δt = 1.2e-7 s.
+// The argument `law` selects the contact law (material.h): 0 the paper's
+// linear law, 1 Hertz–Mindlin (ν = 0.25), 2 linear with rolling resistance
+// (μ_r = 0.1), 3 Hertz–Mindlin with rolling resistance; the other material
+// values are the paper's. The packing is the same for all (made with the
+// linear law), so the laws are compared on the same contacts.
 //
 // The dense packings are made once and cached as text packings in
 // $GRANASYM_BENCH_CACHE (default: the system temporary folder): a generated
@@ -13,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <string>
 
 #include "common/state_measures.h"
 #include "dem/contact_statistics.h"
@@ -24,7 +30,18 @@
 namespace granasym::dem {
 namespace {
 
-Material PaperMaterial() { return Material{}; }  // E 500 MPa, ν 0.3, φ 0.5 rad, χ 0.5
+// E 500 MPa, ν 0.3 (k_s/k_n) or 0.25 (Poisson's ratio), φ 0.5 rad, χ 0.5.
+Material BenchmarkMaterial(int law) {
+  Material material;
+  if (law == 1 || law == 3) material.contact_law = ContactLaw::kHertzMindlin;
+  if (law >= 2) material.rolling_friction = 0.1;
+  return material;
+}
+
+std::string LawName(int law) {
+  const Material material = BenchmarkMaterial(law);
+  return ToString(material.contact_law) + (material.has_rolling_resistance() ? "+rolling" : "");
+}
 
 std::string CachePath(size_t count) {
   const char* dir = std::getenv("GRANASYM_BENCH_CACHE");
@@ -64,10 +81,12 @@ const Packing& DensePacking(size_t count) {
 void BM_DemStep(benchmark::State& state) {
   const size_t count = static_cast<size_t>(state.range(0));
   const int threads = static_cast<int>(state.range(1));
+  const int law = static_cast<int>(state.range(2));
   const Packing& packing = DensePacking(count);
   Engine::Options options;
   options.threads = threads;
-  Engine engine(packing, PaperMaterial(), options);
+  Engine engine(packing, BenchmarkMaterial(law), options);
+  state.SetLabel(LawName(law));
   const AxisymmetricRate rate = AxisymmetricRate::FromAngle(0.0, 167.0);
   engine.SetVelocityGradient({-rate.axial, -rate.radial, -rate.radial});
   for (int step = 0; step < 50; ++step) engine.Step();  // build lists, warm caches
@@ -84,12 +103,19 @@ void BM_DemStep(benchmark::State& state) {
       static_cast<double>(engine.neighbors().pair_count()) / count;
 }
 
+// Every law at 10 000 spheres; the paper's law and Hertz–Mindlin at 150 000.
+void Arguments(benchmark::internal::Benchmark* benchmark) {
+  for (int threads : {1, 2}) {
+    for (int law : {0, 1, 2, 3}) benchmark->Args({10000, threads, law});
+  }
+  for (int threads : {1, 2}) {
+    for (int law : {0, 1}) benchmark->Args({150000, threads, law});
+  }
+}
+
 BENCHMARK(BM_DemStep)
-    ->ArgNames({"N", "threads"})
-    ->Args({10000, 1})
-    ->Args({10000, 2})
-    ->Args({150000, 1})
-    ->Args({150000, 2})
+    ->ArgNames({"N", "threads", "law"})
+    ->Apply(Arguments)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
