@@ -40,7 +40,8 @@ Material BenchmarkMaterial(int law) {
 
 std::string LawName(int law) {
   const Material material = BenchmarkMaterial(law);
-  return ToString(material.contact_law) + (material.has_rolling_resistance() ? "+rolling" : "");
+  return std::string(ToString(material.contact_law)) +
+         (material.has_rolling_resistance() ? "+rolling" : "");
 }
 
 std::string CachePath(size_t count) {
