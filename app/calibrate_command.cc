@@ -42,7 +42,8 @@ void RunCalibrate(const CalibrateFlags& flags) {
   if (success) calibration::WritePlotData(run, run.fits.front(), config.plot_data_dir);
   if (!flags.quiet) std::printf("%s\n", summary.c_str());
   std::printf("record: %s\nsummary: %s\n", config.hdf5_path.c_str(), config.summary_path.c_str());
-  if (success) std::printf("plot data: %s (see plots/calibration_*.gp)\n", config.plot_data_dir.c_str());
+  if (success)
+    std::printf("plot data: %s (see plots/calibration_*.gp)\n", config.plot_data_dir.c_str());
   if (!success) throw CLI::RuntimeError(3);
 }
 
@@ -51,8 +52,9 @@ void RunCalibrate(const CalibrateFlags& flags) {
 void RegisterCalibrateCommand(CLI::App& app) {
   static CalibrateFlags flags;
   CLI::App* calibrate = app.add_subcommand(
-      "calibrate", "fit a constitutive model to asymptotic states (TOML: [model], [parameters.*], "
-                   "[[dataset]], [fitter], [output])");
+      "calibrate",
+      "fit a constitutive model to asymptotic states (TOML: [model], [parameters.*], "
+      "[[dataset]], [fitter], [output])");
   calibrate->add_option("config", flags.config, "calibration file (TOML)")
       ->required()
       ->check(CLI::ExistingFile);

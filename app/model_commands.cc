@@ -29,8 +29,7 @@ void RunTest(const std::string& path, std::string out, const std::string& csv) {
   const ElementTestOptions options = root.Has("integration")
                                          ? ReadElementTestOptions(root.GetTable("integration"))
                                          : ElementTestOptions();
-  if (options.method == DriveMethod::kStressPoint &&
-      model->kind() != ModelKind::kModifiedCamClay) {
+  if (options.method == DriveMethod::kStressPoint && model->kind() != ModelKind::kModifiedCamClay) {
     root.GetTable("integration").Fail("method", "stress_point exists for modified_cam_clay only");
   }
   const std::vector<LoadingStage> stages = ReadStages(root);
@@ -68,9 +67,10 @@ void RunAsymptotes(const std::string& path, std::string out) {
   bool all_found = true;
   for (const IntegratedAsymptote& a : table.integrated) {
     all_found = all_found && a.found;
-    std::printf("psi_epsilon %8.3f deg: %s psi_sigma %.9f deg, OCR %.9g, q/p %.9g (strain path %.3g)\n",
-                a.state.psi_epsilon / kDegree, a.found ? "asymptote" : "NOT FOUND",
-                a.state.psi_sigma / kDegree, a.state.ocr, a.state.stress_ratio, a.strain_path);
+    std::printf(
+        "psi_epsilon %8.3f deg: %s psi_sigma %.9f deg, OCR %.9g, q/p %.9g (strain path %.3g)\n",
+        a.state.psi_epsilon / kDegree, a.found ? "asymptote" : "NOT FOUND",
+        a.state.psi_sigma / kDegree, a.state.ocr, a.state.stress_ratio, a.strain_path);
     if (!a.found) std::printf("  %s\n", a.summary.Report().c_str());
   }
   std::printf("results: %s\n", out.c_str());

@@ -42,7 +42,8 @@ StateDataset HundredStates() {
       point.psi_epsilon = psi_e;
       point.mean_stress = 25.0 * std::pow(2.0, i);
       point.void_ratio = std::exp(kTruth[3] - kTruth[1] * std::log(point.mean_stress * state.ocr) +
-                                  0.002 * normal(random)) - 1;
+                                  0.002 * normal(random)) -
+                         1;
       point.psi_sigma = state.psi_sigma + 0.3 * kDegree * normal(random);
       point.psi_sigma_uncertainty = 0.3 * kDegree;
       point.ln_volume_uncertainty = 0.002;

@@ -66,20 +66,30 @@ std::vector<PathCase> Paths() {
   };
   const double axial_isochoric = 1.0;
   std::vector<PathCase> paths;
-  paths.push_back({"isotropic_nc", 100.0, 1.0,
-                   {with_outputs(LoadingStage::Proportional(0.0, 1.0, 0.15))}});
-  paths.push_back({"isochoric_nc", 100.0, 1.0,
+  paths.push_back(
+      {"isotropic_nc", 100.0, 1.0, {with_outputs(LoadingStage::Proportional(0.0, 1.0, 0.15))}});
+  paths.push_back(
+      {"isochoric_nc", 100.0, 1.0, {with_outputs(LoadingStage::Isochoric(axial_isochoric, 0.3))}});
+  paths.push_back({"isochoric_ocr8",
+                   100.0,
+                   8.0,
                    {with_outputs(LoadingStage::Isochoric(axial_isochoric, 0.3))}});
-  paths.push_back({"isochoric_ocr8", 100.0, 8.0,
-                   {with_outputs(LoadingStage::Isochoric(axial_isochoric, 0.3))}});
-  paths.push_back({"drained_triaxial", 100.0, 1.0,
+  paths.push_back({"drained_triaxial",
+                   100.0,
+                   1.0,
                    {with_outputs(LoadingStage::ConstantRadialStress(1.0, 0.25))}});
-  paths.push_back({"proportional_45", 100.0, 1.0,
+  paths.push_back({"proportional_45",
+                   100.0,
+                   1.0,
                    {with_outputs(LoadingStage::Proportional(45.0 * kDegree, 1.0, 0.3))}});
-  paths.push_back({"proportional_100", 100.0, 1.0,
+  paths.push_back({"proportional_100",
+                   100.0,
+                   1.0,
                    {with_outputs(LoadingStage::Proportional(100.0 * kDegree, 1.0, 0.2))}});
   // Isotropic unloading to p ≈ 100/e^{1.6} then reloading past the start.
-  paths.push_back({"unload_reload", 100.0, 1.0,
+  paths.push_back({"unload_reload",
+                   100.0,
+                   1.0,
                    {with_outputs(LoadingStage::Proportional(kPi, 1.0, 0.015)),
                     with_outputs(LoadingStage::Proportional(0.0, 1.0, 0.04))}});
   return paths;
@@ -96,23 +106,35 @@ std::vector<PathCase> SandPaths() {
     return stage;
   };
   std::vector<PathCase> paths;
-  paths.push_back({"isotropic_loose", 100.0, 1.0,
-                   {with_outputs(LoadingStage::Proportional(0.0, 1.0, 0.05))}});
-  paths.push_back({"isotropic_dense", 100.0, 300.0,
+  paths.push_back(
+      {"isotropic_loose", 100.0, 1.0, {with_outputs(LoadingStage::Proportional(0.0, 1.0, 0.05))}});
+  paths.push_back({"isotropic_dense",
+                   100.0,
+                   300.0,
                    {with_outputs(LoadingStage::Proportional(0.0, 1.0, 0.03))}});
-  paths.push_back({"isochoric_loose", 100.0, 1.0,
-                   {with_outputs(LoadingStage::Isochoric(1.0, 0.1))}});
-  paths.push_back({"isochoric_dense", 100.0, 300.0,
-                   {with_outputs(LoadingStage::Isochoric(1.0, 0.2))}});
-  paths.push_back({"drained_triaxial_loose", 100.0, 1.0,
+  paths.push_back(
+      {"isochoric_loose", 100.0, 1.0, {with_outputs(LoadingStage::Isochoric(1.0, 0.1))}});
+  paths.push_back(
+      {"isochoric_dense", 100.0, 300.0, {with_outputs(LoadingStage::Isochoric(1.0, 0.2))}});
+  paths.push_back({"drained_triaxial_loose",
+                   100.0,
+                   1.0,
                    {with_outputs(LoadingStage::ConstantRadialStress(1.0, 0.15))}});
-  paths.push_back({"drained_triaxial_dense", 100.0, 300.0,
+  paths.push_back({"drained_triaxial_dense",
+                   100.0,
+                   300.0,
                    {with_outputs(LoadingStage::ConstantRadialStress(1.0, 0.15))}});
-  paths.push_back({"proportional_45", 100.0, 10.0,
+  paths.push_back({"proportional_45",
+                   100.0,
+                   10.0,
                    {with_outputs(LoadingStage::Proportional(45.0 * kDegree, 1.0, 0.05))}});
-  paths.push_back({"proportional_100", 100.0, 10.0,
+  paths.push_back({"proportional_100",
+                   100.0,
+                   10.0,
                    {with_outputs(LoadingStage::Proportional(100.0 * kDegree, 1.0, 0.02))}});
-  paths.push_back({"unload_reload", 100.0, 1.0,
+  paths.push_back({"unload_reload",
+                   100.0,
+                   1.0,
                    {with_outputs(LoadingStage::Proportional(kPi, 1.0, 0.002)),
                     with_outputs(LoadingStage::Proportional(0.0, 1.0, 0.005))}});
   return paths;
@@ -233,7 +255,8 @@ double TimeAtError(std::vector<Row> curve, double error) {
   curve.erase(std::remove_if(curve.begin(), curve.end(),
                              [](const Row& r) { return !(r.error > 0 && std::isfinite(r.error)); }),
               curve.end());
-  std::sort(curve.begin(), curve.end(), [](const Row& a, const Row& b) { return a.error > b.error; });
+  std::sort(curve.begin(), curve.end(),
+            [](const Row& a, const Row& b) { return a.error > b.error; });
   for (size_t k = 0; k + 1 < curve.size(); ++k) {
     const Row& coarse = curve[k];
     const Row& fine = curve[k + 1];
@@ -279,8 +302,8 @@ int Main(int argc, char** argv) {
   }
   const std::vector<double> tolerances =
       settings.quick ? std::vector<double>{1e-3, 1e-5, 1e-7}
-                     : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6,
-                                           1e-6, 3e-7, 1e-7, 1e-8, 1e-9, 1e-10};
+                     : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5,
+                                           3e-6, 1e-6, 3e-7, 1e-7, 1e-8, 1e-9, 1e-10};
 
   const HypoplasticClay hypoplastic(LondonClay());
   const ModifiedCamClay cam_clay(CamClay());
@@ -327,15 +350,16 @@ int Main(int argc, char** argv) {
         independent.max_strain_increment = 1e-3;
       }
       const double independent_difference = PathError(run(independent), reference);
-      std::printf("# reference %s/%s: cvode_bdf rtol 1e-12 (%ld RHS); vs rtol 1e-13: %.2e; vs %s: "
-                  "%.2e\n",
-                  path.name.c_str(), model_name.c_str(), reference.summary.totals.rhs_evaluations,
-                  self_difference,
-                  model->kind() != ModelKind::kModifiedCamClay ? "arkode_erk order 8 rtol 1e-12"
-                                                               : "modified Euler tol 1e-12",
-                  independent_difference);
-      rows.push_back({path.name, model_name, "reference_self_check", 1e-13, self_difference, 0.0,
-                      0, 0, "check"});
+      std::printf(
+          "# reference %s/%s: cvode_bdf rtol 1e-12 (%ld RHS); vs rtol 1e-13: %.2e; vs %s: "
+          "%.2e\n",
+          path.name.c_str(), model_name.c_str(), reference.summary.totals.rhs_evaluations,
+          self_difference,
+          model->kind() != ModelKind::kModifiedCamClay ? "arkode_erk order 8 rtol 1e-12"
+                                                       : "modified Euler tol 1e-12",
+          independent_difference);
+      rows.push_back({path.name, model_name, "reference_self_check", 1e-13, self_difference, 0.0, 0,
+                      0, "check"});
       rows.push_back({path.name, model_name, "reference_independent_check", 1e-12,
                       independent_difference, 0.0, 0, 0, "check"});
 
@@ -395,8 +419,8 @@ int Main(int argc, char** argv) {
   // and the geometric mean over paths per method (what the default is chosen by).
   std::printf("\n# time at error %.1e (log-log interpolated along each curve)\n",
               settings.target_error);
-  std::printf("%-18s %-18s %-28s %12s %12s %8s\n", "path", "model", "fastest", "time_s",
-              "rkf23_s", "ratio");
+  std::printf("%-18s %-18s %-28s %12s %12s %8s\n", "path", "model", "fastest", "time_s", "rkf23_s",
+              "ratio");
   std::map<std::string, std::map<std::string, std::vector<Row>>> curves;  // key path|model
   for (const Row& row : rows) {
     if (row.status == "check") continue;
@@ -421,9 +445,10 @@ int Main(int argc, char** argv) {
     std::printf("%-18s %-18s %-28s %12.4e %12.4e %8.2f\n", path.c_str(), model.c_str(),
                 fastest.c_str(), best, rkf23, rkf23 / best);
   }
-  std::printf("\n# RKF23 time / method time at error %.1e, geometric mean over paths "
-              "(paths where the curve does not reach the error are left out)\n",
-              settings.target_error);
+  std::printf(
+      "\n# RKF23 time / method time at error %.1e, geometric mean over paths "
+      "(paths where the curve does not reach the error are left out)\n",
+      settings.target_error);
   for (const auto& [key, values] : speedups) {
     double log_sum = 0.0;
     int count = 0;

@@ -38,10 +38,10 @@ CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
         num_residuals_ += 2;
       } else if (point.kind == StateKind::kAsbs) {
         if (predictor_options.method == AsymptoteMethod::kIntegrated) {
-          throw InputError(fmt::format(
-              "dataset '{}': {}: ASBS points need analytic asymptotes (asymptotes = "
-              "\"integrated\" follows stretching directions only)",
-              datasets_[d].name, point.source));
+          throw InputError(
+              fmt::format("dataset '{}': {}: ASBS points need analytic asymptotes (asymptotes = "
+                          "\"integrated\" follows stretching directions only)",
+                          datasets_[d].name, point.source));
         }
         a = static_cast<int>(asbs_psi_sigmas_.size());
         asbs_psi_sigmas_.push_back(point.psi_sigma);
@@ -81,10 +81,10 @@ void CalibrationProblem::CheckIdentifiable() const {
   }
   auto is_free = [this](int index) { return parameters_.specs()[index].free; };
   auto fail = [this](int index, const std::string& need) {
-    throw InputError(fmt::format(
-        "calibration: parameter {} cannot be identified by these data: {} (fix it with "
-        "free = false and a value, or add states)",
-        parameters_.specs()[index].name, need));
+    throw InputError(
+        fmt::format("calibration: parameter {} cannot be identified by these data: {} (fix it with "
+                    "free = false and a value, or add states)",
+                    parameters_.specs()[index].name, need));
   };
   if (is_free(kLambdaStar) && ln_p_with_line.size() < 2) {
     fail(kLambdaStar, "lambda_star needs asymptotic states at two or more mean stresses");
@@ -194,7 +194,8 @@ std::vector<std::string> CalibrationProblem::ResidualLabels() const {
   for (const StateDataset& dataset : datasets_) {
     for (const AsymptoticStatePoint& point : dataset.points) {
       if (!point.IsAsymptotic()) continue;
-      if (point.HasStretching()) labels.push_back(dataset.name + ": " + point.source + ": psi_sigma");
+      if (point.HasStretching())
+        labels.push_back(dataset.name + ": " + point.source + ": psi_sigma");
       labels.push_back(dataset.name + ": " + point.source + ": ln_1_plus_e");
     }
   }

@@ -23,12 +23,12 @@ namespace granasym::calibration {
 struct PointResidual {
   int dataset = 0;
   int point = 0;
-  double psi_sigma_model = 0.0;    // rad
-  double ln_volume_model = 0.0;    // ln(1+e) of the model at the point's p
-  double ln_ocr_model = 0.0;       // ln(p_e*/p) of the model's asymptote
+  double psi_sigma_model = 0.0;         // rad
+  double ln_volume_model = 0.0;         // ln(1+e) of the model at the point's p
+  double ln_ocr_model = 0.0;            // ln(p_e*/p) of the model's asymptote
   double psi_sigma_residual_deg = 0.0;  // model − data (deg); NaN when not a residual
   double ln_volume_residual = 0.0;      // model − data; NaN for unloading points
-  bool clamped = false;  // ψ_ε outside the model's asymptote range
+  bool clamped = false;                 // ψ_ε outside the model's asymptote range
 };
 
 class CalibrationProblem {

@@ -55,7 +55,8 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
                                 : ReadStatesCsv(d.path, d.name, d.csv));
   }
   run.starting_values = EstimateStartingValues(datasets);
-  ModelParameters parameters = ChooseParameters(config.model, config.parameters, run.starting_values);
+  ModelParameters parameters =
+      ChooseParameters(config.model, config.parameters, run.starting_values);
   run.problem = std::make_unique<CalibrationProblem>(std::move(datasets), std::move(parameters),
                                                      config.predictor);
   if (config.method != FitMethod::kNlopt) {
@@ -85,9 +86,10 @@ std::string FitText(const CalibrationRun& run, const FitResult& fit) {
   const CalibrationProblem& problem = *run.problem;
   const ModelParameters& parameters = problem.parameters();
   std::string s = fit.summary.Report() + "\n";
-  s += fmt::format("  residual variance s^2 = {:.4g} ({} degrees of freedom), condition number "
-                   "{:.3g}\n",
-                   fit.residual_variance, fit.degrees_of_freedom, fit.condition_number);
+  s += fmt::format(
+      "  residual variance s^2 = {:.4g} ({} degrees of freedom), condition number "
+      "{:.3g}\n",
+      fit.residual_variance, fit.degrees_of_freedom, fit.condition_number);
   s += fmt::format("  {:<14} {:>12} {:>12} {:>26}  {}\n", "parameter", "value", "std. error",
                    "95 % interval", "units");
   for (size_t i = 0; i < parameters.specs().size(); ++i) {
@@ -109,7 +111,8 @@ std::string FitText(const CalibrationRun& run, const FitResult& fit) {
     s += "  correlation matrix (free parameters):\n";
     for (int r = 0; r < fit.correlation.rows(); ++r) {
       s += fmt::format("    {:<14}", parameters.specs()[fit.free_indices[r]].name);
-      for (int c = 0; c < fit.correlation.cols(); ++c) s += fmt::format(" {:>7.3f}", fit.correlation(r, c));
+      for (int c = 0; c < fit.correlation.cols(); ++c)
+        s += fmt::format(" {:>7.3f}", fit.correlation(r, c));
       s += "\n";
     }
   }
@@ -132,10 +135,11 @@ std::string FitText(const CalibrationRun& run, const FitResult& fit) {
         ++n_v;
       }
     }
-    s += fmt::format("    {:<16} d_psi_sigma {:.4g} deg (max {:.4g}, {} pts); d_ln(1+e) {:.4g} "
-                     "(max {:.4g}, {} pts)\n",
-                     problem.datasets()[d].name, n_psi ? std::sqrt(ss_psi / n_psi) : 0.0, max_psi,
-                     n_psi, n_v ? std::sqrt(ss_v / n_v) : 0.0, max_v, n_v);
+    s += fmt::format(
+        "    {:<16} d_psi_sigma {:.4g} deg (max {:.4g}, {} pts); d_ln(1+e) {:.4g} "
+        "(max {:.4g}, {} pts)\n",
+        problem.datasets()[d].name, n_psi ? std::sqrt(ss_psi / n_psi) : 0.0, max_psi, n_psi,
+        n_v ? std::sqrt(ss_v / n_v) : 0.0, max_v, n_v);
   }
   s += "  exported parameters:\n";
   for (const ExportedParameters& e : ExportOrders(parameters.kind(), fit.values)) {
@@ -149,8 +153,9 @@ std::string FitText(const CalibrationRun& run, const FitResult& fit) {
 }
 
 std::string PointsText(const CalibrationRun& run, const FitResult& fit) {
-  std::string s = fmt::format("  {:<12} {:>10} {:>8} {:>9} {:>9} {:>10} {:>11}  {}\n", "kind",
-                              "p_kpa", "e", "psi_eps", "psi_sig", "d_psi_deg", "d_ln(1+e)", "source");
+  std::string s =
+      fmt::format("  {:<12} {:>10} {:>8} {:>9} {:>9} {:>10} {:>11}  {}\n", "kind", "p_kpa", "e",
+                  "psi_eps", "psi_sig", "d_psi_deg", "d_ln(1+e)", "source");
   for (const PointResidual& r : fit.residuals) {
     const AsymptoticStatePoint& p = run.problem->datasets()[r.dataset].points[r.point];
     s += fmt::format("  {:<12} {:>10.4g} {:>8.4f} {:>9.3f} {:>9.3f} {:>10.4f} {:>11.3e}  {}{}\n",
@@ -165,12 +170,13 @@ std::string PointsText(const CalibrationRun& run, const FitResult& fit) {
 
 std::string SummaryText(const CalibrationRun& run) {
   const CalibrationProblem& problem = *run.problem;
-  std::string s = fmt::format("granasym calibration: {}\nmodel: {} (asymptotes: {})\n",
-                              run.config.origin, ToString(problem.parameters().kind()),
-                              ToString(run.config.predictor.method));
-  s += fmt::format("residuals: {} (psi_sigma in deg / sigma_psi, ln(1+e) / sigma_v, times "
-                   "sqrt(weight)); free parameters: {}\n",
-                   problem.num_residuals(), problem.num_free());
+  std::string s =
+      fmt::format("granasym calibration: {}\nmodel: {} (asymptotes: {})\n", run.config.origin,
+                  ToString(problem.parameters().kind()), ToString(run.config.predictor.method));
+  s += fmt::format(
+      "residuals: {} (psi_sigma in deg / sigma_psi, ln(1+e) / sigma_v, times "
+      "sqrt(weight)); free parameters: {}\n",
+      problem.num_residuals(), problem.num_free());
   s += "datasets:\n";
   for (const StateDataset& d : problem.datasets()) {
     s += fmt::format("  {} ({}): {} states:", d.name, d.origin, d.points.size());
@@ -194,7 +200,8 @@ std::string SummaryText(const CalibrationRun& run) {
     const std::vector<HistoryPoint>& h = run.fits.front().history;
     const size_t step = std::max<size_t>(1, h.size() / 20);
     for (size_t i = 0; i < h.size(); i += step) {
-      s += fmt::format("  evaluation {:>7}  cost {:.8g}  {}\n", h[i].evaluation, h[i].cost, h[i].stage);
+      s += fmt::format("  evaluation {:>7}  cost {:.8g}  {}\n", h[i].evaluation, h[i].cost,
+                       h[i].stage);
     }
   }
   return s;
@@ -258,10 +265,12 @@ void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path) {
   file.WriteDoubles("/data/weight", weight, "1");
   file.WriteInts("/data/dataset", dataset_index, "1");
   file.WriteInts("/data/kind", kind, "1");
-  file.SetAttribute("/data/kind", "codes", "0 ncl, 1 csl, 2 compression, 3 extension, 4 asbs, 5 unloading");
+  file.SetAttribute("/data/kind", "codes",
+                    "0 ncl, 1 csl, 2 compression, 3 extension, 4 asbs, 5 unloading");
   file.WriteString("/data/sources", sources);
   std::string dataset_names;
-  for (const StateDataset& d : problem.datasets()) dataset_names += d.name + " (" + d.origin + ")\n";
+  for (const StateDataset& d : problem.datasets())
+    dataset_names += d.name + " (" + d.origin + ")\n";
   file.WriteString("/data/datasets", dataset_names);
 
   for (const FitResult& fit : run.fits) {
@@ -405,10 +414,12 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
   }
   std::ofstream out(folder + "/model_lines.dat");
   out << "# model asymptotic lines ln(1+e) = N - lambda* ln(p OCR(psi_epsilon)); one block per "
-         "psi_epsilon\n# columns (comma-separated): psi_epsilon_deg, ln_p, ln_1_plus_e, psi_sigma_deg\n";
+         "psi_epsilon\n# columns (comma-separated): psi_epsilon_deg, ln_p, ln_1_plus_e, "
+         "psi_sigma_deg\n";
   for (size_t k = 0; k < list.size(); ++k) {
     for (int i = 0; i <= 20; ++i) {
-      const double ln_p = std::log(p_min / 2) + (std::log(p_max * 2) - std::log(p_min / 2)) * i / 20;
+      const double ln_p =
+          std::log(p_min / 2) + (std::log(p_max * 2) - std::log(p_min / 2)) * i / 20;
       out << fmt::format("{:.6g},{:.8g},{:.8g},{:.6g}\n", list[k] / kDegree, ln_p,
                          n - lambda * (ln_p + by_stretching[k].ln_ocr),
                          by_stretching[k].psi_sigma / kDegree);

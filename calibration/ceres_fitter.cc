@@ -25,7 +25,8 @@ class HistoryCallback : public ceres::IterationCallback {
   HistoryCallback(const CalibrationProblem& problem, std::vector<HistoryPoint>* history)
       : problem_(problem), history_(history) {}
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
-    const double best = history_->empty() ? summary.cost : std::min(summary.cost, history_->back().cost);
+    const double best =
+        history_->empty() ? summary.cost : std::min(summary.cost, history_->back().cost);
     history_->push_back({problem_.evaluations(), best, "ceres"});
     return ceres::SOLVER_CONTINUE;
   }

@@ -1,4 +1,4 @@
-// Asymptotic states from granasym DEM result files (dem/simulation.cc):
+// Asymptotic states from granasym DEM result files (layout: dem/run_record_names.h):
 // every /stages/NNN group of a strain-path stage contributes
 //   - its detected asymptote (asymptote_detected = 1): one state (ψ_ε of the
 //     stage, asymptote_p_kpa, asymptote_e, asymptote_psi_sigma_deg);
@@ -36,7 +36,7 @@ struct DemReadOptions {
   // Most NCL or unloading points taken per stage (evenly spaced in ln p),
   // so that one long stage does not outweigh the asymptotes.
   int max_line_points = 12;
-  double kind_tolerance_deg = 0.5;  // ψ_ε within this of 0°, 90°, 180° counts as there
+  double kind_tolerance_deg = 0.5;         // ψ_ε within this of 0°, 90°, 180° counts as there
   double psi_sigma_uncertainty_deg = 0.5;  // one standard deviation, per state
   double ln_volume_uncertainty = 0.002;
   double weight = 1.0;

@@ -7,6 +7,6 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/provenance.h"
-#include "common/stopwatch.h"
 #include "common/state_measures.h"
+#include "common/stopwatch.h"
 #include "common/time_series.h"

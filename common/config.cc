@@ -173,7 +173,8 @@ std::string ConfigTable::GetChoice(const std::string& key, const std::vector<std
     if (value == choice) return value;
   }
   std::string list;
-  for (const std::string& choice : allowed) list += (list.empty() ? "" : ", ") + ("'" + choice + "'");
+  for (const std::string& choice : allowed)
+    list += (list.empty() ? "" : ", ") + ("'" + choice + "'");
   Fail(key, "= '" + value + "' is not valid: expected one of " + list);
 }
 
@@ -181,7 +182,8 @@ std::vector<double> ConfigTable::GetDoubles(const std::string& key, Range range)
   const void* found = Find(key);
   if (!found) Fail(key, "is missing: expected an array of numbers");
   const toml::value& value = AsValue(found);
-  if (!value.is_array()) Fail(key, "has type " + TypeName(value) + ": expected an array of numbers");
+  if (!value.is_array())
+    Fail(key, "has type " + TypeName(value) + ": expected an array of numbers");
   std::vector<double> numbers;
   for (size_t i = 0; i < value.as_array().size(); ++i) {
     const toml::value& item = value.as_array()[i];
@@ -231,9 +233,8 @@ void ConfigTable::CheckNoUnknownKeys() const {
     if (!known.count(key)) {
       std::string valid;
       for (const std::string& name : known) valid += (valid.empty() ? "" : ", ") + name;
-      Fail(key, "is not a known key" +
-                    (valid.empty() ? std::string(" (this table takes no keys)")
-                                   : " (valid keys here: " + valid + ")"));
+      Fail(key, "is not a known key" + (valid.empty() ? std::string(" (this table takes no keys)")
+                                                      : " (valid keys here: " + valid + ")"));
     }
     if (value.is_table()) {
       ConfigTable child(document_, &value, KeyName(key));

@@ -59,8 +59,7 @@ CsvTable CsvTable::Parse(const std::string& text, const std::string& origin) {
       const double value = std::strtod(begin, &end);
       if (fields[c].empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
         throw InputError(origin + ": line " + std::to_string(line_number) + ", column '" +
-                         table.columns[c] + "': '" + fields[c] +
-                         "' is not a finite number");
+                         table.columns[c] + "': '" + fields[c] + "' is not a finite number");
       }
       row.push_back(value);
     }

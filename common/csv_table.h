@@ -12,10 +12,10 @@
 namespace granasym {
 
 struct CsvTable {
-  std::string origin;                       // file name for messages
-  std::vector<std::string> columns;         // header names
-  std::vector<std::vector<double>> rows;    // rows x columns
-  std::vector<int> line_numbers;            // source line of each row (1-based)
+  std::string origin;                     // file name for messages
+  std::vector<std::string> columns;       // header names
+  std::vector<std::vector<double>> rows;  // rows x columns
+  std::vector<int> line_numbers;          // source line of each row (1-based)
 
   static CsvTable ReadFile(const std::string& path);
   static CsvTable Parse(const std::string& text, const std::string& origin);

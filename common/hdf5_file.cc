@@ -19,7 +19,8 @@ void QuietHdf5() {
   (void)quiet;
 }
 
-[[noreturn]] void Fail(const std::string& call, const std::string& file, const std::string& object) {
+[[noreturn]] void Fail(const std::string& call, const std::string& file,
+                       const std::string& object) {
   throw RuntimeError("HDF5 call " + call + " failed for '" + object + "' in file '" + file + "'");
 }
 
@@ -74,9 +75,9 @@ void WriteArray(hid_t file_id, const std::string& file, const std::string& name,
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
   if (!space.valid()) Fail("H5Screate_simple", file, name);
   Handle lcpl = CreateLinkProperties();
-  Handle dataset(
-      H5Dcreate2(file_id, name.c_str(), file_type, space.get(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
-      H5Dclose);
+  Handle dataset(H5Dcreate2(file_id, name.c_str(), file_type, space.get(), lcpl.get(), H5P_DEFAULT,
+                            H5P_DEFAULT),
+                 H5Dclose);
   if (!dataset.valid()) Fail("H5Dcreate2", file, name);
   hsize_t total = 1;
   for (hsize_t d : dims) total *= d;
@@ -179,14 +180,14 @@ void Hdf5File::Commit() {
 
 void Hdf5File::WriteDoubles(const std::string& name, const std::vector<double>& values,
                             const std::string& units) {
-  WriteArray(id_, path_, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, values.data(),
-             {values.size()}, units);
+  WriteArray(id_, path_, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, values.data(), {values.size()},
+             units);
 }
 
 void Hdf5File::WriteMatrix(const std::string& name, const std::vector<double>& values, size_t rows,
                            size_t cols, const std::string& units) {
-  GRANASYM_CHECK(values.size() == rows * cols) << name << ": " << values.size() << " values for "
-                                               << rows << "x" << cols;
+  GRANASYM_CHECK(values.size() == rows * cols)
+      << name << ": " << values.size() << " values for " << rows << "x" << cols;
   WriteArray(id_, path_, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, values.data(), {rows, cols},
              units);
 }
@@ -201,9 +202,9 @@ void Hdf5File::WriteString(const std::string& name, const std::string& value) {
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   Handle type = StringType();
   Handle lcpl = CreateLinkProperties();
-  Handle dataset(H5Dcreate2(id_, name.c_str(), type.get(), space.get(), lcpl.get(), H5P_DEFAULT,
-                            H5P_DEFAULT),
-                 H5Dclose);
+  Handle dataset(
+      H5Dcreate2(id_, name.c_str(), type.get(), space.get(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
+      H5Dclose);
   if (!dataset.valid()) Fail("H5Dcreate2", path_, name);
   const char* text = value.c_str();
   if (H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, &text) < 0) {
@@ -225,9 +226,9 @@ void WriteScalarAttribute(hid_t file_id, const std::string& file, const std::str
   Handle target = OpenObject(file_id, file, object);
   if (H5Aexists(target.get(), name.c_str()) > 0) H5Adelete(target.get(), name.c_str());
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  Handle attribute(H5Acreate2(target.get(), name.c_str(), type, space.get(), H5P_DEFAULT,
-                              H5P_DEFAULT),
-                   H5Aclose);
+  Handle attribute(
+      H5Acreate2(target.get(), name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+      H5Aclose);
   if (!attribute.valid()) Fail("H5Acreate2(" + name + ")", file, object);
   if (H5Awrite(attribute.get(), type, value) < 0) Fail("H5Awrite(" + name + ")", file, object);
 }

@@ -18,8 +18,8 @@ SymTensor FlipSign(const SymTensor& tensor);
 
 // Axisymmetric stress measures, compression positive, axis 1 vertical.
 struct AxisymmetricStress {
-  double axial = 0;   // σ_a = σ_11
-  double radial = 0;  // σ_r = (σ_22 + σ_33)/2
+  double axial = 0;                                             // σ_a = σ_11
+  double radial = 0;                                            // σ_r = (σ_22 + σ_33)/2
   double mean() const { return (axial + 2.0 * radial) / 3.0; }  // p
   double deviator() const { return axial - radial; }            // q
   // ψ_σ = atan2(√2 (σ_a − σ_r), σ_a + 2σ_r) in radians.
@@ -29,11 +29,11 @@ AxisymmetricStress AxisymmetricFromTensor(const SymTensor& compression_positive_
 
 // Axisymmetric strain-rate measures, compression positive.
 struct AxisymmetricRate {
-  double axial = 0;   // ε̇_a
-  double radial = 0;  // ε̇_r
-  double volumetric() const { return axial + 2.0 * radial; }        // ε̇_v
-  double shear() const { return 2.0 * (axial - radial) / 3.0; }     // ε̇_s
-  double norm() const;                                              // ‖D‖ for diagonal D
+  double axial = 0;                                              // ε̇_a
+  double radial = 0;                                             // ε̇_r
+  double volumetric() const { return axial + 2.0 * radial; }     // ε̇_v
+  double shear() const { return 2.0 * (axial - radial) / 3.0; }  // ε̇_s
+  double norm() const;                                           // ‖D‖ for diagonal D
   // ψ_ε = atan2(√2 (ε̇_a − ε̇_r), ε̇_a + 2ε̇_r) in radians.
   double psi() const;
   // The rates of direction ψ_ε (radians) and magnitude ‖D‖ (1/s) (SPEC §2).

@@ -128,8 +128,8 @@ IntegratedAsymptote IntegrateAsymptote(const ConstitutiveModel& model, const Mod
   double path = 0.0;
   ElementTestResult result;
   while (path < options.max_strain_path && !asymptote.found) {
-    LoadingStage stage =
-        LoadingStage::Proportional(psi_epsilon, 1.0, std::min(kChunk, options.max_strain_path - path));
+    LoadingStage stage = LoadingStage::Proportional(
+        psi_epsilon, 1.0, std::min(kChunk, options.max_strain_path - path));
     stage.stops.push_back({StopKind::kAsymptote, options.tolerance});
     stage.output_points = 1;
     result = test.Run(state, {stage});
@@ -143,8 +143,8 @@ IntegratedAsymptote IntegrateAsymptote(const ConstitutiveModel& model, const Mod
     asymptote.found = result.summary.stages.back().integration.root_index == 0;
     state = result.final_state;
     const double p = MeanStress(state.stress);
-    if (!asymptote.found && (p > kRescaleRange * reference_pressure ||
-                             p < reference_pressure / kRescaleRange)) {
+    if (!asymptote.found &&
+        (p > kRescaleRange * reference_pressure || p < reference_pressure / kRescaleRange)) {
       model.ScaleState(reference_pressure / p, &state);
     }
   }
@@ -158,9 +158,9 @@ IntegratedAsymptote IntegrateAsymptote(const ConstitutiveModel& model, const Mod
   asymptote.mean_stress = stress.mean();
   asymptote.void_ratio = last.void_ratio;
   if (!asymptote.found) {
-    asymptote.summary.message = fmt::format(
-        "no asymptote within strain path {:.3g} (criterion {:.3g} per unit strain)",
-        options.max_strain_path, options.tolerance);
+    asymptote.summary.message =
+        fmt::format("no asymptote within strain path {:.3g} (criterion {:.3g} per unit strain)",
+                    options.max_strain_path, options.tolerance);
   }
   return asymptote;
 }

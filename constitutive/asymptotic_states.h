@@ -19,10 +19,10 @@
 namespace granasym {
 
 struct AsymptoticState {
-  double psi_epsilon = 0.0;  // rad
-  double psi_sigma = 0.0;    // rad
-  double ocr = 0.0;          // p_e*/p
-  double stress_ratio = 0.0; // q/p
+  double psi_epsilon = 0.0;   // rad
+  double psi_sigma = 0.0;     // rad
+  double ocr = 0.0;           // p_e*/p
+  double stress_ratio = 0.0;  // q/p
 };
 
 // ψ_σ → (ψ_ε, OCR). Returns false outside the model's domain.

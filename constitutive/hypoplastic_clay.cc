@@ -45,7 +45,8 @@ bool CheckCompressive(const Vector6& t, double minimum_mean_stress, std::string*
   const double minor2 = t[0] * t[1] - t[3] * t[3];
   const double minor3 = -Determinant<double>(t);
   if (!(minor1 > 0 && minor2 > 0 && minor3 > 0)) {
-    return Fail(why, fmt::format("stress has a principal value ≥ 0 (tension) at p = {:.6g} kPa", p));
+    return Fail(why,
+                fmt::format("stress has a principal value ≥ 0 (tension) at p = {:.6g} kPa", p));
   }
   return true;
 }
@@ -75,14 +76,14 @@ bool ComputeTerms(const Constants& c, const Vec6<S>& t, const S& log_1pe, TermsT
   const S i2 = 0.5 * (Contract(t, t) - i1 * i1);
   const S i3 = Determinant(t);
   const double y_isotropic = sqrt3 * c.a / (3.0 + c.a * c.a);
-  const S y = (y_isotropic - 1.0) * (i1 * i2 + 9.0 * i3) * (1.0 - c.sin2_phi) /
-                  (8.0 * i3 * c.sin2_phi) +
-              y_isotropic;
+  const S y =
+      (y_isotropic - 1.0) * (i1 * i2 + 9.0 * i3) * (1.0 - c.sin2_phi) / (8.0 * i3 * c.sin2_phi) +
+      y_isotropic;
   const S t_hat2 = Contract(t_hat, t_hat);
   const S f_over_a = f / c.a;
   const Vec6<S> m =
-      -(c.a / f) * (t_hat + t_star - t_hat * ((6.0 * t_hat2 - 1.0) /
-                                              (3.0 * (f_over_a * f_over_a + t_hat2))));
+      -(c.a / f) *
+      (t_hat + t_star - t_hat * ((6.0 * t_hat2 - 1.0) / (3.0 * (f_over_a * f_over_a + t_hat2))));
   const S m_norm = FrobeniusNorm(m);
   if (!(autodiff::Value(m_norm) > 0)) return Fail(why, "flow direction m vanishes");
   out->nonlinear = out->linear * (-(y / m_norm) * m);
@@ -109,8 +110,8 @@ bool HypoplasticClay::Parameters::IsValid(std::string* why) const {
   }
   if (!(lambda_star > 0)) return fail(fmt::format("lambda_star = {} must be > 0", lambda_star));
   if (!(kappa_star > 0 && kappa_star < lambda_star)) {
-    return fail(fmt::format("kappa_star = {} must be in (0, lambda_star = {})", kappa_star,
-                            lambda_star));
+    return fail(
+        fmt::format("kappa_star = {} must be in (0, lambda_star = {})", kappa_star, lambda_star));
   }
   if (!std::isfinite(n_intercept)) return fail("n_intercept must be finite");
   if (!(bulk_shear_ratio > 0)) {
@@ -129,9 +130,10 @@ bool HypoplasticClay::Parameters::IsValid(std::string* why) const {
                        std::log(2.0);
   const double denominator = 3.0 + a * a - std::pow(2.0, alpha) * std::sqrt(3.0) * a;
   if (!(denominator > 0)) {
-    return fail(fmt::format("3 + a² − 2^α √3 a = {} ≤ 0 for critical_friction_angle = {} rad, "
-                            "lambda_star = {}, kappa_star = {}: f_s would not be positive",
-                            denominator, critical_friction_angle, lambda_star, kappa_star));
+    return fail(
+        fmt::format("3 + a² − 2^α √3 a = {} ≤ 0 for critical_friction_angle = {} rad, "
+                    "lambda_star = {}, kappa_star = {}: f_s would not be positive",
+                    denominator, critical_friction_angle, lambda_star, kappa_star));
   }
   return true;
 }
@@ -251,9 +253,9 @@ bool HypoplasticClay::AsymptoteForStress(const Vector6& stress, Asymptote* asymp
   const ModelState state = MakeState(stress, VoidRatioForOcr(MeanStress(stress), 1.0));
   Terms terms;
   if (!EvaluateTerms(state, &terms, why)) return false;
-  const Matrix6 a_matrix = terms.barotropy * terms.linear +
-                           (1.0 / parameters_.lambda_star) *
-                               DyadMatrix<double>(stress, IdentityVoigt());
+  const Matrix6 a_matrix =
+      terms.barotropy * terms.linear +
+      (1.0 / parameters_.lambda_star) * DyadMatrix<double>(stress, IdentityVoigt());
   Eigen::PartialPivLU<Matrix6> lu(a_matrix);
   const Vector6 solution = lu.solve(terms.nonlinear);  // 𝔸⁻¹:N
   const double solution_norm = FrobeniusNorm<double>(solution);

@@ -52,10 +52,10 @@ class HypoplasticClay : public ConstitutiveModel {
 
   // The pieces of the rate at a state: T̊ = f_s 𝕃:D + f_s f_d N ‖D‖.
   struct Terms {
-    double barotropy = 0.0;  // f_s (kPa)
-    double pyknotropy = 0.0;  // f_d
-    Matrix6 linear = Matrix6::Zero();       // 𝕃 as a matrix acting on D
-    Vector6 nonlinear = Vector6::Zero();    // N
+    double barotropy = 0.0;               // f_s (kPa)
+    double pyknotropy = 0.0;              // f_d
+    Matrix6 linear = Matrix6::Zero();     // 𝕃 as a matrix acting on D
+    Vector6 nonlinear = Vector6::Zero();  // N
   };
   bool EvaluateTerms(const ModelState& state, Terms* terms, std::string* why) const;
 

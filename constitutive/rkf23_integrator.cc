@@ -52,8 +52,8 @@ bool TakeStep(OdeSystem& system, double t, const double* y, double h, Workspace*
 
 }  // namespace
 
-IntegrationSummary Rkf23Integrator::Integrate(OdeSystem& system, double t0, double t_end,
-                                              double* y, const std::vector<double>& output_times,
+IntegrationSummary Rkf23Integrator::Integrate(OdeSystem& system, double t0, double t_end, double* y,
+                                              const std::vector<double>& output_times,
                                               const Observer& observer) {
   Stopwatch stopwatch;
   IntegrationSummary summary;
@@ -116,8 +116,8 @@ IntegrationSummary Rkf23Integrator::Integrate(OdeSystem& system, double t0, doub
       h = step * shrink;
       if (h < min_step) {
         summary.termination = TerminationType::kFailure;
-        summary.message = fmt::format("step size {:.3g} below the minimum {:.3g} at t = {:.6g}", h,
-                                      min_step, t);
+        summary.message =
+            fmt::format("step size {:.3g} below the minimum {:.3g} at t = {:.6g}", h, min_step, t);
         if (!ok) summary.message += " (model: " + system.last_failure() + ")";
         break;
       }

@@ -283,8 +283,8 @@ template <typename Evolve, typename RootInfo, typename StopAt, typename ReadLast
 void RunOutputLoop(double t0, double t_end, const std::vector<double>& output_times,
                    const SerialVector& y, int num_roots, Evolve evolve, RootInfo root_info,
                    StopAt stop_at, ReadLastStep read_last_step, Restart restart,
-                   const Integrator::Observer& observer, int root_return,
-                   const CallbackData& data, IntegrationSummary* summary) {
+                   const Integrator::Observer& observer, int root_return, const CallbackData& data,
+                   IntegrationSummary* summary) {
   std::vector<double> stops;
   for (double t : output_times) {
     if (t > t0 && t < t_end) stops.push_back(t);
@@ -412,8 +412,8 @@ IntegrationSummary CvodeIntegrator::Integrate(OdeSystem& system, double t0, doub
   SerialVector scratch(n, context);
   auto read_last_step = [&](double* t_from, double* t_to, std::vector<double>* y_from,
                             std::vector<double>* y_to) {
-    return LastStep(mem, CVodeGetCurrentTime, CVodeGetLastStep, CVodeGetDky, scratch, t_from,
-                    t_to, y_from, y_to);
+    return LastStep(mem, CVodeGetCurrentTime, CVodeGetLastStep, CVodeGetDky, scratch, t_from, t_to,
+                    y_from, y_to);
   };
   auto restart = [&](double t_from, const std::vector<double>& y_from, double t_to, double* t) {
     std::copy(y_from.begin(), y_from.end(), y.data());
@@ -428,8 +428,8 @@ IntegrationSummary CvodeIntegrator::Integrate(OdeSystem& system, double t0, doub
       t0, t_end, output_times, y, num_roots,
       [&](double tout, double* t) { return CVode(mem, tout, y.get(), t, CV_NORMAL); },
       [&](int* found) { Check(CVodeGetRootInfo(mem, found), "CVodeGetRootInfo"); },
-      [&](double tout) { Check(CVodeSetStopTime(mem, tout), "CVodeSetStopTime"); },
-      read_last_step, restart, observer, CV_ROOT_RETURN, data, &summary);
+      [&](double tout) { Check(CVodeSetStopTime(mem, tout), "CVodeSetStopTime"); }, read_last_step,
+      restart, observer, CV_ROOT_RETURN, data, &summary);
   add_counters();
   std::copy(y.data(), y.data() + n, y_in);
   summary.wall_time_s = stopwatch.Seconds();
@@ -472,7 +472,8 @@ IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, dou
       if (options_.initial_step > 0) {
         Check(ERKStepSetInitStep(mem, options_.initial_step), "ERKStepSetInitStep");
       }
-      if (options_.max_step > 0) Check(ERKStepSetMaxStep(mem, options_.max_step), "ERKStepSetMaxStep");
+      if (options_.max_step > 0)
+        Check(ERKStepSetMaxStep(mem, options_.max_step), "ERKStepSetMaxStep");
     }
     if (constraints) {
       Check(ERKStepSetConstraints(mem, constraints->get()), "ERKStepSetConstraints");
@@ -532,7 +533,8 @@ IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, dou
       Check(ERKStepReInit(mem, RhsCallback, t_from, y.get()), "ERKStepReInit");
       Check(ERKStepRootInit(mem, 0, nullptr), "ERKStepRootInit");
       Check(ERKStepSetStopTime(mem, t_to), "ERKStepSetStopTime");
-      if (options_.fixed_step == 0) Check(ERKStepSetInitStep(mem, t_to - t_from), "ERKStepSetInitStep");
+      if (options_.fixed_step == 0)
+        Check(ERKStepSetInitStep(mem, t_to - t_from), "ERKStepSetInitStep");
       return ERKStepEvolve(mem, t_to, y.get(), t, ARK_NORMAL);
     };
     RunOutputLoop(
@@ -552,8 +554,7 @@ IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, dou
     DenseLinearSolver linear_solver(y, matrix, context);
     Check(ARKStepSetUserData(mem, &data), "ARKStepSetUserData");
     Check(ARKStepSetErrHandlerFn(mem, ErrorHandler, &data), "ARKStepSetErrHandlerFn");
-    Check(ARKStepSetLinearSolver(mem, linear_solver.get(), matrix.get()),
-          "ARKStepSetLinearSolver");
+    Check(ARKStepSetLinearSolver(mem, linear_solver.get(), matrix.get()), "ARKStepSetLinearSolver");
     if (options_.jacobian == JacobianKind::kExact && system.has_jacobian()) {
       Check(ARKStepSetJacFn(mem, JacobianCallback), "ARKStepSetJacFn");
     }
@@ -571,7 +572,8 @@ IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, dou
       if (options_.initial_step > 0) {
         Check(ARKStepSetInitStep(mem, options_.initial_step), "ARKStepSetInitStep");
       }
-      if (options_.max_step > 0) Check(ARKStepSetMaxStep(mem, options_.max_step), "ARKStepSetMaxStep");
+      if (options_.max_step > 0)
+        Check(ARKStepSetMaxStep(mem, options_.max_step), "ARKStepSetMaxStep");
     }
     if (constraints) {
       Check(ARKStepSetConstraints(mem, constraints->get()), "ARKStepSetConstraints");
@@ -608,7 +610,8 @@ IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, dou
       Check(ARKStepReInit(mem, nullptr, RhsCallback, t_from, y.get()), "ARKStepReInit");
       Check(ARKStepRootInit(mem, 0, nullptr), "ARKStepRootInit");
       Check(ARKStepSetStopTime(mem, t_to), "ARKStepSetStopTime");
-      if (options_.fixed_step == 0) Check(ARKStepSetInitStep(mem, t_to - t_from), "ARKStepSetInitStep");
+      if (options_.fixed_step == 0)
+        Check(ARKStepSetInitStep(mem, t_to - t_from), "ARKStepSetInitStep");
       return ARKStepEvolve(mem, t_to, y.get(), t, ARK_NORMAL);
     };
     RunOutputLoop(

@@ -42,7 +42,8 @@ ContactStatistics Measure(const Engine& engine, const std::vector<double>* edges
       ++per_particle[i];
       ++per_particle[j];
       if constexpr (kHistogram) {
-        const auto bin = std::upper_bound(edges->begin(), edges->end(), relative) - edges->begin() - 1;
+        const auto bin =
+            std::upper_bound(edges->begin(), edges->end(), relative) - edges->begin() - 1;
         const auto last = static_cast<std::ptrdiff_t>(stats.histogram.size()) - 1;
         ++stats.histogram[std::clamp<std::ptrdiff_t>(bin, 0, last)];
       }

@@ -12,14 +12,14 @@ namespace granasym::dem {
 
 struct ContactStatistics {
   int64_t contacts = 0;
-  double coordination = 0;             // Z = 2 C / N
+  double coordination = 0;  // Z = 2 C / N
   // Z_m = (2C − N_1)/(N − N_0 − N_1): rattlers (0 or 1 contact) excluded
   // (Thornton 2000).
   double mechanical_coordination = 0;
-  double overlap_max = 0;              // relative overlaps u_N/(r_i + r_j)
+  double overlap_max = 0;  // relative overlaps u_N/(r_i + r_j)
   double overlap_mean = 0;
   double overlap_p50 = 0, overlap_p90 = 0, overlap_p99 = 0;
-  std::vector<int64_t> histogram;      // counts per bin of `edges` (when asked)
+  std::vector<int64_t> histogram;  // counts per bin of `edges` (when asked)
 };
 
 // Logarithmic bin edges for relative-overlap histograms: `bins` bins from

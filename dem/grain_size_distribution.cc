@@ -29,7 +29,8 @@ GrainSizeDistribution::GrainSizeDistribution(std::vector<double> diameters,
     throw InputError(origin_ + ": " + std::to_string(n) + " diameters but " +
                      std::to_string(percent_passing_.size()) + " percentages");
   }
-  if (n < 2) throw InputError(origin_ + ": a GSD needs at least two sieves, got " + std::to_string(n));
+  if (n < 2)
+    throw InputError(origin_ + ": a GSD needs at least two sieves, got " + std::to_string(n));
   for (size_t k = 0; k < n; ++k) {
     const std::string row = origin_ + ": row " + std::to_string(k + 1) + ": ";
     if (!(diameters_[k] > 0)) {

@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "common/error.h"
-#include "common/stopwatch.h"
 #include "common/state_measures.h"
+#include "common/stopwatch.h"
 
 namespace granasym::dem {
 
@@ -60,7 +60,8 @@ Packing Packing::ReadText(const std::string& path) {
     std::istringstream row(line);
     std::array<double, 3> x;
     double r;
-    if (!(row >> x[0] >> x[1] >> x[2] >> r)) fail("expected 'x y z r' in metres, got '" + line + "'");
+    if (!(row >> x[0] >> x[1] >> x[2] >> r))
+      fail("expected 'x y z r' in metres, got '" + line + "'");
     if (!(r > 0) || !std::isfinite(r)) fail("radius " + std::to_string(r) + " m must be > 0");
     for (int d = 0; d < 3; ++d) {
       if (!std::isfinite(x[d])) fail("coordinate is not finite");
@@ -132,9 +133,8 @@ Packing GeneratePacking(const GrainSizeDistribution& gsd, const GenerationOption
   }
   const double solid = packing.SolidVolume() / (side * side * side);
   if (solid >= 0.55) {
-    throw InputError("sample generation: " + std::to_string(options.count) +
-                     " spheres fill " + std::to_string(100 * solid) + " % of a " +
-                     std::to_string(side * 1e3) +
+    throw InputError("sample generation: " + std::to_string(options.count) + " spheres fill " +
+                     std::to_string(100 * solid) + " % of a " + std::to_string(side * 1e3) +
                      " mm cube; random placement needs a solid fraction below 55 %: "
                      "enlarge cell_size or reduce count");
   }

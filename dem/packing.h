@@ -13,9 +13,9 @@
 namespace granasym::dem {
 
 struct Packing {
-  std::array<double, 3> cell{};            // side lengths of the periodic box (m)
+  std::array<double, 3> cell{};                  // side lengths of the periodic box (m)
   std::vector<std::array<double, 3>> positions;  // sphere centres (m), in [0, L)
-  std::vector<double> radii;               // (m)
+  std::vector<double> radii;                     // (m)
 
   size_t size() const { return radii.size(); }
   double SolidVolume() const;
@@ -28,9 +28,9 @@ struct Packing {
 };
 
 struct GenerationOptions {
-  size_t count = 150000;        // number of spheres
-  double cell_size = 0.031;     // side of the periodic cube (m)
-  uint64_t seed = 1;            // random placement seed
+  size_t count = 150000;     // number of spheres
+  double cell_size = 0.031;  // side of the periodic cube (m)
+  uint64_t seed = 1;         // random placement seed
   // Placement attempts per sphere before giving up (the random sequential
   // addition jams near a solid fraction of 0.4–0.5).
   int max_attempts = 200000;
@@ -41,7 +41,7 @@ struct GenerationReport {
   size_t count = 0;
   double porosity = 0;
   double seconds = 0;
-  int64_t attempts = 0;  // total placement attempts
+  int64_t attempts = 0;                  // total placement attempts
   std::vector<double> sieve_diameters;   // (m)
   std::vector<double> target_passing;    // (%)
   std::vector<double> achieved_passing;  // (%)

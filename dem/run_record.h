@@ -33,7 +33,8 @@ struct granasym::EnumNames<granasym::dem::Termination> {
   static constexpr EnumEntry<dem::Termination> kEntries[] = {
       {dem::Termination::kNotRun, "not_run", "the run has not started"},
       {dem::Termination::kCompleted, "completed", "all stages completed"},
-      {dem::Termination::kInterrupted, "interrupted", "stopped on request; continue with --restart"},
+      {dem::Termination::kInterrupted, "interrupted",
+       "stopped on request; continue with --restart"},
       {dem::Termination::kFailed, "failed", "a numerical failure; results up to it are kept"},
   };
 };

@@ -32,8 +32,8 @@ TEST(AsymptotePredictor, HypoplasticInversionMatchesTheConstitutiveLibrary) {
   const auto model = MakeModel(ModelKind::kHypoplasticClay, truth, &why);
   ASSERT_TRUE(model) << why;
   AsymptotePredictor predictor(ModelKind::kHypoplasticClay, PredictorOptions());
-  const std::vector<double> directions = {-40 * kDegree, 0.0, 30 * kDegree, 60 * kDegree,
-                                          90 * kDegree, 105 * kDegree, 120 * kDegree};
+  const std::vector<double> directions = {-40 * kDegree, 0.0,           30 * kDegree, 60 * kDegree,
+                                          90 * kDegree,  105 * kDegree, 120 * kDegree};
   std::vector<Prediction> by_e, by_s;
   ASSERT_TRUE(predictor.Predict(truth, directions, {}, &by_e, &by_s, &why)) << why;
   for (size_t k = 0; k < directions.size(); ++k) {

@@ -19,7 +19,8 @@ namespace {
 ModelParameters StartAwayFrom(ModelKind kind, const std::vector<double>& truth) {
   ModelParameters parameters = ModelParameters::Defaults(kind);
   const double factors[] = {1.15, 0.8, 1.4, 0.95, 1.3};
-  for (int i = 0; i < kNumParameters; ++i) parameters.mutable_specs()[i].value = truth[i] * factors[i];
+  for (int i = 0; i < kNumParameters; ++i)
+    parameters.mutable_specs()[i].value = truth[i] * factors[i];
   return parameters;
 }
 
@@ -30,10 +31,10 @@ void ExpectRecovered(const FitResult& fit, const std::vector<double>& truth) {
     const int i = fit.free_indices[k];
     EXPECT_TRUE(std::isfinite(fit.standard_errors[k])) << i;
     EXPECT_GT(fit.standard_errors[k], 0.0) << i;
-    EXPECT_LE(fit.lower_95[k], truth[i]) << "parameter " << i << ": " << fit.values[i] << " ± "
-                                         << fit.standard_errors[k];
-    EXPECT_GE(fit.upper_95[k], truth[i]) << "parameter " << i << ": " << fit.values[i] << " ± "
-                                         << fit.standard_errors[k];
+    EXPECT_LE(fit.lower_95[k], truth[i])
+        << "parameter " << i << ": " << fit.values[i] << " ± " << fit.standard_errors[k];
+    EXPECT_GE(fit.upper_95[k], truth[i])
+        << "parameter " << i << ": " << fit.values[i] << " ± " << fit.standard_errors[k];
     // The interval is informative: narrower than 30 % of the value, except for
     // r or ν, which act on the asymptotes only weakly (through the shear
     // stiffness in the direction of stretching).
@@ -100,8 +101,8 @@ TEST(NloptFitter, GlobalSearchAgreesWithCeresOnHypoplasticData) {
   CalibrationProblem problem(
       {testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, {})},
       ModelParameters::Defaults(ModelKind::kHypoplasticClay), PredictorOptions());
-  const FitResult ceres = CeresFitter(CeresFitter::Options()).Fit(
-      problem, {22.0, 0.1, 0.02, 1.3, 0.4});
+  const FitResult ceres =
+      CeresFitter(CeresFitter::Options()).Fit(problem, {22.0, 0.1, 0.02, 1.3, 0.4});
   NloptFitter::Options options;
   const FitResult global = NloptFitter(options).Fit(problem);
   ExpectRecovered(global, truth);
@@ -110,8 +111,7 @@ TEST(NloptFitter, GlobalSearchAgreesWithCeresOnHypoplasticData) {
     EXPECT_NEAR(global.values[i], ceres.values[i], 0.05 * ceres.standard_errors[k])
         << "parameter " << i;
   }
-  EXPECT_NEAR(global.summary.final_cost, ceres.summary.final_cost,
-              1e-6 * ceres.summary.final_cost);
+  EXPECT_NEAR(global.summary.final_cost, ceres.summary.final_cost, 1e-6 * ceres.summary.final_cost);
 }
 
 TEST(NloptFitter, EveryAlgorithmWithCeresPolishFindsTheCamClayOptimum) {
@@ -121,8 +121,8 @@ TEST(NloptFitter, EveryAlgorithmWithCeresPolishFindsTheCamClayOptimum) {
   CalibrationProblem problem(
       {testing::MakeSyntheticDataset(ModelKind::kModifiedCamClay, truth, data)},
       ModelParameters::Defaults(ModelKind::kModifiedCamClay), PredictorOptions());
-  const FitResult ceres = CeresFitter(CeresFitter::Options()).Fit(
-      problem, {30.0, 0.1, 0.01, 1.25, 0.3});
+  const FitResult ceres =
+      CeresFitter(CeresFitter::Options()).Fit(problem, {30.0, 0.1, 0.01, 1.25, 0.3});
   for (GlobalAlgorithm algorithm : {GlobalAlgorithm::kCrs2, GlobalAlgorithm::kIsres,
                                     GlobalAlgorithm::kDirectL, GlobalAlgorithm::kMlsl}) {
     NloptFitter::Options options;

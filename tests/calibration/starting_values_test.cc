@@ -25,8 +25,8 @@ TEST(StartingValues, RecoverExactLinesAndTheCriticalStateAngle) {
   const double lambda = 0.11, n = 1.375, kappa = 0.016, phi = 22.6 * kDegree;
   for (double p : {50.0, 100.0, 200.0, 400.0}) {
     d.points.push_back(Point(StateKind::kNcl, p, n - lambda * std::log(p), 0.0));
-    d.points.push_back(Point(StateKind::kCsl, p, n - lambda * std::log(2 * p),
-                             CriticalStatePsiSigma(phi)));
+    d.points.push_back(
+        Point(StateKind::kCsl, p, n - lambda * std::log(2 * p), CriticalStatePsiSigma(phi)));
   }
   for (double p : {400.0, 200.0, 100.0}) {
     d.points.push_back(Point(StateKind::kUnloading, p, 0.7 - kappa * std::log(p), 0.0));

@@ -21,7 +21,7 @@ namespace granasym::calibration::testing {
 struct SyntheticOptions {
   std::vector<double> psi_epsilons_deg = {0, 30, 60, 80, 90, 100, 110, -30};
   std::vector<double> pressures_kpa = {50, 100, 200, 400, 800, 1600};
-  double psi_sigma_noise_deg = 0.3;     // standard deviation
+  double psi_sigma_noise_deg = 0.3;  // standard deviation
   double ln_volume_noise = 0.002;
   unsigned seed = 7;
 };

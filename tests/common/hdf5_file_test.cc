@@ -49,7 +49,10 @@ TEST(Hdf5File, RoundTripsDatasetsStringsAndAttributes) {
 
 TEST(Hdf5File, UncommittedFileLeavesNothingBehind) {
   const std::string path = TempPath("uncommitted.h5");
-  { Hdf5File file = Hdf5File::CreateAtomic(path); file.WriteDoubles("x", {1.0}); }
+  {
+    Hdf5File file = Hdf5File::CreateAtomic(path);
+    file.WriteDoubles("x", {1.0});
+  }
   EXPECT_FALSE(std::filesystem::exists(path));
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
 }

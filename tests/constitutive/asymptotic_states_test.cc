@@ -67,8 +67,8 @@ TEST_P(Fig5Paths, ReachTheAnalyticAsymptoteFromDifferentInitialStates) {
   struct Start {
     double p, psi_sigma, ocr;
   };
-  for (const Start& start : {Start{100.0, 0.0, 1.0}, Start{100.0, 0.0, 8.0},
-                             Start{300.0, -0.2, 3.0}}) {
+  for (const Start& start :
+       {Start{100.0, 0.0, 1.0}, Start{100.0, 0.0, 8.0}, Start{300.0, -0.2, 3.0}}) {
     const ModelState initial = InitialStateFromOcr(model, start.p, start.psi_sigma, start.ocr);
     const IntegratedAsymptote integrated = IntegrateAsymptote(model, initial, psi_epsilon, options);
     ASSERT_TRUE(integrated.found) << GetParam().name << ": " << integrated.summary.Report();

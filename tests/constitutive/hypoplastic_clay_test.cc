@@ -49,7 +49,8 @@ TEST(HypoplasticClay, IsotropicNormalCompressionFollowsTheNcl) {
   const auto& p = model.parameters();
   for (const ElementTestRecord& record : result.history) {
     const double mean = RecordStress(record).mean();
-    EXPECT_NEAR(std::log1p(record.void_ratio), p.n_intercept - p.lambda_star * std::log(mean), 1e-8);
+    EXPECT_NEAR(std::log1p(record.void_ratio), p.n_intercept - p.lambda_star * std::log(mean),
+                1e-8);
     EXPECT_NEAR(RecordStress(record).deviator() / mean, 0.0, 1e-12);
   }
   // The stop lands on the target, not the nearest step.
@@ -119,8 +120,8 @@ TEST(HypoplasticClay, IsochoricShearReachesTheCriticalState) {
     const ModelState initial = InitialStateFromOcr(model, 100.0, 0.0, ocr);
     const IntegratedAsymptote asymptote = IntegrateAsymptote(model, initial, kPi / 2, options);
     ASSERT_TRUE(asymptote.found) << asymptote.summary.Report();
-    EXPECT_NEAR(asymptote.state.stress_ratio,
-                CriticalStateRatio(model.critical_friction_angle()), 1e-7);
+    EXPECT_NEAR(asymptote.state.stress_ratio, CriticalStateRatio(model.critical_friction_angle()),
+                1e-7);
     EXPECT_NEAR(asymptote.state.ocr, 2.0, 1e-7);  // p = p_e/2
   }
 }

@@ -13,7 +13,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
-
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -246,8 +245,7 @@ struct FuzzTotals {
   double worst_excursion = 0.0;
 };
 
-void FuzzModel(const ConstitutiveModel& model, long paths, unsigned long seed,
-               FuzzTotals* totals) {
+void FuzzModel(const ConstitutiveModel& model, long paths, unsigned long seed, FuzzTotals* totals) {
   std::mt19937_64 rng(seed);
   const long only_path = EnvironmentCount("GRANASYM_FUZZ_ONLY", -1);
   for (long path = 0; path < paths; ++path) {
@@ -302,17 +300,17 @@ void FuzzModel(const ConstitutiveModel& model, long paths, unsigned long seed,
       ModelState recorded;
       recorded.stress = ToVector(FlipSign(record.stress));
       recorded.void_ratio = record.void_ratio;
-      recorded.internal = Eigen::Map<const Eigen::VectorXd>(record.internal.data(),
-                                                            record.internal.size());
+      recorded.internal =
+          Eigen::Map<const Eigen::VectorXd>(record.internal.data(), record.internal.size());
       ASSERT_TRUE(model.IsAdmissible(recorded, &why))
           << "record at t = " << record.time << ": " << why;
       const double excursion = BoundaryExcursion(model, record);
       if (std::getenv("GRANASYM_FUZZ_DUMP") != nullptr) {
-        std::printf("  stage %d t=%.9g sigma_a=%.9g sigma_r=%.9g e=%.9g internal0=%.9g "
-                    "excursion=%.6g\n",
-                    record.stage, record.time, RecordStress(record).axial,
-                    RecordStress(record).radial, record.void_ratio,
-                    record.internal.empty() ? 0.0 : record.internal[0], excursion);
+        std::printf(
+            "  stage %d t=%.9g sigma_a=%.9g sigma_r=%.9g e=%.9g internal0=%.9g "
+            "excursion=%.6g\n",
+            record.stage, record.time, RecordStress(record).axial, RecordStress(record).radial,
+            record.void_ratio, record.internal.empty() ? 0.0 : record.internal[0], excursion);
       }
       totals->worst_excursion = std::max(totals->worst_excursion, excursion);
       ASSERT_LE(excursion, model.kind() == ModelKind::kHypoplasticClay ? SbsTolerance(options)
@@ -356,8 +354,8 @@ TEST(HypoplasticClay, StressControlledLimitPointOvershootsTheSbs) {
   const HypoplasticClay model(testing_models::LondonClay());
   const ModelState initial = InitialStateFromOcr(model, 53.802078845170875,
                                                  33.948080025216981 * kDegree, 14.322735109106489);
-  LoadingStage shear = LoadingStage::Proportional(151.26763648132192 * kDegree, 1.0,
-                                                  0.067987869252319061);
+  LoadingStage shear =
+      LoadingStage::Proportional(151.26763648132192 * kDegree, 1.0, 0.067987869252319061);
   shear.output_points = 8;
   LoadingStage mixed;
   mixed.control.fill(ComponentControl::kStressRate);
@@ -512,9 +510,9 @@ TEST(PathFuzzingRegression, ErrorControlFollowsTheSmallestPrincipalStress) {
   const HypoplasticClay model(testing_models::LondonClay());
   const ModelState initial = InitialStateFromOcr(model, 895.61096709664491,
                                                  34.508419200350303 * kDegree, 9.8715171431262867);
-  LoadingStage radial = MixedStage("dssddd", {-0.62536211045767942, -7932.4157229989778,
-                                              -7932.4157229989778, 0, 0, 0},
-                                   0.019187834483790297);
+  LoadingStage radial = MixedStage(
+      "dssddd", {-0.62536211045767942, -7932.4157229989778, -7932.4157229989778, 0, 0, 0},
+      0.019187834483790297);
   const LoadingStage unload = LoadingStage::Oedometric(-1.0, 0.091478121039077834);
   ElementTestOptions reference_options;
   reference_options.integrator.relative_tolerance = 1e-10;
@@ -558,8 +556,8 @@ TEST(PathFuzzingRegression, StopsLandOnIntegratedStates) {
   const ModelState initial = InitialStateFromOcr(model, 437.19097881958049,
                                                  29.148624549956615 * kDegree, 2.9750876108862343);
   const double target = 3.831893881180982;
-  LoadingStage shear = LoadingStage::Proportional(-68.401558883291713 * kDegree, 1.0,
-                                                  0.001685027937669828);
+  LoadingStage shear =
+      LoadingStage::Proportional(-68.401558883291713 * kDegree, 1.0, 0.001685027937669828);
   shear.output_points = 8;
   LoadingStage unload = LoadingStage::IsotropicToMeanStress(target, 1.0);
   unload.output_points = 8;
@@ -599,7 +597,10 @@ TEST(PathFuzzingRegression, CamClayStressControlStopsAtTheLimitPoint) {
     std::vector<LoadingStage> stages;
   };
   const Case cases[] = {
-      {0.019041026284733444, 17.018195242161667, 3.1724455716958246, 1.7827299531986861e-05,
+      {0.019041026284733444,
+       17.018195242161667,
+       3.1724455716958246,
+       1.7827299531986861e-05,
        {MixedStage("dsdsds",
                    {0.061735821921338419, 0.055107280899285863, -0.68413930576637083,
                     -0.030661326556623906, 0.54251759841672098, 0.049295005930512774},
@@ -612,7 +613,10 @@ TEST(PathFuzzingRegression, CamClayStressControlStopsAtTheLimitPoint) {
                    {0.031479934718346557, -0.012329563228994552, 0.84536405172562845,
                     0.54586367787239953, 0.04956459775870032, 0.081374034469560347},
                    0.36623965512622425)}},
-      {0.85117879554377374, 1.5956256155777835, 25.43485929556925, 7.0380439681430398e-06,
+      {0.85117879554377374,
+       1.5956256155777835,
+       25.43485929556925,
+       7.0380439681430398e-06,
        {LoadingStage::ConstantRadialStress(-1.0, 0.20978202982235572),
         MixedStage("sddddd",
                    {1.4390775583658928, -0.4360147531052081, -0.072188519928943595,
@@ -652,7 +656,8 @@ TEST(ElementTestLimitPoint, StressControlledTriaxialEndsAtTheCriticalState) {
   for (const ConstitutiveModel* model :
        std::initializer_list<const ConstitutiveModel*>{&cam_clay, &hypoplastic}) {
     const ModelState initial = InitialStateFromOcr(*model, 100.0, 0.0, 1.0001);
-    const ElementTestResult result = ElementTest(*model, ElementTestOptions()).Run(initial, {stage});
+    const ElementTestResult result =
+        ElementTest(*model, ElementTestOptions()).Run(initial, {stage});
     EXPECT_FALSE(result.summary.success()) << ToString(model->kind());
     EXPECT_NE(result.summary.message.find("limit point"), std::string::npos)
         << result.summary.message;

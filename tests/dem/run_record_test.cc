@@ -156,8 +156,7 @@ TEST_F(Fork, BadParentsAreRejectedWithTheReason) {
 TEST(ForkWithAnotherMaterial, StartsTheHistoriesTheParentDidNotKeepFromZero) {
   // A frictionless parent keeps no shear history; the child adds friction and
   // rolling resistance, so both histories start at zero in every pair.
-  RunToFile(SampleToml(300, 3.9, 8) + "[material]\nfriction_angle_rad = 0.0\n" + kOutput +
-                kStageA,
+  RunToFile(SampleToml(300, 3.9, 8) + "[material]\nfriction_angle_rad = 0.0\n" + kOutput + kStageA,
             "fork_frictionless_parent");
   std::string child = ForkScene("fork_frictionless_parent", "");
   child += "[material]\nfriction_angle_rad = 0.5\nrolling_friction = 0.1\n";
