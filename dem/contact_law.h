@@ -190,9 +190,8 @@ class IncrementalShearLaw {
 
   // Same physics as Evaluate (tests compare the two) on `count` pairs of `b`;
   // the Coulomb cap is branch-free.
-  // (Inlined into the pair loop, as the loop it replaced was.)
   template <bool kFriction>
-  GRANASYM_ALWAYS_INLINE void EvaluateBatch(ContactBatch& b, int count) const {
+  void EvaluateBatch(ContactBatch& b, int count) const {
     const Law& law = static_cast<const Law&>(*this);
     const double ratio = law.tangential_ratio();
     const double mu = law.friction_coefficient();

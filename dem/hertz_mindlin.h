@@ -1,21 +1,22 @@
-// Hertz–Mindlin contact between equal elastic-frictional spheres (SPEC §8.1).
+// Hertz–Mindlin contact between spheres of one elastic-frictional material
+// (SPEC §8.1).
 //
 //   E* = E/(2(1 − ν²)),  G* = G/(2(2 − ν)),  G = E/(2(1 + ν)),  R* = r_i r_j/(r_i + r_j),
 //   F_n = (4/3) E* √R* u_N^{3/2},  k_n = dF_n/du_N = 2 E* √(R* u_N),
 //   k_t = 8 G* √(R* u_N) = (4G*/E*) k_n = 2(1 − ν)/(2 − ν) k_n  (no-slip Mindlin),
 // with k_t used incrementally exactly as the linear law's k_s (the stored
 // force is rotated with the contact and incremented by k_t Δt v_t, then capped
-// at μ F_n; IncrementalShearLaw, contact_law.h). As in Yade's and LIGGGHTS'
-// default Hertz–Mindlin, the stored force is not rescaled when k_t changes
-// with the overlap: a loading–unloading cycle with shear can then release
-// slightly more or less energy than it stored (Thornton et al. 2013).
+// at μ F_n; IncrementalShearLaw, contact_law.h). The stored force is not
+// rescaled when k_t changes with the overlap (codes that store the tangential
+// displacement instead rescale it implicitly): a loading–unloading cycle with
+// shear can then release slightly more or less energy than it stored.
 //
 // Durations. A Hertz contact has no overlap-independent duration:
 //   t_c = 2.868 (m*²/(R* E*² v))^{1/5}  at normal impact speed v
 // (2.868 = 2.9433 (15/16)^{2/5}; SPEC rounds it to 2.87). The duration fields
 // of ContactDurations use the reference speed kReferenceImpactSpeed = 1 m/s
-// (relative speeds of grains at ‖D‖ = 167 1/s are ~0.2 m/s, whose durations
-// are 1.4 times longer: the reference is on the safe side). The stability
+// (neighbours at ‖D‖ = 167 1/s approach at about ‖D‖ d ≤ 0.2 m/s, and their
+// contacts last 1.4 times longer: the reference is on the safe side). The stability
 // limit uses the stiffness k_n at the relative overlap
 // u_N/(r_i + r_j) = kStabilityRelativeOverlap = 0.1, the overlap beyond which
 // results are unreliable anyway (SPEC §8.3); a contact overlapping less is

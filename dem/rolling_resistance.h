@@ -100,7 +100,7 @@ class RollingResistance {
   }
 
   template <bool kFriction>
-  GRANASYM_ALWAYS_INLINE void EvaluateBatch(ContactBatch& b, int count) const {
+  void EvaluateBatch(ContactBatch& b, int count) const {
     static_assert(kFriction, "rolling resistance needs friction (spins)");
     law_.template EvaluateBatch<kFriction>(b, count);
     const double mu_r = params_.rolling_friction;

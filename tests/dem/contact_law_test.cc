@@ -331,8 +331,7 @@ Impact HeadOnImpact(const Material& material, double r_i, double r_j, double spe
   return impact;
 }
 
-TEST(HertzMindlin, HeadOnImpactLastsTheHertzDurationAndConservesEnergy) {
-  const Material material = Elastic(ContactLaw::kHertzMindlin);  // friction on, head-on
+void CheckHeadOnImpact(const Material& material) {
   const double r_i = 0.5e-3, r_j = 0.3e-3, speed = 0.1;
   const double m_i = SphereMass(r_i, material.density), m_j = SphereMass(r_j, material.density);
   const double m_star = m_i * m_j / (m_i + m_j), r_star = r_i * r_j / (r_i + r_j);
@@ -346,6 +345,14 @@ TEST(HertzMindlin, HeadOnImpactLastsTheHertzDurationAndConservesEnergy) {
   EXPECT_NEAR(impact.duration, expected * 2.8682657 / 2.87, 3 * expected / 2000);
   EXPECT_NEAR(impact.energy_after / impact.energy_before, 1.0, 1e-6);
   EXPECT_NEAR(impact.restitution, 1.0, 1e-6);
+}
+
+TEST(HertzMindlin, HeadOnImpactLastsTheHertzDurationAndConservesEnergy) {
+  // With friction (head-on: no shear) and without (the frictionless kernels).
+  for (double friction_angle : {0.5, 0.0}) {
+    SCOPED_TRACE(friction_angle);
+    CheckHeadOnImpact(Elastic(ContactLaw::kHertzMindlin, friction_angle));
+  }
 }
 
 TEST(HertzMindlin, ContactDurationIsTheImpactAtTheReferenceSpeed) {
