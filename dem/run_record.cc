@@ -331,6 +331,7 @@ void WriteSummary(Hdf5File& file, const RunSummary& summary, const ContactDurati
   file.SetAttribute(s, kContactDurationMinSingle, durations.smallest_single_mass);
   file.SetAttribute(s, kContactDurationMaxSingle, durations.largest_single_mass);
   file.SetAttribute(s, kCriticalTimeStep, durations.critical_time_step);
+  file.SetAttribute(s, kContactDurationDescription, durations.description);
   file.SetAttribute(s, kTimeStepOverContactDuration,
                     summary.time_step / durations.smallest_reduced_mass);
 }

@@ -90,6 +90,7 @@ inline constexpr char kContactDurationMaxReduced[] = "contact_duration_max_reduc
 inline constexpr char kContactDurationMinSingle[] = "contact_duration_min_single_mass_s";
 inline constexpr char kContactDurationMaxSingle[] = "contact_duration_max_single_mass_s";
 inline constexpr char kCriticalTimeStep[] = "critical_time_step_s";
+inline constexpr char kContactDurationDescription[] = "contact_duration_description";
 inline constexpr char kTimeStepOverContactDuration[] = "time_step_over_min_contact_duration";
 
 // A packing (/sample, /final_state): datasets.

@@ -126,6 +126,30 @@ TEST(Simulation, RestartContinuesBitIdentically) {
   EXPECT_EQ(resumed.positions, straight.positions);
 }
 
+TEST(Simulation, AHertzMindlinRunWithRollingResistanceRestartsBitIdentically) {
+  // The rolling-moment history travels through the checkpoint like the shear history.
+  const std::string text = SampleToml(600, 4.9, 7) +
+                           "[material]\ncontact_law = 'hertz_mindlin'\npoissons_ratio = 0.25\n"
+                           "rolling_friction = 0.1\n" +
+                           kMultiStage;
+  const Result straight = RunText(text, "hertz_straight");
+  ASSERT_EQ(straight.summary.termination, Termination::kCompleted) << straight.summary.message;
+  RunOptions first;
+  const int64_t stop_at = straight.summary.steps - 500;
+  first.stop_requested = [stop_at](int64_t step) { return step >= stop_at; };
+  const Result interrupted = RunText(text, "hertz_restarted", first);
+  ASSERT_EQ(interrupted.summary.termination, Termination::kInterrupted);
+  RunOptions second;
+  second.restart = true;
+  const Result resumed = RunText(text, "hertz_restarted", second);
+  ASSERT_EQ(resumed.summary.termination, Termination::kCompleted) << resumed.summary.message;
+  for (const auto& column : straight.series.columns()) {
+    EXPECT_EQ(resumed.series.Values(column.name), straight.series.Values(column.name))
+        << column.name;
+  }
+  EXPECT_EQ(resumed.positions, straight.positions);
+}
+
 TEST(Simulation, AStopRequestWritesACheckpointAndTheRunContinuesFromIt) {
   const std::string text = SampleToml(1000, 5.8, 9) + kMultiStage;
   const Scene scene = Scene::Parse(text, "stop_request.toml", "");
@@ -292,6 +316,8 @@ steps = 500
       file.ReadDoubleAttribute("/summary", "contact_duration_min_reduced_mass_s");
   EXPECT_NEAR(single / reduced, std::sqrt(2.0), 1e-12);
   EXPECT_NEAR(single, 1.5e-6, 0.1e-6);
+  EXPECT_NE(file.ReadStringAttribute("/summary", "contact_duration_description").find("linear"),
+            std::string::npos);
   EXPECT_EQ(file.ReadString("/scene"), text);
   const Packing final_packing = ReadResultPacking(TempPath("layout.h5"), "/final_state");
   EXPECT_EQ(final_packing.size(), 1000u);
