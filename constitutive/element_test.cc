@@ -864,6 +864,8 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
     summary.message = "initial state: " + why;
     return result;
   }
+  summary.termination = TerminationType::kReachedEnd;
+  summary.message.clear();
   const int num_internal = model_.num_internal();
   std::vector<double> y(kInternal + num_internal, 0.0);
   for (int i = 0; i < 6; ++i) y[kStress + i] = initial.stress[i];

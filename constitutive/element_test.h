@@ -177,11 +177,14 @@ struct StageSummary {
 };
 
 struct ElementTestSummary {
-  TerminationType termination = TerminationType::kReachedEnd;
-  std::string message;
+  TerminationType termination = TerminationType::kNotRun;
+  std::string message = "not run";
   IntegrationSummary totals;  // counters over all stages
   std::vector<StageSummary> stages;
-  bool success() const { return termination != TerminationType::kFailure; }
+  bool success() const {
+    return termination == TerminationType::kReachedEnd ||
+           termination == TerminationType::kRootFound;
+  }
   std::string Report() const;  // one line
 };
 

@@ -38,13 +38,14 @@ struct EnumNames<JacobianKind> {
   };
 };
 
-enum class TerminationType { kReachedEnd, kRootFound, kFailure };
+enum class TerminationType { kReachedEnd, kRootFound, kFailure, kNotRun };
 template <>
 struct EnumNames<TerminationType> {
   static constexpr EnumEntry<TerminationType> kEntries[] = {
       {TerminationType::kReachedEnd, "reached_end", "integrated to the end time"},
       {TerminationType::kRootFound, "root_found", "stopped at the crossing of a root function"},
       {TerminationType::kFailure, "failure", "the integrator failed (see the message)"},
+      {TerminationType::kNotRun, "not_run", "not started"},
   };
 };
 

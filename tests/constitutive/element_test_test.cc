@@ -139,5 +139,11 @@ TEST(ElementTest, ExtensionToTensionEndsInAReportedFailureWithFiniteRecords) {
   }
 }
 
+TEST(ElementTest, ASummaryStartsAsNotRun) {
+  const ElementTestSummary summary;
+  EXPECT_EQ(summary.termination, TerminationType::kNotRun);
+  EXPECT_FALSE(summary.success());
+}
+
 }  // namespace
 }  // namespace granasym

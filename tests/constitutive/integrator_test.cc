@@ -83,7 +83,8 @@ TEST(Integrator, NamesAreSpelledAsInFilesAndResults) {
       {{JacobianKind::kExact, "exact"}, {JacobianKind::kFiniteDifference, "finite_difference"}});
   ExpectSpellings<TerminationType>({{TerminationType::kReachedEnd, "reached_end"},
                                     {TerminationType::kRootFound, "root_found"},
-                                    {TerminationType::kFailure, "failure"}});
+                                    {TerminationType::kFailure, "failure"},
+                                    {TerminationType::kNotRun, "not_run"}});
 }
 
 struct OrderCase {
