@@ -318,12 +318,12 @@ void Simulation::LoadCheckpoint() {
                      "' (it is written next to --out during a run)");
   }
   const Hdf5File file = Hdf5File::OpenRead(path);
-  if (ReadProvenance(file).scene_sha256 != provenance_.scene_sha256) {
+  const Provenance saved = ReadProvenance(file);
+  if (saved.scene_sha256 != provenance_.scene_sha256) {
     throw InputError("--restart: the scene '" + scene_.origin +
                      "' differs from the scene of the checkpoint '" + path +
                      "': restart with the same scene");
   }
-  const Provenance saved = ReadProvenance(file);
   provenance_.start_kind = saved.start_kind;
   provenance_.start_sha256 = saved.start_sha256;
   provenance_.parent_file = saved.parent_file;

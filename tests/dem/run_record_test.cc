@@ -171,6 +171,38 @@ TEST(ForkWithAnotherMaterial, StartsTheHistoriesTheParentDidNotKeepFromZero) {
   EXPECT_GT(largest, 0.0);  // the child's contacts built up shear forces
 }
 
+TEST(Provenance, ARestartWithAnotherSceneIsRejected) {
+  const std::string text = SampleToml(300, 3.9, 6) + kOutput + kStageA;
+  RunOptions options;
+  options.output_path = TempPath("restart_other_scene.h5");
+  options.stop_requested = [](int64_t step) { return step >= 200; };
+  ASSERT_EQ(RunScene(Scene::Parse(text, "a.toml", ""), options).termination,
+            Termination::kInterrupted);
+  options.stop_requested = nullptr;
+  options.restart = true;
+  // Comments and layout do not matter; a changed value does.
+  EXPECT_EQ(RunScene(Scene::Parse("# same\n" + text, "a.toml", ""), options).termination,
+            Termination::kCompleted);
+  ASSERT_EQ(RunScene(Scene::Parse(text, "a.toml", ""),
+                     [&] {
+                       RunOptions again = options;
+                       again.restart = false;
+                       again.stop_requested = [](int64_t step) { return step >= 200; };
+                       return again;
+                     }())
+                .termination,
+            Termination::kInterrupted);
+  const std::string other = SampleToml(300, 3.9, 6) + kOutput + testing::NclStage(160.0);
+  try {
+    RunScene(Scene::Parse(other, "b.toml", ""), options);
+    ADD_FAILURE() << "a restart with another scene was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("differs from the scene of the checkpoint"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(Provenance, TheSceneHashIgnoresFormattingAndExplicitDefaults) {
   const std::string base = SampleToml(200, 3.5, 1) + kOutput + kStageA;
   const Scene a = Scene::Parse(base, "a.toml", "");
