@@ -15,9 +15,16 @@
 #include "dem/material.h"
 #include "dem/packing.h"
 #include "dem/rolling_resistance.h"
+#include "two_spheres.h"
 
 namespace granasym::dem {
 namespace {
+
+using testing::HeadOnImpact;
+using testing::Impact;
+using testing::Slot;
+using testing::StepOptions;
+using testing::TwoSpheres;
 
 Material Elastic(ContactLaw law, double friction_angle = 0.5, double rolling_friction = 0.0) {
   Material material;
@@ -26,29 +33,6 @@ Material Elastic(ContactLaw law, double friction_angle = 0.5, double rolling_fri
   material.rolling_friction = rolling_friction;
   material.local_damping = 0.0;
   return material;
-}
-
-Packing TwoSpheres(std::array<double, 3> a, std::array<double, 3> b, double radius_a,
-                   double radius_b, double side = 0.02) {
-  Packing packing;
-  packing.cell = {side, side, side};
-  packing.positions = {a, b};
-  packing.radii = {radius_a, radius_b};
-  return packing;
-}
-
-Engine::Options StepOptions(double dt) {
-  Engine::Options options;
-  options.time_step = dt;
-  return options;
-}
-
-// Index in the engine of the sphere with input index `id`.
-size_t Slot(const Engine& engine, int64_t id) {
-  for (size_t k = 0; k < engine.size(); ++k) {
-    if (engine.ids()[k] == id) return k;
-  }
-  return engine.size();
 }
 
 // Two spheres overlapping by `overlap` along x, at rest.
@@ -296,39 +280,6 @@ TEST(HertzMindlin, StressAndAffineStiffnessSumsUseTheForceAndTheTangentStiffness
   EXPECT_NEAR(engine.sums().stiffness[0], expected, 1e-12 * expected);
   for (int k = 1; k < 6; ++k) EXPECT_EQ(engine.sums().stiffness[k], 0.0);
   EXPECT_NEAR(normal.stiffness, 1.5 * normal.force / overlap, 1e-12 * normal.stiffness);
-}
-
-// A head-on impact of two free spheres at relative speed `speed`: the number
-// of steps in contact times Δt, and the kinetic energies before and after.
-struct Impact {
-  double duration, energy_before, energy_after, restitution;
-};
-Impact HeadOnImpact(const Material& material, double r_i, double r_j, double speed, double dt) {
-  const double gap = 1e-3 * (r_i + r_j);
-  Engine engine(TwoSpheres({0.008, 0.01, 0.01}, {0.008 + r_i + r_j + gap, 0.01, 0.01}, r_i, r_j),
-                material, StepOptions(dt));
-  engine.SetVelocity(Slot(engine, 0), {0.5 * speed, 0, 0});
-  engine.SetVelocity(Slot(engine, 1), {-0.5 * speed, 0, 0});
-  Impact impact{};
-  impact.energy_before = KineticEnergy(engine);
-  int contact_steps = 0;
-  bool touched = false;
-  for (int step = 0; step < 10000000; ++step) {
-    engine.Step({true, false});
-    if (engine.sums().contacts > 0) {
-      ++contact_steps;
-      touched = true;
-    } else if (touched) {
-      break;
-    }
-  }
-  EXPECT_TRUE(touched);
-  impact.duration = contact_steps * dt;
-  impact.energy_after = KineticEnergy(engine);
-  const double approach =
-      engine.velocities()[Slot(engine, 0)].x - engine.velocities()[Slot(engine, 1)].x;
-  impact.restitution = -approach / speed;
-  return impact;
 }
 
 void CheckHeadOnImpact(const Material& material) {

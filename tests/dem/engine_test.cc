@@ -6,9 +6,16 @@
 
 #include "dem/contact_statistics.h"
 #include "dem/packing.h"
+#include "two_spheres.h"
 
 namespace granasym::dem {
 namespace {
+
+using testing::HeadOnImpact;
+using testing::Impact;
+using testing::Slot;
+using testing::StepOptions;
+using testing::TwoSpheres;
 
 Material Elastic(double friction_angle = 0.0) {
   Material material;
@@ -18,30 +25,6 @@ Material Elastic(double friction_angle = 0.0) {
   material.density = 2650.0;
   material.local_damping = 0.0;
   return material;
-}
-
-Packing TwoSpheres(std::array<double, 3> a, std::array<double, 3> b, double radius,
-                   double side = 0.02) {
-  Packing packing;
-  packing.cell = {side, side, side};
-  packing.positions = {a, b};
-  packing.radii = {radius, radius};
-  return packing;
-}
-
-Engine::Options StepOptions(double dt, int threads = 1) {
-  Engine::Options options;
-  options.time_step = dt;
-  options.threads = threads;
-  return options;
-}
-
-// Index in the engine of the sphere with input index `id`.
-size_t Slot(const Engine& engine, int64_t id) {
-  for (size_t k = 0; k < engine.size(); ++k) {
-    if (engine.ids()[k] == id) return k;
-  }
-  return engine.size();
 }
 
 TEST(EngineOptions, DefaultOptionsAreValid) {
@@ -57,28 +40,10 @@ TEST(Engine, TwoSphereNormalImpactIsElasticWithTheAnalyticContactDuration) {
   const double omega = std::sqrt(material.youngs_modulus * r / (0.5 * mass));
   const double contact_duration = kPi / omega;
   const double dt = contact_duration / 2000.0;
-  Engine engine(TwoSpheres({0.008, 0.01, 0.01}, {0.008 + 2 * r + 2e-6, 0.01, 0.01}, r), material,
-                StepOptions(dt));
-  engine.SetVelocity(Slot(engine, 0), {speed, 0, 0});
-  engine.SetVelocity(Slot(engine, 1), {-speed, 0, 0});
-  const double energy_before = KineticEnergy(engine);
-  int contact_steps = 0;
-  bool touched = false;
-  for (int step = 0; step < 200000; ++step) {
-    engine.Step({true, false});
-    if (engine.sums().contacts > 0) {
-      ++contact_steps;
-      touched = true;
-    } else if (touched) {
-      break;
-    }
-  }
-  ASSERT_TRUE(touched);
-  EXPECT_NEAR(contact_steps * dt, contact_duration, 2.0 * dt);
-  const double energy_after = KineticEnergy(engine);
-  EXPECT_NEAR(energy_after / energy_before, 1.0, 1e-6);
-  const double restitution = -engine.velocities()[Slot(engine, 0)].x / speed;
-  EXPECT_NEAR(restitution, 1.0, 1e-6);
+  const Impact impact = HeadOnImpact(material, r, r, 2 * speed, dt);
+  EXPECT_NEAR(impact.duration, contact_duration, 2.0 * dt);
+  EXPECT_NEAR(impact.energy_after / impact.energy_before, 1.0, 1e-6);
+  EXPECT_NEAR(impact.restitution, 1.0, 1e-6);
 }
 
 // Forces on two overlapping spheres placed at `a` and `a + offset`.
@@ -86,7 +51,7 @@ std::array<Vec3, 2> PairForces(std::array<double, 3> a, std::array<double, 3> of
   std::array<double, 3> b = {a[0] + offset[0], a[1] + offset[1], a[2] + offset[2]};
   const double side = 0.01;
   for (double& x : b) x -= side * std::floor(x / side);
-  Engine engine(TwoSpheres(a, b, 0.5e-3, side), Elastic(0.5), StepOptions(1e-8));
+  Engine engine(TwoSpheres(a, b, 0.5e-3, 0.5e-3, side), Elastic(0.5), StepOptions(1e-8));
   engine.SetVelocity(Slot(engine, 1), {0.01, -0.02, 0.03});
   engine.Step({true, false});
   engine.ComputeForces({true, false});
@@ -114,7 +79,7 @@ TEST(Engine, ContactAcrossEachFaceAndCornerEqualsTheSameContactInside) {
 
 TEST(Engine, ASecondEvaluationAtTheSamePositionsDoesNotSlideTheContactsAgain) {
   const double r = 0.5e-3;
-  Engine engine(TwoSpheres({0.004, 0.004, 0.004}, {0.004 + 0.95e-3, 0.0042, 0.004}, r, 0.01),
+  Engine engine(TwoSpheres({0.004, 0.004, 0.004}, {0.004 + 0.95e-3, 0.0042, 0.004}, r, r, 0.01),
                 Elastic(0.5), StepOptions(1e-8));
   engine.SetVelocity(Slot(engine, 1), {0.0, 0.05, 0.01});
   engine.SetSpin(Slot(engine, 0), {0.0, 0.0, 30.0});
@@ -138,8 +103,9 @@ TEST(Engine, ASecondEvaluationAtTheSamePositionsDoesNotSlideTheContactsAgain) {
 
 TEST(Engine, LoveWeberStressOfOneNormalContact) {
   const double r = 0.5e-3, overlap = 2e-6, side = 0.01;
-  Engine engine(TwoSpheres({0.004, 0.005, 0.005}, {0.004 + 2 * r - overlap, 0.005, 0.005}, r, side),
-                Elastic(0.5), StepOptions(1e-8));
+  Engine engine(
+      TwoSpheres({0.004, 0.005, 0.005}, {0.004 + 2 * r - overlap, 0.005, 0.005}, r, r, side),
+      Elastic(0.5), StepOptions(1e-8));
   engine.ComputeForces({true, false});
   const double k_n = 500e6 * r;
   const double expected = k_n * overlap * (2 * r - overlap) / (side * side * side);
