@@ -109,6 +109,24 @@ inline Vec3 CarryWithContact(Vec3 stored, Vec3 rotation, Vec3 normal) {
   return stored - Dot(stored, normal) * normal;
 }
 
+// The geometry of lane k of a batch: |l|, the overlap u_N, 1/((r_i + r_j)|l|)
+// (one division gives both 1/|l| and 1/(r_i + r_j)), 1/|l| and the normal n.
+struct LaneGeometry {
+  double distance, overlap, reciprocal, inverse_distance, nx, ny, nz;
+};
+GRANASYM_ALWAYS_INLINE LaneGeometry ContactGeometryLane(const ContactBatch& b, int k) {
+  LaneGeometry g;
+  g.distance = std::sqrt(b.d2[k]);
+  const double reach = b.ri[k] + b.rj[k];
+  g.overlap = reach - g.distance;
+  g.reciprocal = 1.0 / (reach * g.distance);
+  g.inverse_distance = reach * g.reciprocal;
+  g.nx = g.inverse_distance * b.bx[k];
+  g.ny = g.inverse_distance * b.by[k];
+  g.nz = g.inverse_distance * b.bz[k];
+  return g;
+}
+
 // One lane of ContactRotation for the batch loops (b.bx.. are not read:
 // n and 1/|l| come from the caller).
 GRANASYM_ALWAYS_INLINE void ContactRotationLane(const ContactBatch& b, int k, double nx, double ny,
@@ -198,14 +216,9 @@ class IncrementalShearLaw {
     const double dt = law.time_step();
 #pragma omp simd
     for (int k = 0; k < count; ++k) {
-      const double distance = std::sqrt(b.d2[k]);
-      const double reach = b.ri[k] + b.rj[k];
-      const double overlap = reach - distance;
-      const double reciprocal = 1.0 / (reach * distance);
-      const double inverse_distance = reach * reciprocal;
-      const double nx = inverse_distance * b.bx[k];
-      const double ny = inverse_distance * b.by[k];
-      const double nz = inverse_distance * b.bz[k];
+      const LaneGeometry g = ContactGeometryLane(b, k);
+      const double distance = g.distance, overlap = g.overlap, reciprocal = g.reciprocal;
+      const double inverse_distance = g.inverse_distance, nx = g.nx, ny = g.ny, nz = g.nz;
       const NormalResponse response = law.Normal(b.ri[k], b.rj[k], distance, reciprocal, overlap);
       const double normal_force = response.force;
       double fx = -normal_force * nx, fy = -normal_force * ny, fz = -normal_force * nz;

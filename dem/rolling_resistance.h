@@ -108,14 +108,9 @@ class RollingResistance {
     const double dt = law_.time_step();
 #pragma omp simd
     for (int k = 0; k < count; ++k) {
-      const double distance = std::sqrt(b.d2[k]);
-      const double reach = b.ri[k] + b.rj[k];
-      const double overlap = reach - distance;
-      const double reciprocal = 1.0 / (reach * distance);
-      const double inverse_distance = reach * reciprocal;
-      const double nx = inverse_distance * b.bx[k];
-      const double ny = inverse_distance * b.by[k];
-      const double nz = inverse_distance * b.bz[k];
+      const LaneGeometry g = ContactGeometryLane(b, k);
+      const double distance = g.distance, overlap = g.overlap, reciprocal = g.reciprocal;
+      const double inverse_distance = g.inverse_distance, nx = g.nx, ny = g.ny, nz = g.nz;
       const NormalResponse response = law_.Normal(b.ri[k], b.rj[k], distance, reciprocal, overlap);
       const double reduced_radius = b.ri[k] * b.rj[k] * (distance * reciprocal);
       double rx, ry, rz;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cstring>
+#include <type_traits>
 
 #include "common/error.h"
 #include "common/hdf5_file.h"
@@ -34,7 +35,9 @@ std::vector<Vec> ReadRows(const Hdf5File& file, const std::string& name) {
         fmt::format("{}: {} has {} columns, expected {}", file.path(), name, cols, kWidth<Vec>));
   }
   std::vector<Vec> values(rows);
-  if (rows > 0) std::memcpy(values.data(), flat.data(), flat.size() * sizeof(double));
+  static_assert(std::is_trivially_copyable_v<Vec>, "rows of doubles only");
+  if (rows > 0)
+    std::memcpy(static_cast<void*>(values.data()), flat.data(), flat.size() * sizeof(double));
   return values;
 }
 
