@@ -3,12 +3,13 @@
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "app/progress.h"
+#include "app/signals.h"
+#include "app/study_commands.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/time_series.h"
@@ -25,32 +26,6 @@
 
 namespace granasym {
 namespace {
-
-// SIGINT/SIGTERM ask a running simulation to stop (it checkpoints, writes
-// its results and exits with status 130). The flag is the program's; the
-// libraries only see the stop request of RunOptions.
-volatile std::sig_atomic_t g_interrupt = 0;
-extern "C" void HandleSignal(int) { g_interrupt = 1; }
-
-// Installs the handlers for the duration of a run and restores the previous ones.
-class SignalGuard {
- public:
-  SignalGuard() {
-    g_interrupt = 0;
-    previous_int_ = std::signal(SIGINT, HandleSignal);
-    previous_term_ = std::signal(SIGTERM, HandleSignal);
-  }
-  ~SignalGuard() {
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-  }
-  SignalGuard(const SignalGuard&) = delete;
-  SignalGuard& operator=(const SignalGuard&) = delete;
-
- private:
-  void (*previous_int_)(int);
-  void (*previous_term_)(int);
-};
 
 void RegisterDemCommands(CLI::App& app) {
   CLI::App* dem = app.add_subcommand("dem", "discrete element runs on a periodic cell");
@@ -106,7 +81,7 @@ void RegisterDemCommands(CLI::App& app) {
     progress_options.quiet = quiet;
     Progress progress(progress_options);
     const SignalGuard signals;
-    run_options.stop_requested = [](int64_t) { return g_interrupt != 0; };
+    run_options.stop_requested = [](int64_t) { return InterruptRequested(); };
     if (!quiet) {
       run_options.log = [&progress](const std::string& line) {
         progress.Finish();
@@ -162,6 +137,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   granasym::RegisterDemCommands(app);
   granasym::RegisterExportCommand(app);
+  granasym::RegisterStudyCommands(app);
 #ifdef GRANASYM_HAVE_CONSTITUTIVE
   granasym::RegisterModelCommands(app);
 #endif

@@ -24,24 +24,8 @@ std::string DefaultOutput(const std::string& input) {
 
 void RunTest(const std::string& path, std::string out, const std::string& csv) {
   const ConfigTable root = ConfigTable::ParseFile(path);
-  const std::unique_ptr<ConstitutiveModel> model = ReadModel(root.GetTable("model"));
-  const ModelState initial = ReadInitialState(*model, root.GetTable("initial"));
-  const ElementTestOptions options = root.Has("integration")
-                                         ? ReadElementTestOptions(root.GetTable("integration"))
-                                         : ElementTestOptions();
-  if (options.method == DriveMethod::kStressPoint && model->kind() != ModelKind::kModifiedCamClay) {
-    root.GetTable("integration").Fail("method", "stress_point exists for modified_cam_clay only");
-  }
-  const std::vector<LoadingStage> stages = ReadStages(root);
-  root.CheckNoUnknownKeys();
-
-  const ElementTestResult result = ElementTest(*model, options).Run(initial, stages);
   if (out.empty()) out = DefaultOutput(path);
-  Hdf5File file = Hdf5File::CreateAtomic(out);
-  WriteElementTestResult(*model, result, "/element_test", &file);
-  file.SetAttribute("/element_test", "input", path);
-  file.Commit();
-  if (!csv.empty()) WriteElementTestCsv(result, csv);
+  const ElementTestResult result = RunElementTestInput(root, path, out, csv);
   std::printf("%s\n", result.summary.Report().c_str());
   for (const StageSummary& stage : result.summary.stages) {
     std::printf("  %s: stop %s; %s\n", stage.name.c_str(), stage.stop.c_str(),

@@ -212,6 +212,23 @@ void Hdf5File::WriteString(const std::string& name, const std::string& value) {
   }
 }
 
+void Hdf5File::WriteStrings(const std::string& name, const std::vector<std::string>& values) {
+  const hsize_t size = values.size();
+  Handle space(H5Screate_simple(1, &size, nullptr), H5Sclose);
+  Handle type = StringType();
+  Handle lcpl = CreateLinkProperties();
+  Handle dataset(
+      H5Dcreate2(id_, name.c_str(), type.get(), space.get(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT),
+      H5Dclose);
+  if (!dataset.valid()) Fail("H5Dcreate2", path_, name);
+  std::vector<const char*> texts;
+  for (const std::string& value : values) texts.push_back(value.c_str());
+  if (!texts.empty() &&
+      H5Dwrite(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, texts.data()) < 0) {
+    Fail("H5Dwrite", path_, name);
+  }
+}
+
 void Hdf5File::CreateGroup(const std::string& name) {
   if (Exists(name)) return;
   Handle lcpl = CreateLinkProperties();
@@ -311,6 +328,26 @@ std::string Hdf5File::ReadString(const std::string& name) const {
   std::string value = text ? text : "";
   H5free_memory(text);
   return value;
+}
+
+std::vector<std::string> Hdf5File::ReadStrings(const std::string& name) const {
+  Handle dataset(H5Dopen2(id_, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!dataset.valid()) Fail("H5Dopen2", path_, name);
+  Handle space(H5Dget_space(dataset.get()), H5Sclose);
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (count < 0) Fail("H5Sget_simple_extent_npoints", path_, name);
+  std::vector<char*> texts(static_cast<size_t>(count), nullptr);
+  Handle type = StringType();
+  if (count > 0 &&
+      H5Dread(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, texts.data()) < 0) {
+    Fail("H5Dread", path_, name);
+  }
+  std::vector<std::string> values;
+  for (char* text : texts) {
+    values.emplace_back(text ? text : "");
+    H5free_memory(text);
+  }
+  return values;
 }
 
 bool Hdf5File::HasAttribute(const std::string& object, const std::string& name) const {

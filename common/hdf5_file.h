@@ -42,6 +42,8 @@ class Hdf5File {
   void WriteInts(const std::string& name, const std::vector<int64_t>& values,
                  const std::string& units = "");
   void WriteString(const std::string& name, const std::string& value);
+  // A one-dimensional dataset of variable-length UTF-8 strings (a text column).
+  void WriteStrings(const std::string& name, const std::vector<std::string>& values);
   void CreateGroup(const std::string& name);
   void SetAttribute(const std::string& object, const std::string& name, double value);
   void SetAttribute(const std::string& object, const std::string& name, int64_t value);
@@ -58,6 +60,7 @@ class Hdf5File {
   std::vector<double> ReadMatrix(const std::string& name, size_t* rows, size_t* cols) const;
   std::vector<int64_t> ReadInts(const std::string& name) const;
   std::string ReadString(const std::string& name) const;
+  std::vector<std::string> ReadStrings(const std::string& name) const;
   bool HasAttribute(const std::string& object, const std::string& name) const;
   double ReadDoubleAttribute(const std::string& object, const std::string& name) const;
   int64_t ReadIntAttribute(const std::string& object, const std::string& name) const;

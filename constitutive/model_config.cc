@@ -343,3 +343,28 @@ void WriteAsymptotes(const ConstitutiveModel& model, const AsymptoteTable& table
 }
 
 }  // namespace granasym
+
+namespace granasym {
+
+ElementTestResult RunElementTestInput(const ConfigTable& root, const std::string& input,
+                                      const std::string& out, const std::string& csv) {
+  const std::unique_ptr<ConstitutiveModel> model = ReadModel(root.GetTable("model"));
+  const ModelState initial = ReadInitialState(*model, root.GetTable("initial"));
+  const ElementTestOptions options = root.Has("integration")
+                                         ? ReadElementTestOptions(root.GetTable("integration"))
+                                         : ElementTestOptions();
+  if (options.method == DriveMethod::kStressPoint && model->kind() != ModelKind::kModifiedCamClay) {
+    root.GetTable("integration").Fail("method", "stress_point exists for modified_cam_clay only");
+  }
+  const std::vector<LoadingStage> stages = ReadStages(root);
+  root.CheckNoUnknownKeys();
+  const ElementTestResult result = ElementTest(*model, options).Run(initial, stages);
+  Hdf5File file = Hdf5File::CreateAtomic(out);
+  WriteElementTestResult(*model, result, "/element_test", &file);
+  file.SetAttribute("/element_test", "input", input);
+  file.Commit();
+  if (!csv.empty()) WriteElementTestCsv(result, csv);
+  return result;
+}
+
+}  // namespace granasym

@@ -52,6 +52,13 @@ std::vector<LoadingStage> ReadStages(const ConfigTable& root);
 // [integration] table (optional keys; defaults of ElementTestOptions).
 ElementTestOptions ReadElementTestOptions(const ConfigTable& integration_table);
 
+// Reads a whole element-test input (the root of a `granasym model run` file:
+// [model], [initial], optional [integration], [[stage]]), rejects unknown
+// keys, runs it and writes the result to `out` (HDF5, atomically) and, when
+// `csv` is not empty, the records as CSV. `input` names the input in the file.
+ElementTestResult RunElementTestInput(const ConfigTable& root, const std::string& input,
+                                      const std::string& out, const std::string& csv);
+
 // Writes the history (compression positive, with units) and the summaries under `group`.
 void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestResult& result,
                             const std::string& group, Hdf5File* file);

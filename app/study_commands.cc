@@ -1,0 +1,141 @@
+#include "app/study_commands.h"
+
+#include <cstdio>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/enum_option.h"
+#include "app/progress.h"
+#include "app/signals.h"
+#include "common/error.h"
+#include "study/plan.h"
+#include "study/programme.h"
+#include "study/runner.h"
+#include "study/state_table.h"
+
+namespace granasym {
+namespace {
+
+// "K/N" with 1 <= K <= N.
+bool ParseShard(const std::string& text, int* index, int* count) {
+  const size_t slash = text.find('/');
+  if (slash == std::string::npos) return false;
+  try {
+    size_t used = 0;
+    *index = std::stoi(text.substr(0, slash), &used);
+    if (used != slash) return false;
+    const std::string rest = text.substr(slash + 1);
+    *count = std::stoi(rest, &used);
+    if (used != rest.size()) return false;
+  } catch (const std::exception&) {
+    return false;
+  }
+  return *count >= 1 && *index >= 1 && *index <= *count;
+}
+
+void PrintTableSummary(const study::StateTableSummary& summary) {
+  std::printf("%s", summary.Text().c_str());
+}
+
+}  // namespace
+
+void RegisterStudyCommands(CLI::App& app) {
+  CLI::App* study = app.add_subcommand(
+      "study", "programmes of DEM runs: cases forked from shared states, cached, in parallel");
+  study->require_subcommand(1);
+
+  // granasym study run
+  CLI::App* run = study->add_subcommand("run", "run a programme (TOML) into a study folder");
+  static std::string programme_path, out = "study";
+  static study::Scale scale = study::Scale::kSmall;
+  static int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  static int threads = 1;
+  static std::string shard = "1/1";
+  static bool quiet = false;
+  run->add_option("programme", programme_path, "programme file (TOML), e.g. studies/programmes/paper.toml")
+      ->required()
+      ->check(CLI::ExistingFile);
+  AddEnumOption(run, "--scale", &scale, "sample size");
+  run->add_option("--out", out, "study folder (created; a second run reuses its results)");
+  run->add_option("--jobs", jobs, "cases run at once")->check(CLI::Range(1, 1024));
+  run->add_option("--threads", threads,
+                  "OpenMP threads per case (part of each case's key: results are "
+                  "bit-identical for a fixed count)")
+      ->check(CLI::Range(1, 1024));
+  run->add_option("--shard", shard,
+                  "run slice K of N (1-based) into a folder shared by all shards; merge with "
+                  "`study merge`");
+  run->add_flag("--quiet", quiet, "no progress output");
+  run->callback([] {
+    study::RunnerOptions options;
+    if (!ParseShard(shard, &options.shard_index, &options.shard_count)) {
+      throw InputError("--shard " + shard + ": expected K/N with 1 <= K <= N, e.g. 2/4");
+    }
+    options.jobs = jobs;
+    const study::Programme programme = study::Programme::Load(programme_path);
+    const study::Plan plan = study::Plan::Make(programme, scale, threads, out);
+    Progress::Options progress_options;
+    progress_options.quiet = quiet;
+    progress_options.plain_interval_s = 30;
+    Progress progress(progress_options);
+    const SignalGuard signals;
+    options.stop_requested = [] { return InterruptRequested(); };
+    std::mutex print;
+    if (!quiet) {
+      options.log = [&](const std::string& line) {
+        std::lock_guard<std::mutex> lock(print);
+        progress.Finish();
+        std::fprintf(stderr, "%s\n", line.c_str());
+      };
+      options.progress = [&](const study::StudyProgress& state) {
+        std::lock_guard<std::mutex> lock(print);
+        if (progress.Due()) progress.Report(state.OneLine());
+      };
+    }
+    std::printf("study '%s' at scale %s: %zu cases (%zu replicates of %zu), shard %d/%d, "
+                "%d jobs x %d threads, into %s\n",
+                programme.name.c_str(), ToString(scale).c_str(), plan.cases.size(),
+                plan.samples.size(), programme.cases.size(), options.shard_index,
+                options.shard_count, jobs, threads, out.c_str());
+    const study::StudyOutcome outcome = study::RunStudy(plan, options);
+    progress.Finish();
+    std::printf("%s\n", outcome.OneLine().c_str());
+    if (outcome.interrupted()) {
+      std::printf("interrupted: run the same command again to resume\n");
+      throw CLI::RuntimeError(130);
+    }
+    if (options.shard_count == 1) {
+      PrintTableSummary(study::WriteStateTable(out));
+    } else {
+      std::printf("shard %d/%d done; when all shards are done: granasym study merge %s --out %s\n",
+                  options.shard_index, options.shard_count, out.c_str(), out.c_str());
+    }
+    if (outcome.Count(study::CaseStatus::kFailed) + outcome.Count(study::CaseStatus::kBlocked) > 0) {
+      throw CLI::RuntimeError(3);
+    }
+  });
+
+  // granasym study status
+  CLI::App* status = study->add_subcommand("status", "what a study folder holds, case by case");
+  static std::string status_dir;
+  status->add_option("dir", status_dir, "study folder")->required()->check(CLI::ExistingDirectory);
+  status->callback([] { std::printf("%s", study::DescribeStudy(status_dir).c_str()); });
+
+  // granasym study merge
+  CLI::App* merge = study->add_subcommand(
+      "merge", "combine the folders of shards and write the table of asymptotic states");
+  static std::vector<std::string> inputs;
+  static std::string merge_out;
+  merge->add_option("dirs", inputs, "study folders (shards of one study)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  merge->add_option("--out", merge_out, "merged study folder (may be the only input)")->required();
+  merge->callback([] {
+    const int cases = study::MergeStudies(inputs, merge_out);
+    std::printf("%d finished cases in %s\n", cases, merge_out.c_str());
+    PrintTableSummary(study::WriteStateTable(merge_out));
+  });
+}
+
+}  // namespace granasym

@@ -1,0 +1,15 @@
+// Whole text files: read one, or write one atomically (a temporary file in
+// the same folder, flushed, then renamed over the target), so that a crash
+// never leaves a truncated file under the final name.
+#pragma once
+
+#include <string>
+
+namespace granasym {
+
+// The file's bytes; InputError naming the file when it cannot be read.
+std::string ReadTextFile(const std::string& path);
+// RuntimeError naming the file when it cannot be written or renamed.
+void WriteTextFileAtomically(const std::string& path, const std::string& text);
+
+}  // namespace granasym

@@ -1,0 +1,212 @@
+#include "study/plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/provenance.h"
+#include "dem/grain_size_distribution.h"
+#include "dem/scene.h"
+#include "dem/strain_path_stage.h"
+#include "dem/triaxial_stage.h"
+
+namespace granasym::study {
+namespace {
+
+std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot read the file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A framed field of a cache key: a name, the length and the bytes, so that
+// no two different inputs give the same hashed text.
+void AddField(Sha256& hash, const std::string& name, const std::string& value) {
+  hash.Update(name + "=" + std::to_string(value.size()) + ":");
+  hash.Update(value);
+  hash.Update("\n");
+}
+
+std::string Quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+// Steps a stage is expected to take, from its stop conditions (a rough
+// figure for the ETA; measured steps of finished cases replace it).
+double EstimateSteps(const dem::Stage& stage, double time_step) {
+  double rate = 167.0;
+  if (const auto* path = stage.As<dem::StrainPathStage>()) rate = path->stretching_rate;
+  if (const auto* triaxial = stage.As<dem::TriaxialStage>()) {
+    rate = 1.5 * std::abs(triaxial->axial_strain_rate);
+  }
+  if (stage.type() == "rest") return 5000;
+  if (stage.stop.steps) return static_cast<double>(*stage.stop.steps);
+  double strain = 0.3;
+  if (stage.stop.strain_norm) strain = std::min(strain, *stage.stop.strain_norm);
+  if (stage.stop.time_s) return *stage.stop.time_s / time_step;
+  return strain / (rate * time_step);
+}
+
+}  // namespace
+
+Plan Plan::Make(const Programme& programme, Scale scale, int threads,
+                const std::string& directory) {
+  Plan plan;
+  plan.programme = programme;
+  plan.scale = scale;
+  plan.threads = threads;
+  plan.directory = directory;
+  plan.program_version = ProgramVersion();
+  const ScaleSpec& spec = programme.At(scale);
+  const std::string gsd_text =
+      programme.sample.gsd_path.empty() ? "default" : ReadFile(programme.sample.gsd_path);
+  for (int r = 1; r <= spec.replicates; ++r) {
+    PlannedSample sample;
+    sample.replicate = r;
+    sample.options.count = static_cast<size_t>(spec.count);
+    sample.options.cell_size = programme.sample.CellSizeMm(spec.count) * 1e-3;
+    sample.options.seed = static_cast<uint64_t>(programme.sample.seed + r - 1);
+    sample.options.max_attempts = static_cast<int>(programme.sample.max_attempts);
+    sample.gsd_path = programme.sample.gsd_path;
+    std::string why;
+    if (!sample.options.IsValid(&why)) {
+      throw InputError(programme.origin + ": the sample at scale " + ToString(scale) + ": " + why);
+    }
+    Sha256 hash;
+    AddField(hash, "kind", "granasym-study-sample-v1");
+    AddField(hash, "count", std::to_string(sample.options.count));
+    std::ostringstream cell;
+    cell.precision(17);
+    cell << sample.options.cell_size;
+    AddField(hash, "cell_size_m", cell.str());
+    AddField(hash, "seed", std::to_string(sample.options.seed));
+    AddField(hash, "max_attempts", std::to_string(sample.options.max_attempts));
+    AddField(hash, "gsd", gsd_text);
+    AddField(hash, "version", plan.program_version);
+    sample.key = hash.HexDigest();
+    sample.directory = directory + "/samples/r" + std::to_string(r);
+    plan.samples.push_back(sample);
+  }
+  for (int r = 1; r <= spec.replicates; ++r) {
+    const std::string replicate = "r" + std::to_string(r);
+    for (const CaseSpec& case_spec : programme.cases) {
+      PlannedCase c;
+      c.id = replicate + "/" + case_spec.name;
+      c.replicate = r;
+      c.spec = case_spec;
+      c.directory = directory + "/cases/" + c.id;
+      c.particles = spec.count;
+      std::string sample_table = "[sample]\n";
+      std::string parent_key;
+      if (case_spec.parent.empty()) {
+        sample_table += "packing = " + Quoted("../../../samples/" + replicate + "/packing.txt") + "\n";
+        parent_key = plan.samples[static_cast<size_t>(r - 1)].key;
+      } else {
+        c.parent = plan.Find(replicate + "/" + case_spec.parent);
+        GRANASYM_CHECK(c.parent >= 0) << "the programme orders parents first";
+        sample_table += "state = " + Quoted("../" + case_spec.parent + "/result.h5") + "\n";
+        if (!case_spec.parent_stage.empty()) {
+          sample_table += "stage = " + Quoted(case_spec.parent_stage) + "\n";
+        }
+        parent_key = plan.cases[static_cast<size_t>(c.parent)].key;
+      }
+      c.scene_text = sample_table + "\n" + case_spec.scene_body;
+      dem::Scene scene;
+      try {
+        scene = dem::Scene::Parse(c.scene_text, c.directory + "/scene.toml", c.directory);
+      } catch (const InputError& error) {
+        throw InputError(programme.origin + ": case '" + case_spec.name + "' (from [[run]] '" +
+                         case_spec.run + "'): " + error.what());
+      }
+      Sha256 hash;
+      AddField(hash, "kind", "granasym-study-case-v1");
+      AddField(hash, "scene", scene.Canonical());
+      AddField(hash, "parent", parent_key);
+      AddField(hash, "parent_stage", case_spec.parent_stage);
+      AddField(hash, "version", plan.program_version);
+      AddField(hash, "threads", std::to_string(threads));
+      c.key = hash.HexDigest();
+      const double time_step = scene.time_step_s.value_or(1.2e-7);
+      for (const dem::Stage& stage : scene.stages) c.estimated_steps += EstimateSteps(stage, time_step);
+      if (c.parent >= 0) plan.cases[static_cast<size_t>(c.parent)].children.push_back(
+          static_cast<int>(plan.cases.size()));
+      plan.cases.push_back(std::move(c));
+    }
+  }
+  for (const ModelCaseSpec& model : programme.model_cases) {
+    PlannedModelCase m;
+    m.id = "models/" + model.name;
+    m.spec = model;
+    m.directory = directory + "/" + m.id;
+    Sha256 hash;
+    AddField(hash, "kind", "granasym-study-model-v1");
+    AddField(hash, "test", model.text);
+    AddField(hash, "version", plan.program_version);
+    m.key = hash.HexDigest();
+    plan.model_cases.push_back(std::move(m));
+  }
+  return plan;
+}
+
+int Plan::Find(const std::string& id) const {
+  for (size_t k = 0; k < cases.size(); ++k) {
+    if (cases[k].id == id) return static_cast<int>(k);
+  }
+  return -1;
+}
+
+std::vector<int> Plan::Shard(int index, int count) const {
+  GRANASYM_CHECK(count >= 1 && index >= 1 && index <= count) << "shard " << index << "/" << count;
+  std::vector<int> leaves;
+  for (size_t k = 0; k < cases.size(); ++k) {
+    if (cases[k].children.empty()) leaves.push_back(static_cast<int>(k));
+  }
+  auto cost = [this](int k) {
+    return static_cast<double>(cases[static_cast<size_t>(k)].particles) *
+           cases[static_cast<size_t>(k)].estimated_steps;
+  };
+  std::stable_sort(leaves.begin(), leaves.end(), [&](int a, int b) { return cost(a) > cost(b); });
+  std::vector<double> load(static_cast<size_t>(count), 0.0);
+  std::vector<bool> wanted(cases.size(), false);
+  for (int leaf : leaves) {
+    const size_t target =
+        static_cast<size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+    load[target] += cost(leaf);
+    if (static_cast<int>(target) + 1 != index) continue;
+    for (int k = leaf; k >= 0; k = cases[static_cast<size_t>(k)].parent) {
+      wanted[static_cast<size_t>(k)] = true;
+    }
+  }
+  std::vector<int> selected;
+  for (size_t k = 0; k < cases.size(); ++k) {
+    if (wanted[k]) selected.push_back(static_cast<int>(k));
+  }
+  return selected;
+}
+
+std::string StudyRecordText(const Plan& plan) {
+  std::ostringstream out;
+  out << "# written by granasym study run; describes the cases below cases/\n"
+      << "programme = " << Quoted(plan.programme.name) << "\n"
+      << "programme_file = " << Quoted(std::filesystem::path(plan.programme.origin).filename().string())
+      << "\n"
+      << "scale = " << Quoted(ToString(plan.scale)) << "\n"
+      << "threads = " << plan.threads << "\n"
+      << "replicates = " << plan.samples.size() << "\n"
+      << "count = " << plan.programme.At(plan.scale).count << "\n"
+      << "ncl = " << Quoted(plan.programme.ncl_case) << "\n"
+      << "program_version = " << Quoted(plan.program_version) << "\n";
+  return out.str();
+}
+
+}  // namespace granasym::study

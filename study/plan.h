@@ -1,0 +1,82 @@
+// A study's plan: the programme expanded at one scale and thread count into
+// samples and cases, each with its folder, its scene and the cache key of
+// its inputs. Layout of a study folder:
+//
+//   DIR/study.toml                   the programme's name, scale, threads, version
+//   DIR/samples/r<K>/packing.txt     the generated sample of replicate K (+ generation.txt, key)
+//   DIR/cases/r<K>/<case>/scene.toml the scene the case runs (forks from its parent's result)
+//   DIR/cases/r<K>/<case>/case.toml  what the case is: key, parent, run, variables
+//   DIR/cases/r<K>/<case>/result.h5  its result (result.h5.ckpt while it runs)
+//   DIR/cases/r<K>/<case>/done.toml  written last: the key it was computed for, how it ended
+//   DIR/models/<name>/               element tests of the constitutive models
+//   DIR/asymptotic_states.csv/.h5    the state table (study/state_table.h)
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dem/packing.h"
+#include "study/programme.h"
+
+namespace granasym::study {
+
+struct PlannedSample {
+  int replicate = 1;
+  dem::GenerationOptions options;
+  std::string gsd_path;   // empty: the default table
+  std::string key;        // SHA-256 of what generates it
+  std::string directory;  // DIR/samples/r<K>
+  std::string packing_path() const { return directory + "/packing.txt"; }
+};
+
+struct PlannedCase {
+  std::string id;  // "r<K>/<name>"
+  int replicate = 1;
+  CaseSpec spec;
+  int parent = -1;  // index into Plan::cases; -1: the replicate's sample
+  std::vector<int> children;
+  std::string directory;   // DIR/cases/r<K>/<name>
+  std::string scene_text;  // the complete scene, [sample] included
+  std::string key;         // SHA-256 of the canonical scene, the parent's key, version, threads
+  int64_t particles = 0;
+  double estimated_steps = 0;  // from the stop conditions, for the ETA
+  std::string result_path() const { return directory + "/result.h5"; }
+};
+
+// A constitutive-model element test of the programme (not replicated: the
+// models are deterministic). Files: DIR/models/<name>/{test.toml, result.h5,
+// result.csv, done.toml}.
+struct PlannedModelCase {
+  std::string id;  // "models/<name>"
+  ModelCaseSpec spec;
+  std::string directory;
+  std::string key;  // SHA-256 of the test's TOML and the program version
+};
+
+struct Plan {
+  Programme programme;
+  Scale scale = Scale::kTiny;
+  int threads = 1;
+  std::string directory;
+  std::string program_version;
+  std::vector<PlannedSample> samples;  // one per replicate
+  std::vector<PlannedCase> cases;      // parents before children
+  std::vector<PlannedModelCase> model_cases;
+
+  // Expands the programme; every case's scene is parsed here, so that bad
+  // input fails before anything runs (the message names the programme and the case).
+  static Plan Make(const Programme& programme, Scale scale, int threads,
+                   const std::string& directory);
+  // The cases of shard `index` (1-based) of `count`: the leaves are dealt
+  // out by estimated cost (longest first to the least loaded shard), and
+  // every shard includes the ancestors of its leaves (computed once, by
+  // whichever shard gets there first). In dependency order.
+  std::vector<int> Shard(int index, int count) const;
+  int Find(const std::string& id) const;  // -1 when absent
+};
+
+// The text of DIR/study.toml for a plan.
+std::string StudyRecordText(const Plan& plan);
+
+}  // namespace granasym::study

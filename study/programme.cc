@@ -1,0 +1,453 @@
+#include "study/programme.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml.hpp>
+
+#include "common/error.h"
+
+namespace granasym::study {
+namespace {
+
+// Sorted tables, so that a generated scene is the same text every time.
+using Value = toml::basic_value<toml::discard_comments, std::map, std::vector>;
+using Table = Value::table_type;
+using Array = Value::array_type;
+using Variables = std::map<std::string, Value>;
+
+[[noreturn]] void Fail(const std::string& origin, const std::string& key,
+                       const std::string& message) {
+  throw InputError(origin + ": " + (key.empty() ? "" : "key '" + key + "' ") + message);
+}
+
+std::string TypeName(const Value& value) {
+  std::ostringstream out;
+  out << value.type();
+  return out.str();
+}
+
+// Rejects keys of `table` outside `allowed`, naming the valid ones.
+void CheckKeys(const std::string& origin, const std::string& prefix, const Table& table,
+               const std::set<std::string>& allowed) {
+  for (const auto& [key, value] : table) {
+    if (allowed.count(key)) continue;
+    std::string valid;
+    for (const std::string& name : allowed) valid += (valid.empty() ? "" : ", ") + name;
+    Fail(origin, prefix + key, "is not known here: valid keys are " + valid);
+  }
+}
+
+// `key` may be a dotted name for messages ("study.name"): the table is
+// searched for its last part.
+const Value* FindKey(const Table& table, const std::string& key) {
+  const size_t dot = key.rfind('.');
+  const auto it = table.find(dot == std::string::npos ? key : key.substr(dot + 1));
+  return it == table.end() ? nullptr : &it->second;
+}
+
+const Table& TableAt(const std::string& origin, const std::string& key, const Value& value) {
+  if (!value.is_table()) Fail(origin, key, "must be a table, not a " + TypeName(value));
+  return value.as_table();
+}
+
+std::string StringAt(const std::string& origin, const std::string& key, const Table& table,
+                     const std::string& fallback, bool required) {
+  const Value* value = FindKey(table, key);
+  if (!value) {
+    if (required) Fail(origin, key, "is missing");
+    return fallback;
+  }
+  if (!value->is_string()) Fail(origin, key, "must be a string, not a " + TypeName(*value));
+  return value->as_string().str;
+}
+
+int64_t IntAt(const std::string& origin, const std::string& key, const Table& table,
+              int64_t fallback, int64_t min, int64_t max) {
+  const Value* value = FindKey(table, key);
+  if (!value) return fallback;
+  if (!value->is_integer()) Fail(origin, key, "must be an integer, not a " + TypeName(*value));
+  const int64_t v = value->as_integer();
+  if (v < min || v > max) {
+    Fail(origin, key,
+         "= " + std::to_string(v) + " is out of range: expected an integer in [" +
+             std::to_string(min) + ", " + std::to_string(max) + "]");
+  }
+  return v;
+}
+
+double DoubleAt(const std::string& origin, const std::string& key, const Table& table,
+                double fallback) {
+  const Value* value = FindKey(table, key);
+  if (!value) return fallback;
+  double v = 0;
+  if (value->is_floating()) {
+    v = value->as_floating();
+  } else if (value->is_integer()) {
+    v = static_cast<double>(value->as_integer());
+  } else {
+    Fail(origin, key, "must be a number, not a " + TypeName(*value));
+  }
+  if (!std::isfinite(v) || v <= 0) {
+    Fail(origin, key, "= " + std::to_string(v) + " must be a finite number > 0");
+  }
+  return v;
+}
+
+// The shortest decimal text that reads back as exactly `value`.
+std::string ShortestText(double value) {
+  char buffer[40];
+  for (int precision = 1; precision <= 17; ++precision) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
+    if (std::strtod(buffer, nullptr) == value) break;
+  }
+  return buffer;
+}
+
+std::string ValueText(const Value& value) {
+  if (value.is_string()) return value.as_string().str;
+  if (value.is_integer()) return std::to_string(value.as_integer());
+  if (value.is_floating()) return ShortestText(value.as_floating());
+  if (value.is_boolean()) return value.as_boolean() ? "true" : "false";
+  return toml::format(value);
+}
+
+// Replaces the placeholders {var} in the strings of `value` (recursively).
+Value Substitute(const Value& value, const Variables& variables, const std::string& origin,
+                 const std::string& where) {
+  if (value.is_table()) {
+    Table table;
+    for (const auto& [key, item] : value.as_table()) {
+      table[key] = Substitute(item, variables, origin, where + "." + key);
+    }
+    return Value(table);
+  }
+  if (value.is_array()) {
+    Array array;
+    for (const Value& item : value.as_array()) {
+      array.push_back(Substitute(item, variables, origin, where));
+    }
+    return Value(array);
+  }
+  if (!value.is_string()) return value;
+  const std::string& text = value.as_string().str;
+  if (text.size() > 2 && text.front() == '{' && text.back() == '}') {
+    const auto it = variables.find(text.substr(1, text.size() - 2));
+    if (it != variables.end()) return it->second;
+  }
+  std::string out;
+  for (size_t k = 0; k < text.size();) {
+    if (text[k] != '{') {
+      out += text[k++];
+      continue;
+    }
+    const size_t close = text.find('}', k);
+    if (close == std::string::npos) Fail(origin, where, "= '" + text + "' has an unclosed '{'");
+    const std::string name = text.substr(k + 1, close - k - 1);
+    const auto it = variables.find(name);
+    if (it == variables.end()) {
+      std::string known;
+      for (const auto& [var, unused] : variables) known += (known.empty() ? "" : ", ") + var;
+      Fail(origin, where,
+           "= '" + text + "' uses {" + name + "}, which is not a variable here (" +
+               (known.empty() ? "none is defined" : "defined: " + known) + ")");
+    }
+    out += ValueText(it->second);
+    k = close + 1;
+  }
+  return Value(out);
+}
+
+// Every combination of the lists of `vary` (the last key varies fastest).
+std::vector<Variables> Combinations(const std::string& origin, const std::string& key,
+                                    const Value* vary) {
+  std::vector<Variables> combinations{Variables{}};
+  if (!vary) return combinations;
+  for (const auto& [name, list] : TableAt(origin, key, *vary)) {
+    if (!list.is_array() || list.as_array().empty()) {
+      Fail(origin, key + "." + name, "must be a non-empty array of values");
+    }
+    std::vector<Variables> next;
+    for (const Variables& partial : combinations) {
+      for (const Value& item : list.as_array()) {
+        if (item.is_table() || item.is_array()) {
+          Fail(origin, key + "." + name, "must hold numbers or strings, not " + TypeName(item));
+        }
+        Variables extended = partial;
+        extended[name] = item;
+        next.push_back(std::move(extended));
+      }
+    }
+    combinations = std::move(next);
+  }
+  return combinations;
+}
+
+bool ValidName(const std::string& name) {
+  if (name.empty() || name == "." || name == ".." || name == "sample") return false;
+  for (char c : name) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Merges `over` into `base` table by table (a value of `over` replaces).
+void MergeInto(Table& base, const Table& over) {
+  for (const auto& [key, value] : over) {
+    auto it = base.find(key);
+    if (it != base.end() && it->second.is_table() && value.is_table()) {
+      MergeInto(it->second.as_table(), value.as_table());
+    } else {
+      base[key] = value;
+    }
+  }
+}
+
+std::string FormatTable(const Table& table) {
+  std::ostringstream out;
+  out << toml::format(Value(table), 0);
+  return out.str();
+}
+
+}  // namespace
+
+double SampleSpec::CellSizeMm(int64_t count) const {
+  return reference_cell_size_mm *
+         std::cbrt(static_cast<double>(count) / static_cast<double>(reference_count));
+}
+
+Programme Programme::Load(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the programme file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return Parse(text.str(), path, std::filesystem::path(path).parent_path().string());
+}
+
+Programme Programme::Parse(const std::string& text, const std::string& origin,
+                           const std::string& base_directory) {
+  Value root;
+  try {
+    std::istringstream in(text);
+    root = toml::parse<toml::discard_comments, std::map, std::vector>(in, origin);
+  } catch (const toml::syntax_error& error) {
+    throw InputError(origin + ": TOML syntax error: " + error.what());
+  }
+  const Table& top = root.as_table();
+  CheckKeys(origin, "", top, {"study", "scale", "sample", "scene", "run", "model_run"});
+  Programme programme;
+  programme.origin = origin;
+
+  static const Table kEmpty;
+  const Value* study_value = FindKey(top, "study");
+  const Table& study = study_value ? TableAt(origin, "study", *study_value) : kEmpty;
+  CheckKeys(origin, "study.", study, {"name", "description", "ncl"});
+  programme.name = StringAt(origin, "study.name", study, "", true);
+  programme.description = StringAt(origin, "study.description", study, "", false);
+  programme.ncl_case = StringAt(origin, "study.ncl", study, "", false);
+
+  const Value* scales = FindKey(top, "scale");
+  if (!scales) Fail(origin, "scale", "is missing: give [scale.tiny], [scale.small], [scale.paper]");
+  for (const auto& [name, value] : TableAt(origin, "scale", *scales)) {
+    const std::optional<Scale> scale = FromString<Scale>(name);
+    if (!scale) {
+      Fail(origin, "scale." + name, "is not a scale: expected " + AllowedNames<Scale>());
+    }
+    const std::string prefix = "scale." + name + ".";
+    const Table& table = TableAt(origin, "scale." + name, value);
+    CheckKeys(origin, prefix, table, {"count", "replicates"});
+    ScaleSpec spec;
+    if (!FindKey(table, "count")) Fail(origin, prefix + "count", "is missing");
+    spec.count = IntAt(origin, prefix + "count", table, 0, 2, 2000000000);
+    spec.replicates = static_cast<int>(IntAt(origin, prefix + "replicates", table, 1, 1, 1000));
+    programme.scales[*scale] = spec;
+  }
+
+  const Value* sample_value = FindKey(top, "sample");
+  const Table& sample = sample_value ? TableAt(origin, "sample", *sample_value) : kEmpty;
+  CheckKeys(origin, "sample.", sample,
+            {"reference_count", "reference_cell_size_mm", "seed", "gsd", "max_attempts"});
+  SampleSpec& s = programme.sample;
+  s.reference_count =
+      IntAt(origin, "sample.reference_count", sample, s.reference_count, 2, 2000000000);
+  s.reference_cell_size_mm =
+      DoubleAt(origin, "sample.reference_cell_size_mm", sample, s.reference_cell_size_mm);
+  s.seed = IntAt(origin, "sample.seed", sample, s.seed, 0, int64_t{1} << 53);
+  s.max_attempts = IntAt(origin, "sample.max_attempts", sample, s.max_attempts, 1, 1000000000);
+  const std::string gsd = StringAt(origin, "sample.gsd", sample, "", false);
+  if (!gsd.empty()) {
+    s.gsd_path = std::filesystem::path(gsd).is_absolute()
+                     ? gsd
+                     : (std::filesystem::path(base_directory) / gsd).lexically_normal().string();
+  }
+
+  Table shared;
+  if (const Value* scene = FindKey(top, "scene")) {
+    shared = TableAt(origin, "scene", *scene);
+    for (const auto& [key, unused] : shared) {
+      if (key == "sample" || key == "stage") {
+        Fail(origin, "scene." + key,
+             "cannot be shared: the sample comes from [sample] or `from`, stages from "
+             "[[run.stage]]");
+      }
+    }
+  }
+
+  const Value* runs = FindKey(top, "run");
+  if (!runs || !runs->is_array() || runs->as_array().empty()) {
+    Fail(origin, "run", "is missing: a programme needs at least one [[run]]");
+  }
+  std::set<std::string> names;
+  for (size_t r = 0; r < runs->as_array().size(); ++r) {
+    const std::string where = "run[" + std::to_string(r + 1) + "]";
+    const Table& run = TableAt(origin, where, runs->as_array()[r]);
+    CheckKeys(origin, where + ".", run, {"name", "from", "vary", "figures", "scene", "stage"});
+    const std::string name_template = StringAt(origin, where + ".name", run, "", true);
+    const std::string from_template = StringAt(origin, where + ".from", run, "", true);
+    const std::string figures = StringAt(origin, where + ".figures", run, "", false);
+    const Value* stages = FindKey(run, "stage");
+    if (!stages || !stages->is_array() || stages->as_array().empty()) {
+      Fail(origin, where + ".stage", "is missing: a run needs at least one [[run.stage]]");
+    }
+    Table overrides;
+    if (const Value* scene = FindKey(run, "scene")) {
+      overrides = TableAt(origin, where + ".scene", *scene);
+    }
+    for (const Variables& variables : Combinations(origin, where + ".vary", FindKey(run, "vary"))) {
+      CaseSpec spec;
+      spec.run = name_template;
+      spec.figures = figures;
+      for (const auto& [var, value] : variables) spec.variables[var] = ValueText(value);
+      spec.name = Substitute(Value(name_template), variables, origin, where + ".name")
+                      .as_string()
+                      .str;
+      const std::string case_where = where + " (case '" + spec.name + "')";
+      if (!ValidName(spec.name)) {
+        Fail(origin, where + ".name",
+             "gives '" + spec.name +
+                 "', which is not a valid case name (letters, digits, '_', '-', '.'; not "
+                 "'sample')");
+      }
+      if (!names.insert(spec.name).second) {
+        Fail(origin, where + ".name", "gives '" + spec.name + "' twice: case names are unique");
+      }
+      const std::string from =
+          Substitute(Value(from_template), variables, origin, where + ".from").as_string().str;
+      if (from != "sample") {
+        const size_t at = from.find('@');
+        spec.parent = from.substr(0, at);
+        if (at != std::string::npos) spec.parent_stage = from.substr(at + 1);
+        const CaseSpec* parent = programme.Find(spec.parent);
+        if (!parent) {
+          Fail(origin, case_where + ".from",
+               "= '" + from + "' names no earlier case: parents come before their children");
+        }
+        if (!spec.parent_stage.empty()) {
+          bool found = false;
+          for (const std::string& stage : parent->stage_names) found |= stage == spec.parent_stage;
+          if (!found) {
+            std::string known;
+            for (const std::string& stage : parent->stage_names) {
+              known += (known.empty() ? "" : ", ") + stage;
+            }
+            Fail(origin, case_where + ".from",
+                 "= '" + from + "': case '" + spec.parent + "' has no stage '" +
+                     spec.parent_stage + "' (its stages: " + known + ")");
+          }
+        }
+      }
+      Table scene = shared;
+      MergeInto(scene,
+                Substitute(Value(overrides), variables, origin, where + ".scene").as_table());
+      Array stage_tables;
+      for (size_t k = 0; k < stages->as_array().size(); ++k) {
+        const std::string stage_where = where + ".stage[" + std::to_string(k + 1) + "]";
+        Table stage = TableAt(origin, stage_where, stages->as_array()[k]);
+        const bool repeats = stage.count("each") > 0;
+        const Value each = repeats ? stage.at("each") : Value();
+        stage.erase("each");
+        for (const Variables& repeat :
+             Combinations(origin, stage_where + ".each", repeats ? &each : nullptr)) {
+          Variables all = variables;
+          for (const auto& [var, value] : repeat) all[var] = value;
+          Value expanded = Substitute(Value(stage), all, origin, stage_where);
+          const Table& table = expanded.as_table();
+          const std::string stage_name =
+              StringAt(origin, stage_where + ".name", table,
+                       "stage" + std::to_string(stage_tables.size() + 1), false);
+          for (const std::string& existing : spec.stage_names) {
+            if (existing == stage_name) {
+              Fail(origin, stage_where + ".name",
+                   "gives '" + stage_name + "' twice in case '" + spec.name + "'");
+            }
+          }
+          spec.stage_names.push_back(stage_name);
+          stage_tables.push_back(expanded);
+        }
+      }
+      scene["stage"] = Value(stage_tables);
+      spec.scene_body = FormatTable(scene);
+      programme.cases.push_back(std::move(spec));
+    }
+  }
+  if (const Value* models = FindKey(top, "model_run")) {
+    if (!models->is_array()) Fail(origin, "model_run", "must be an array of tables [[model_run]]");
+    std::set<std::string> model_names;
+    for (size_t m = 0; m < models->as_array().size(); ++m) {
+      const std::string where = "model_run[" + std::to_string(m + 1) + "]";
+      const Table& entry = TableAt(origin, where, models->as_array()[m]);
+      CheckKeys(origin, where + ".", entry,
+                {"name", "vary", "figures", "model", "initial", "integration", "stage"});
+      const std::string name_template = StringAt(origin, where + ".name", entry, "", true);
+      for (const Variables& variables :
+           Combinations(origin, where + ".vary", FindKey(entry, "vary"))) {
+        ModelCaseSpec spec;
+        spec.name =
+            Substitute(Value(name_template), variables, origin, where + ".name").as_string().str;
+        if (!ValidName(spec.name) || !model_names.insert(spec.name).second) {
+          Fail(origin, where + ".name",
+               "gives '" + spec.name + "': model runs need unique, valid folder names");
+        }
+        spec.figures = StringAt(origin, where + ".figures", entry, "", false);
+        for (const auto& [var, value] : variables) spec.variables[var] = ValueText(value);
+        Table test;
+        for (const char* key : {"model", "initial", "integration", "stage"}) {
+          if (const Value* value = FindKey(entry, key)) {
+            test[key] = Substitute(*value, variables, origin, where + "." + key);
+          }
+        }
+        spec.text = FormatTable(test);
+        programme.model_cases.push_back(std::move(spec));
+      }
+    }
+  }
+  if (!programme.ncl_case.empty() && !programme.Find(programme.ncl_case)) {
+    Fail(origin, "study.ncl", "= '" + programme.ncl_case + "' names no case of the programme");
+  }
+  return programme;
+}
+
+const CaseSpec* Programme::Find(const std::string& name) const {
+  for (const CaseSpec& spec : cases) {
+    if (spec.name == name) return &spec;
+  }
+  return nullptr;
+}
+
+const ScaleSpec& Programme::At(Scale scale) const {
+  const auto it = scales.find(scale);
+  if (it == scales.end()) {
+    std::string known;
+    for (const auto& [s, unused] : scales) known += std::string(known.empty() ? "" : ", ") + ToString(s);
+    throw InputError(origin + ": the programme has no [scale." + ToString(scale) +
+                     "] (it has " + known + ")");
+  }
+  return it->second;
+}
+
+}  // namespace granasym::study

@@ -1,0 +1,115 @@
+// A study programme: one TOML file that declares the sample, the shared
+// preparation states and the cases that branch from them, with lists that
+// expand into cases. Layout (README "Studies" documents it for users):
+//
+//   [study]
+//   name = "paper"
+//   ncl = "ncl"             # the run whose ψ_ε = 0° stages give the study's NCL (OCR, p_e*)
+//   [scale.tiny]            # scales change the sphere count (and so the cell) only
+//   count = 300
+//   replicates = 2          # samples with seeds seed, seed + 1, ...
+//   [sample]                # the generated sample, at the reference count and cell
+//   reference_count = 150000
+//   reference_cell_size_mm = 31.0
+//   seed = 1
+//   gsd = "table.csv"       # optional; default: the reduced Zbraslav GSD
+//   [scene.material]        # scene tables shared by every run (material, numerics, output)
+//   [[run]]
+//   name = "nc{p}_psi{psi}" # placeholders {var} take the values of `vary`
+//   from = "ncl@p{p}"       # "sample", "RUN" (its final state) or "RUN@STAGE"
+//   vary = { p = [20, 50], psi = [30, 60] }   # every combination is one case
+//   figures = "14"
+//   [run.scene.material]    # optional overrides of the shared scene tables
+//   [[run.stage]]           # scene [[stage]] tables; `each = { p = [...] }`
+//   ...                     # repeats one stage for every value
+//   [[model_run]]           # a constitutive-model element test (Fig. 5): name, vary,
+//   [model_run.model] ...   # figures, and the tables of `granasym model run`
+//
+// A string that is exactly "{var}" becomes the variable's value with its
+// type (a number stays a number); "{var}" inside a longer string is replaced
+// by the value's shortest exact decimal text.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/enum_names.h"
+
+namespace granasym::study {
+
+enum class Scale { kTiny, kSmall, kPaper };
+}  // namespace granasym::study
+
+template <>
+struct granasym::EnumNames<granasym::study::Scale> {
+  static constexpr EnumEntry<study::Scale> kEntries[] = {
+      {study::Scale::kTiny, "tiny", "the whole programme in well under two minutes (CI)"},
+      {study::Scale::kSmall, "small", "a few thousand spheres: the default main job"},
+      {study::Scale::kPaper, "paper", "the paper's 150 000 spheres in a 31 mm cell"},
+  };
+};
+
+namespace granasym::study {
+
+using granasym::FromString;
+using granasym::ToString;
+
+struct ScaleSpec {
+  int64_t count = 0;   // spheres
+  int replicates = 1;  // samples with different seeds
+};
+
+// The generated sample. The cell side scales with the count at constant
+// initial porosity: L = L_ref (count / count_ref)^(1/3).
+struct SampleSpec {
+  int64_t reference_count = 150000;
+  double reference_cell_size_mm = 31.0;
+  int64_t seed = 1;
+  std::string gsd_path;  // resolved relative to the programme; empty: the default
+  int64_t max_attempts = 200000;
+  double CellSizeMm(int64_t count) const;
+};
+
+// One expanded case: a DEM run that starts from the sample or from a state
+// of another case.
+struct CaseSpec {
+  std::string name;          // unique within the programme, a valid folder name
+  std::string parent;        // case name; empty: the sample
+  std::string parent_stage;  // a stage of the parent; empty: its final state
+  std::string scene_body;    // the scene's TOML without its [sample] table
+  std::vector<std::string> stage_names;
+  std::string run;      // the name template of the [[run]] it came from
+  std::string figures;  // the paper's figures it serves (free text)
+  std::map<std::string, std::string> variables;  // `vary` values, as text
+};
+
+// One expanded constitutive-model element test (a [[model_run]] entry): the
+// TOML of `granasym model run` ([model], [initial], [integration], [[stage]]).
+struct ModelCaseSpec {
+  std::string name;  // unique among the model runs
+  std::string figures;
+  std::map<std::string, std::string> variables;
+  std::string text;
+};
+
+struct Programme {
+  std::string origin;  // the file
+  std::string name, description;
+  std::string ncl_case;  // may be empty
+  std::map<Scale, ScaleSpec> scales;
+  SampleSpec sample;
+  std::vector<CaseSpec> cases;  // parents before children
+  std::vector<ModelCaseSpec> model_cases;
+
+  static Programme Load(const std::string& path);
+  // `base_directory` resolves relative paths (the GSD table).
+  static Programme Parse(const std::string& text, const std::string& origin,
+                         const std::string& base_directory);
+  const CaseSpec* Find(const std::string& name) const;
+  const ScaleSpec& At(Scale scale) const;  // InputError when the programme lacks it
+};
+
+}  // namespace granasym::study

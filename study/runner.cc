@@ -1,0 +1,667 @@
+#include "study/runner.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "common/config.h"
+#include "common/error.h"
+#include "common/stopwatch.h"
+#include "common/text_file.h"
+#include "dem/grain_size_distribution.h"
+#include "dem/scene.h"
+#include "dem/simulation.h"
+
+#ifdef GRANASYM_STUDY_HAS_MODELS
+#include "constitutive/model_config.h"
+#endif
+
+namespace granasym::study {
+namespace fs = std::filesystem;
+namespace {
+
+// An exclusive flock on a file, waited for while polling the stop request.
+// Locks of one process's threads exclude each other too (one open file
+// description each).
+class FileLock {
+ public:
+  FileLock(const std::string& path, const std::function<bool()>& stop_requested) {
+    fd_ = ::open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw RuntimeError("cannot open the lock file '" + path + "': " + std::strerror(errno));
+    while (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      if (errno != EWOULDBLOCK && errno != EINTR) {
+        throw RuntimeError("cannot lock '" + path + "': " + std::strerror(errno));
+      }
+      if (stop_requested && stop_requested()) return;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    locked_ = true;
+  }
+  ~FileLock() {
+    if (fd_ >= 0) ::close(fd_);  // releases the lock
+  }
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+  bool locked() const { return locked_; }
+
+ private:
+  int fd_ = -1;
+  bool locked_ = false;
+};
+
+std::string Quoted(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+// What done.toml records of a finished case.
+struct DoneRecord {
+  std::string key;
+  dem::Termination termination = dem::Termination::kNotRun;
+  std::string message;
+  int64_t steps = 0;  // engine steps at the end, the parent's included
+  int64_t particles = 0;
+  double wall_seconds = 0;
+};
+
+std::optional<DoneRecord> ReadDone(const std::string& directory) {
+  const std::string path = directory + "/done.toml";
+  if (!fs::exists(path)) return std::nullopt;
+  const ConfigTable table = ConfigTable::ParseFile(path);
+  DoneRecord done;
+  done.key = table.GetString("key");
+  done.termination = table.GetEnum<dem::Termination>("termination");
+  done.message = table.GetString("message", "");
+  done.steps = table.GetInt("steps", 0, Range::NonNegative());
+  done.particles = table.GetInt("particles", 0, Range::NonNegative());
+  done.wall_seconds = table.GetDouble("wall_seconds", 0.0, Range::NonNegative());
+  return done;
+}
+
+void WriteDone(const std::string& directory, const DoneRecord& done) {
+  WriteTextFileAtomically(
+      directory + "/done.toml",
+      fmt::format("# written when the case ended; its key names the inputs it was computed for\n"
+                  "key = {}\ntermination = {}\nmessage = {}\nsteps = {}\nparticles = {}\n"
+                  "wall_seconds = {:.3f}\n",
+                  Quoted(done.key), Quoted(ToString(done.termination)), Quoted(done.message),
+                  done.steps, done.particles, done.wall_seconds));
+}
+
+std::string CaseRecordText(const Plan& plan, const PlannedCase& c) {
+  std::string text = fmt::format(
+      "# what this case is (written by granasym study run)\n"
+      "id = {}\nname = {}\nreplicate = {}\nkey = {}\nparent = {}\nparent_stage = {}\n"
+      "run = {}\nfigures = {}\nprogramme = {}\nscale = {}\nthreads = {}\n"
+      "program_version = {}\n",
+      Quoted(c.id), Quoted(c.spec.name), c.replicate, Quoted(c.key),
+      Quoted(c.parent >= 0 ? plan.cases[static_cast<size_t>(c.parent)].id : ""),
+      Quoted(c.spec.parent_stage), Quoted(c.spec.run), Quoted(c.spec.figures),
+      Quoted(plan.programme.name), Quoted(ToString(plan.scale)), plan.threads,
+      Quoted(plan.program_version));
+  text += "[variables]\n";
+  for (const auto& [name, value] : c.spec.variables) text += name + " = " + Quoted(value) + "\n";
+  return text;
+}
+
+void WriteIfChanged(const std::string& path, const std::string& text) {
+  if (fs::exists(path) && ReadTextFile(path) == text) return;
+  WriteTextFileAtomically(path, text);
+}
+
+// Refuses to write a study into a folder that holds something else, or a
+// study of another programme or scale.
+void PrepareDirectory(const Plan& plan) {
+  const fs::path dir(plan.directory);
+  const std::string record = plan.directory + "/study.toml";
+  if (fs::exists(dir) && !fs::is_directory(dir)) {
+    throw InputError("--out " + plan.directory + ": exists and is not a folder");
+  }
+  if (fs::exists(record)) {
+    const ConfigTable table = ConfigTable::ParseFile(record);
+    const std::string programme = table.GetString("programme", "");
+    const std::string scale = table.GetString("scale", "");
+    if (programme != plan.programme.name || scale != ToString(plan.scale)) {
+      throw InputError("--out " + plan.directory + ": holds the study '" + programme +
+                       "' at scale " + scale + ", not '" + plan.programme.name + "' at " +
+                       ToString(plan.scale) + ": give another output folder");
+    }
+  } else if (fs::exists(dir) && !fs::is_empty(dir)) {
+    throw InputError("--out " + plan.directory +
+                     ": is not empty and holds no study (no study.toml): give a new or empty "
+                     "folder, so that nothing in it is overwritten");
+  }
+  fs::create_directories(dir / "cases");
+  fs::create_directories(dir / "samples");
+  WriteTextFileAtomically(record, StudyRecordText(plan));
+}
+
+void GenerateSample(const PlannedSample& sample, const std::function<bool()>& stop,
+                    const std::function<void(const std::string&)>& log) {
+  fs::create_directories(sample.directory);
+  FileLock lock(sample.directory + "/.lock", stop);
+  if (!lock.locked()) return;
+  const std::string key_path = sample.directory + "/key";
+  if (fs::exists(key_path) && fs::exists(sample.packing_path()) &&
+      ReadTextFile(key_path) == sample.key + "\n") {
+    return;
+  }
+  const dem::GrainSizeDistribution gsd = sample.gsd_path.empty()
+                                             ? dem::GrainSizeDistribution::Default()
+                                             : dem::GrainSizeDistribution::ReadCsv(sample.gsd_path);
+  dem::GenerationReport report;
+  const dem::Packing packing = dem::GeneratePacking(gsd, sample.options, &report);
+  packing.WriteText(sample.packing_path());
+  WriteTextFileAtomically(sample.directory + "/generation.txt", report.Table());
+  WriteTextFileAtomically(key_path, sample.key + "\n");
+  if (log) {
+    log(fmt::format("sample r{}: {} spheres generated, porosity {:.4f}", sample.replicate,
+                    report.count, report.porosity));
+  }
+}
+
+// An element test of a constitutive model, cached like a DEM case.
+CaseOutcome RunModelCase(const PlannedModelCase& m,
+                         const std::function<void(const std::string&)>& log) {
+  CaseOutcome outcome;
+  outcome.id = m.id;
+  fs::create_directories(m.directory);
+  FileLock lock(m.directory + "/.lock", {});
+  if (const std::optional<DoneRecord> done = ReadDone(m.directory);
+      done && done->key == m.key && fs::exists(m.directory + "/result.h5")) {
+    outcome.status =
+        done->termination == dem::Termination::kCompleted ? CaseStatus::kCached : CaseStatus::kFailed;
+    outcome.message = done->message;
+    return outcome;
+  }
+#ifdef GRANASYM_STUDY_HAS_MODELS
+  const Stopwatch clock;
+  const std::string input = m.directory + "/test.toml";
+  WriteIfChanged(input, m.spec.text);
+  const ConfigTable root = ConfigTable::ParseString(m.spec.text, input);
+  const ElementTestResult result =
+      RunElementTestInput(root, input, m.directory + "/result.h5", m.directory + "/result.csv");
+  outcome.wall_seconds = clock.Seconds();
+  outcome.message = result.summary.Report();
+  const bool success = result.summary.success();
+  outcome.status = success ? CaseStatus::kComputed : CaseStatus::kFailed;
+  WriteDone(m.directory, {m.key, success ? dem::Termination::kCompleted : dem::Termination::kFailed,
+                          outcome.message, 0, 0, outcome.wall_seconds});
+  if (log) log(m.id + ": " + ToString(outcome.status) + " (" + outcome.message + ")");
+#else
+  throw InputError(m.id + ": this build has no constitutive models (configure with "
+                   "GRANASYM_BUILD_MODELS=ON) and cannot run the programme's [[model_run]]");
+#endif
+  return outcome;
+}
+
+class Scheduler {
+ public:
+  Scheduler(const Plan& plan, const RunnerOptions& options, const std::vector<int>& selected)
+      : plan_(plan), options_(options), selected_(selected) {
+    for (int k : selected_) in_shard_.insert(k);
+    for (int k : selected_) {
+      state_[k] = State::kWaiting;
+      estimate_[k] = static_cast<double>(plan_.cases[static_cast<size_t>(k)].particles) *
+                     plan_.cases[static_cast<size_t>(k)].estimated_steps;
+    }
+    for (int k : selected_) {
+      const int parent = plan_.cases[static_cast<size_t>(k)].parent;
+      if (parent < 0 || !in_shard_.count(parent)) ready_.push_back(k);
+    }
+  }
+
+  StudyOutcome Run() {
+    const Stopwatch clock;
+    const int jobs = std::max(1, std::min<int>(options_.jobs, static_cast<int>(selected_.size())));
+    std::vector<std::thread> workers;
+    for (int j = 0; j < jobs; ++j) workers.emplace_back([this] { Work(); });
+    // The progress reporter runs here.
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      while (finished_ < selected_.size()) {
+        cv_done_.wait_for(lock, std::chrono::duration<double>(options_.progress_period_s));
+        if (options_.progress) {
+          const StudyProgress progress = ProgressLocked(clock.Seconds());
+          lock.unlock();
+          options_.progress(progress);
+          lock.lock();
+        }
+      }
+    }
+    for (std::thread& worker : workers) worker.join();
+    StudyOutcome outcome;
+    for (int k : selected_) outcome.cases.push_back(outcomes_[k]);
+    outcome.wall_seconds = clock.Seconds();
+    return outcome;
+  }
+
+ private:
+  enum class State { kWaiting, kRunning, kFinished };
+
+  bool StopRequested() const { return options_.stop_requested && options_.stop_requested(); }
+
+  void Work() {
+    for (;;) {
+      int k = -1;
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        cv_ready_.wait(lock, [this] { return !ready_.empty() || finished_ == selected_.size(); });
+        if (ready_.empty()) return;
+        k = PopReadyLocked();
+        state_[k] = State::kRunning;
+      }
+      CaseOutcome outcome;
+      if (StopRequested()) {
+        outcome.id = plan_.cases[static_cast<size_t>(k)].id;
+        outcome.status = CaseStatus::kInterrupted;
+        outcome.message = "not started: the study was interrupted";
+      } else {
+        outcome = Execute(k);
+      }
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        Finish(k, outcome);
+      }
+      cv_ready_.notify_all();
+      cv_done_.notify_all();
+    }
+  }
+
+  // The ready case with the most work below it (the critical path first).
+  int PopReadyLocked() {
+    auto below = [this](int k) {
+      double total = 0;
+      std::vector<int> stack{k};
+      while (!stack.empty()) {
+        const int c = stack.back();
+        stack.pop_back();
+        total += estimate_[c];
+        for (int child : plan_.cases[static_cast<size_t>(c)].children) {
+          if (in_shard_.count(child)) stack.push_back(child);
+        }
+      }
+      return total;
+    };
+    auto best = std::max_element(ready_.begin(), ready_.end(),
+                                 [&](int a, int b) { return below(a) < below(b); });
+    const int k = *best;
+    ready_.erase(best);
+    return k;
+  }
+
+  void Finish(int k, const CaseOutcome& outcome) {
+    outcomes_[k] = outcome;
+    state_[k] = State::kFinished;
+    ++finished_;
+    done_particle_steps_ += outcome.particle_steps;
+    running_particle_steps_.erase(k);
+    if (outcome.status == CaseStatus::kInterrupted) {
+      // Its children cannot start: they are interrupted too.
+      std::vector<int> stack(plan_.cases[static_cast<size_t>(k)].children);
+      while (!stack.empty()) {
+        const int c = stack.back();
+        stack.pop_back();
+        if (!in_shard_.count(c) || state_[c] == State::kFinished) continue;
+        outcomes_[c] = {plan_.cases[static_cast<size_t>(c)].id, CaseStatus::kInterrupted,
+                        "not started: the study was interrupted", 0, 0};
+        state_[c] = State::kFinished;
+        ++finished_;
+        for (int g : plan_.cases[static_cast<size_t>(c)].children) stack.push_back(g);
+      }
+      return;
+    }
+    for (int child : plan_.cases[static_cast<size_t>(k)].children) {
+      if (in_shard_.count(child)) ready_.push_back(child);
+    }
+  }
+
+  StudyProgress ProgressLocked(double elapsed) const {
+    StudyProgress p;
+    p.total = static_cast<int>(selected_.size());
+    double remaining = 0, running_done = 0;
+    for (int k : selected_) {
+      const auto state = state_.at(k);
+      if (state == State::kFinished) {
+        ++p.done;
+        const CaseStatus status = outcomes_.at(k).status;
+        if (status == CaseStatus::kFailed || status == CaseStatus::kBlocked) ++p.failed;
+        if (status == CaseStatus::kCached) ++p.cached;
+        continue;
+      }
+      if (state == State::kRunning) ++p.running;
+      const auto it = running_particle_steps_.find(k);
+      const double progressed = it == running_particle_steps_.end() ? 0.0 : it->second;
+      running_done += progressed;
+      remaining += std::max(0.1 * estimate_.at(k), estimate_.at(k) - progressed);
+    }
+    p.left = p.total - p.done - p.running;
+    const double computed = static_cast<double>(done_particle_steps_) + running_done;
+    if (elapsed > 1 && computed > 0) {
+      p.particle_steps_per_second = computed / elapsed;
+      p.eta_seconds = remaining / p.particle_steps_per_second;
+    }
+    return p;
+  }
+
+  CaseOutcome Execute(int k);
+
+  const Plan& plan_;
+  const RunnerOptions& options_;
+  const std::vector<int> selected_;
+  std::set<int> in_shard_;
+  std::mutex mutex_;
+  std::condition_variable cv_ready_, cv_done_;
+  std::vector<int> ready_;
+  std::map<int, State> state_;
+  std::map<int, double> estimate_;  // particle-steps
+  std::map<int, CaseOutcome> outcomes_;
+  std::map<int, double> running_particle_steps_;
+  int64_t done_particle_steps_ = 0;
+  size_t finished_ = 0;
+};
+
+CaseOutcome Scheduler::Execute(int k) {
+  const PlannedCase& c = plan_.cases[static_cast<size_t>(k)];
+  CaseOutcome outcome;
+  outcome.id = c.id;
+  const Stopwatch clock;
+  const std::function<bool()> stop = [this] { return StopRequested(); };
+  fs::create_directories(c.directory);
+  FileLock lock(c.directory + "/.lock", stop);
+  if (!lock.locked()) {
+    outcome.status = CaseStatus::kInterrupted;
+    outcome.message = "not started: the study was interrupted while waiting for the case's lock";
+    return outcome;
+  }
+  if (const std::optional<DoneRecord> done = ReadDone(c.directory);
+      done && done->key == c.key && fs::exists(c.result_path())) {
+    outcome.status =
+        done->termination == dem::Termination::kCompleted ? CaseStatus::kCached : CaseStatus::kFailed;
+    outcome.message = done->message;
+    return outcome;
+  }
+  // A parent computed by another shard is read from the shared folder.
+  if (c.parent >= 0) {
+    const PlannedCase& parent = plan_.cases[static_cast<size_t>(c.parent)];
+    const std::optional<DoneRecord> done = ReadDone(parent.directory);
+    if (!done || done->key != parent.key) {
+      outcome.status = CaseStatus::kBlocked;
+      outcome.message = "its parent " + parent.id + " has no result for the current inputs";
+      return outcome;
+    }
+  }
+  const std::string running_path = c.directory + "/running.toml";
+  const bool resume = fs::exists(running_path) && fs::exists(c.result_path() + ".ckpt") &&
+                      ReadTextFile(running_path) == "key = " + Quoted(c.key) + "\n";
+  if (!resume) {
+    for (const char* name : {"/result.h5", "/result.h5.ckpt", "/done.toml"}) {
+      fs::remove(c.directory + name);
+    }
+  }
+  WriteIfChanged(c.directory + "/scene.toml", c.scene_text);
+  WriteIfChanged(c.directory + "/case.toml", CaseRecordText(plan_, c));
+  WriteTextFileAtomically(running_path, "key = " + Quoted(c.key) + "\n");
+
+  const dem::Scene scene = dem::Scene::Parse(c.scene_text, c.directory + "/scene.toml", c.directory);
+  dem::RunOptions run;
+  run.output_path = c.result_path();
+  run.threads = plan_.threads;
+  run.restart = resume;
+  run.stop_requested = [this](int64_t) { return StopRequested(); };
+  if (options_.log) {
+    run.log = [this, &c](const std::string& line) {
+      std::string text = line;
+      while (!text.empty() && text.back() == '\n') text.pop_back();
+      options_.log(c.id + ": " + text);
+    };
+  }
+  int64_t first_step = -1;
+  run.progress = [this, k, &first_step, &c](const dem::RunProgress& progress) {
+    if (first_step < 0) first_step = progress.step;
+    std::lock_guard<std::mutex> lock(mutex_);
+    running_particle_steps_[k] =
+        static_cast<double>(progress.step - first_step) * static_cast<double>(c.particles);
+  };
+  run.progress_period_s = 0.5;
+  if (options_.log) options_.log(c.id + ": " + (resume ? "resuming from its checkpoint" : "started"));
+  dem::RunSummary summary;
+  try {
+    summary = dem::RunScene(scene, run);
+  } catch (const InputError& error) {
+    if (c.parent < 0) throw;
+    // The parent ended before the state this case starts from.
+    outcome.status = CaseStatus::kBlocked;
+    outcome.message = error.what();
+    fs::remove(running_path);
+    if (options_.log) options_.log(c.id + ": blocked: " + outcome.message);
+    return outcome;
+  }
+  outcome.wall_seconds = clock.Seconds();
+  outcome.particle_steps =
+      static_cast<int64_t>(summary.particle_steps_per_second * summary.loop_seconds);
+  outcome.message = summary.message;
+  if (summary.termination == dem::Termination::kInterrupted) {
+    outcome.status = CaseStatus::kInterrupted;
+    return outcome;
+  }
+  WriteDone(c.directory, {c.key, summary.termination, summary.message, summary.steps,
+                          summary.particles, outcome.wall_seconds});
+  fs::remove(running_path);
+  outcome.status = summary.termination == dem::Termination::kCompleted ? CaseStatus::kComputed
+                                                                       : CaseStatus::kFailed;
+  if (options_.log) {
+    options_.log(fmt::format("{}: {} in {:.1f} s ({})", c.id, ToString(outcome.status),
+                             outcome.wall_seconds, summary.message));
+  }
+  return outcome;
+}
+
+std::string EtaText(double seconds) {
+  if (seconds < 0) return "?";
+  const int64_t s = static_cast<int64_t>(seconds + 0.5);
+  if (s >= 3600) return fmt::format("{}h{:02d}m", s / 3600, static_cast<int>(s % 3600 / 60));
+  if (s >= 60) return fmt::format("{}m{:02d}s", s / 60, static_cast<int>(s % 60));
+  return fmt::format("{}s", s);
+}
+
+}  // namespace
+
+std::string StudyProgress::OneLine() const {
+  return fmt::format("cases {}/{} done ({} cached, {} failed), {} running, {} left | {:.3g} "
+                     "particle-steps/s | ETA {}",
+                     done, total, cached, failed, running, left, particle_steps_per_second,
+                     EtaText(eta_seconds));
+}
+
+int StudyOutcome::Count(CaseStatus status) const {
+  return static_cast<int>(std::count_if(cases.begin(), cases.end(),
+                                        [status](const CaseOutcome& c) { return c.status == status; }));
+}
+
+std::string StudyOutcome::OneLine() const {
+  std::string line = fmt::format("{} cases in {:.1f} s:", cases.size(), wall_seconds);
+  for (CaseStatus status : EnumValues<CaseStatus>()) {
+    line += fmt::format(" {} {}", Count(status), ToString(status));
+  }
+  return line;
+}
+
+StudyOutcome RunStudy(const Plan& plan, const RunnerOptions& options) {
+  if (options.jobs < 1) throw InputError("--jobs must be at least 1");
+  if (options.shard_count < 1 || options.shard_index < 1 ||
+      options.shard_index > options.shard_count) {
+    throw InputError(fmt::format("--shard {}/{}: expected K/N with 1 <= K <= N",
+                                 options.shard_index, options.shard_count));
+  }
+  PrepareDirectory(plan);
+  const std::vector<int> selected = plan.Shard(options.shard_index, options.shard_count);
+  std::set<int> replicates;
+  for (int k : selected) replicates.insert(plan.cases[static_cast<size_t>(k)].replicate);
+  for (const PlannedSample& sample : plan.samples) {
+    if (replicates.count(sample.replicate)) {
+      GenerateSample(sample, options.stop_requested, options.log);
+    }
+  }
+  // Model runs are quick and belong to the first shard.
+  std::vector<CaseOutcome> models;
+  if (options.shard_index == 1) {
+    for (const PlannedModelCase& m : plan.model_cases) {
+      if (options.stop_requested && options.stop_requested()) break;
+      models.push_back(RunModelCase(m, options.log));
+    }
+  }
+  Scheduler scheduler(plan, options, selected);
+  StudyOutcome outcome = scheduler.Run();
+  outcome.cases.insert(outcome.cases.end(), models.begin(), models.end());
+  return outcome;
+}
+
+std::string DescribeStudy(const std::string& directory) {
+  if (!fs::exists(directory + "/study.toml")) {
+    throw InputError(directory + ": not a study folder (no study.toml)");
+  }
+  std::string text = ReadTextFile(directory + "/study.toml");
+  std::map<std::string, int> counts;
+  std::vector<std::string> lines;
+  const fs::path cases = fs::path(directory) / "cases";
+  std::vector<fs::path> folders;
+  if (fs::exists(cases)) {
+    for (const auto& replicate : fs::directory_iterator(cases)) {
+      if (!replicate.is_directory()) continue;
+      for (const auto& entry : fs::directory_iterator(replicate.path())) {
+        if (entry.is_directory()) folders.push_back(entry.path());
+      }
+    }
+  }
+  std::sort(folders.begin(), folders.end());
+  for (const fs::path& folder : folders) {
+    const std::string id = folder.parent_path().filename().string() + "/" + folder.filename().string();
+    std::string status;
+    if (const std::optional<DoneRecord> done = ReadDone(folder.string())) {
+      status = ToString(done->termination);
+      lines.push_back(fmt::format("{:<40} {:<11} {}", id, status, done->message));
+    } else if (fs::exists(folder / "result.h5.ckpt")) {
+      status = "checkpointed";
+      lines.push_back(fmt::format("{:<40} {}", id, "checkpointed (resumes on the next run)"));
+    } else {
+      status = "not_run";
+      lines.push_back(fmt::format("{:<40} {}", id, "not run"));
+    }
+    ++counts[status];
+  }
+  for (const std::string& line : lines) text += line + "\n";
+  std::string summary = fmt::format("{} case folders:", folders.size());
+  for (const auto& [status, count] : counts) summary += fmt::format(" {} {}", count, status);
+  return text + summary + "\n";
+}
+
+int MergeStudies(const std::vector<std::string>& inputs, const std::string& output) {
+  if (inputs.empty()) throw InputError("study merge: give at least one study folder");
+  std::string record;
+  for (const std::string& input : inputs) {
+    if (!fs::exists(input + "/study.toml")) {
+      throw InputError(input + ": not a study folder (no study.toml)");
+    }
+    const std::string text = ReadTextFile(input + "/study.toml");
+    if (record.empty()) record = text;
+    if (text != record) {
+      throw InputError(input + "/study.toml differs from " + inputs.front() +
+                       "/study.toml: only shards of one study (programme, scale, threads, "
+                       "version) can be merged");
+    }
+  }
+  const bool in_place = inputs.size() == 1 && fs::exists(output) &&
+                        fs::equivalent(fs::path(inputs.front()), fs::path(output));
+  if (!in_place) {
+    for (const std::string& input : inputs) {
+      if (fs::exists(output) && fs::equivalent(input, output)) {
+        throw InputError("study merge: --out " + output +
+                         " is one of several inputs; merge into a new folder");
+      }
+    }
+    if (fs::exists(output) && !fs::is_empty(output)) {
+      throw InputError("study merge: --out " + output + " is not empty; give a new folder");
+    }
+    fs::create_directories(output);
+    WriteTextFileAtomically(output + "/study.toml", record);
+  }
+  std::map<std::string, std::string> keys;  // case id → key
+  for (const std::string& input : inputs) {
+    for (const char* top : {"samples", "cases", "models"}) {
+      const fs::path base = fs::path(input) / top;
+      if (!fs::exists(base)) continue;
+      for (const auto& replicate : fs::directory_iterator(base)) {
+        if (!replicate.is_directory()) continue;
+        std::vector<fs::path> folders;
+        if (std::string(top) != "cases") {
+          folders.push_back(replicate.path());
+        } else {
+          for (const auto& entry : fs::directory_iterator(replicate.path())) {
+            if (entry.is_directory()) folders.push_back(entry.path());
+          }
+        }
+        for (const fs::path& folder : folders) {
+          const std::string id = fs::relative(folder, input).string();
+          std::string key;
+          if (std::string(top) != "samples") {
+            const std::optional<DoneRecord> done = ReadDone(folder.string());
+            if (!done) continue;  // not finished in this input
+            key = done->key;
+          } else {
+            if (!fs::exists(folder / "key")) continue;
+            key = ReadTextFile((folder / "key").string());
+          }
+          const auto [it, inserted] = keys.emplace(id, key);
+          if (!inserted) {
+            if (it->second != key) {
+              throw InputError("study merge: " + id + " has different inputs in two folders (" +
+                               input + " and an earlier one)");
+            }
+            continue;
+          }
+          if (in_place) continue;
+          const fs::path target = fs::path(output) / id;
+          fs::create_directories(target);
+          for (const auto& file : fs::directory_iterator(folder)) {
+            const std::string name = file.path().filename().string();
+            if (!file.is_regular_file() || name == ".lock" || name == "running.toml" ||
+                (name.size() > 5 && name.substr(name.size() - 5) == ".ckpt")) {
+              continue;
+            }
+            std::error_code error;
+            fs::create_hard_link(file.path(), target / name, error);
+            if (error) fs::copy_file(file.path(), target / name);
+          }
+        }
+      }
+    }
+  }
+  int cases = 0;
+  for (const auto& [id, key] : keys) cases += id.rfind("cases/", 0) == 0;
+  return cases;
+}
+
+}  // namespace granasym::study

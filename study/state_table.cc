@@ -1,0 +1,569 @@
+#include "study/state_table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "common/config.h"
+#include "common/error.h"
+#include "common/hdf5_file.h"
+#include "common/text_file.h"
+#include "common/time_series.h"
+#include "dem/run_record.h"
+#include "dem/run_record_names.h"
+
+namespace granasym::study {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The kind of an asymptotic state, as the table names it.
+std::string KindOf(dem::PathKind path, double psi_epsilon_deg) {
+  switch (path) {
+    case dem::PathKind::kIsochoric:
+      return "csl";
+    case dem::PathKind::kCompression:
+      return std::abs(psi_epsilon_deg) < 1e-6 ? "ncl" : "compression";
+    case dem::PathKind::kExtension:
+      return "extension";
+    case dem::PathKind::kStressControlled:
+      return "triaxial";
+  }
+  return "unknown";
+}
+
+struct CaseFolder {
+  std::string directory, id, name, run, figures, key;
+  int replicate = 1;
+  bool finished = false;  // done.toml for the current key, and a result
+  std::string termination, message;
+};
+
+std::vector<CaseFolder> ListCases(const std::string& directory) {
+  std::vector<CaseFolder> cases;
+  const fs::path base = fs::path(directory) / "cases";
+  if (!fs::exists(base)) return cases;
+  std::vector<fs::path> folders;
+  for (const auto& replicate : fs::directory_iterator(base)) {
+    if (!replicate.is_directory()) continue;
+    for (const auto& entry : fs::directory_iterator(replicate.path())) {
+      if (entry.is_directory() && fs::exists(entry.path() / "case.toml")) {
+        folders.push_back(entry.path());
+      }
+    }
+  }
+  std::sort(folders.begin(), folders.end());
+  for (const fs::path& folder : folders) {
+    const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
+    CaseFolder c;
+    c.directory = folder.string();
+    c.id = record.GetString("id");
+    c.name = record.GetString("name");
+    c.run = record.GetString("run", "");
+    c.figures = record.GetString("figures", "");
+    c.key = record.GetString("key");
+    c.replicate = static_cast<int>(record.GetInt("replicate", 1, Range::AtLeast(1)));
+    if (fs::exists(folder / "done.toml")) {
+      const ConfigTable done = ConfigTable::ParseFile((folder / "done.toml").string());
+      c.termination = done.GetString("termination");
+      c.message = done.GetString("message", "");
+      c.finished = done.GetString("key") == c.key && fs::exists(folder / "result.h5");
+    }
+    if (!c.finished && c.message.empty()) {
+      c.message = fs::exists(folder / "result.h5.ckpt") ? "interrupted: resumes on the next run"
+                                                          : "not run";
+    }
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+StateRow RowFrom(const CaseFolder& c, const dem::StageRecord& stage) {
+  const dem::AsymptoteRecord& a = *stage.asymptote;
+  StateRow row;
+  row.case_id = c.id;
+  row.case_name = c.name;
+  row.run = c.run;
+  row.figures = c.figures;
+  row.replicate = c.replicate;
+  row.stage = stage.name;
+  row.kind = KindOf(a.path_kind, a.psi_epsilon_deg);
+  row.status = ToString(a.status);
+  row.detector = stage.asymptote_criterion;
+  for (dem::ValidityFlag flag : stage.validity.flags) {
+    row.flags += (row.flags.empty() ? "" : ";") + ToString(flag);
+  }
+  row.message = stage.stop_reason;
+  row.psi_epsilon_deg = a.psi_epsilon_deg;
+  row.p_kpa = a.mean_stress_kpa;
+  row.e = a.void_ratio;
+  row.ln_1_plus_e = std::log1p(a.void_ratio);
+  row.psi_sigma_deg = a.psi_sigma_deg;
+  row.q_over_p = a.q_over_p;
+  row.inertial_number_dmin = a.inertial_number_dmin;
+  row.inertial_number_dmax = a.inertial_number_dmax;
+  row.coordination = a.coordination;
+  row.mechanical_coordination = a.mechanical_coordination;
+  row.max_relative_overlap = a.max_relative_overlap;
+  row.ocr = kNaN;
+  row.p_e_star_kpa = kNaN;
+  return row;
+}
+
+StateRow MissingRow(const CaseFolder& c) {
+  StateRow row;
+  row.case_id = c.id;
+  row.case_name = c.name;
+  row.run = c.run;
+  row.figures = c.figures;
+  row.replicate = c.replicate;
+  row.kind = "none";
+  row.status = "no_result";
+  row.message = c.termination.empty() ? c.message : c.termination + ": " + c.message;
+  for (double* v : {&row.psi_epsilon_deg, &row.p_kpa, &row.e, &row.ln_1_plus_e, &row.psi_sigma_deg,
+                    &row.q_over_p, &row.ocr, &row.p_e_star_kpa, &row.inertial_number_dmin,
+                    &row.inertial_number_dmax, &row.coordination, &row.mechanical_coordination,
+                    &row.max_relative_overlap}) {
+    *v = kNaN;
+  }
+  return row;
+}
+
+// Least-squares line y = a + b x; false with fewer than 2 distinct x.
+bool FitLine(const std::vector<double>& x, const std::vector<double>& y, double* a, double* b) {
+  const size_t n = x.size();
+  if (n < 2) return false;
+  double mx = 0, my = 0;
+  for (size_t k = 0; k < n; ++k) mx += x[k], my += y[k];
+  mx /= static_cast<double>(n);
+  my /= static_cast<double>(n);
+  double sxx = 0, sxy = 0;
+  for (size_t k = 0; k < n; ++k) {
+    sxx += (x[k] - mx) * (x[k] - mx);
+    sxy += (x[k] - mx) * (y[k] - my);
+  }
+  if (!(sxx > 0)) return false;
+  *b = sxy / sxx;
+  *a = my - *b * mx;
+  return true;
+}
+
+// Two-sided 95 % Student t quantile for `dof` degrees of freedom.
+double StudentT95(int dof) {
+  static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
+                                 2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
+                                 2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
+                                 2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
+  if (dof < 1) return kNaN;
+  if (dof <= 30) return table[dof - 1];
+  return 1.960 + 2.4 / dof;  // within 0.2 % of the exact quantile beyond 30
+}
+
+// A path as monotone samples in x = ln p (the running extreme in the
+// direction the path moves: rising for compression, falling for extension).
+struct PathSamples {
+  std::vector<double> x, ln_v, psi;
+};
+
+PathSamples MonotonePath(const TimeSeries& series, int64_t first, int64_t last, bool rising) {
+  PathSamples path;
+  const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
+  const std::vector<double>& e = series.Values(dem::record::kColumnVoidRatio);
+  const std::vector<double>& psi = series.Values(dem::record::kColumnPsiSigma);
+  for (int64_t r = first; r <= last && r < static_cast<int64_t>(p.size()); ++r) {
+    const size_t k = static_cast<size_t>(r);
+    if (!(p[k] > 0)) continue;
+    const double x = std::log(p[k]);
+    if (!path.x.empty() && (rising ? x <= path.x.back() : x >= path.x.back())) continue;
+    path.x.push_back(x);
+    path.ln_v.push_back(std::log1p(e[k]));
+    path.psi.push_back(psi[k]);
+  }
+  if (!rising) {  // ascending x for interpolation
+    std::reverse(path.x.begin(), path.x.end());
+    std::reverse(path.ln_v.begin(), path.ln_v.end());
+    std::reverse(path.psi.begin(), path.psi.end());
+  }
+  return path;
+}
+
+double Interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
+  const auto it = std::lower_bound(x.begin(), x.end(), at);
+  if (it == x.begin()) return y.front();
+  if (it == x.end()) return y.back();
+  const size_t k = static_cast<size_t>(it - x.begin());
+  const double t = (at - x[k - 1]) / (x[k] - x[k - 1]);
+  return y[k - 1] + t * (y[k] - y[k - 1]);
+}
+
+// Where two paths of one ψ_ε join: the first grid point of their common
+// ln p range from which both ln(1+e) and ψ_σ stay within the tolerances
+// (in the direction the paths move).
+ConvergenceRow Join(const PathSamples& a, const PathSamples& b, bool rising,
+                    const ConvergenceTolerance& tolerance) {
+  ConvergenceRow row;
+  row.joined_at_p_kpa = row.ln_1_plus_e = row.psi_sigma_deg = kNaN;
+  row.overlap_from_p_kpa = row.overlap_to_p_kpa = kNaN;
+  if (a.x.size() < 2 || b.x.size() < 2) {
+    row.status = "no_overlap";
+    return row;
+  }
+  const double lo = std::max(a.x.front(), b.x.front()), hi = std::min(a.x.back(), b.x.back());
+  if (!(hi > lo)) {
+    row.status = "no_overlap";
+    return row;
+  }
+  row.overlap_from_p_kpa = std::exp(rising ? lo : hi);
+  row.overlap_to_p_kpa = std::exp(rising ? hi : lo);
+  const int n = tolerance.grid_points;
+  std::vector<bool> close(static_cast<size_t>(n));
+  for (int g = 0; g < n; ++g) {
+    // Grid in the direction of travel.
+    const double t = static_cast<double>(g) / (n - 1);
+    const double x = rising ? lo + t * (hi - lo) : hi - t * (hi - lo);
+    close[static_cast<size_t>(g)] =
+        std::abs(Interpolate(a.x, a.ln_v, x) - Interpolate(b.x, b.ln_v, x)) <
+            tolerance.ln_1_plus_e &&
+        std::abs(Interpolate(a.x, a.psi, x) - Interpolate(b.x, b.psi, x)) <
+            tolerance.psi_sigma_deg;
+  }
+  int first = n;
+  while (first > 0 && close[static_cast<size_t>(first - 1)]) --first;
+  // Joined only if the paths stay together over at least a quarter of the range.
+  if (first > n - std::max(2, n / 4)) {
+    row.status = "not_joined";
+    return row;
+  }
+  const double t = static_cast<double>(first) / (n - 1);
+  const double x = rising ? lo + t * (hi - lo) : hi - t * (hi - lo);
+  row.status = "joined";
+  row.joined_at_p_kpa = std::exp(x);
+  row.ln_1_plus_e = 0.5 * (Interpolate(a.x, a.ln_v, x) + Interpolate(b.x, b.ln_v, x));
+  row.psi_sigma_deg = 0.5 * (Interpolate(a.x, a.psi, x) + Interpolate(b.x, b.psi, x));
+  return row;
+}
+
+std::string CsvText(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c == '\n' ? ' ' : c;
+  }
+  return out + "\"";
+}
+
+std::string Number(double value) {
+  if (std::isnan(value)) return "";
+  return fmt::format("{:.10g}", value);
+}
+
+struct NumberColumn {
+  const char* name;
+  const char* units;
+  double StateRow::*member;
+};
+constexpr NumberColumn kNumberColumns[] = {
+    {"psi_epsilon_deg", "deg", &StateRow::psi_epsilon_deg},
+    {"p_kpa", "kPa", &StateRow::p_kpa},
+    {"e", "1", &StateRow::e},
+    {"ln_1_plus_e", "1", &StateRow::ln_1_plus_e},
+    {"psi_sigma_deg", "deg", &StateRow::psi_sigma_deg},
+    {"q_over_p", "1", &StateRow::q_over_p},
+    {"ocr", "1", &StateRow::ocr},
+    {"p_e_star_kpa", "kPa", &StateRow::p_e_star_kpa},
+    {"inertial_number_dmin", "1", &StateRow::inertial_number_dmin},
+    {"inertial_number_dmax", "1", &StateRow::inertial_number_dmax},
+    {"coordination", "1", &StateRow::coordination},
+    {"mechanical_coordination", "1", &StateRow::mechanical_coordination},
+    {"max_relative_overlap", "1", &StateRow::max_relative_overlap},
+};
+struct TextColumn {
+  const char* name;
+  std::string StateRow::*member;
+};
+constexpr TextColumn kTextColumns[] = {
+    {"kind", &StateRow::kind},       {"status", &StateRow::status},
+    {"case", &StateRow::case_id},    {"case_name", &StateRow::case_name},
+    {"stage", &StateRow::stage},     {"run", &StateRow::run},
+    {"figures", &StateRow::figures}, {"flags", &StateRow::flags},
+    {"detector", &StateRow::detector}, {"message", &StateRow::message},
+};
+
+void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
+               const std::vector<NclFit>& fits) {
+  std::string csv = "replicate,kind,status,case,case_name,stage";
+  for (const NumberColumn& column : kNumberColumns) csv += std::string(",") + column.name;
+  csv += ",run,figures,flags,detector,message\n";
+  for (const StateRow& row : rows) {
+    csv += std::to_string(row.replicate) + "," + row.kind + "," + row.status + "," +
+           CsvText(row.case_id) + "," + CsvText(row.case_name) + "," + CsvText(row.stage);
+    for (const NumberColumn& column : kNumberColumns) csv += "," + Number(row.*column.member);
+    csv += "," + CsvText(row.run) + "," + CsvText(row.figures) + "," + CsvText(row.flags) + "," +
+           CsvText(row.detector) + "," + CsvText(row.message) + "\n";
+  }
+  WriteTextFileAtomically(directory + "/asymptotic_states.csv", csv);
+
+  Hdf5File file = Hdf5File::CreateAtomic(directory + "/asymptotic_states.h5");
+  file.CreateGroup("/states");
+  file.SetAttribute("/states", "description",
+                    "asymptotic states of every case: one row per detector-carrying stage, and "
+                    "one per case without a result");
+  std::vector<int64_t> replicates;
+  for (const StateRow& row : rows) replicates.push_back(row.replicate);
+  file.WriteInts("/states/replicate", replicates);
+  for (const NumberColumn& column : kNumberColumns) {
+    std::vector<double> values;
+    for (const StateRow& row : rows) values.push_back(row.*column.member);
+    file.WriteDoubles(std::string("/states/") + column.name, values, column.units);
+  }
+  for (const TextColumn& column : kTextColumns) {
+    std::vector<std::string> values;
+    for (const StateRow& row : rows) values.push_back(row.*column.member);
+    file.WriteStrings(std::string("/states/") + column.name, values);
+  }
+  file.CreateGroup("/ncl_fit");
+  std::vector<double> n, lambda, pmin, pmax;
+  std::vector<int64_t> reps, points;
+  for (const NclFit& fit : fits) {
+    reps.push_back(fit.replicate);
+    points.push_back(fit.points);
+    n.push_back(fit.valid() ? fit.n : kNaN);
+    lambda.push_back(fit.valid() ? fit.lambda : kNaN);
+    pmin.push_back(fit.p_min_kpa);
+    pmax.push_back(fit.p_max_kpa);
+  }
+  file.WriteInts("/ncl_fit/replicate", reps);
+  file.WriteInts("/ncl_fit/points", points);
+  file.WriteDoubles("/ncl_fit/N", n, "1");
+  file.WriteDoubles("/ncl_fit/lambda_star", lambda, "1");
+  file.WriteDoubles("/ncl_fit/p_min_kpa", pmin, "kPa");
+  file.WriteDoubles("/ncl_fit/p_max_kpa", pmax, "kPa");
+  file.Commit();
+}
+
+// Mean and 95 % interval over replicates of each (case name, stage), from
+// the detected states.
+void WriteSummary(const std::string& directory, const std::vector<StateRow>& rows) {
+  std::map<std::pair<std::string, std::string>, std::vector<const StateRow*>> groups;
+  std::vector<std::pair<std::string, std::string>> order;
+  for (const StateRow& row : rows) {
+    if (row.status == "no_result") continue;
+    const auto key = std::make_pair(row.case_name, row.stage);
+    if (!groups.count(key)) order.push_back(key);
+    groups[key].push_back(&row);
+  }
+  const std::vector<NumberColumn> summarised = {
+      kNumberColumns[1], kNumberColumns[3], kNumberColumns[4],
+      kNumberColumns[5], kNumberColumns[6], kNumberColumns[0]};
+  std::string csv = "case_name,stage,kind,replicates,detected";
+  for (const NumberColumn& column : summarised) {
+    csv += fmt::format(",{0}_mean,{0}_ci95", column.name);
+  }
+  csv += "\n";
+  for (const auto& key : order) {
+    const std::vector<const StateRow*>& members = groups[key];
+    std::vector<const StateRow*> detected;
+    for (const StateRow* row : members) {
+      if (row->status == "detected") detected.push_back(row);
+    }
+    csv += CsvText(key.first) + "," + CsvText(key.second) + "," + members.front()->kind + "," +
+           std::to_string(members.size()) + "," + std::to_string(detected.size());
+    for (const NumberColumn& column : summarised) {
+      std::vector<double> values;
+      for (const StateRow* row : detected) {
+        if (std::isfinite(row->*column.member)) values.push_back(row->*column.member);
+      }
+      double mean = kNaN, half = kNaN;
+      if (!values.empty()) {
+        mean = 0;
+        for (double v : values) mean += v;
+        mean /= static_cast<double>(values.size());
+      }
+      if (values.size() >= 2) {
+        double var = 0;
+        for (double v : values) var += (v - mean) * (v - mean);
+        var /= static_cast<double>(values.size() - 1);
+        half = StudentT95(static_cast<int>(values.size()) - 1) *
+               std::sqrt(var / static_cast<double>(values.size()));
+      }
+      csv += "," + Number(mean) + "," + Number(half);
+    }
+    csv += "\n";
+  }
+  WriteTextFileAtomically(directory + "/asymptotic_states_summary.csv", csv);
+}
+
+}  // namespace
+
+StateTableSummary WriteStateTable(const std::string& directory,
+                                  const ConvergenceTolerance& tolerance) {
+  if (!fs::exists(directory + "/study.toml")) {
+    throw InputError(directory + ": not a study folder (no study.toml)");
+  }
+  const ConfigTable study = ConfigTable::ParseFile(directory + "/study.toml");
+  const std::string ncl_case = study.GetString("ncl", "");
+  StateTableSummary summary;
+  summary.directory = directory;
+  std::vector<StateRow> rows;
+  // Paths by (replicate, kind, ψ_ε) for the convergence check.
+  struct Path {
+    std::string case_name;
+    double start_p;
+    PathSamples samples;
+  };
+  std::map<std::tuple<int, std::string, double>, std::vector<Path>> paths;
+  for (const CaseFolder& c : ListCases(directory)) {
+    if (!c.finished) {
+      rows.push_back(MissingRow(c));
+      continue;
+    }
+    const std::string result = c.directory + "/result.h5";
+    const Hdf5File file = Hdf5File::OpenRead(result);
+    const std::vector<dem::StageRecord> stages = dem::ReadStageRecords(file);
+    std::optional<TimeSeries> series;
+    bool any = false;
+    for (const dem::StageRecord& stage : stages) {
+      if (!stage.asymptote) continue;
+      any = true;
+      StateRow row = RowFrom(c, stage);
+      if (c.termination != "completed" && row.message.empty()) row.message = c.message;
+      rows.push_back(row);
+      if (row.kind == "compression" || row.kind == "extension") {
+        if (!series) series = TimeSeries::Read(file, "/series");
+        const bool rising = row.kind == "compression";
+        Path path{c.name, 0, MonotonePath(*series, stage.first_row, stage.last_row, rising)};
+        if (path.samples.x.size() >= 2) {
+          path.start_p = std::exp(rising ? path.samples.x.front() : path.samples.x.back());
+          const double psi = std::round(row.psi_epsilon_deg * 1e6) / 1e6;
+          paths[{c.replicate, row.kind, psi}].push_back(std::move(path));
+        }
+      }
+    }
+    if (!any && c.termination != "completed") rows.push_back(MissingRow(c));
+  }
+
+  // The study's NCL, per replicate, through the detected states of its NCL case.
+  std::set<int> replicates;
+  for (const StateRow& row : rows) replicates.insert(row.replicate);
+  for (int r : replicates) {
+    NclFit fit;
+    fit.replicate = r;
+    std::vector<double> x, y;
+    for (const StateRow& row : rows) {
+      if (row.replicate != r || row.case_name != ncl_case || row.kind != "ncl" ||
+          row.status != "detected") {
+        continue;
+      }
+      x.push_back(std::log(row.p_kpa));
+      y.push_back(row.ln_1_plus_e);
+    }
+    fit.points = static_cast<int>(x.size());
+    double a = 0, b = 0;
+    if (FitLine(x, y, &a, &b)) {
+      fit.n = a;
+      fit.lambda = -b;
+      fit.p_min_kpa = std::exp(*std::min_element(x.begin(), x.end()));
+      fit.p_max_kpa = std::exp(*std::max_element(x.begin(), x.end()));
+    }
+    summary.ncl.push_back(fit);
+    if (!fit.valid()) continue;
+    for (StateRow& row : rows) {
+      if (row.replicate != r || !(row.p_kpa > 0)) continue;
+      row.p_e_star_kpa = std::exp((fit.n - row.ln_1_plus_e) / fit.lambda);
+      row.ocr = row.p_e_star_kpa / row.p_kpa;
+    }
+  }
+  std::string ncl_csv = "replicate,points,N,lambda_star,p_min_kpa,p_max_kpa\n";
+  for (const NclFit& fit : summary.ncl) {
+    ncl_csv += fmt::format("{},{},{},{},{},{}\n", fit.replicate, fit.points,
+                           Number(fit.valid() ? fit.n : kNaN),
+                           Number(fit.valid() ? fit.lambda : kNaN), Number(fit.p_min_kpa),
+                           Number(fit.p_max_kpa));
+  }
+  WriteTextFileAtomically(directory + "/ncl_fit.csv", ncl_csv);
+
+  // Paper Sec. 4.3: paths of one ψ_ε from successive starting states.
+  std::vector<ConvergenceRow> convergence;
+  for (auto& [key, group] : paths) {
+    const auto& [replicate, kind, psi] = key;
+    const bool rising = kind == "compression";
+    std::sort(group.begin(), group.end(),
+              [](const Path& a, const Path& b) { return a.start_p < b.start_p; });
+    for (size_t k = 1; k < group.size(); ++k) {
+      ConvergenceRow row = Join(group[k - 1].samples, group[k].samples, rising, tolerance);
+      row.replicate = replicate;
+      row.kind = kind;
+      row.psi_epsilon_deg = psi;
+      row.case_a = group[k - 1].case_name;
+      row.case_b = group[k].case_name;
+      summary.joined += row.status == "joined";
+      summary.not_joined += row.status != "joined";
+      convergence.push_back(row);
+    }
+  }
+  std::string conv_csv = fmt::format(
+      "# paths of one psi_epsilon from different starting states join where ln(1+e) and "
+      "psi_sigma agree within {} and {} deg at a common p from there on\n"
+      "replicate,kind,psi_epsilon_deg,case_a,case_b,status,joined_at_p_kpa,ln_1_plus_e,"
+      "psi_sigma_deg,overlap_from_p_kpa,overlap_to_p_kpa\n",
+      tolerance.ln_1_plus_e, tolerance.psi_sigma_deg);
+  for (const ConvergenceRow& row : convergence) {
+    conv_csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", row.replicate, row.kind,
+                            Number(row.psi_epsilon_deg), row.case_a, row.case_b, row.status,
+                            Number(row.joined_at_p_kpa), Number(row.ln_1_plus_e),
+                            Number(row.psi_sigma_deg), Number(row.overlap_from_p_kpa),
+                            Number(row.overlap_to_p_kpa));
+  }
+  WriteTextFileAtomically(directory + "/path_convergence.csv", conv_csv);
+
+  for (const StateRow& row : rows) ++summary.counts[row.kind][row.status];
+  WriteRows(directory, rows, summary.ncl);
+  WriteSummary(directory, rows);
+  return summary;
+}
+
+std::vector<StateRow> ReadStateTable(const std::string& directory) {
+  const Hdf5File file = Hdf5File::OpenRead(directory + "/asymptotic_states.h5");
+  const std::vector<int64_t> replicates = file.ReadInts("/states/replicate");
+  std::vector<StateRow> rows(replicates.size());
+  for (size_t k = 0; k < rows.size(); ++k) rows[k].replicate = static_cast<int>(replicates[k]);
+  for (const NumberColumn& column : kNumberColumns) {
+    const std::vector<double> values = file.ReadDoubles(std::string("/states/") + column.name);
+    for (size_t k = 0; k < rows.size() && k < values.size(); ++k) rows[k].*column.member = values[k];
+  }
+  for (const TextColumn& column : kTextColumns) {
+    const std::vector<std::string> values = file.ReadStrings(std::string("/states/") + column.name);
+    for (size_t k = 0; k < rows.size() && k < values.size(); ++k) rows[k].*column.member = values[k];
+  }
+  return rows;
+}
+
+std::string StateTableSummary::Text() const {
+  std::string text = "asymptotic states (" + directory + "/asymptotic_states.csv):\n";
+  for (const auto& [kind, statuses] : counts) {
+    text += fmt::format("  {:<12}", kind);
+    for (const auto& [status, count] : statuses) text += fmt::format(" {} {}", count, status);
+    text += "\n";
+  }
+  for (const NclFit& fit : ncl) {
+    text += fit.valid()
+                ? fmt::format("  NCL r{}: N = {:.4f}, lambda* = {:.4f} through {} states, "
+                              "{:.4g}-{:.4g} kPa\n",
+                              fit.replicate, fit.n, fit.lambda, fit.points, fit.p_min_kpa,
+                              fit.p_max_kpa)
+                : fmt::format("  NCL r{}: not determined ({} detected NCL states; OCR and p_e* "
+                              "left empty)\n",
+                              fit.replicate, fit.points);
+  }
+  text += fmt::format("  path convergence: {} pairs joined, {} not\n", joined, not_joined);
+  return text;
+}
+
+}  // namespace granasym::study

@@ -1,0 +1,74 @@
+// The table of asymptotic states across all cases of a study folder:
+// DIR/asymptotic_states.csv and .h5 (one row per detector-carrying stage of
+// every case, and one per case without a result, so that nothing is silently
+// missing), DIR/asymptotic_states_summary.csv (mean and 95 % confidence
+// interval over replicates), DIR/ncl_fit.csv (the study's own NCL that OCR
+// and p_e* refer to), and DIR/path_convergence.csv (the paper's Sec. 4.3
+// evidence: where paths of one ψ_ε from different starting states join).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace granasym::study {
+
+// One asymptotic state (or the reason there is none).
+struct StateRow {
+  std::string case_id, case_name, run, stage, figures;
+  int replicate = 1;
+  std::string kind;    // ncl, csl, compression, extension, triaxial
+  std::string status;  // detected, drifting, not_reached, gas, invalid; no_result
+  std::string detector;
+  std::string flags;  // validity flags, ';'-separated
+  std::string message;
+  double psi_epsilon_deg = 0, p_kpa = 0, e = 0, ln_1_plus_e = 0, psi_sigma_deg = 0,
+         q_over_p = 0, ocr = 0, p_e_star_kpa = 0, inertial_number_dmin = 0,
+         inertial_number_dmax = 0, coordination = 0, mechanical_coordination = 0,
+         max_relative_overlap = 0;
+};
+
+// The isotropic NCL ln(1+e) = N − λ* ln(p / 1 kPa) of one replicate, fitted
+// through the detected states of the study's NCL case.
+struct NclFit {
+  int replicate = 1;
+  int points = 0;
+  double n = 0, lambda = 0;  // N and λ*
+  double p_min_kpa = 0, p_max_kpa = 0;
+  bool valid() const { return points >= 2 && lambda > 0; }
+};
+
+// Where paths of one ψ_ε from different starting states join.
+struct ConvergenceRow {
+  int replicate = 1;
+  std::string kind;
+  double psi_epsilon_deg = 0;
+  std::string case_a, case_b;
+  std::string status;  // joined, not_joined, no_overlap
+  double joined_at_p_kpa = 0, ln_1_plus_e = 0, psi_sigma_deg = 0;
+  double overlap_from_p_kpa = 0, overlap_to_p_kpa = 0;
+};
+
+// Tolerances of the convergence check, in (ln(1+e), ψ_σ) at a common ln p.
+struct ConvergenceTolerance {
+  double ln_1_plus_e = 0.005;
+  double psi_sigma_deg = 1.0;
+  int grid_points = 40;
+};
+
+struct StateTableSummary {
+  std::string directory;
+  std::map<std::string, std::map<std::string, int>> counts;  // kind → status → rows
+  std::vector<NclFit> ncl;
+  int joined = 0, not_joined = 0;
+  std::string Text() const;
+};
+
+// Builds the tables from the case folders below `directory` and writes them.
+StateTableSummary WriteStateTable(const std::string& directory,
+                                  const ConvergenceTolerance& tolerance = {});
+
+// Reads the rows back from DIR/asymptotic_states.h5.
+std::vector<StateRow> ReadStateTable(const std::string& directory);
+
+}  // namespace granasym::study

@@ -1,0 +1,167 @@
+#include "study/programme.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "common/error.h"
+#include "study/plan.h"
+
+namespace granasym::study {
+namespace {
+
+const char* kProgramme = R"(
+[study]
+name = "t"
+ncl = "ncl"
+[scale.tiny]
+count = 100
+replicates = 2
+[sample]
+reference_count = 100
+reference_cell_size_mm = 4.0
+[scene.numerics]
+time_step_s = 1e-7
+[[run]]
+name = "ncl"
+from = "sample"
+[[run.stage]]
+each = { p = [10, 50.5] }
+name = "p{p}"
+psi_epsilon_deg = 0.0
+stretching_rate = 100.0
+stop.mean_stress_kpa = "{p}"
+[[run]]
+name = "nc{p}_psi{psi}"
+from = "ncl@p{p}"
+vary = { p = [10, 50.5], psi = [45, 90] }
+[[run.stage]]
+psi_epsilon_deg = "{psi}"
+stretching_rate = 100.0
+stop = { strain_norm = 0.01, asymptote = true }
+[[run]]
+name = "tx"
+from = "ncl"
+[[run.stage]]
+type = "triaxial"
+axial_strain_rate = 50.0
+radial_stress_kpa = 50.5
+stop.axial_strain = 0.01
+)";
+
+Programme Parse(const std::string& text) { return Programme::Parse(text, "p.toml", "."); }
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(Programme, ListsExpandIntoCasesWithTypedValues) {
+  const Programme p = Parse(kProgramme);
+  ASSERT_EQ(p.cases.size(), 6u);
+  EXPECT_EQ(p.cases[0].name, "ncl");
+  EXPECT_EQ(p.cases[0].stage_names, (std::vector<std::string>{"p10", "p50.5"}));
+  std::set<std::string> names;
+  for (const CaseSpec& c : p.cases) names.insert(c.name);
+  EXPECT_TRUE(names.count("nc50.5_psi90"));
+  const CaseSpec* c = p.Find("nc50.5_psi45");
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(c->parent, "ncl");
+  EXPECT_EQ(c->parent_stage, "p50.5");
+  EXPECT_EQ(c->variables.at("psi"), "45");
+  // "{psi}" alone became the number 45, not the string "45".
+  EXPECT_NE(c->scene_body.find("psi_epsilon_deg = 45"), std::string::npos) << c->scene_body;
+  EXPECT_NE(p.cases[0].scene_body.find("mean_stress_kpa = 50.5"), std::string::npos);
+  EXPECT_EQ(p.Find("tx")->parent_stage, "");
+}
+
+TEST(Programme, CellScalesAtConstantPorosity) {
+  SampleSpec s;
+  s.reference_count = 150000;
+  s.reference_cell_size_mm = 31.0;
+  EXPECT_NEAR(s.CellSizeMm(150000), 31.0, 1e-12);
+  EXPECT_NEAR(s.CellSizeMm(150000 / 8), 15.5, 1e-12);
+}
+
+TEST(Programme, BadInputNamesTheKey) {
+  auto message = [](const std::string& text) {
+    try {
+      Parse(text);
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message(Replace(kProgramme, "from = \"ncl@p{p}\"", "from = \"nope@p{p}\""))
+                .find("names no earlier case"),
+            std::string::npos);
+  EXPECT_NE(message(Replace(kProgramme, "from = \"ncl@p{p}\"", "from = \"ncl@q{p}\""))
+                .find("has no stage 'q10'"),
+            std::string::npos);
+  EXPECT_NE(message(Replace(kProgramme, "name = \"nc{p}_psi{psi}\"", "name = \"nc{p}_psi{phi}\""))
+                .find("{phi}, which is not a variable"),
+            std::string::npos);
+  EXPECT_NE(message(Replace(kProgramme, "name = \"tx\"", "name = \"ncl\"")).find("twice"),
+            std::string::npos);
+  EXPECT_NE(message(Replace(kProgramme, "[study]", "[study]\ncolour = 1")).find("study.colour"),
+            std::string::npos);
+  EXPECT_NE(message(Replace(kProgramme, "[scale.tiny]", "[scale.huge]")).find("expected tiny"),
+            std::string::npos);
+  EXPECT_NE(message(Replace(kProgramme, "name = \"tx\"", "name = \"a/b\"")).find("not a valid"),
+            std::string::npos);
+}
+
+TEST(Plan, KeysChainThroughParentsAndThreads) {
+  const Programme p = Parse(kProgramme);
+  const Plan one = Plan::Make(p, Scale::kTiny, 1, "out");
+  ASSERT_EQ(one.cases.size(), 12u);  // two replicates
+  EXPECT_EQ(one.cases[0].id, "r1/ncl");
+  EXPECT_EQ(one.cases[6].id, "r2/ncl");
+  EXPECT_NE(one.cases[0].key, one.cases[6].key);  // another seed
+  EXPECT_NE(one.samples[0].key, one.samples[1].key);
+  const Plan two = Plan::Make(p, Scale::kTiny, 2, "out");
+  for (size_t k = 0; k < one.cases.size(); ++k) EXPECT_NE(one.cases[k].key, two.cases[k].key);
+  EXPECT_NE(one.cases[1].scene_text.find("state = \"../ncl/result.h5\""), std::string::npos);
+
+  // A changed parameter of one case changes its key and its descendants' only.
+  const Plan changed =
+      Plan::Make(Parse(Replace(kProgramme, "axial_strain_rate = 50.0", "axial_strain_rate = 51.0")),
+                 Scale::kTiny, 1, "out");
+  for (size_t k = 0; k < one.cases.size(); ++k) {
+    const bool tx = one.cases[k].spec.name == "tx";
+    EXPECT_EQ(one.cases[k].key != changed.cases[k].key, tx) << one.cases[k].id;
+  }
+  const Plan parent_changed = Plan::Make(
+      Parse(Replace(kProgramme, "stretching_rate = 100.0\nstop.mean", "stretching_rate = 90.0\nstop.mean")),
+      Scale::kTiny, 1, "out");
+  for (size_t k = 0; k < one.cases.size(); ++k) {
+    EXPECT_NE(one.cases[k].key, parent_changed.cases[k].key) << one.cases[k].id;
+  }
+}
+
+TEST(Plan, ShardsCoverEveryLeafOnceWithTheirAncestors) {
+  const Plan plan = Plan::Make(Parse(kProgramme), Scale::kTiny, 1, "out");
+  std::multiset<int> leaves;
+  for (int count : {1, 2, 3, 5}) {
+    leaves.clear();
+    for (int index = 1; index <= count; ++index) {
+      const std::vector<int> shard = plan.Shard(index, count);
+      std::set<int> members(shard.begin(), shard.end());
+      for (int k : shard) {
+        const PlannedCase& c = plan.cases[static_cast<size_t>(k)];
+        if (c.parent >= 0) {
+          EXPECT_TRUE(members.count(c.parent)) << c.id;
+        }
+        if (c.children.empty()) leaves.insert(k);
+      }
+      EXPECT_TRUE(std::is_sorted(shard.begin(), shard.end()));
+    }
+    EXPECT_EQ(leaves.size(), 10u) << count << " shards";
+    EXPECT_EQ(std::set<int>(leaves.begin(), leaves.end()).size(), 10u);
+  }
+}
+
+}  // namespace
+}  // namespace granasym::study

@@ -1,0 +1,187 @@
+// The study runner on a small programme of real DEM runs: caching, reruns
+// of exactly the changed cases and their descendants, shards merged into
+// the same bytes as one run, and resuming an interrupted study.
+#include "study/runner.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "common/error.h"
+#include "common/hdf5_file.h"
+#include "common/text_file.h"
+#include "common/time_series.h"
+#include "study/plan.h"
+#include "study/programme.h"
+#include "study/state_table.h"
+
+namespace granasym::study {
+namespace {
+namespace fs = std::filesystem;
+
+// 250 spheres at the paper's initial porosity; NCL to 50 kPa, two
+// branches, one of them with a child of its own.
+const char* kProgramme = R"(
+[study]
+name = "runner-test"
+ncl = "ncl"
+[scale.tiny]
+count = 250
+[sample]
+reference_count = 150000
+reference_cell_size_mm = 31.0
+seed = 4
+[scene.numerics]
+time_step_s = 1.2e-7
+[scene.output]
+interval_strain = 0.002
+[[run]]
+name = "ncl"
+from = "sample"
+[[run.stage]]
+each = { p = [20, 50] }
+name = "p{p}"
+psi_epsilon_deg = 0.0
+stretching_rate = 167.0
+stop.mean_stress_kpa = "{p}"
+asymptote = {}
+[[run]]
+name = "nc{p}_psi90"
+from = "ncl@p{p}"
+vary = { p = [20, 50] }
+[[run.stage]]
+psi_epsilon_deg = 90.0
+stretching_rate = 167.0
+stop = { strain_norm = 0.04 }
+asymptote = {}
+[[run]]
+name = "nc50_psi60"
+from = "ncl@p50"
+[[run.stage]]
+psi_epsilon_deg = 60.0
+stretching_rate = 167.0
+stop = { strain_norm = 0.03 }
+[[run]]
+name = "after60"
+from = "nc50_psi60"
+[[run.stage]]
+psi_epsilon_deg = 120.0
+stretching_rate = 167.0
+stop = { strain_norm = 0.02 }
+)";
+
+std::string Dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "study" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir.parent_path());
+  return dir.string();
+}
+
+StudyOutcome Run(const std::string& text, const std::string& dir, RunnerOptions options = {},
+                 int threads = 1) {
+  const Programme programme = Programme::Parse(text, "runner_test.toml", ".");
+  const Plan plan = Plan::Make(programme, Scale::kTiny, threads, dir);
+  if (options.jobs == 1) options.jobs = 2;
+  return RunStudy(plan, options);
+}
+
+std::map<std::string, CaseStatus> Statuses(const StudyOutcome& outcome) {
+  std::map<std::string, CaseStatus> statuses;
+  for (const CaseOutcome& c : outcome.cases) statuses[c.id] = c.status;
+  return statuses;
+}
+
+// Every case's series and final positions, as bytes to compare.
+std::map<std::string, std::string> Series(const std::string& dir) {
+  std::map<std::string, std::string> all;
+  for (const auto& entry : fs::recursive_directory_iterator(fs::path(dir) / "cases")) {
+    if (entry.path().filename() != "result.h5") continue;
+    const Hdf5File file = Hdf5File::OpenRead(entry.path().string());
+    const TimeSeries series = TimeSeries::Read(file, "/series");
+    std::string bytes;
+    for (const auto& column : series.columns()) {
+      const std::vector<double>& values = series.Values(column.name);
+      bytes += column.name;
+      bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(double));
+    }
+    size_t rows = 0, cols = 0;
+    const std::vector<double> positions = file.ReadMatrix("/final_state/positions", &rows, &cols);
+    bytes.append(reinterpret_cast<const char*>(positions.data()), positions.size() * sizeof(double));
+    all[fs::relative(entry.path().parent_path(), dir).string()] = bytes;
+  }
+  return all;
+}
+
+TEST(StudyRunner, SecondRunComputesNothingAndAChangeRerunsItsDescendantsOnly) {
+  const std::string dir = Dir("cache");
+  const StudyOutcome first = Run(kProgramme, dir);
+  ASSERT_EQ(first.Count(CaseStatus::kComputed), 5) << first.OneLine();
+  EXPECT_TRUE(fs::exists(dir + "/samples/r1/packing.txt"));
+
+  const StudyOutcome second = Run(kProgramme, dir);
+  EXPECT_EQ(second.Count(CaseStatus::kCached), 5) << second.OneLine();
+
+  std::string changed = kProgramme;
+  changed.replace(changed.find("strain_norm = 0.03"), 18, "strain_norm = 0.035");
+  const std::map<std::string, CaseStatus> third = Statuses(Run(changed, dir));
+  EXPECT_EQ(third.at("r1/ncl"), CaseStatus::kCached);
+  EXPECT_EQ(third.at("r1/nc20_psi90"), CaseStatus::kCached);
+  EXPECT_EQ(third.at("r1/nc50_psi90"), CaseStatus::kCached);
+  EXPECT_EQ(third.at("r1/nc50_psi60"), CaseStatus::kComputed);
+  EXPECT_EQ(third.at("r1/after60"), CaseStatus::kComputed);
+
+  // Another thread count is another key: everything runs again.
+  const StudyOutcome threads = Run(changed, dir, {}, 2);
+  EXPECT_EQ(threads.Count(CaseStatus::kComputed), 5) << threads.OneLine();
+}
+
+TEST(StudyRunner, TwoShardsMergedGiveTheBytesOfOneRun) {
+  const std::string single = Dir("single"), sharded = Dir("sharded"), merged = Dir("merged");
+  ASSERT_EQ(Run(kProgramme, single).Count(CaseStatus::kComputed), 5);
+  for (int k = 1; k <= 2; ++k) {
+    RunnerOptions options;
+    options.shard_index = k;
+    options.shard_count = 2;
+    options.jobs = 1;
+    const StudyOutcome shard = Run(kProgramme, sharded, options);
+    EXPECT_EQ(shard.Count(CaseStatus::kFailed), 0) << shard.OneLine();
+  }
+  EXPECT_EQ(MergeStudies({sharded}, merged), 5);
+  WriteStateTable(single);
+  WriteStateTable(merged);
+  EXPECT_EQ(Series(single), Series(merged));
+  EXPECT_EQ(Series(single).size(), 5u);
+  EXPECT_EQ(ReadTextFile(single + "/asymptotic_states.csv"),
+            ReadTextFile(merged + "/asymptotic_states.csv"));
+  // Merging into one of several inputs, or into a non-empty folder, is refused.
+  EXPECT_THROW(MergeStudies({sharded, single}, single), InputError);
+  EXPECT_THROW(MergeStudies({sharded}, single), InputError);
+}
+
+TEST(StudyRunner, AnInterruptedStudyResumesToTheSameBytes) {
+  const std::string whole = Dir("whole"), resumed = Dir("resumed");
+  ASSERT_EQ(Run(kProgramme, whole).Count(CaseStatus::kComputed), 5);
+  std::atomic<int> polls{0};
+  RunnerOptions options;
+  options.stop_requested = [&polls] { return ++polls > 4000; };
+  const StudyOutcome interrupted = Run(kProgramme, resumed, options);
+  ASSERT_TRUE(interrupted.interrupted()) << interrupted.OneLine();
+  const StudyOutcome rest = Run(kProgramme, resumed);
+  EXPECT_FALSE(rest.interrupted());
+  EXPECT_EQ(rest.Count(CaseStatus::kFailed), 0) << rest.OneLine();
+  EXPECT_EQ(Series(whole), Series(resumed));
+}
+
+TEST(StudyRunner, RefusesAFolderThatHoldsSomethingElse) {
+  const std::string dir = Dir("occupied");
+  fs::create_directories(dir);
+  WriteTextFileAtomically(dir + "/notes.txt", "mine\n");
+  EXPECT_THROW(Run(kProgramme, dir), InputError);
+  EXPECT_EQ(ReadTextFile(dir + "/notes.txt"), "mine\n");
+}
+
+}  // namespace
+}  // namespace granasym::study
