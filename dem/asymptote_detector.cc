@@ -1,43 +1,19 @@
 #include "dem/asymptote_detector.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <sstream>
 
 #include "common/canonical_text.h"
 #include "common/config.h"
 #include "common/state_measures.h"
 
 namespace granasym::dem {
-
-std::string AsymptoteCriterion::Describe() const {
-  std::ostringstream out;
-  out << "over the last " << window_strain << " of accumulated strain (samples every "
-      << sample_strain << "): fitted change of psi_sigma < " << psi_tolerance_deg
-      << " deg, and the changes of ln p over the two half-windows differ by < " << lnp_tolerance;
-  return out.str();
-}
-
-AsymptoteCriterion AsymptoteCriterion::Parse(const ConfigTable& a) {
-  AsymptoteCriterion c;
-  c.sample_strain = a.GetDouble("sample_strain", c.sample_strain, Range::Positive());
-  c.window_strain = a.GetDouble("window_strain", c.window_strain, Range::Positive());
-  c.psi_tolerance_deg = a.GetDouble("psi_tolerance_deg", c.psi_tolerance_deg, Range::Positive());
-  c.lnp_tolerance = a.GetDouble("lnp_tolerance", c.lnp_tolerance, Range::Positive());
-  if (c.window_strain < 8 * c.sample_strain) {
-    a.Fail("window_strain", "= " + std::to_string(c.window_strain) +
-                                " must be at least 8 times sample_strain (" +
-                                std::to_string(c.sample_strain) + ")");
-  }
-  return c;
-}
-
-void AsymptoteCriterion::Canonical(CanonicalText& text, const std::string& prefix) const {
-  text.Add(prefix + "sample_strain", sample_strain);
-  text.Add(prefix + "window_strain", window_strain);
-  text.Add(prefix + "psi_tolerance_deg", psi_tolerance_deg);
-  text.Add(prefix + "lnp_tolerance", lnp_tolerance);
-}
 namespace {
+
+bool UsesLnpWindow(PathKind kind) {
+  return kind == PathKind::kCompression || kind == PathKind::kExtension;
+}
 
 // Least-squares slope of y(x) over samples [begin, end). The sums are taken
 // about the first sample, so that x without spread (constant p) gives
@@ -63,7 +39,102 @@ double Slope(const std::vector<AsymptoteDetector::Sample>& samples, size_t begin
   return sxx > 0 ? sxy / sxx : 0.0;
 }
 
+// ψ_ε of the strain increment between samples a and b (rad).
+double IncrementPsi(const AsymptoteDetector::Sample& a, const AsymptoteDetector::Sample& b) {
+  return AxisymmetricRate{b.eps_a - a.eps_a, b.eps_r - a.eps_r}.psi();
+}
+
 }  // namespace
+
+PathKind StrainPathKind(double psi_epsilon_deg) {
+  const double magnitude = std::abs(psi_epsilon_deg);
+  if (std::abs(magnitude - 90.0) <= 1e-6) return PathKind::kIsochoric;
+  return magnitude < 90.0 ? PathKind::kCompression : PathKind::kExtension;
+}
+
+AsymptoteCriterion AsymptoteCriterion::For(PathKind kind) {
+  AsymptoteCriterion c;
+  c.kind = kind;
+  if (UsesLnpWindow(kind)) {
+    c.window_strain = 0.3;
+    c.psi_tolerance_deg = 0.5;
+  }
+  return c;
+}
+
+std::string AsymptoteCriterion::Describe() const {
+  const std::string samples = fmt::format(" (samples every {:g} of strain)", sample_strain);
+  switch (kind) {
+    case PathKind::kIsochoric:
+      return fmt::format(
+          "isochoric: over the last {:g} of accumulated strain{}: fitted change of ln p < {:g} "
+          "and of psi_sigma < {:g} deg",
+          window_strain, samples, lnp_tolerance, psi_tolerance_deg);
+    case PathKind::kCompression:
+    case PathKind::kExtension:
+      return fmt::format(
+          "{}: over the last {:g} of |delta ln p| (at most {:g} of accumulated strain){}: fitted "
+          "change of psi_sigma < {:g} deg, and the slopes d ln(1+e)/d ln p of the two "
+          "half-windows differ by < {:g} of their mean",
+          ToString(kind), window_lnp, window_strain, samples, psi_tolerance_deg, slope_tolerance);
+    case PathKind::kStressControlled:
+      return fmt::format(
+          "stress_controlled: over the last {:g} of accumulated strain{}: psi_epsilon of the "
+          "strain increments of the two half-windows differs by < {:g} deg, fitted change of "
+          "ln(1+e) < {:g} and of psi_sigma < {:g} deg",
+          window_strain, samples, psi_epsilon_tolerance_deg, lnv_tolerance, psi_tolerance_deg);
+  }
+  return "unknown path kind";
+}
+
+AsymptoteCriterion AsymptoteCriterion::Parse(const ConfigTable& a, PathKind kind) {
+  AsymptoteCriterion c = For(kind);
+  c.sample_strain = a.GetDouble("sample_strain", c.sample_strain, Range::Positive());
+  c.window_strain = a.GetDouble("window_strain", c.window_strain, Range::Positive());
+  c.psi_tolerance_deg = a.GetDouble("psi_tolerance_deg", c.psi_tolerance_deg, Range::Positive());
+  switch (kind) {
+    case PathKind::kIsochoric:
+      c.lnp_tolerance = a.GetDouble("lnp_tolerance", c.lnp_tolerance, Range::Positive());
+      break;
+    case PathKind::kCompression:
+    case PathKind::kExtension:
+      c.window_lnp = a.GetDouble("window_lnp", c.window_lnp, Range::Positive());
+      c.slope_tolerance = a.GetDouble("slope_tolerance", c.slope_tolerance, Range::Positive());
+      break;
+    case PathKind::kStressControlled:
+      c.psi_epsilon_tolerance_deg =
+          a.GetDouble("psi_epsilon_tolerance_deg", c.psi_epsilon_tolerance_deg, Range::Positive());
+      c.lnv_tolerance = a.GetDouble("lnv_tolerance", c.lnv_tolerance, Range::Positive());
+      break;
+  }
+  if (c.window_strain < AsymptoteDetector::kMinSamples * c.sample_strain) {
+    a.Fail("window_strain",
+           fmt::format("= {:g} must be at least {} times sample_strain ({:g})", c.window_strain,
+                       AsymptoteDetector::kMinSamples, c.sample_strain));
+  }
+  return c;
+}
+
+void AsymptoteCriterion::Canonical(CanonicalText& text, const std::string& prefix) const {
+  text.Add(prefix + "kind", ToString(kind));
+  text.Add(prefix + "sample_strain", sample_strain);
+  text.Add(prefix + "window_strain", window_strain);
+  text.Add(prefix + "psi_tolerance_deg", psi_tolerance_deg);
+  switch (kind) {
+    case PathKind::kIsochoric:
+      text.Add(prefix + "lnp_tolerance", lnp_tolerance);
+      break;
+    case PathKind::kCompression:
+    case PathKind::kExtension:
+      text.Add(prefix + "window_lnp", window_lnp);
+      text.Add(prefix + "slope_tolerance", slope_tolerance);
+      break;
+    case PathKind::kStressControlled:
+      text.Add(prefix + "psi_epsilon_tolerance_deg", psi_epsilon_tolerance_deg);
+      text.Add(prefix + "lnv_tolerance", lnv_tolerance);
+      break;
+  }
+}
 
 void AsymptoteDetector::Add(const Sample& sample) {
   if (!std::isfinite(sample.log_p)) {
@@ -71,7 +142,8 @@ void AsymptoteDetector::Add(const Sample& sample) {
     return;
   }
   samples_.push_back(sample);
-  // Keep a little more than one window.
+  // Keep a little more than one window (a window in ln p is at most
+  // window_strain long).
   size_t first = 0;
   while (first < samples_.size() &&
          samples_.back().strain - samples_[first].strain > 1.5 * criterion_.window_strain) {
@@ -80,38 +152,95 @@ void AsymptoteDetector::Add(const Sample& sample) {
   if (first > 0) samples_.erase(samples_.begin(), samples_.begin() + static_cast<long>(first));
 }
 
-bool AsymptoteDetector::ready() const {
-  return samples_.size() >= 8 &&
-         samples_.back().strain - samples_.front().strain >= criterion_.window_strain * (1 - 1e-9);
+size_t AsymptoteDetector::WindowBegin() const {
+  const size_t none = samples_.size();
+  if (samples_.size() < kMinSamples) return none;
+  const Sample& last = samples_.back();
+  const double window = criterion_.window_strain;
+  const bool by_lnp = UsesLnpWindow(criterion_.kind);
+  // Walk back to the first sample that completes the window.
+  for (size_t k = samples_.size() - 1; k-- > 0;) {
+    const double span = last.strain - samples_[k].strain;
+    const bool full_strain = span >= window * (1 - 1e-9);
+    const bool full_lnp =
+        by_lnp && std::abs(last.log_p - samples_[k].log_p) >= criterion_.window_lnp;
+    if (full_strain || full_lnp) {
+      return samples_.size() - k >= kMinSamples ? k : none;
+    }
+  }
+  return none;
 }
+
+bool AsymptoteDetector::ready() const { return WindowBegin() < samples_.size(); }
 
 AsymptoteDetector::Result AsymptoteDetector::Evaluate() const {
   Result result;
-  if (!ready()) return result;
-  const double end_strain = samples_.back().strain;
-  const double window = criterion_.window_strain;
-  size_t begin = 0;
-  while (end_strain - samples_[begin].strain > window * (1 + 1e-9)) ++begin;
+  const size_t begin = WindowBegin();
   const size_t end = samples_.size();
-  const double mid_strain = end_strain - 0.5 * window;
+  if (begin >= end) return result;
+  const Sample& first = samples_[begin];
+  const Sample& last = samples_.back();
+  const double window = last.strain - first.strain;
+  const double mid_strain = first.strain + 0.5 * window;
   size_t middle = begin;
   while (middle < end && samples_[middle].strain < mid_strain) ++middle;
   if (middle - begin < 3 || end - middle < 3) return result;
+  result.window_strain = window;
+  result.window_lnp = std::abs(last.log_p - first.log_p);
+  result.window_start_time = first.time;
+
   auto strain = [](const Sample& s) { return s.strain; };
   auto psi = [](const Sample& s) { return s.psi_sigma; };
   auto log_p = [](const Sample& s) { return s.log_p; };
   auto log_v = [](const Sample& s) { return s.log_volume; };
-  double mean_psi = 0;
-  for (size_t k = begin; k < end; ++k) mean_psi += samples_[k].psi_sigma;
-  result.psi_sigma = mean_psi / static_cast<double>(end - begin);
+  const double n = static_cast<double>(end - begin);
+  for (size_t k = begin; k < end; ++k) {
+    const Sample& s = samples_[k];
+    result.psi_sigma += s.psi_sigma / n;
+    result.mean_stress_kpa += std::exp(s.log_p) / n;
+    result.void_ratio += std::expm1(s.log_volume) / n;
+    result.q_over_p += 3.0 / std::sqrt(2.0) * std::tan(s.psi_sigma) / n;
+  }
+  result.psi_epsilon = IncrementPsi(first, last);
   result.psi_change_deg = std::abs(Slope(samples_, begin, end, strain, psi)) * window / kDegree;
-  const double first_half = Slope(samples_, begin, middle, strain, log_p);
-  const double second_half = Slope(samples_, middle, end, strain, log_p);
-  result.lnp_half_difference = std::abs(second_half - first_half) * 0.5 * window;
   result.slope_lnp = Slope(samples_, begin, end, strain, log_p);
+  result.lnp_change = std::abs(result.slope_lnp) * window;
   result.slope_lnv_lnp = Slope(samples_, begin, end, log_p, log_v);
-  result.detected = result.psi_change_deg < criterion_.psi_tolerance_deg &&
-                    result.lnp_half_difference < criterion_.lnp_tolerance;
+  const double lnv_slope = Slope(samples_, begin, end, strain, log_v);
+  result.lnv_change = std::abs(lnv_slope) * window;
+
+  const double lnp_first = Slope(samples_, begin, middle, strain, log_p);
+  const double lnp_second = Slope(samples_, middle, end, strain, log_p);
+  result.lnp_half_difference = std::abs(lnp_second - lnp_first) * 0.5 * window;
+  // d ln(1+e)/d ln p of each half as the ratio of the fitted rates per unit
+  // strain (strain carries no noise; noise in ln p would bias a direct fit).
+  const double lnv_first = Slope(samples_, begin, middle, strain, log_v);
+  const double lnv_second = Slope(samples_, middle, end, strain, log_v);
+  const double lambda_first = lnp_first != 0 ? lnv_first / lnp_first : 0.0;
+  const double lambda_second = lnp_second != 0 ? lnv_second / lnp_second : 0.0;
+  const double lambda_mean = 0.5 * (std::abs(lambda_first) + std::abs(lambda_second));
+  result.slope_change = lambda_mean > 0 ? std::abs(lambda_second - lambda_first) / lambda_mean
+                                        : (lambda_first == lambda_second ? 0.0 : HUGE_VAL);
+  result.psi_epsilon_change_deg =
+      std::abs(IncrementPsi(samples_[middle], last) - IncrementPsi(first, samples_[middle])) /
+      kDegree;
+
+  const AsymptoteCriterion& c = criterion_;
+  bool holds = result.psi_change_deg < c.psi_tolerance_deg;
+  switch (c.kind) {
+    case PathKind::kIsochoric:
+      holds = holds && result.lnp_change < c.lnp_tolerance;
+      break;
+    case PathKind::kCompression:
+    case PathKind::kExtension:
+      holds = holds && result.slope_change < c.slope_tolerance;
+      break;
+    case PathKind::kStressControlled:
+      holds = holds && result.psi_epsilon_change_deg < c.psi_epsilon_tolerance_deg &&
+              result.lnv_change < c.lnv_tolerance;
+      break;
+  }
+  result.status = holds ? AsymptoteStatus::kDetected : AsymptoteStatus::kDrifting;
   return result;
 }
 

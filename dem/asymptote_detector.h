@@ -1,9 +1,32 @@
-// Detection of the asymptotic state reached under proportional straining,
-// with a stated criterion that is stored with every detected state.
+// Detection of the asymptotic state of a stage (SPEC §8.4), one criterion per
+// kind of path, with stated tolerances that are stored with every record.
+//
+// Each kind looks at the last window of samples (taken every sample_strain of
+// accumulated strain ∫‖D‖dt within the stage):
+//  - isochoric (ψ_ε = 90°): over the last window_strain, the fitted changes
+//    of ln p and of ψ_σ across the window are below lnp_tolerance and
+//    psi_tolerance_deg (the critical state: p and ψ_σ stationary);
+//  - compression (|ψ_ε| < 90°) and extension (|ψ_ε| > 90°): over the last
+//    window_lnp of |Δ ln p| (or window_strain, whichever is shorter), the
+//    fitted change of ψ_σ across the window is below psi_tolerance_deg and
+//    the slope d ln(1+e)/d ln p of the two half-windows differs by less than
+//    slope_tolerance relative to its mean (the state moves parallel to an
+//    NCL or a normal extension line). The window in ln p finds compression
+//    asymptotes at hundreds of kPa, where a window in strain spans decades
+//    of p;
+//  - stress-controlled (triaxial): over the last window_strain, ψ_ε from the
+//    strain increments of the two half-windows (not the noisy instantaneous
+//    rates) differs by less than psi_epsilon_tolerance_deg, the fitted
+//    change of ln(1+e) across the window is below lnv_tolerance and that of
+//    ψ_σ below psi_tolerance_deg: a sample still dilating is not asymptotic.
+// Slopes are least-squares fits against the accumulated strain (noise-free),
+// so noise in p does not bias them. Tolerance boundaries are strict.
 #pragma once
 
 #include <string>
 #include <vector>
+
+#include "common/enum_names.h"
 
 namespace granasym {
 class CanonicalText;
@@ -12,20 +35,72 @@ class ConfigTable;
 
 namespace granasym::dem {
 
-// Asymptotic-state criterion (SPEC §5): over the last `window_strain` of
-// accumulated strain ∫‖D‖dt, sampled every `sample_strain`,
-//  (1) the fitted change of ψ_σ across the window is below psi_tolerance_deg,
-//  (2) the change of ln p across each half of the window differs between the
-//      halves by less than lnp_tolerance (d ln p/dε is stationary, so the
-//      state moves parallel to an asymptotic line, or stays at constant p).
+// Which asymptote a stage can reach, from its type (Stage::path_kind()).
+enum class PathKind { kIsochoric, kCompression, kExtension, kStressControlled };
+
+// What became of a stage's asymptote.
+enum class AsymptoteStatus { kDetected, kDrifting, kNotReached, kGas, kInvalid };
+
+}  // namespace granasym::dem
+
+template <>
+struct granasym::EnumNames<granasym::dem::PathKind> {
+  static constexpr EnumEntry<dem::PathKind> kEntries[] = {
+      {dem::PathKind::kIsochoric, "isochoric", "strain path with psi_epsilon = 90 deg"},
+      {dem::PathKind::kCompression, "compression", "strain path with |psi_epsilon| < 90 deg"},
+      {dem::PathKind::kExtension, "extension", "strain path with |psi_epsilon| > 90 deg"},
+      {dem::PathKind::kStressControlled, "stress_controlled", "a stress-controlled stage"},
+  };
+};
+
+template <>
+struct granasym::EnumNames<granasym::dem::AsymptoteStatus> {
+  static constexpr EnumEntry<dem::AsymptoteStatus> kEntries[] = {
+      {dem::AsymptoteStatus::kDetected, "detected", "the criterion held over a full window"},
+      {dem::AsymptoteStatus::kDrifting, "drifting",
+       "a full window was available but the criterion did not hold at the stage end"},
+      {dem::AsymptoteStatus::kNotReached, "not_reached", "the window never filled"},
+      {dem::AsymptoteStatus::kGas, "gas", "a gas or liquefied state: no asymptotic state"},
+      {dem::AsymptoteStatus::kInvalid, "invalid", "the stage failed a validity guard"},
+  };
+};
+
+namespace granasym::dem {
+
+// The kind of a strain path of direction ψ_ε (deg): isochoric within 1e-6
+// deg of ±90°, compression inside, extension outside.
+PathKind StrainPathKind(double psi_epsilon_deg);
+
+// The criterion of a kind of path ([stage.asymptote]); see the file comment.
+// The defaults (of For(kind)) were tuned on 3000-sphere runs with the
+// paper's numerics (NC to 10 and 200 kPa, then ψ_ε = 20°, 45°, 70°, 90°,
+// 120° and a drained triaxial; README): a window of 0.15 strain or 1.0 of
+// ln p holds enough of the fluctuations of a small sample (p scatters by
+// ±20 % on the critical state of 3000 spheres) that a stationary state is
+// accepted within a few windows, while the transients (the drop of p on an
+// isochoric path, the dilation of a triaxial test, ψ_σ still rising along a
+// compression path) change by more than the tolerances.
 struct AsymptoteCriterion {
-  double sample_strain = 2e-3;
-  double window_strain = 0.1;
-  double psi_tolerance_deg = 0.5;
-  double lnp_tolerance = 0.02;
+  PathKind kind = PathKind::kIsochoric;
+  double sample_strain = 5e-4;  // all kinds: strain between samples
+  // Isochoric and stress-controlled: the window (0.15); compression and
+  // extension: the longest window (0.3), for paths along which p changes slowly.
+  double window_strain = 0.15;
+  double window_lnp = 1.0;                 // compression, extension: |Δ ln p| of the window
+  double psi_tolerance_deg = 1.0;          // fitted change of ψ_σ across the window (0.5
+                                           // for compression and extension)
+  double lnp_tolerance = 0.05;             // isochoric: fitted change of ln p across the window
+  double slope_tolerance = 0.1;            // compression, extension: relative change of the slope
+  double psi_epsilon_tolerance_deg = 3.0;  // stress-controlled: ψ_ε(2nd half) − ψ_ε(1st half)
+  double lnv_tolerance = 0.004;  // stress-controlled: fitted change of ln(1+e) across the window
+
+  // The defaults of a kind.
+  static AsymptoteCriterion For(PathKind kind);
+  // One line: the kind, its window and tolerances.
   std::string Describe() const;
-  // Reads a [stage.asymptote] table (missing keys keep their defaults).
-  static AsymptoteCriterion Parse(const ConfigTable& table);
+  // Reads a [stage.asymptote] table for a kind: the keys of that kind only
+  // (others are reported as unknown), missing keys keep their defaults.
+  static AsymptoteCriterion Parse(const ConfigTable& table, PathKind kind);
   void Canonical(CanonicalText& text, const std::string& prefix) const;
 };
 
@@ -36,21 +111,40 @@ class AsymptoteDetector {
     double psi_sigma;   // (rad)
     double log_p;       // ln(p / 1 kPa)
     double log_volume;  // ln(1 + e)
+    double eps_a = 0;   // axial logarithmic strain, compression positive
+    double eps_r = 0;   // radial logarithmic strain
+    double time = 0;    // simulated time (s): finds the output rows of the window
   };
   struct Result {
-    bool detected = false;
-    double psi_sigma = 0;            // mean over the window (rad)
-    double psi_change_deg = 0;       // fitted change across the window
-    double lnp_half_difference = 0;  // |Δln p (2nd half) − Δln p (1st half)|
-    double slope_lnp = 0;            // d ln p / dε over the window
-    double slope_lnv_lnp = 0;        // d ln(1+e) / d ln p over the window (−λ* on a line)
+    // kDetected, kDrifting or kNotReached (the caller adds gas and invalid).
+    AsymptoteStatus status = AsymptoteStatus::kNotReached;
+    bool detected() const { return status == AsymptoteStatus::kDetected; }
+    // The window evaluated (zero when none).
+    double window_strain = 0;      // strain span
+    double window_lnp = 0;         // |ln p(end) − ln p(start)|
+    double window_start_time = 0;  // simulated time of its first sample (s)
+    // The state: means over the window; ψ_ε from the strain increments.
+    double psi_sigma = 0;  // (rad)
+    double mean_stress_kpa = 0;
+    double void_ratio = 0;
+    double psi_epsilon = 0;  // (rad)
+    double q_over_p = 0;
+    // The measures of the criteria (those of other kinds are computed too).
+    double psi_change_deg = 0;          // fitted change of ψ_σ across the window
+    double lnp_change = 0;              // fitted change of ln p across the window
+    double lnp_half_difference = 0;     // |Δln p (2nd half) − Δln p (1st half)|
+    double slope_change = 0;            // relative change of d ln(1+e)/d ln p, 2nd vs 1st half
+    double psi_epsilon_change_deg = 0;  // |ψ_ε (2nd half) − ψ_ε (1st half)|
+    double lnv_change = 0;              // fitted change of ln(1+e) across the window
+    double slope_lnp = 0;               // d ln p / dε over the window
+    double slope_lnv_lnp = 0;           // d ln(1+e) / d ln p over the window (−λ* on a line)
   };
 
   explicit AsymptoteDetector(AsymptoteCriterion criterion = {}) : criterion_(criterion) {}
 
   // Adds a sample; samples with p <= 0 restart the record (no contacts).
   void Add(const Sample& sample);
-  // Evaluates the criterion over the last window.
+  // Evaluates the criterion of the kind over the last window.
   Result Evaluate() const;
   bool ready() const;  // a full window is available
   void Reset() { samples_.clear(); }
@@ -59,7 +153,13 @@ class AsymptoteDetector {
   void set_samples(std::vector<Sample> samples) { samples_ = std::move(samples); }
   const AsymptoteCriterion& criterion() const { return criterion_; }
 
+  // A window needs at least this many samples, a half-window three.
+  static constexpr size_t kMinSamples = 8;
+
  private:
+  // The first sample of the last window; samples_.size() when none is full.
+  size_t WindowBegin() const;
+
   AsymptoteCriterion criterion_;
   std::vector<Sample> samples_;
 };

@@ -51,31 +51,89 @@ std::array<double, 3> ReadArray3(const Hdf5File& file, const std::string& name) 
   return {v[0], v[1], v[2]};
 }
 
+template <typename E>
+E ReadEnum(const Hdf5File& file, const std::string& group, const char* name) {
+  const std::string text = file.ReadStringAttribute(group, name);
+  const std::optional<E> value = FromString<E>(text);
+  if (!value) {
+    throw InputError(fmt::format("{}: {} attribute {} = '{}' is not one of {}", file.path(), group,
+                                 name, text, AllowedNames<E>()));
+  }
+  return *value;
+}
+
+// A comma-separated list of names ("" for none).
+template <typename E>
+std::vector<E> ParseNames(const Hdf5File& file, const std::string& group, const char* name) {
+  const std::string text = file.ReadStringAttribute(group, name);
+  std::vector<E> values;
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find(',', start);
+    if (end == std::string::npos) end = text.size();
+    std::string item = text.substr(start, end - start);
+    item.erase(0, item.find_first_not_of(' '));
+    item.erase(item.find_last_not_of(' ') + 1);
+    const std::optional<E> value = FromString<E>(item);
+    if (!value) {
+      throw InputError(fmt::format("{}: {} attribute {}: '{}' is not one of {}", file.path(), group,
+                                   name, item, AllowedNames<E>()));
+    }
+    values.push_back(*value);
+    start = end + 1;
+  }
+  return values;
+}
+
+// The numbers of an asymptote record with their attribute names (one table
+// for the writer and the reader).
+std::vector<std::pair<const char*, double*>> AsymptoteDoubles(AsymptoteRecord& a) {
+  using namespace record;
+  AsymptoteCriterion& c = a.criterion;
+  return {
+      {kAsymptoteSampleStrain, &c.sample_strain},
+      {kAsymptoteCriterionWindowStrain, &c.window_strain},
+      {kAsymptoteCriterionWindowLnp, &c.window_lnp},
+      {kAsymptotePsiTolerance, &c.psi_tolerance_deg},
+      {kAsymptoteLnpTolerance, &c.lnp_tolerance},
+      {kAsymptoteSlopeTolerance, &c.slope_tolerance},
+      {kAsymptotePsiEpsilonTolerance, &c.psi_epsilon_tolerance_deg},
+      {kAsymptoteLnvTolerance, &c.lnv_tolerance},
+      {kAsymptoteWindowStrain, &a.window_strain},
+      {kAsymptoteWindowLnp, &a.window_lnp},
+      {kAsymptoteMeanStressKpa, &a.mean_stress_kpa},
+      {kAsymptoteVoidRatio, &a.void_ratio},
+      {kAsymptotePsiSigmaDeg, &a.psi_sigma_deg},
+      {kAsymptotePsiEpsilonDeg, &a.psi_epsilon_deg},
+      {kAsymptoteQOverP, &a.q_over_p},
+      {kAsymptoteCoordination, &a.coordination},
+      {kAsymptoteMechanicalCoordination, &a.mechanical_coordination},
+      {kAsymptoteInertialNumberDmin, &a.inertial_number_dmin},
+      {kAsymptoteInertialNumberDmax, &a.inertial_number_dmax},
+      {kAsymptoteMaxRelativeOverlap, &a.max_relative_overlap},
+      {kAsymptotePsiChangeDeg, &a.psi_change_deg},
+      {kAsymptoteLnpChange, &a.lnp_change},
+      {kAsymptoteLnpHalfDifference, &a.lnp_half_difference},
+      {kAsymptoteSlopeChange, &a.slope_change},
+      {kAsymptotePsiEpsilonChangeDeg, &a.psi_epsilon_change_deg},
+      {kAsymptoteLnvChange, &a.lnv_change},
+      {kAsymptoteDlnpDstrain, &a.dlnp_dstrain},
+      {kAsymptoteDln1peDlnp, &a.dln1pe_dlnp},
+  };
+}
+
 }  // namespace
 
 std::string RunSummary::OneLine() const {
   return fmt::format(
-      "{}: {} steps, {} particles, {:.4g} s simulated, {:.1f} s wall ({:.1f} s "
-      "loop), {:.3g} particle-steps/s ({:.3f} us per particle-step), {} threads, "
-      "{} list builds, {} rows: {}",
-      ToString(termination), steps, particles, simulated_time, wall_seconds, loop_seconds,
-      particle_steps_per_second,
-      particle_steps_per_second > 0 ? 1e6 / particle_steps_per_second : 0.0, threads,
-      neighbor_builds, rows, message);
-}
-
-AsymptoteRecord AsymptoteRecord::From(const AsymptoteDetector::Result& result, double p_kpa,
-                                      double e) {
-  AsymptoteRecord record;
-  record.detected = result.detected;
-  record.psi_sigma_deg = result.psi_sigma / kDegree;
-  record.psi_change_deg = result.psi_change_deg;
-  record.lnp_half_difference = result.lnp_half_difference;
-  record.dlnp_dstrain = result.slope_lnp;
-  record.dln1pe_dlnp = result.slope_lnv_lnp;
-  record.mean_stress_kpa = p_kpa;
-  record.void_ratio = e;
-  return record;
+             "{}: {} steps, {} particles, {:.4g} s simulated, {:.1f} s wall ({:.1f} s "
+             "loop), {:.3g} particle-steps/s ({:.3f} us per particle-step), {} threads, "
+             "{} list builds, {} rows: {}",
+             ToString(termination), steps, particles, simulated_time, wall_seconds, loop_seconds,
+             particle_steps_per_second,
+             particle_steps_per_second > 0 ? 1e6 / particle_steps_per_second : 0.0, threads,
+             neighbor_builds, rows, message) +
+         (validity.empty() ? "" : "; validity: " + validity);
 }
 
 void WritePacking(Hdf5File& file, const std::string& group, const Packing& packing) {
@@ -249,17 +307,20 @@ void WriteStageRecord(Hdf5File& file, const std::string& group, const StageRecor
   file.SetAttribute(group, kStageFirstRow, stage.first_row);
   file.SetAttribute(group, kStageLastRow, stage.last_row);
   file.SetAttribute(group, kStageStopReason, stage.stop_reason);
+  file.SetAttribute(group, kStageFailed, int64_t{stage.failed});
+  const StageValidity& v = stage.validity;
+  file.SetAttribute(group, kValidityMaxRelativeOverlap, v.max_relative_overlap);
+  file.SetAttribute(group, kValidityMaxInertialNumberDmax, v.max_inertial_number_dmax);
+  file.SetAttribute(group, kValidityMinMechanicalCoordination, v.min_mechanical_coordination);
+  file.SetAttribute(group, kValidityFinalMeanStressKpa, v.final_mean_stress_kpa);
+  file.SetAttribute(group, kValidityFlags, v.flags.empty() ? std::string() : v.FlagNames());
   if (stage.asymptote) {
-    const AsymptoteRecord& a = *stage.asymptote;
+    AsymptoteRecord a = *stage.asymptote;
     file.SetAttribute(group, kAsymptoteCriterion, stage.asymptote_criterion);
     file.SetAttribute(group, kAsymptoteDetected, int64_t{a.detected});
-    file.SetAttribute(group, kAsymptotePsiSigmaDeg, a.psi_sigma_deg);
-    file.SetAttribute(group, kAsymptotePsiChangeDeg, a.psi_change_deg);
-    file.SetAttribute(group, kAsymptoteLnpHalfDifference, a.lnp_half_difference);
-    file.SetAttribute(group, kAsymptoteDlnpDstrain, a.dlnp_dstrain);
-    file.SetAttribute(group, kAsymptoteDln1peDlnp, a.dln1pe_dlnp);
-    file.SetAttribute(group, kAsymptoteMeanStressKpa, a.mean_stress_kpa);
-    file.SetAttribute(group, kAsymptoteVoidRatio, a.void_ratio);
+    file.SetAttribute(group, kAsymptotePathKind, std::string(ToString(a.path_kind)));
+    file.SetAttribute(group, kAsymptoteStatus, std::string(ToString(a.status)));
+    for (const auto& [name, value] : AsymptoteDoubles(a)) file.SetAttribute(group, name, *value);
   }
   if (spec) spec->Describe(file, group);
   if (stage.end_state) {
@@ -275,17 +336,39 @@ StageRecord ReadStageRecord(const Hdf5File& file, const std::string& group) {
   stage.first_row = file.ReadIntAttribute(group, kStageFirstRow);
   stage.last_row = file.ReadIntAttribute(group, kStageLastRow);
   stage.stop_reason = file.ReadStringAttribute(group, kStageStopReason);
+  // Records written before the validity guards have none of these.
+  if (file.HasAttribute(group, kStageFailed)) {
+    stage.failed = file.ReadIntAttribute(group, kStageFailed) != 0;
+    StageValidity& v = stage.validity;
+    v.max_relative_overlap = file.ReadDoubleAttribute(group, kValidityMaxRelativeOverlap);
+    v.max_inertial_number_dmax = file.ReadDoubleAttribute(group, kValidityMaxInertialNumberDmax);
+    v.min_mechanical_coordination =
+        file.ReadDoubleAttribute(group, kValidityMinMechanicalCoordination);
+    v.final_mean_stress_kpa = file.ReadDoubleAttribute(group, kValidityFinalMeanStressKpa);
+    v.flags = ParseNames<ValidityFlag>(file, group, kValidityFlags);
+  }
   if (file.HasAttribute(group, kAsymptoteDetected)) {
     AsymptoteRecord a;
     stage.asymptote_criterion = file.ReadStringAttribute(group, kAsymptoteCriterion);
     a.detected = file.ReadIntAttribute(group, kAsymptoteDetected) != 0;
-    a.psi_sigma_deg = file.ReadDoubleAttribute(group, kAsymptotePsiSigmaDeg);
-    a.psi_change_deg = file.ReadDoubleAttribute(group, kAsymptotePsiChangeDeg);
-    a.lnp_half_difference = file.ReadDoubleAttribute(group, kAsymptoteLnpHalfDifference);
-    a.dlnp_dstrain = file.ReadDoubleAttribute(group, kAsymptoteDlnpDstrain);
-    a.dln1pe_dlnp = file.ReadDoubleAttribute(group, kAsymptoteDln1peDlnp);
-    a.mean_stress_kpa = file.ReadDoubleAttribute(group, kAsymptoteMeanStressKpa);
-    a.void_ratio = file.ReadDoubleAttribute(group, kAsymptoteVoidRatio);
+    if (file.HasAttribute(group, kAsymptoteStatus)) {
+      a.path_kind = ReadEnum<PathKind>(file, group, kAsymptotePathKind);
+      a.status = ReadEnum<AsymptoteStatus>(file, group, kAsymptoteStatus);
+      a.criterion.kind = a.path_kind;
+      for (const auto& [name, value] : AsymptoteDoubles(a)) {
+        *value = file.ReadDoubleAttribute(group, name);
+      }
+    } else {
+      // Written by the single-criterion detector: its state and measures.
+      a.status = a.detected ? AsymptoteStatus::kDetected : AsymptoteStatus::kDrifting;
+      a.psi_sigma_deg = file.ReadDoubleAttribute(group, kAsymptotePsiSigmaDeg);
+      a.psi_change_deg = file.ReadDoubleAttribute(group, kAsymptotePsiChangeDeg);
+      a.lnp_half_difference = file.ReadDoubleAttribute(group, kAsymptoteLnpHalfDifference);
+      a.dlnp_dstrain = file.ReadDoubleAttribute(group, kAsymptoteDlnpDstrain);
+      a.dln1pe_dlnp = file.ReadDoubleAttribute(group, kAsymptoteDln1peDlnp);
+      a.mean_stress_kpa = file.ReadDoubleAttribute(group, kAsymptoteMeanStressKpa);
+      a.void_ratio = file.ReadDoubleAttribute(group, kAsymptoteVoidRatio);
+    }
     stage.asymptote = a;
   }
   const std::string end = Join(group, kStageEndState);
@@ -317,6 +400,7 @@ void WriteSummary(Hdf5File& file, const RunSummary& summary, const ContactDurati
   file.CreateGroup(s);
   file.SetAttribute(s, kTermination, ToString(summary.termination));
   file.SetAttribute(s, kMessage, summary.message);
+  file.SetAttribute(s, kValidity, summary.validity);
   file.SetAttribute(s, kReport, summary.OneLine());
   file.SetAttribute(s, kSteps, summary.steps);
   file.SetAttribute(s, kParticles, summary.particles);
@@ -354,6 +438,7 @@ RunSummary ReadSummary(const Hdf5File& file) {
   }
   summary.termination = *known;
   summary.message = file.ReadStringAttribute(s, kMessage);
+  if (file.HasAttribute(s, kValidity)) summary.validity = file.ReadStringAttribute(s, kValidity);
   summary.steps = file.ReadIntAttribute(s, kSteps);
   summary.particles = file.ReadIntAttribute(s, kParticles);
   summary.simulated_time = file.ReadDoubleAttribute(s, kSimulatedTime);
@@ -386,10 +471,12 @@ void WriteRunner(Hdf5File& file, const RunnerRecord& runner) {
   file.WriteDoubles(r + "/controller_state", runner.controller_state);
   std::vector<double> samples;
   for (const auto& sample : runner.detector_samples) {
-    samples.insert(samples.end(),
-                   {sample.strain, sample.psi_sigma, sample.log_p, sample.log_volume});
+    samples.insert(samples.end(), {sample.strain, sample.psi_sigma, sample.log_p, sample.log_volume,
+                                   sample.eps_a, sample.eps_r, sample.time});
   }
-  file.WriteMatrix(r + "/detector_samples", samples, runner.detector_samples.size(), 4);
+  file.WriteMatrix(r + "/detector_samples", samples, runner.detector_samples.size(), 7);
+  file.SetAttribute(r, "target_distance", clock.target_distance);
+  file.SetAttribute(r, "target_distance_strain", clock.target_distance_strain);
 }
 
 RunnerRecord ReadRunner(const Hdf5File& file) {
@@ -410,10 +497,18 @@ RunnerRecord ReadRunner(const Hdf5File& file) {
   runner.controller_state = file.ReadDoubles(r + "/controller_state");
   size_t rows = 0, cols = 0;
   const std::vector<double> samples = file.ReadMatrix(r + "/detector_samples", &rows, &cols);
-  for (size_t k = 0; k < rows; ++k) {
-    runner.detector_samples.push_back(
-        {samples[4 * k], samples[4 * k + 1], samples[4 * k + 2], samples[4 * k + 3]});
+  if (rows > 0 && cols != 7) {
+    throw InputError(
+        fmt::format("{}: {}/detector_samples has {} columns, expected 7 (a checkpoint "
+                    "of an older granasym cannot be continued)",
+                    file.path(), r, cols));
   }
+  for (size_t k = 0; k < rows; ++k) {
+    const double* v = &samples[7 * k];
+    runner.detector_samples.push_back({v[0], v[1], v[2], v[3], v[4], v[5], v[6]});
+  }
+  clock.target_distance = file.ReadDoubleAttribute(r, "target_distance");
+  clock.target_distance_strain = file.ReadDoubleAttribute(r, "target_distance_strain");
   return runner;
 }
 

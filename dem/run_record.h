@@ -18,6 +18,7 @@
 #include "dem/engine.h"
 #include "dem/packing.h"
 #include "dem/stage.h"
+#include "dem/stage_validity.h"
 
 namespace granasym {
 class Hdf5File;
@@ -44,7 +45,8 @@ namespace granasym::dem {
 struct RunSummary {
   Termination termination = Termination::kNotRun;
   std::string message = "not run";
-  int64_t steps = 0;  // steps taken in total (including before a restart or fork)
+  std::string validity;  // the stages' validity flags ("stage 'a': gas; ..."), "" when none
+  int64_t steps = 0;     // steps taken in total (including before a restart or fork)
   int64_t particles = 0;
   double simulated_time = 0;  // (s)
   double wall_seconds = 0;    // this invocation
@@ -58,17 +60,38 @@ struct RunSummary {
   std::string OneLine() const;
 };
 
-// The detected asymptotic state of a stage, in the units of the file.
+// The asymptote of a stage whose detector ran, in the units of the file:
+// its kind, status, criterion, the window used, the state over it and the
+// criterion's measures. The state is the mean over the window when a full
+// window was available (status detected or drifting, and gas or invalid
+// after one), else the stage end (its last row).
 struct AsymptoteRecord {
-  bool detected = false;
-  double psi_sigma_deg = 0;        // mean over the window
-  double psi_change_deg = 0;       // fitted change across the window
-  double lnp_half_difference = 0;  // |Δln p (2nd half) − Δln p (1st half)|
-  double dlnp_dstrain = 0;         // d ln p / dε over the window
-  double dln1pe_dlnp = 0;          // d ln(1+e) / d ln p over the window (−λ* on a line)
-  double mean_stress_kpa = 0;      // p and e at the stage end
+  PathKind path_kind = PathKind::kIsochoric;
+  AsymptoteStatus status = AsymptoteStatus::kNotReached;
+  bool detected = false;         // status == kDetected
+  AsymptoteCriterion criterion;  // the kind's window and tolerances
+  double window_strain = 0;      // the window used: its strain span
+  double window_lnp = 0;         // and its |Δ ln p|
+  // The state at the asymptote.
+  double mean_stress_kpa = 0;
   double void_ratio = 0;
-  static AsymptoteRecord From(const AsymptoteDetector::Result& result, double p_kpa, double e);
+  double psi_sigma_deg = 0;
+  double psi_epsilon_deg = 0;  // from the strain increments over the window
+  double q_over_p = 0;
+  double coordination = 0;
+  double mechanical_coordination = 0;
+  double inertial_number_dmin = 0;
+  double inertial_number_dmax = 0;
+  double max_relative_overlap = 0;  // the largest over the window's rows
+  // The criterion's measures over the window (AsymptoteDetector::Result).
+  double psi_change_deg = 0;          // fitted change of ψ_σ across the window
+  double lnp_change = 0;              // fitted change of ln p across the window
+  double lnp_half_difference = 0;     // |Δln p (2nd half) − Δln p (1st half)|
+  double slope_change = 0;            // relative change of d ln(1+e)/d ln p between halves
+  double psi_epsilon_change_deg = 0;  // |ψ_ε (2nd half) − ψ_ε (1st half)|
+  double lnv_change = 0;              // fitted change of ln(1+e) across the window
+  double dlnp_dstrain = 0;            // d ln p / dε over the window
+  double dln1pe_dlnp = 0;             // d ln(1+e) / d ln p over the window (−λ* on a line)
 };
 
 // One finished stage.
@@ -76,9 +99,11 @@ struct StageRecord {
   std::string name, type;
   int64_t first_row = 0, last_row = 0;
   std::string stop_reason;
+  bool failed = false;  // the run failed in this stage (the record of what it reached)
+  StageValidity validity;
   std::optional<AsymptoteRecord> asymptote;  // when the detector ran
-  std::string asymptote_criterion;
-  std::optional<Engine::State> end_state;  // the state the next stage starts from, when kept
+  std::string asymptote_criterion;           // its one-line description
+  std::optional<Engine::State> end_state;    // the state the next stage starts from, when kept
 };
 
 // The runner's state besides the engine (checkpoint only).

@@ -8,11 +8,11 @@
 //   /scene                 the scene text as given (attribute origin)
 //   /series/<column>       one dataset per output column, with `units`
 //   /series_histogram      relative-overlap histograms, when requested
-//   /stages/<NNN>          per stage: name, type, rows, stop reason, the
-//                          asymptote record, the type's own keys, and (when
-//                          kept) its end state under end_state/
-//   /summary               termination, message, counters, times, time step,
-//                          contact durations
+//   /stages/<NNN>          per stage: name, type, rows, stop reason, its
+//                          validity, the asymptote record, the type's own
+//                          keys, and (when kept) its end state under end_state/
+//   /summary               termination, message, validity flags, counters,
+//                          times, time step, contact durations
 //   /final_state           the packing at the end (input order): cell,
 //                          positions, radii, velocities, spins; and the exact
 //                          engine state under engine/
@@ -46,6 +46,11 @@ inline constexpr char kColumnMeanStress[] = "p_kpa";
 inline constexpr char kColumnVoidRatio[] = "e";
 inline constexpr char kColumnPsiSigma[] = "psi_sigma_deg";
 inline constexpr char kColumnOverlapMax[] = "overlap_max";
+inline constexpr char kColumnTime[] = "time_s";
+inline constexpr char kColumnCoordination[] = "coordination";
+inline constexpr char kColumnMechanicalCoordination[] = "mechanical_coordination";
+inline constexpr char kColumnInertialNumberDmin[] = "inertial_number_dmin";
+inline constexpr char kColumnInertialNumberDmax[] = "inertial_number_dmax";
 
 // Attributes of /stages/<NNN>.
 inline constexpr char kStageName[] = "name";
@@ -54,15 +59,47 @@ inline constexpr char kStageFirstRow[] = "first_row";
 inline constexpr char kStageLastRow[] = "last_row";
 inline constexpr char kStageStopReason[] = "stop_reason";
 inline constexpr char kStageEndState[] = "end_state";  // subgroup
-inline constexpr char kAsymptoteCriterion[] = "asymptote_criterion";
-inline constexpr char kAsymptoteDetected[] = "asymptote_detected";
-inline constexpr char kAsymptotePsiSigmaDeg[] = "asymptote_psi_sigma_deg";
-inline constexpr char kAsymptotePsiChangeDeg[] = "asymptote_psi_change_deg";
-inline constexpr char kAsymptoteLnpHalfDifference[] = "asymptote_lnp_half_difference";
-inline constexpr char kAsymptoteDlnpDstrain[] = "asymptote_dlnp_dstrain";
-inline constexpr char kAsymptoteDln1peDlnp[] = "asymptote_dln1pe_dlnp";
+inline constexpr char kStageFailed[] = "failed";       // 1: the run failed in this stage
+// The asymptote record (stages whose detector ran): its kind, status,
+// criterion, the window used, the state over it and the criterion's measures.
+inline constexpr char kAsymptoteCriterion[] = "asymptote_criterion";  // one-line description
+inline constexpr char kAsymptoteDetected[] = "asymptote_detected";    // 1 when status = detected
+inline constexpr char kAsymptotePathKind[] = "asymptote_path_kind";
+inline constexpr char kAsymptoteStatus[] = "asymptote_status";
+inline constexpr char kAsymptoteSampleStrain[] = "asymptote_sample_strain";
+inline constexpr char kAsymptoteCriterionWindowStrain[] = "asymptote_criterion_window_strain";
+inline constexpr char kAsymptoteCriterionWindowLnp[] = "asymptote_criterion_window_lnp";
+inline constexpr char kAsymptotePsiTolerance[] = "asymptote_psi_tolerance_deg";
+inline constexpr char kAsymptoteLnpTolerance[] = "asymptote_lnp_tolerance";
+inline constexpr char kAsymptoteSlopeTolerance[] = "asymptote_slope_tolerance";
+inline constexpr char kAsymptotePsiEpsilonTolerance[] = "asymptote_psi_epsilon_tolerance_deg";
+inline constexpr char kAsymptoteLnvTolerance[] = "asymptote_lnv_tolerance";
+inline constexpr char kAsymptoteWindowStrain[] = "asymptote_window_strain";  // used
+inline constexpr char kAsymptoteWindowLnp[] = "asymptote_window_lnp";        // used
 inline constexpr char kAsymptoteMeanStressKpa[] = "asymptote_p_kpa";
 inline constexpr char kAsymptoteVoidRatio[] = "asymptote_e";
+inline constexpr char kAsymptotePsiSigmaDeg[] = "asymptote_psi_sigma_deg";
+inline constexpr char kAsymptotePsiEpsilonDeg[] = "asymptote_psi_epsilon_deg";
+inline constexpr char kAsymptoteQOverP[] = "asymptote_q_over_p";
+inline constexpr char kAsymptoteCoordination[] = "asymptote_coordination";
+inline constexpr char kAsymptoteMechanicalCoordination[] = "asymptote_mechanical_coordination";
+inline constexpr char kAsymptoteInertialNumberDmin[] = "asymptote_inertial_number_dmin";
+inline constexpr char kAsymptoteInertialNumberDmax[] = "asymptote_inertial_number_dmax";
+inline constexpr char kAsymptoteMaxRelativeOverlap[] = "asymptote_max_relative_overlap";
+inline constexpr char kAsymptotePsiChangeDeg[] = "asymptote_psi_change_deg";
+inline constexpr char kAsymptoteLnpChange[] = "asymptote_lnp_change";
+inline constexpr char kAsymptoteLnpHalfDifference[] = "asymptote_lnp_half_difference";
+inline constexpr char kAsymptoteSlopeChange[] = "asymptote_slope_change";
+inline constexpr char kAsymptotePsiEpsilonChangeDeg[] = "asymptote_psi_epsilon_change_deg";
+inline constexpr char kAsymptoteLnvChange[] = "asymptote_lnv_change";
+inline constexpr char kAsymptoteDlnpDstrain[] = "asymptote_dlnp_dstrain";
+inline constexpr char kAsymptoteDln1peDlnp[] = "asymptote_dln1pe_dlnp";
+// The validity of every stage (dem/stage_validity.h).
+inline constexpr char kValidityMaxRelativeOverlap[] = "validity_max_relative_overlap";
+inline constexpr char kValidityMaxInertialNumberDmax[] = "validity_max_inertial_number_dmax";
+inline constexpr char kValidityMinMechanicalCoordination[] = "validity_min_mechanical_coordination";
+inline constexpr char kValidityFinalMeanStressKpa[] = "validity_final_p_kpa";
+inline constexpr char kValidityFlags[] = "validity_flags";  // comma-separated; "" when none
 // The stage types' own keys.
 inline constexpr char kStagePsiEpsilonDeg[] = "psi_epsilon_deg";
 inline constexpr char kStageStretchingRate[] = "stretching_rate_per_s";
@@ -74,6 +111,7 @@ inline constexpr char kStageMeanStressKpa[] = "mean_stress_kpa";
 inline constexpr char kTermination[] = "termination";
 inline constexpr char kMessage[] = "message";
 inline constexpr char kReport[] = "report";
+inline constexpr char kValidity[] = "validity";  // the stages' validity flags, one line
 inline constexpr char kSteps[] = "steps";
 inline constexpr char kParticles[] = "particles";
 inline constexpr char kSimulatedTime[] = "simulated_time_s";

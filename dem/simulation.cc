@@ -21,6 +21,7 @@
 #include "dem/engine.h"
 #include "dem/output_columns.h"
 #include "dem/run_record_names.h"
+#include "dem/stage_validity.h"
 
 namespace granasym::dem {
 namespace {
@@ -69,7 +70,10 @@ class Simulation {
   void MakeEngine(const Engine::State* state);
   void StartStage();
   void AddRow();
-  void FinishStage(const std::string& reason);
+  // The guards checked on every output row: a failure message, or nullopt.
+  std::optional<std::string> CheckRowGuards(bool stage_ends);
+  // Ends the current stage with its record; `failed`: the run fails in it.
+  void FinishStage(const std::string& reason, bool failed = false);
   // How the loop ended.
   struct Outcome {
     Termination termination;
@@ -164,6 +168,7 @@ void Simulation::Fork() {
   } else {
     std::string names;
     for (const StageRecord& r : records) {
+      if (r.failed) continue;
       if (r.name == parent.stage) {
         if (!r.end_state) {
           throw InputError(
@@ -216,24 +221,158 @@ void Simulation::AddRow() {
   last_psi_deg_ = row.stress.psi() / kDegree;
 }
 
-void Simulation::FinishStage(const std::string& reason) {
+std::optional<std::string> Simulation::CheckRowGuards(bool stage_ends) {
+  const ValidityLimits& limits = kValidityLimits;
+  const int64_t step = engine_->step();
+  const double overlap = series_.Last(record::kColumnOverlapMax);
+  const double p = series_.Last(record::kColumnMeanStress);
+  // e <= 0 first: when both hold, it names the impossibility.
+  const double e = series_.Last(record::kColumnVoidRatio);
+  if (!(e > 0)) {
+    return fmt::format(
+        "void ratio e = {:.4g} <= 0 at step {} (p = {:.4g} kPa): the cell is smaller than the "
+        "solid volume; overlaps no longer describe contacts (contacts too soft for this p)",
+        e, step, p);
+  }
+  if (overlap >= limits.overlap_failure) {
+    return fmt::format(
+        "relative overlap {:.3g} at step {} (p = {:.4g} kPa) reached the contact limit {:g}: "
+        "spheres interpenetrate (loading too fast, time step too large, or p too high for the "
+        "contact stiffness)",
+        overlap, step, p, limits.overlap_failure);
+  }
+  // A mean-stress target the stage moves away from: once the sample is not
+  // a gas, the closest approach is tracked; stale for unreachable_strain of
+  // strain, the target cannot be reached.
+  const StopConditions& stop = stage().stop;
+  if (!stop.mean_stress_kpa || stage_ends) return std::nullopt;
+  StageClock& clock = runner_.clock;
+  const double target = *stop.mean_stress_kpa;
+  const Direction direction = MeanStressDirection(stop, clock);
+  const double z = series_.Last(record::kColumnMechanicalCoordination);
+  if (!IsGas(p, z, limits)) {
+    const double distance =
+        direction == Direction::kRising ? std::log(target / p) : std::log(p / target);
+    if (distance < clock.target_distance) {
+      clock.target_distance = distance;
+      clock.target_distance_strain = clock.strain_norm;
+      return std::nullopt;
+    }
+  }
+  if (std::isfinite(clock.target_distance) &&
+      clock.strain_norm - clock.target_distance_strain >= limits.unreachable_strain) {
+    const double closest = direction == Direction::kRising
+                               ? target * std::exp(-clock.target_distance)
+                               : target * std::exp(clock.target_distance);
+    return fmt::format(
+        "stage '{}' cannot reach its mean-stress target {:.6g} kPa ({}): p has moved away from "
+        "it for {:.3g} of strain, from its closest {:.4g} kPa at stage strain {:.4g} to {:.4g} "
+        "kPa at {:.4g}{}",
+        stage().name, target, ToString(direction), clock.strain_norm - clock.target_distance_strain,
+        closest, clock.target_distance_strain, p, clock.strain_norm,
+        IsGas(p, z, limits) ? fmt::format(" (a gas: mechanical coordination {:.3g})", z) : "");
+  }
+  return std::nullopt;
+}
+
+namespace {
+
+// The first of the stage's rows [first, last] at or after `time` (the
+// window's start); `last` when none.
+int64_t FirstRowAfter(const TimeSeries& series, int64_t first, int64_t last, double time) {
+  const auto& times = series.Values(record::kColumnTime);
+  for (int64_t k = first; k <= last; ++k) {
+    if (times[k] >= time) return k;
+  }
+  return last;
+}
+
+}  // namespace
+
+void Simulation::FinishStage(const std::string& reason, bool failed) {
   StageRecord record;
   record.name = stage().name;
   record.type = stage().type();
   record.first_row = runner_.clock.first_row;
   record.last_row = static_cast<int64_t>(series_.rows()) - 1;
   record.stop_reason = reason;
-  if (stage().detect_asymptote) {
-    record.asymptote =
-        AsymptoteRecord::From(detector_.Evaluate(), series_.Last(record::kColumnMeanStress),
-                              series_.Last(record::kColumnVoidRatio));
+  record.failed = failed;
+  const bool has_rows = record.last_row >= record.first_row;
+  const bool detect = stage().detect_asymptote;
+  const AsymptoteDetector::Result result =
+      detect ? detector_.Evaluate() : AsymptoteDetector::Result{};
+  // The state: the window's rows when a full window exists, else the last row.
+  const bool window = detect && result.window_strain > 0;
+  RowState state;
+  if (has_rows) {
+    const int64_t state_row =
+        window ? FirstRowAfter(series_, record.first_row, record.last_row, result.window_start_time)
+               : record.last_row;
+    state = RowState::Mean(series_, state_row, record.last_row);
+    record.validity = StageValidity::FromRows(series_, record.first_row, record.last_row, state);
+  }
+  if (detect) {
+    AsymptoteRecord a;
+    a.path_kind = stage().asymptote.kind;
+    a.criterion = stage().asymptote;
+    a.window_strain = result.window_strain;
+    a.window_lnp = result.window_lnp;
+    if (window) {
+      a.mean_stress_kpa = result.mean_stress_kpa;
+      a.void_ratio = result.void_ratio;
+      a.psi_sigma_deg = result.psi_sigma / kDegree;
+      a.psi_epsilon_deg = result.psi_epsilon / kDegree;
+      a.q_over_p = result.q_over_p;
+    } else if (has_rows) {
+      a.mean_stress_kpa = series_.Last(record::kColumnMeanStress);
+      a.void_ratio = series_.Last(record::kColumnVoidRatio);
+      a.psi_sigma_deg = series_.Last(record::kColumnPsiSigma);
+      a.psi_epsilon_deg = series_.Last("psi_epsilon_deg");
+      a.q_over_p = 3.0 / std::sqrt(2.0) * std::tan(a.psi_sigma_deg * kDegree);
+    }
+    a.coordination = state.coordination;
+    a.mechanical_coordination = state.mechanical_coordination;
+    a.inertial_number_dmin = state.inertial_number_dmin;
+    a.inertial_number_dmax = state.inertial_number_dmax;
+    a.max_relative_overlap = state.max_relative_overlap;
+    a.psi_change_deg = result.psi_change_deg;
+    a.lnp_change = result.lnp_change;
+    a.lnp_half_difference = result.lnp_half_difference;
+    a.slope_change = result.slope_change;
+    a.psi_epsilon_change_deg = result.psi_epsilon_change_deg;
+    a.lnv_change = result.lnv_change;
+    a.dlnp_dstrain = result.slope_lnp;
+    a.dln1pe_dlnp = result.slope_lnv_lnp;
+    const ValidityLimits& limits = kValidityLimits;
+    if (failed || !has_rows || state.max_relative_overlap > limits.overlap_unreliable) {
+      a.status = AsymptoteStatus::kInvalid;
+    } else if (IsGas(state.mean_stress_kpa, state.mechanical_coordination, limits)) {
+      a.status = AsymptoteStatus::kGas;
+    } else {
+      a.status = result.status;
+    }
+    a.detected = a.status == AsymptoteStatus::kDetected;
+    if (result.detected() && !a.detected) {
+      record.stop_reason += fmt::format("; not an asymptote: status {} ({})", ToString(a.status),
+                                        EnumDescription(a.status));
+    }
+    record.asymptote = a;
     record.asymptote_criterion = stage().asymptote.Describe();
   }
   const bool last = runner_.stage + 1 == static_cast<int64_t>(scene_.stages.size());
-  if (scene_.output.stage_states && !last) record.end_state = engine_->Save();
+  if (scene_.output.stage_states && !last && !failed) record.end_state = engine_->Save();
+  Log(fmt::format("stage {} '{}' {} after {} steps: {}", runner_.stage + 1, stage().name,
+                  failed ? "failed" : "done", runner_.clock.steps(*engine_), record.stop_reason));
+  Log(fmt::format("  validity: {}", record.validity.OneLine()));
+  if (record.asymptote) {
+    const AsymptoteRecord& a = *record.asymptote;
+    Log(fmt::format(
+        "  asymptote ({}): {}; p {:.4g} kPa, e {:.4f}, psi_sigma {:.2f} deg, psi_epsilon {:.2f} "
+        "deg over a window of {:.3g} strain and {:.3g} of ln p",
+        ToString(a.path_kind), ToString(a.status), a.mean_stress_kpa, a.void_ratio, a.psi_sigma_deg,
+        a.psi_epsilon_deg, a.window_strain, a.window_lnp));
+  }
   records_.push_back(std::move(record));
-  Log(fmt::format("stage {} '{}' done after {} steps: {}", runner_.stage + 1, stage().name,
-                  runner_.clock.steps(*engine_), reason));
   ++runner_.stage;
   runner_.stage_started = false;
   controller_.reset();
@@ -368,6 +507,18 @@ RunSummary Simulation::Finish(RunSummary& summary, Termination termination,
   summary.rows = static_cast<int64_t>(series_.rows());
   summary.stages_completed = static_cast<int64_t>(records_.size());
   if (termination != Termination::kCompleted) WriteCheckpoint();
+  // The stage the run failed in keeps a record of what it reached (in the
+  // result file; the checkpoint holds the state before it).
+  if (termination == Termination::kFailed && !done() && runner_.stage_started) {
+    FinishStage(message, /*failed=*/true);
+  }
+  summary.validity.clear();
+  for (const StageRecord& r : records_) {
+    if (r.validity.flags.empty()) continue;
+    summary.validity += fmt::format("{}stage '{}': {}", summary.validity.empty() ? "" : "; ",
+                                    r.name, r.validity.FlagNames());
+  }
+  if (!summary.validity.empty()) Log("validity: " + summary.validity);
   WriteResults(summary);
   if (termination == Termination::kCompleted && !options_.keep_checkpoint) {
     std::filesystem::remove(options_.output_path + ".ckpt");
@@ -473,32 +624,44 @@ Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_sec
     if (sample_due) {
       const AxisymmetricStress stress = AxisymmetricFromTensor(engine_->sums().stress);
       const double p_kpa = stress.mean() / kKiloPascal;
+      const auto& cell = engine_->cell();
+      const auto& reference = initial_.cell;
       detector_.Add({clock.strain_norm, stress.psi(),
                      p_kpa > 0 ? std::log(p_kpa) : std::numeric_limits<double>::quiet_NaN(),
-                     std::log1p(engine_->void_ratio())});
+                     std::log1p(engine_->void_ratio()), -std::log(cell[0] / reference[0]),
+                     -0.5 * (std::log(cell[1] / reference[1]) + std::log(cell[2] / reference[2])),
+                     engine_->time()});
       clock.next_sample_strain += current.asymptote.sample_strain;
     }
     if (need_stress) reason = MeanStressStop(current.stop, clock, p);
     if (!reason && sample_due && current.stop.asymptote) {
       const AsymptoteDetector::Result result = detector_.Evaluate();
-      if (result.detected) {
+      // A gas, or a state with overlaps beyond the reliable, is no asymptote:
+      // the stage goes on (a compression path leaves a loose start behind).
+      const int64_t last_row = static_cast<int64_t>(series_.rows()) - 1;
+      bool valid = result.detected() && last_row >= clock.first_row;
+      if (valid) {
+        const RowState state = RowState::Mean(
+            series_, FirstRowAfter(series_, clock.first_row, last_row, result.window_start_time),
+            last_row);
+        valid = !IsGas(result.mean_stress_kpa, state.mechanical_coordination) &&
+                state.max_relative_overlap <= kValidityLimits.overlap_unreliable;
+      }
+      if (valid) {
         reason = fmt::format(
-            "asymptotic state detected (psi_sigma {:.3f} deg, change {:.3f} deg, "
-            "ln p half-window difference {:.4f})",
-            result.psi_sigma / kDegree, result.psi_change_deg, result.lnp_half_difference);
+            "asymptotic state detected ({}: p {:.4g} kPa, psi_sigma {:.3f} deg over {:.3g} of "
+            "strain and {:.3g} of ln p)",
+            ToString(current.asymptote.kind), result.mean_stress_kpa, result.psi_sigma / kDegree,
+            result.window_strain, result.window_lnp);
       }
     }
     if (!reason && need_stress) reason = controller_->CheckStop(*engine_, stage_steps);
     if (!reason && strain_stop) reason = StrainOrDurationReason(current.stop, clock, *engine_);
     if (output_due || reason) {
       AddRow();
-      const double overlap = series_.Last(record::kColumnOverlapMax);
-      if (overlap > 0.5) {
+      if (const std::optional<std::string> failure = CheckRowGuards(reason.has_value())) {
         loop_seconds += step_clock.Seconds();
-        return Outcome{Termination::kFailed,
-                       fmt::format("relative overlap {:.3g} above 0.5 at step {}: spheres "
-                                   "interpenetrate (loading too fast or time step too large)",
-                                   overlap, engine_->step())};
+        return Outcome{Termination::kFailed, *failure};
       }
     }
     if (reason) {

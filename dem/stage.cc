@@ -87,14 +87,17 @@ void Stage::Canonical(CanonicalText& text, const std::string& prefix) const {
   if (detect_asymptote) asymptote.Canonical(text, prefix + "asymptote.");
 }
 
+Direction MeanStressDirection(const StopConditions& stop, const StageClock& clock) {
+  if (stop.mean_stress_direction != Direction::kAuto || !stop.mean_stress_kpa) {
+    return stop.mean_stress_direction;
+  }
+  return clock.start_p_kpa < *stop.mean_stress_kpa ? Direction::kRising : Direction::kFalling;
+}
+
 std::optional<std::string> MeanStressStop(const StopConditions& stop, const StageClock& clock,
                                           double p) {
   if (!stop.mean_stress_kpa) return std::nullopt;
-  Direction direction = stop.mean_stress_direction;
-  if (direction == Direction::kAuto) {
-    direction =
-        clock.start_p_kpa < *stop.mean_stress_kpa ? Direction::kRising : Direction::kFalling;
-  }
+  const Direction direction = MeanStressDirection(stop, clock);
   if ((direction == Direction::kRising && p >= *stop.mean_stress_kpa) ||
       (direction == Direction::kFalling && p <= *stop.mean_stress_kpa)) {
     return fmt::format("mean stress reached {:.6g} kPa (target {:.6g} kPa, {})", p,

@@ -75,6 +75,11 @@ struct StageClock {
   double strain_norm = 0;                                         // ∫‖D‖dt since the start
   double next_sample_strain = 0;                                  // of the asymptote detector
   int64_t first_row = 0;
+  // The closest approach to a mean-stress target (checked on output rows
+  // that are not a gas): its distance |ln(p/target)| and the stage strain
+  // where it was seen; the distance is infinite before the first such row.
+  double target_distance = std::numeric_limits<double>::infinity();
+  double target_distance_strain = 0;
   int64_t steps(const Engine& engine) const { return engine.step() - start_step; }
 };
 
@@ -127,6 +132,8 @@ class StageSpec {
   virtual std::string type() const = 0;  // the spelling of `type` in scene files
   // True when the type ends its stage without a [stage.stop] condition.
   virtual bool StopsByItself() const { return false; }
+  // The kind of asymptote the stage can reach; nullopt: none (no detector).
+  virtual std::optional<PathKind> path_kind() const { return std::nullopt; }
   virtual std::unique_ptr<StageController> MakeController() const = 0;
   // The type's keys for the canonical scene (`prefix` ends with '.').
   virtual void Canonical(CanonicalText& text, const std::string& prefix) const = 0;
@@ -138,7 +145,7 @@ struct Stage {
   std::string name;
   std::shared_ptr<const StageSpec> spec;
   StopConditions stop;
-  AsymptoteCriterion asymptote;
+  AsymptoteCriterion asymptote;   // of the stage's path kind
   bool detect_asymptote = false;  // run the detector (always on with stop.asymptote)
 
   std::string type() const { return spec->type(); }
@@ -153,6 +160,8 @@ struct Stage {
 // target (needs stress), then strains, the strain norm, steps and time.
 std::optional<std::string> MeanStressStop(const StopConditions& stop, const StageClock& clock,
                                           double p_kpa);
+// The direction a mean-stress target is approached from (auto resolved).
+Direction MeanStressDirection(const StopConditions& stop, const StageClock& clock);
 bool StrainOrDurationStopReached(const StopConditions& stop, const StageClock& clock,
                                  const Engine& engine);
 std::string StrainOrDurationReason(const StopConditions& stop, const StageClock& clock,

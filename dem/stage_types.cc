@@ -47,8 +47,13 @@ Stage ParseStage(const ConfigTable& table, size_t index) {
     if (type == entry.name) stage.spec = entry.parse(table);
   }
   GRANASYM_CHECK(stage.spec) << "no parser for stage type " << type;
+  const std::optional<PathKind> kind = stage.spec->path_kind();
+  if (kind) stage.asymptote = AsymptoteCriterion::For(*kind);
   if (table.Has("asymptote")) {
-    stage.asymptote = AsymptoteCriterion::Parse(table.GetTable("asymptote"));
+    if (!kind) {
+      table.Fail("asymptote", "is given, but " + type + " stages have no asymptote detector");
+    }
+    stage.asymptote = AsymptoteCriterion::Parse(table.GetTable("asymptote"), *kind);
     stage.detect_asymptote = true;
   }
   if (!table.Has("stop")) {
@@ -59,7 +64,10 @@ Stage ParseStage(const ConfigTable& table, size_t index) {
   }
   const ConfigTable stop = table.GetTable("stop");
   stage.stop = StopConditions::Parse(stop);
-  if (stage.stop.asymptote) stage.detect_asymptote = true;
+  if (stage.stop.asymptote) {
+    if (!kind) stop.Fail("asymptote", "= true, but " + type + " stages have no asymptote detector");
+    stage.detect_asymptote = true;
+  }
   if (!stage.stop.any() && !stage.spec->StopsByItself()) {
     stop.Fail("",
               "has no stop condition: give at least one of mean_stress_kpa, axial_strain, "

@@ -14,6 +14,7 @@ class StrainPathStage final : public StageSpec {
   static std::shared_ptr<const StageSpec> Parse(const ConfigTable& table);
   double psi_epsilon() const;  // (rad)
   std::string type() const override { return "strain_path"; }
+  std::optional<PathKind> path_kind() const override { return StrainPathKind(psi_epsilon_deg); }
   std::unique_ptr<StageController> MakeController() const override;
   void Canonical(CanonicalText& text, const std::string& prefix) const override;
   void Describe(Hdf5File& file, const std::string& group) const override;

@@ -14,6 +14,7 @@ class TriaxialStage final : public StageSpec {
 
   static std::shared_ptr<const StageSpec> Parse(const ConfigTable& table);
   std::string type() const override { return "triaxial"; }
+  std::optional<PathKind> path_kind() const override { return PathKind::kStressControlled; }
   std::unique_ptr<StageController> MakeController() const override;
   void Canonical(CanonicalText& text, const std::string& prefix) const override;
   void Describe(Hdf5File& file, const std::string& group) const override;

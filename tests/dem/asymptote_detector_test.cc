@@ -1,6 +1,6 @@
-// The asymptotic-state detector of dem/asymptote_detector.h on synthetic
-// series with known ψ_σ, ln p and ln(1 + e), against the criterion stated in
-// dem/scene.h (AsymptoteCriterion).
+// The asymptotic-state detectors of dem/asymptote_detector.h, one per kind of
+// path, on synthetic series with a known asymptote and on series that still
+// drift, against the criteria stated in AsymptoteCriterion.
 #include "dem/asymptote_detector.h"
 
 #include <gtest/gtest.h>
@@ -9,7 +9,11 @@
 #include <functional>
 #include <limits>
 
+#include "common/error.h"
 #include "common/state_measures.h"
+#include "dem/scene.h"
+#include "dem/stage_validity.h"
+#include "test_util.h"
 
 namespace granasym::dem {
 namespace {
@@ -17,268 +21,449 @@ namespace {
 using Sample = AsymptoteDetector::Sample;
 using Curve = std::function<double(double)>;  // a state measure as a function of strain
 
-// A state measure of the synthetic series.
+// A synthetic series: state measures as functions of the accumulated strain.
+// The cell strains follow a strain path of direction psi_epsilon.
 struct Series {
   Curve psi_sigma = [](double) { return 35.0 * kDegree; };
   Curve log_p = [](double) { return std::log(100.0); };
   Curve log_volume = [](double) { return std::log(1.6); };
+  Curve psi_epsilon = [](double) { return 90.0 * kDegree; };
 };
 
-Sample At(const Series& series, double strain) {
-  return {strain, series.psi_sigma(strain), series.log_p(strain), series.log_volume(strain)};
+// Integrates the strain increments of the series' ψ_ε up to `strain` with
+// the midpoint rule over steps of `spacing` (exact for a constant ψ_ε).
+void CellStrains(const Series& series, double strain, double spacing, double* eps_a,
+                 double* eps_r) {
+  *eps_a = *eps_r = 0;
+  const int steps = static_cast<int>(std::lround(strain / spacing));
+  for (int k = 0; k < steps; ++k) {
+    const AxisymmetricRate rate =
+        AxisymmetricRate::FromAngle(series.psi_epsilon((k + 0.5) * spacing), 1.0);
+    *eps_a += rate.axial * spacing;
+    *eps_r += rate.radial * spacing;
+  }
+}
+
+Sample At(const Series& series, double strain, double spacing) {
+  Sample s{strain, series.psi_sigma(strain), series.log_p(strain), series.log_volume(strain)};
+  CellStrains(series, strain, spacing, &s.eps_a, &s.eps_r);
+  s.time = strain;  // any increasing clock
+  return s;
 }
 
 // Adds samples k = first .. last (inclusive) at strain k * spacing.
 void Feed(AsymptoteDetector& detector, const Series& series, int first, int last, double spacing) {
-  for (int k = first; k <= last; ++k) detector.Add(At(series, k * spacing));
+  for (int k = first; k <= last; ++k) detector.Add(At(series, k * spacing, spacing));
 }
 
-// The default criterion: window 0.1 sampled every 2e-3 (51 samples per window).
-const AsymptoteCriterion kCriterion{};
-const double kSpacing = kCriterion.sample_strain;
-constexpr int kWindowSamples = 50;  // intervals per window
+AsymptoteCriterion Criterion(PathKind kind) { return AsymptoteCriterion::For(kind); }
 
 // A state moving parallel to an asymptotic line: ln p = ln p0 + a ε and
-// ln(1 + e) = ln(1 + e0) − λ* (ln p − ln p0).
-Series ParallelToALine(double slope_lnp, double lambda_star) {
+// ln(1 + e) = ln(1 + e0) − λ* (ln p − ln p0), along ψ_ε.
+Series ParallelToALine(double slope_lnp, double lambda_star, double psi_epsilon_deg) {
   Series series;
   series.log_p = [slope_lnp](double strain) { return std::log(80.0) + slope_lnp * strain; };
   series.log_volume = [slope_lnp, lambda_star](double strain) {
     return std::log(1.7) - lambda_star * slope_lnp * strain;
   };
+  series.psi_epsilon = [psi_epsilon_deg](double) { return psi_epsilon_deg * kDegree; };
+  series.psi_sigma = [](double) { return 14.0 * kDegree; };
   return series;
 }
 
-TEST(AsymptoteDetector, DefaultCriterionIsTheDocumentedOne) {
-  EXPECT_EQ(kCriterion.sample_strain, 2e-3);
-  EXPECT_EQ(kCriterion.window_strain, 0.1);
-  EXPECT_EQ(kCriterion.psi_tolerance_deg, 0.5);
-  EXPECT_EQ(kCriterion.lnp_tolerance, 0.02);
-  EXPECT_EQ(AsymptoteDetector().criterion().window_strain, kCriterion.window_strain);
-}
-
-TEST(AsymptoteDetector, StationaryPsiWithLnPLinearInStrainIsDetected) {
-  // Compression (p rising) and extension (p falling) paths parallel to a line.
-  for (const double slope_lnp : {2.5, -1.5}) {
-    const double lambda_star = 0.045;
-    AsymptoteDetector detector(kCriterion);
-    Feed(detector, ParallelToALine(slope_lnp, lambda_star), 0, 3 * kWindowSamples, kSpacing);
-    ASSERT_TRUE(detector.ready());
-    const AsymptoteDetector::Result result = detector.Evaluate();
-    EXPECT_TRUE(result.detected) << slope_lnp;
-    EXPECT_NEAR(result.slope_lnp, slope_lnp, 1e-9);
-    EXPECT_NEAR(result.slope_lnv_lnp, -lambda_star, 1e-9);
-    EXPECT_NEAR(result.psi_sigma, 35.0 * kDegree, 1e-12);
-    EXPECT_NEAR(result.psi_change_deg, 0.0, 1e-9);
-    EXPECT_NEAR(result.lnp_half_difference, 0.0, 1e-9);
+TEST(AsymptoteDetector, DefaultCriteriaAreTheDocumentedOnes) {
+  const AsymptoteCriterion isochoric = Criterion(PathKind::kIsochoric);
+  EXPECT_EQ(isochoric.sample_strain, 5e-4);
+  EXPECT_EQ(isochoric.window_strain, 0.15);
+  EXPECT_EQ(isochoric.psi_tolerance_deg, 1.0);
+  EXPECT_EQ(isochoric.lnp_tolerance, 0.05);
+  for (const PathKind kind : {PathKind::kCompression, PathKind::kExtension}) {
+    const AsymptoteCriterion c = Criterion(kind);
+    EXPECT_EQ(c.kind, kind);
+    EXPECT_EQ(c.window_lnp, 1.0);
+    EXPECT_EQ(c.window_strain, 0.3);
+    EXPECT_EQ(c.psi_tolerance_deg, 0.5);
+    EXPECT_EQ(c.slope_tolerance, 0.1);
   }
+  const AsymptoteCriterion stress = Criterion(PathKind::kStressControlled);
+  EXPECT_EQ(stress.window_strain, 0.15);
+  EXPECT_EQ(stress.psi_tolerance_deg, 1.0);
+  EXPECT_EQ(stress.psi_epsilon_tolerance_deg, 3.0);
+  EXPECT_EQ(stress.lnv_tolerance, 0.004);
+  // Each description names its kind and its tolerances.
+  EXPECT_NE(Criterion(PathKind::kCompression).Describe().find("ln p"), std::string::npos);
+  EXPECT_NE(stress.Describe().find("stress_controlled"), std::string::npos);
+  EXPECT_NE(stress.Describe().find("0.004"), std::string::npos);
 }
 
-TEST(AsymptoteDetector, SmallPsiFluctuationsAroundAStationaryValueAreDetected) {
-  // DEM series are noisy: a ±0.2° oscillation about 40° with no trend.
-  Series series = ParallelToALine(1.2, 0.03);
-  series.psi_sigma = [](double strain) {
-    return (40.0 + 0.2 * std::sin(2 * kPi * strain / 0.013)) * kDegree;
+TEST(AsymptoteDetector, StrainPathKindFollowsPsiEpsilon) {
+  EXPECT_EQ(StrainPathKind(90.0), PathKind::kIsochoric);
+  EXPECT_EQ(StrainPathKind(-90.0), PathKind::kIsochoric);
+  EXPECT_EQ(StrainPathKind(90.0 + 5e-7), PathKind::kIsochoric);
+  EXPECT_EQ(StrainPathKind(90.0 - 2e-6), PathKind::kCompression);
+  EXPECT_EQ(StrainPathKind(0.0), PathKind::kCompression);
+  EXPECT_EQ(StrainPathKind(-45.0), PathKind::kCompression);
+  EXPECT_EQ(StrainPathKind(90.0 + 2e-6), PathKind::kExtension);
+  EXPECT_EQ(StrainPathKind(120.0), PathKind::kExtension);
+  EXPECT_EQ(StrainPathKind(-180.0), PathKind::kExtension);
+  EXPECT_EQ(ToString(PathKind::kStressControlled), std::string("stress_controlled"));
+  EXPECT_EQ(FromString<AsymptoteStatus>("not_reached"), AsymptoteStatus::kNotReached);
+}
+
+// --- isochoric ---
+
+TEST(IsochoricDetector, ConstantMeanStressAndPsiSigmaIsDetected) {
+  const AsymptoteCriterion c = Criterion(PathKind::kIsochoric);
+  AsymptoteDetector detector(c);
+  const double h = c.sample_strain;
+  Feed(detector, Series{}, 0, 400, h);
+  const AsymptoteDetector::Result result = detector.Evaluate();
+  EXPECT_EQ(result.status, AsymptoteStatus::kDetected);
+  EXPECT_NEAR(result.window_strain, c.window_strain, h);
+  EXPECT_NEAR(result.mean_stress_kpa, 100.0, 1e-9);
+  EXPECT_NEAR(result.void_ratio, 0.6, 1e-12);
+  EXPECT_NEAR(result.psi_sigma, 35.0 * kDegree, 1e-12);
+  EXPECT_NEAR(result.psi_epsilon / kDegree, 90.0, 1e-9);
+  EXPECT_NEAR(result.q_over_p, 3.0 / std::sqrt(2.0) * std::tan(35.0 * kDegree), 1e-12);
+  EXPECT_EQ(result.lnp_change, 0.0);
+}
+
+TEST(IsochoricDetector, NoisyStationaryStateIsDetected) {
+  // A 3000-sphere critical state: ±15 % in p and ±0.8° in ψ_σ, no trend.
+  Series series;
+  series.log_p = [](double strain) {
+    return std::log(30.0) + 0.15 * std::sin(2 * kPi * strain / 0.013);
   };
-  AsymptoteDetector detector(kCriterion);
-  Feed(detector, series, 0, 2 * kWindowSamples, kSpacing);
-  const AsymptoteDetector::Result result = detector.Evaluate();
-  EXPECT_TRUE(result.detected);
-  EXPECT_NEAR(result.psi_sigma / kDegree, 40.0, 0.05);
-  EXPECT_NEAR(result.slope_lnp, 1.2, 1e-9);
+  series.psi_sigma = [](double strain) {
+    return (27.5 + 0.8 * std::sin(2 * kPi * strain / 0.017)) * kDegree;
+  };
+  const AsymptoteCriterion c = Criterion(PathKind::kIsochoric);
+  AsymptoteDetector detector(c);
+  Feed(detector, series, 0, 600, c.sample_strain);
+  EXPECT_TRUE(detector.Evaluate().detected());
 }
 
-TEST(AsymptoteDetector, ConstantMeanStressIsDetected) {
-  // Isochoric asymptotic state: p, e and ψ_σ stay constant.
-  AsymptoteDetector detector(kCriterion);
-  Feed(detector, Series{}, 0, 2 * kWindowSamples, kSpacing);
-  const AsymptoteDetector::Result result = detector.Evaluate();
-  EXPECT_TRUE(result.detected);
-  EXPECT_EQ(result.slope_lnp, 0.0);
-  EXPECT_EQ(result.lnp_half_difference, 0.0);
-  // With no spread in ln p the volume slope is reported as 0, not NaN.
-  EXPECT_EQ(result.slope_lnv_lnp, 0.0);
-  EXPECT_NEAR(result.psi_sigma, 35.0 * kDegree, 1e-15);
+TEST(IsochoricDetector, FallingMeanStressIsDrifting) {
+  // p still falls towards the critical state: 0.6 of ln p per unit strain
+  // is 0.09 across the window, above lnp_tolerance = 0.05; 0.2 is 0.03.
+  for (const double rate : {-0.6, -0.2}) {
+    Series series;
+    series.log_p = [rate](double strain) { return std::log(200.0) + rate * strain; };
+    const AsymptoteCriterion c = Criterion(PathKind::kIsochoric);
+    AsymptoteDetector detector(c);
+    Feed(detector, series, 0, 400, c.sample_strain);
+    const AsymptoteDetector::Result result = detector.Evaluate();
+    EXPECT_NEAR(result.lnp_change, std::abs(rate) * result.window_strain, 1e-9);
+    EXPECT_EQ(result.status, std::abs(rate) * c.window_strain < c.lnp_tolerance
+                                 ? AsymptoteStatus::kDetected
+                                 : AsymptoteStatus::kDrifting)
+        << rate;
+  }
 }
 
-TEST(AsymptoteDetector, PsiDriftAboveTheToleranceIsNotDetected) {
-  for (const double change_deg : {0.8, -0.8, 0.3, -0.3}) {
-    Series series = ParallelToALine(2.0, 0.05);
-    const double rate = change_deg / kCriterion.window_strain;  // degrees per unit strain
+TEST(IsochoricDetector, PsiSigmaDriftAboveTheToleranceIsDrifting) {
+  for (const double change_deg : {1.5, -1.5, 0.6, -0.6}) {
+    const AsymptoteCriterion c = Criterion(PathKind::kIsochoric);
+    Series series;
+    const double rate = change_deg / c.window_strain;
     series.psi_sigma = [rate](double strain) { return (30.0 + rate * strain) * kDegree; };
-    AsymptoteDetector detector(kCriterion);
-    Feed(detector, series, 0, 2 * kWindowSamples, kSpacing);
+    AsymptoteDetector detector(c);
+    Feed(detector, series, 0, 400, c.sample_strain);
     const AsymptoteDetector::Result result = detector.Evaluate();
-    EXPECT_NEAR(result.psi_change_deg, std::abs(change_deg), 1e-9) << change_deg;
-    EXPECT_EQ(result.detected, std::abs(change_deg) < kCriterion.psi_tolerance_deg) << change_deg;
-    EXPECT_NEAR(result.lnp_half_difference, 0.0, 1e-9);
+    EXPECT_NEAR(result.psi_change_deg, std::abs(change_deg), 1e-6) << change_deg;
+    EXPECT_EQ(result.detected(), std::abs(change_deg) < c.psi_tolerance_deg) << change_deg;
   }
 }
 
-TEST(AsymptoteDetector, LnPCurvatureBeyondTheToleranceIsNotDetected) {
-  // ln p = ln p0 + a ε + c ε²: d ln p/dε changes by 2c per unit strain. With
-  // 51 samples per window the halves hold 25 and 26 equally spaced samples
-  // whose mean strains are 0.051 apart; the least-squares slope of a
-  // quadratic is its derivative at the mean strain, so
-  //   |Δln p (2nd half) − Δln p (1st half)| = 2|c| 0.051 × window/2.
-  for (const double curvature : {6.0, -6.0, 2.0, -2.0}) {
-    Series series = ParallelToALine(1.0, 0.04);
-    series.log_p = [curvature](double strain) {
-      return std::log(50.0) + 1.0 * strain + curvature * strain * strain;
-    };
-    AsymptoteDetector detector(kCriterion);
-    Feed(detector, series, 0, 2 * kWindowSamples, kSpacing);
-    const AsymptoteDetector::Result result = detector.Evaluate();
-    const double expected = 2 * std::abs(curvature) * 0.051 * 0.5 * kCriterion.window_strain;
-    EXPECT_NEAR(result.lnp_half_difference, expected, 1e-9) << curvature;
-    EXPECT_EQ(result.detected, expected < kCriterion.lnp_tolerance) << curvature;
-    EXPECT_NEAR(result.psi_change_deg, 0.0, 1e-9);
-    // The overall slope is the derivative at the window's mean strain 0.15.
-    EXPECT_NEAR(result.slope_lnp, 1.0 + 2 * curvature * 0.15, 1e-9) << curvature;
-  }
-}
-
-TEST(AsymptoteDetector, ToleranceBoundariesAreStrict) {
-  // "below psi_tolerance_deg" and "differ by less than lnp_tolerance": a
-  // measured value equal to its tolerance is not an asymptotic state, the
-  // next larger tolerance admits it.
-  Series series = ParallelToALine(1.0, 0.04);
+TEST(IsochoricDetector, ToleranceBoundariesAreStrict) {
+  Series series;
   series.psi_sigma = [](double strain) { return (30.0 + 3.0 * strain) * kDegree; };
-  series.log_p = [](double strain) { return 0.5 * strain + 1.5 * strain * strain; };
-  AsymptoteDetector probe(kCriterion);
-  Feed(probe, series, 0, 2 * kWindowSamples, kSpacing);
+  series.log_p = [](double strain) { return 0.2 * strain; };
+  AsymptoteDetector probe(Criterion(PathKind::kIsochoric));
+  Feed(probe, series, 0, 400, probe.criterion().sample_strain);
   const AsymptoteDetector::Result measured = probe.Evaluate();
   ASSERT_GT(measured.psi_change_deg, 0.0);
-  ASSERT_GT(measured.lnp_half_difference, 0.0);
+  ASSERT_GT(measured.lnp_change, 0.0);
   const double inf = std::numeric_limits<double>::infinity();
   auto detected_with = [&](double psi_tolerance_deg, double lnp_tolerance) {
-    AsymptoteCriterion criterion = kCriterion;
+    AsymptoteCriterion criterion = probe.criterion();
     criterion.psi_tolerance_deg = psi_tolerance_deg;
     criterion.lnp_tolerance = lnp_tolerance;
     AsymptoteDetector detector(criterion);
     detector.set_samples(probe.samples());
-    return detector.Evaluate().detected;
+    return detector.Evaluate().detected();
   };
-  const double psi_at = measured.psi_change_deg, lnp_at = measured.lnp_half_difference;
+  const double psi_at = measured.psi_change_deg, lnp_at = measured.lnp_change;
   const double psi_above = std::nextafter(psi_at, inf), lnp_above = std::nextafter(lnp_at, inf);
   EXPECT_FALSE(detected_with(psi_at, lnp_above));
   EXPECT_FALSE(detected_with(psi_above, lnp_at));
-  EXPECT_FALSE(detected_with(psi_at, lnp_at));
   EXPECT_TRUE(detected_with(psi_above, lnp_above));
 }
 
-TEST(AsymptoteDetector, OnlyTheLastWindowIsEvaluated) {
-  // A transient (ψ_σ at 20°, ln p curved) up to ε = 0.099, then the
-  // stationary state (ψ_σ at 30°, ln p linear): the transient samples still
-  // kept in the record do not count once a full window lies beyond them.
-  const double transient_end = 0.099;
-  const Series line = ParallelToALine(2.0, 0.05);
-  Series series = line;
-  series.psi_sigma = [transient_end](double strain) {
-    return (strain < transient_end ? 20.0 : 30.0) * kDegree;
-  };
-  series.log_p = [line, transient_end](double strain) {
-    const double before = std::min(strain - transient_end, 0.0);
-    return line.log_p(strain) + 30.0 * before * before;
-  };
-  AsymptoteDetector detector(kCriterion);
-  Feed(detector, series, 0, 2 * kWindowSamples, kSpacing);  // the record spans 0.05 .. 0.2
-  ASSERT_LT(detector.samples().front().strain, transient_end);
+TEST(IsochoricDetector, AGasAtOneKpaMeetsTheCriterionButIsAGas) {
+  // The state the single-criterion detector accepted: 0.8 kPa, e = 1.01,
+  // stationary. The criterion holds; the validity guard calls it a gas
+  // (mechanical coordination 2: particles touch in chains, no network).
+  Series series;
+  series.log_p = [](double) { return std::log(0.8); };
+  series.log_volume = [](double) { return std::log(2.01); };
+  const AsymptoteCriterion c = Criterion(PathKind::kIsochoric);
+  AsymptoteDetector detector(c);
+  Feed(detector, series, 0, 400, c.sample_strain);
   const AsymptoteDetector::Result result = detector.Evaluate();
-  EXPECT_TRUE(result.detected);
-  EXPECT_NEAR(result.psi_sigma / kDegree, 30.0, 1e-12);
-  EXPECT_NEAR(result.psi_change_deg, 0.0, 1e-12);
-  EXPECT_NEAR(result.slope_lnp, 2.0, 1e-9);
-  // One sample earlier the window starts with the last transient sample.
-  AsymptoteDetector earlier(kCriterion);
-  Feed(earlier, series, 0, 2 * kWindowSamples - 1, kSpacing);
-  const AsymptoteDetector::Result early = earlier.Evaluate();
-  EXPECT_FALSE(early.detected);
-  EXPECT_GT(early.psi_change_deg, kCriterion.psi_tolerance_deg);
+  EXPECT_TRUE(result.detected());
+  EXPECT_NEAR(result.mean_stress_kpa, 0.8, 1e-12);
+  EXPECT_TRUE(IsGas(result.mean_stress_kpa, 2.0));
+  EXPECT_FALSE(IsGas(result.mean_stress_kpa, 3.5));  // 0.8 kPa is above the floor
+  EXPECT_TRUE(IsGas(0.4, 4.5));                      // below the floor of 0.5 kPa
+  EXPECT_FALSE(IsGas(30.0, 3.4));                    // the critical state of 3000 spheres
+  EXPECT_TRUE(IsGas(std::nan(""), 4.0));
 }
 
-TEST(AsymptoteDetector, NotReadyBeforeAFullWindow) {
-  AsymptoteDetector detector(kCriterion);
-  const Series series = ParallelToALine(1.0, 0.05);
-  for (int k = 0; k < kWindowSamples; ++k) {
-    detector.Add(At(series, k * kSpacing));
-    EXPECT_FALSE(detector.ready()) << k;
-    EXPECT_FALSE(detector.Evaluate().detected) << k;
+// --- compression and extension ---
+
+TEST(CompressionDetector, StateMovingParallelToAnNclIsDetectedOverAWindowInLnP) {
+  // 50 of ln p per unit strain (λ* = 0.024 at ψ_ε = 45°): the window of
+  // 1.0 in ln p is 0.02 of strain, far shorter than a strain window.
+  const AsymptoteCriterion c = Criterion(PathKind::kCompression);
+  AsymptoteDetector detector(c);
+  const Series series = ParallelToALine(50.0, 0.024, 45.0);
+  Feed(detector, series, 0, 80, c.sample_strain);
+  const AsymptoteDetector::Result result = detector.Evaluate();
+  EXPECT_EQ(result.status, AsymptoteStatus::kDetected);
+  EXPECT_GE(result.window_lnp, c.window_lnp);
+  EXPECT_LT(result.window_lnp, c.window_lnp + 50.0 * c.sample_strain + 1e-9);
+  EXPECT_NEAR(result.window_strain, 0.02, c.sample_strain);
+  EXPECT_NEAR(result.slope_lnv_lnp, -0.024, 1e-9);
+  EXPECT_NEAR(result.slope_change, 0.0, 1e-6);
+  EXPECT_NEAR(result.psi_epsilon / kDegree, 45.0, 1e-9);
+  // p at the window: the mean of p over it, between its ends.
+  EXPECT_GT(result.mean_stress_kpa, std::exp(series.log_p(0.04 - result.window_strain)));
+  EXPECT_LT(result.mean_stress_kpa, std::exp(series.log_p(0.04)));
+}
+
+TEST(CompressionDetector, SlowPathsUseTheStrainWindow) {
+  // ψ_ε near 90°: 2 of ln p per unit strain never spans 1.0 of ln p within
+  // the longest window of 0.3.
+  const AsymptoteCriterion c = Criterion(PathKind::kCompression);
+  AsymptoteDetector detector(c);
+  Feed(detector, ParallelToALine(2.0, 0.03, 85.0), 0, 1000, c.sample_strain);
+  const AsymptoteDetector::Result result = detector.Evaluate();
+  EXPECT_TRUE(result.detected());
+  EXPECT_NEAR(result.window_strain, c.window_strain, c.sample_strain);
+  EXPECT_NEAR(result.window_lnp, 0.6, 2.0 * c.sample_strain);
+}
+
+TEST(CompressionDetector, ASlopeThatStillChangesIsDrifting) {
+  // ln p = 50 ε − b ε²: d ln(1+e)/d ln p = −50 λ/(50 − 2bε) still changes.
+  // At ε = 0.06, b = 300 leaves d ln p/dε = 14 (a window of 0.07 of strain
+  // over which it changes by about half its mean); b = 10 leaves 48.8 and a
+  // change of 0.4 % across the window of 0.02.
+  for (const double curvature : {300.0, 10.0}) {
+    Series series = ParallelToALine(50.0, 0.024, 45.0);
+    series.log_p = [curvature](double strain) {
+      return std::log(80.0) + 50.0 * strain - curvature * strain * strain;
+    };
+    const AsymptoteCriterion c = Criterion(PathKind::kCompression);
+    AsymptoteDetector detector(c);
+    Feed(detector, series, 0, 120, c.sample_strain);
+    const AsymptoteDetector::Result result = detector.Evaluate();
+    ASSERT_NE(result.status, AsymptoteStatus::kNotReached);
+    EXPECT_EQ(result.detected(), curvature < 100) << curvature << " " << result.slope_change;
+    if (curvature > 100) EXPECT_GT(result.slope_change, 0.3);
   }
-  detector.Add(At(series, kWindowSamples * kSpacing));
-  EXPECT_TRUE(detector.ready());
-  EXPECT_TRUE(detector.Evaluate().detected);
 }
 
-TEST(AsymptoteDetector, NotReadyWithFewerThanEightSamples) {
-  // Sparse samples (window/5 apart) span a full window after six samples.
-  AsymptoteCriterion criterion = kCriterion;
-  criterion.sample_strain = criterion.window_strain / 5;
-  AsymptoteDetector detector(criterion);
-  const Series series = ParallelToALine(1.0, 0.05);
-  for (int k = 0; k < 7; ++k) {
-    detector.Add(At(series, k * criterion.sample_strain));
-    EXPECT_FALSE(detector.ready()) << k;
+TEST(CompressionDetector, PsiSigmaStillRisingIsDrifting) {
+  // ψ_σ rising by 2° per unit ln p: 2° across the window (tolerance 0.5°).
+  Series series = ParallelToALine(50.0, 0.024, 45.0);
+  series.psi_sigma = [](double strain) { return (5.0 + 2.0 * 50.0 * strain) * kDegree; };
+  AsymptoteDetector detector(Criterion(PathKind::kCompression));
+  Feed(detector, series, 0, 100, detector.criterion().sample_strain);
+  const AsymptoteDetector::Result result = detector.Evaluate();
+  EXPECT_EQ(result.status, AsymptoteStatus::kDrifting);
+  EXPECT_NEAR(result.psi_change_deg, 2.0 * result.window_lnp, 0.05);
+}
+
+TEST(CompressionDetector, TheAsymptoteIsFoundOneWindowAfterTheTransient) {
+  // ψ_σ rises to 12° until ln p has grown by 2 (0.04 of strain), then stays:
+  // the first detection comes one window of ln p after the transient.
+  Series series = ParallelToALine(50.0, 0.024, 45.0);
+  series.psi_sigma = [](double strain) {
+    return (strain < 0.04 ? 2.0 + 250.0 * strain : 12.0) * kDegree;
+  };
+  const AsymptoteCriterion c = Criterion(PathKind::kCompression);
+  AsymptoteDetector detector(c);
+  double first = -1;
+  for (int k = 0; k <= 200 && first < 0; ++k) {
+    detector.Add(At(series, k * c.sample_strain, c.sample_strain));
+    if (detector.Evaluate().detected()) first = k * c.sample_strain;
   }
-  ASSERT_GE(detector.samples().back().strain - detector.samples().front().strain,
-            criterion.window_strain);
-  detector.Add(At(series, 7 * criterion.sample_strain));
-  EXPECT_TRUE(detector.ready());
-  EXPECT_TRUE(detector.Evaluate().detected);
+  ASSERT_GT(first, 0);
+  // One window (0.02) after the transient, within the tolerance's reach.
+  EXPECT_GT(first, 0.04 + 0.01);
+  EXPECT_LT(first, 0.04 + 0.025);
+  EXPECT_NEAR(detector.Evaluate().psi_sigma / kDegree, 12.0, 0.3);
 }
 
-TEST(AsymptoteDetector, HalfWindowWithFewerThanThreeSamplesIsNotDetected) {
-  // Eight samples spanning the window, but the second half holds only one.
-  AsymptoteDetector detector(kCriterion);
-  const Series series;
-  for (int k = 0; k < 7; ++k) detector.Add(At(series, 0.005 * k));
-  detector.Add(At(series, kCriterion.window_strain));
-  ASSERT_TRUE(detector.ready());
-  EXPECT_FALSE(detector.Evaluate().detected);
+TEST(ExtensionDetector, FallingMeanStressParallelToALineIsDetected) {
+  const AsymptoteCriterion c = Criterion(PathKind::kExtension);
+  AsymptoteDetector detector(c);
+  // ψ_ε = 120°: volume grows while p falls (d ln(1+e)/d ln p < 0).
+  Feed(detector, ParallelToALine(-20.0, 0.04, 120.0), 0, 200, c.sample_strain);
+  const AsymptoteDetector::Result result = detector.Evaluate();
+  EXPECT_TRUE(result.detected());
+  EXPECT_GE(result.window_lnp, c.window_lnp);  // |Δ ln p| of a falling p
+  EXPECT_NEAR(result.window_strain, 0.05, c.sample_strain);
+  EXPECT_NEAR(result.slope_lnp, -20.0, 1e-9);
+  EXPECT_NEAR(result.psi_epsilon / kDegree, 120.0, 1e-9);
+}
+
+// --- stress-controlled ---
+
+// A drained triaxial test: ψ_ε(ε) from dilation (ψ_ε > 90°) towards 90°.
+Series Triaxial(double dilation_deg, double decay_strain) {
+  Series series;
+  series.psi_epsilon = [dilation_deg, decay_strain](double strain) {
+    return (90.0 + dilation_deg * std::exp(-strain / decay_strain)) * kDegree;
+  };
+  series.psi_sigma = [](double) { return 22.5 * kDegree; };
+  series.log_p = [](double) { return std::log(283.0); };
+  return series;
+}
+
+void AddVolume(Series& series, double spacing) {
+  // ln(1+e) follows the volumetric strain: d ln(1+e) = −dε_v.
+  series.log_volume = [series, spacing](double strain) {
+    double eps_a, eps_r;
+    CellStrains(series, strain, spacing, &eps_a, &eps_r);
+    return std::log(1.65) - (eps_a + 2 * eps_r);
+  };
+}
+
+TEST(StressControlledDetector, ASteadyCriticalStateIsDetected) {
+  const AsymptoteCriterion c = Criterion(PathKind::kStressControlled);
+  Series series = Triaxial(0.0, 1.0);
+  AddVolume(series, c.sample_strain);
+  AsymptoteDetector detector(c);
+  Feed(detector, series, 0, 400, c.sample_strain);
+  const AsymptoteDetector::Result result = detector.Evaluate();
+  EXPECT_TRUE(result.detected());
+  EXPECT_NEAR(result.psi_epsilon / kDegree, 90.0, 1e-9);
+  EXPECT_NEAR(result.lnv_change, 0.0, 1e-12);
+  EXPECT_NEAR(result.mean_stress_kpa, 283.0, 1e-9);
+}
+
+TEST(StressControlledDetector, ASampleStillDilatingIsDrifting) {
+  // ψ_ε = 90° + 10° exp(−ε/0.2): ψ_σ and p are steady, but the sample
+  // still dilates (ln(1+e) grows by ~0.01 across the window, ψ_ε falls).
+  const AsymptoteCriterion c = Criterion(PathKind::kStressControlled);
+  Series series = Triaxial(10.0, 0.2);
+  AddVolume(series, c.sample_strain);
+  AsymptoteDetector detector(c);
+  Feed(detector, series, 0, 600, c.sample_strain);  // to ε = 0.3
+  const AsymptoteDetector::Result result = detector.Evaluate();
+  EXPECT_EQ(result.status, AsymptoteStatus::kDrifting);
+  EXPECT_GT(result.lnv_change, c.lnv_tolerance);
+  EXPECT_GT(result.psi_epsilon / kDegree, 90.5);
+  // Later the dilation has died out and the state is asymptotic.
+  Feed(detector, series, 601, 3000, c.sample_strain);  // to ε = 1.5
+  EXPECT_TRUE(detector.Evaluate().detected());
+}
+
+TEST(StressControlledDetector, PsiEpsilonOfTheHalvesIsComparedNotTheRates) {
+  // A ψ_ε that alternates by ±20° every sample (noisy rates) but whose
+  // increments over each half-window agree: detected.
+  const AsymptoteCriterion c = Criterion(PathKind::kStressControlled);
+  Series series = Triaxial(0.0, 1.0);
+  const double h = c.sample_strain;
+  series.psi_epsilon = [h](double strain) {
+    const long k = std::lround(std::floor(strain / h));
+    return (90.0 + (k % 2 == 0 ? 20.0 : -20.0)) * kDegree;
+  };
+  AddVolume(series, h);
+  AsymptoteDetector detector(c);
+  Feed(detector, series, 0, 400, h);
+  const AsymptoteDetector::Result result = detector.Evaluate();
+  EXPECT_LT(result.psi_epsilon_change_deg, c.psi_epsilon_tolerance_deg);
+  EXPECT_NEAR(result.psi_epsilon / kDegree, 90.0, 0.5);
+}
+
+// --- the record ---
+
+TEST(AsymptoteDetector, NotReachedBeforeAFullWindow) {
+  const AsymptoteCriterion c = Criterion(PathKind::kIsochoric);
+  AsymptoteDetector detector(c);
+  const int window = static_cast<int>(std::lround(c.window_strain / c.sample_strain));
+  for (int k = 0; k < window; ++k) {
+    detector.Add(At(Series{}, k * c.sample_strain, c.sample_strain));
+    ASSERT_FALSE(detector.ready()) << k;
+    ASSERT_EQ(detector.Evaluate().status, AsymptoteStatus::kNotReached) << k;
+  }
+  detector.Add(At(Series{}, window * c.sample_strain, c.sample_strain));
+  EXPECT_TRUE(detector.ready());
+  EXPECT_TRUE(detector.Evaluate().detected());
 }
 
 TEST(AsymptoteDetector, NonFiniteLogPRestartsTheRecord) {
-  const Series series = ParallelToALine(1.5, 0.05);
-  for (const double bad : {std::nan(""), -std::numeric_limits<double>::infinity(),
-                           std::numeric_limits<double>::infinity()}) {
-    AsymptoteDetector detector(kCriterion);
-    Feed(detector, series, 0, 2 * kWindowSamples, kSpacing);
-    ASSERT_TRUE(detector.Evaluate().detected);
-    // p <= 0 (no contacts) gives ln p = −inf or NaN.
-    Sample lost = At(series, (2 * kWindowSamples + 1) * kSpacing);
-    lost.log_p = bad;
+  const AsymptoteCriterion c = Criterion(PathKind::kIsochoric);
+  for (const double bad : {std::nan(""), -std::numeric_limits<double>::infinity()}) {
+    AsymptoteDetector detector(c);
+    Feed(detector, Series{}, 0, 400, c.sample_strain);
+    ASSERT_TRUE(detector.Evaluate().detected());
+    Sample lost = At(Series{}, 401 * c.sample_strain, c.sample_strain);
+    lost.log_p = bad;  // p <= 0 (no contacts)
     detector.Add(lost);
     EXPECT_TRUE(detector.samples().empty()) << bad;
-    EXPECT_FALSE(detector.ready()) << bad;
-    EXPECT_FALSE(detector.Evaluate().detected) << bad;
-    // The record restarts: a full new window is needed.
-    const int restart = 2 * kWindowSamples + 2;
-    Feed(detector, series, restart, restart + kWindowSamples - 1, kSpacing);
-    EXPECT_FALSE(detector.ready()) << bad;
-    detector.Add(At(series, (restart + kWindowSamples) * kSpacing));
-    EXPECT_TRUE(detector.ready()) << bad;
-    EXPECT_TRUE(detector.Evaluate().detected) << bad;
+    EXPECT_EQ(detector.Evaluate().status, AsymptoteStatus::kNotReached) << bad;
   }
 }
 
-TEST(AsymptoteDetector, KeepsAboutOneAndAHalfWindows) {
-  AsymptoteDetector detector(kCriterion);
-  const Series series = ParallelToALine(1.0, 0.05);
-  const double keep = 1.5 * kCriterion.window_strain;
-  for (int k = 0; k <= 20 * kWindowSamples; ++k) {
-    detector.Add(At(series, k * kSpacing));
-    const double span = detector.samples().back().strain - detector.samples().front().strain;
-    ASSERT_LE(span, keep) << k;
-    if (k * kSpacing > keep + kSpacing) {
-      ASSERT_GT(span, keep - kSpacing * (1 + 1e-9)) << k;
+TEST(AsymptoteDetector, KeepsAboutOneAndAHalfLongestWindows) {
+  for (const PathKind kind : {PathKind::kIsochoric, PathKind::kCompression}) {
+    const AsymptoteCriterion c = Criterion(kind);
+    AsymptoteDetector detector(c);
+    const double keep = 1.5 * c.window_strain;
+    for (int k = 0; k <= 3000; ++k) {
+      detector.Add(At(Series{}, k * c.sample_strain, c.sample_strain));
+      const double span = detector.samples().back().strain - detector.samples().front().strain;
+      ASSERT_LE(span, keep + 1e-12) << k;
     }
-    ASSERT_EQ(detector.samples().back().strain, k * kSpacing);
+    EXPECT_NEAR(detector.samples().back().strain - detector.samples().front().strain, keep,
+                c.sample_strain);
   }
-  EXPECT_LE(detector.samples().size(), size_t{76});
-  EXPECT_GE(detector.samples().size(), size_t{75});
-  detector.Reset();
-  EXPECT_TRUE(detector.samples().empty());
-  EXPECT_FALSE(detector.ready());
+}
+
+std::string SceneError(const std::string& stage) {
+  try {
+    Scene::Parse(testing::SampleToml(500, 4.6, 1) + stage, "asymptote.toml", "");
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(AsymptoteCriterion, EachKindReadsItsOwnKeysOnly) {
+  const std::string triaxial =
+      "[[stage]]\ntype = 'triaxial'\naxial_strain_rate = 136.355\nradial_stress_kpa = 100.0\n"
+      "[stage.stop]\nasymptote = true\nstrain_norm = 1.0\n[stage.asymptote]\n";
+  EXPECT_EQ(SceneError(triaxial + "lnv_tolerance = 0.01\npsi_epsilon_tolerance_deg = 2.0\n"), "");
+  EXPECT_NE(SceneError(triaxial + "window_lnp = 0.5\n").find("window_lnp"), std::string::npos);
+  const std::string compression =
+      "[[stage]]\npsi_epsilon_deg = 45.0\nstretching_rate = 167.0\n[stage.stop]\n"
+      "asymptote = true\nstrain_norm = 0.3\n[stage.asymptote]\n";
+  EXPECT_EQ(SceneError(compression + "window_lnp = 0.5\nslope_tolerance = 0.2\n"), "");
+  EXPECT_NE(SceneError(compression + "lnp_tolerance = 0.5\n").find("lnp_tolerance"),
+            std::string::npos);
+  const std::string rest =
+      "[[stage]]\ntype = 'rest'\nmean_stress_kpa = 100.0\n[stage.stop]\nasymptote = true\n";
+  EXPECT_NE(SceneError(rest).find("no asymptote detector"), std::string::npos);
+  // The kind's criterion is the stage's.
+  const Scene scene = Scene::Parse(
+      testing::SampleToml(500, 4.6, 1) + compression + "window_lnp = 0.5\n", "asymptote.toml", "");
+  EXPECT_EQ(scene.stages[0].asymptote.kind, PathKind::kCompression);
+  EXPECT_EQ(scene.stages[0].asymptote.window_lnp, 0.5);
+  EXPECT_TRUE(scene.stages[0].detect_asymptote);
 }
 
 }  // namespace

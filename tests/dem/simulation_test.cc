@@ -10,6 +10,7 @@
 
 #include "common/error.h"
 #include "common/hdf5_file.h"
+#include "common/state_measures.h"
 #include "common/time_series.h"
 #include "dem/run_record_names.h"
 #include "dem/scene.h"
@@ -277,6 +278,22 @@ strain_norm = 2.0
   EXPECT_LT(psi, 40.0);
   EXPECT_NE(file.ReadStringAttribute("/stages/001", "asymptote_criterion").find("psi_sigma"),
             std::string::npos);
+  // The record as the study runner reads it: kind, status, window, state.
+  const std::vector<StageRecord> records = ReadStageRecords(file);
+  ASSERT_EQ(records.size(), 2u);
+  ASSERT_TRUE(records[1].asymptote);
+  const AsymptoteRecord& a = *records[1].asymptote;
+  EXPECT_EQ(a.path_kind, PathKind::kIsochoric);
+  EXPECT_EQ(a.status, AsymptoteStatus::kDetected);
+  EXPECT_EQ(a.criterion.window_strain, 0.15);
+  EXPECT_NEAR(a.window_strain, 0.15, 0.005);
+  EXPECT_NEAR(a.psi_epsilon_deg, 90.0, 1e-6);
+  EXPECT_NEAR(a.q_over_p, 3.0 / std::sqrt(2.0) * std::tan(a.psi_sigma_deg * kDegree), 0.05);
+  EXPECT_GT(a.mechanical_coordination, 3.0);
+  EXPECT_GT(a.inertial_number_dmax, a.inertial_number_dmin);
+  EXPECT_GT(a.max_relative_overlap, 0.0);
+  EXPECT_FALSE(records[1].failed);
+  EXPECT_FALSE(records[0].asymptote);  // no detector on the NCL stage
   // Isochoric: the void ratio is constant during the stage.
   const auto& e = result.series.Values("e");
   const auto& stage = result.series.Values("stage");
@@ -286,6 +303,153 @@ strain_norm = 2.0
     if (e0 < 0) e0 = e[k];
     EXPECT_NEAR(e[k], e0, 1e-9);
   }
+}
+
+// The validity guards (dem/stage_validity.h), each triggered by a small scene.
+
+const std::string kSoft = "[material]\nyoungs_modulus_mpa = 5.0\n";
+
+TEST(ValidityGuards, SoftContactsAreFlaggedAboveTwoPercentOverlap) {
+  // Relative overlaps grow as ~10 p/E: 5 MPa contacts at 20 kPa pass 2 %.
+  const Result result = RunText(SampleToml(500, 4.6, 1) + kSoft + NclStage(20.0), "soft_flag");
+  ASSERT_EQ(result.summary.termination, Termination::kCompleted) << result.summary.message;
+  const std::vector<StageRecord> records =
+      ReadStageRecords(Hdf5File::OpenRead(TempPath("soft_flag.h5")));
+  const StageValidity& v = records.at(0).validity;
+  EXPECT_GT(v.max_relative_overlap, 0.02);
+  EXPECT_LT(v.max_relative_overlap, 0.25);
+  EXPECT_TRUE(v.Has(ValidityFlag::kOverlapAbove2Pct));
+  EXPECT_EQ(v.Has(ValidityFlag::kOverlapAbove10Pct), v.max_relative_overlap > 0.10);
+  EXPECT_GE(v.final_mean_stress_kpa, 20.0);
+  EXPECT_NE(result.summary.validity.find("overlap_above_2pct"), std::string::npos);
+  // The paper's stiffness at the same p stays below 2 %.
+  const Result stiff = RunText(SampleToml(500, 4.6, 1) + NclStage(20.0), "stiff_flag");
+  const std::vector<StageRecord> stiff_records =
+      ReadStageRecords(Hdf5File::OpenRead(TempPath("stiff_flag.h5")));
+  EXPECT_FALSE(stiff_records.at(0).validity.Has(ValidityFlag::kOverlapAbove2Pct));
+}
+
+TEST(ValidityGuards, OverlapsNearTheContactLimitFailTheRun) {
+  const Result result = RunText(SampleToml(500, 4.6, 1) + kSoft + NclStage(5000.0), "soft_failure");
+  EXPECT_EQ(result.summary.termination, Termination::kFailed);
+  EXPECT_NE(result.summary.message.find("contact limit 0.25"), std::string::npos)
+      << result.summary.message;
+  EXPECT_GE(result.series.Last("overlap_max"), 0.25);
+  EXPECT_LT(result.series.Last("p_kpa"), 5000.0);
+  // The failed stage keeps a record of what it reached, marked failed.
+  const std::vector<StageRecord> records =
+      ReadStageRecords(Hdf5File::OpenRead(TempPath("soft_failure.h5")));
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_TRUE(records[0].failed);
+  EXPECT_TRUE(records[0].validity.Has(ValidityFlag::kOverlapAbove10Pct));
+  EXPECT_EQ(result.summary.stages_completed, 0);
+}
+
+TEST(ValidityGuards, AVoidRatioAtOrBelowZeroFailsTheRun) {
+  // Isotropic compression to ε_v = 1.39 (V/V_0 = 0.25 from e_0 ≈ 1.5) with
+  // one row in between, at ε_v = 1.21 where e < 0.
+  const std::string text = SampleToml(500, 4.6, 1) + R"(
+[output]
+interval_strain = 0.7
+[[stage]]
+psi_epsilon_deg = 0.0
+stretching_rate = 167.0
+[stage.stop]
+strain_norm = 0.8
+)";
+  const Result result = RunText(text, "negative_e");
+  EXPECT_EQ(result.summary.termination, Termination::kFailed);
+  EXPECT_NE(result.summary.message.find("void ratio"), std::string::npos) << result.summary.message;
+  EXPECT_LE(result.series.Last("e"), 0.0);
+}
+
+const std::string kNcl200 = "[output]\ninterval_strain = 0.002\n" + NclStage(200.0);
+
+TEST(ValidityGuards, AnIsochoricPathAskedToReachAThousandKpaFails) {
+  // The loose NC sample loses p on the isochoric path: the target is never
+  // approached again, and 0.3 of strain later the run fails naming it.
+  const std::string text = SampleToml(500, 4.6, 1) + kNcl200 + R"(
+[[stage]]
+name = "undrained"
+psi_epsilon_deg = 90.0
+stretching_rate = 167.0
+[stage.stop]
+mean_stress_kpa = 1000.0
+)";
+  const Result result = RunText(text, "unreachable");
+  EXPECT_EQ(result.summary.termination, Termination::kFailed);
+  const std::string& message = result.summary.message;
+  EXPECT_NE(message.find("cannot reach its mean-stress target 1000 kPa (rising)"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("'undrained'"), std::string::npos);
+  EXPECT_LT(result.series.Last("p_kpa"), 1000.0);
+  const std::vector<StageRecord> records =
+      ReadStageRecords(Hdf5File::OpenRead(TempPath("unreachable.h5")));
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_FALSE(records[0].failed);
+  EXPECT_TRUE(records[1].failed);
+  EXPECT_EQ(result.summary.stages_completed, 1);
+}
+
+TEST(ValidityGuards, AnExtensionPathIntoAGasHasNoAsymptote) {
+  // ψ_ε = 120°: the volume grows while the sample is sheared; p falls to a
+  // fraction of a kPa and the network of contacts is lost.
+  const std::string text = SampleToml(500, 4.6, 1) + kNcl200 + R"(
+[[stage]]
+name = "extension"
+psi_epsilon_deg = 120.0
+stretching_rate = 167.0
+[stage.stop]
+asymptote = true
+strain_norm = 0.1
+)";
+  const Result result = RunText(text, "gas");
+  ASSERT_EQ(result.summary.termination, Termination::kCompleted) << result.summary.message;
+  const std::vector<StageRecord> records = ReadStageRecords(Hdf5File::OpenRead(TempPath("gas.h5")));
+  ASSERT_EQ(records.size(), 2u);
+  ASSERT_TRUE(records[1].asymptote);
+  const AsymptoteRecord& a = *records[1].asymptote;
+  EXPECT_EQ(a.path_kind, PathKind::kExtension);
+  EXPECT_EQ(a.status, AsymptoteStatus::kGas);
+  EXPECT_FALSE(a.detected);
+  EXPECT_TRUE(IsGas(a.mean_stress_kpa, a.mechanical_coordination));
+  EXPECT_TRUE(records[1].validity.Has(ValidityFlag::kGas));
+  EXPECT_FALSE(records[0].validity.Has(ValidityFlag::kGas));
+  EXPECT_NE(records[1].stop_reason.find("strain target"), std::string::npos);
+  EXPECT_NE(result.summary.validity.find("stage 'extension': "), std::string::npos);
+}
+
+TEST(ValidityGuards, AnExtensionPathAskedToReachAThousandKpaFails) {
+  const std::string text = SampleToml(500, 4.6, 1) + kNcl200 + R"(
+[[stage]]
+psi_epsilon_deg = 120.0
+stretching_rate = 167.0
+[stage.stop]
+mean_stress_kpa = 1000.0
+)";
+  const Result result = RunText(text, "unreachable_extension");
+  EXPECT_EQ(result.summary.termination, Termination::kFailed);
+  EXPECT_NE(result.summary.message.find("1000 kPa"), std::string::npos) << result.summary.message;
+  EXPECT_NE(result.summary.message.find("a gas"), std::string::npos) << result.summary.message;
+}
+
+TEST(ValidityGuards, RateAffectedIsJudgedAtTheStageEnd) {
+  // At 100 kPa the paper's ‖D‖ gives I(d_max = 1 mm) ≈ 0.04 > 1e-2; a rest
+  // stage at the same p ends in equilibrium, with I ≈ 0.
+  const std::string text = SampleToml(500, 4.6, 1) + "[output]\ninterval_strain = 0.002\n" +
+                           NclStage(100.0) +
+                           "[[stage]]\nname = 'rest'\ntype = 'rest'\nmean_stress_kpa = 100.0\n"
+                           "[stage.stop]\nunbalanced_force = 1e-3\n";
+  const Result result = RunText(text, "rate");
+  ASSERT_EQ(result.summary.termination, Termination::kCompleted) << result.summary.message;
+  const std::vector<StageRecord> records =
+      ReadStageRecords(Hdf5File::OpenRead(TempPath("rate.h5")));
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_TRUE(records[0].validity.Has(ValidityFlag::kRateAffected));
+  EXPECT_GT(records[0].validity.max_inertial_number_dmax, 1e-2);
+  EXPECT_FALSE(records[1].validity.Has(ValidityFlag::kRateAffected));
+  EXPECT_LT(result.series.Last("inertial_number_dmax"), 1e-2);
 }
 
 TEST(Simulation, ResultFileCarriesUnitsSummaryAndContactDurations) {
