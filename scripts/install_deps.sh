@@ -1,5 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages granasym needs, when missing.
+#
+# slurm-wlm (slurmctld, slurmd, slurm-client) and munge are for the Slurm
+# tests, which start a private single-node cluster (tests/slurm/). Their
+# maintainer scripts would start the system daemons; in a container (no init)
+# that fails and fails the install, and on a workstation the tests do not want
+# them. So they are installed with a policy-rc.d that forbids starting
+# services (exit 101, invoke-rc.d's "action not allowed"), unless the machine
+# already has one; it is removed again afterwards.
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -8,23 +16,42 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
 )
+daemon_packages=(slurm-wlm munge)
+installed() {
+  dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"
+}
 missing=()
 for package in "${packages[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
-    missing+=("$package")
-  fi
+  if ! installed "$package"; then missing+=("$package"); fi
 done
-if [ ${#missing[@]} -eq 0 ]; then
+missing_daemons=()
+for package in "${daemon_packages[@]}"; do
+  if ! installed "$package"; then missing_daemons+=("$package"); fi
+done
+all_missing=("${missing[@]}" "${missing_daemons[@]}")
+if [ ${#all_missing[@]} -eq 0 ]; then
   exit 0
 fi
-echo "granasym: installing missing Debian packages: ${missing[*]}"
+echo "granasym: installing missing Debian packages: ${all_missing[*]}"
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then
   if command -v sudo >/dev/null 2>&1; then sudo="sudo"; else
-    echo "error: packages missing (${missing[*]}) and not root; run as root or install them" >&2
+    echo "error: packages missing (${all_missing[*]}) and not root; run as root or install them" >&2
     exit 1
   fi
 fi
 export DEBIAN_FRONTEND=noninteractive
 $sudo apt-get update -qq
-$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+if [ ${#missing[@]} -gt 0 ]; then
+  $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+if [ ${#missing_daemons[@]} -gt 0 ]; then
+  policy=/usr/sbin/policy-rc.d
+  if [ ! -e "$policy" ]; then
+    trap '$sudo rm -f "$policy"' EXIT
+    printf '#!/bin/sh\n# granasym install_deps.sh: no services started while installing\nexit 101\n' |
+      $sudo tee "$policy" >/dev/null
+    $sudo chmod 755 "$policy"
+  fi
+  $sudo apt-get install -y -qq --no-install-recommends "${missing_daemons[@]}" </dev/null
+fi
