@@ -106,6 +106,10 @@ class Simulation {
   RunnerRecord runner_;                 // stage index, clock, output counters
   std::unique_ptr<StageController> controller_;
   AsymptoteDetector detector_;
+  // The first output row of the detector's samples: the stage's, or that of
+  // the first stage of a chain that continues one path (Stage::ContinuesDetection).
+  int64_t detector_first_row_ = 0;
+  int64_t DetectorFirstRow() const;
   std::vector<StageRecord> records_;
   // Progress reporting only; not part of the state.
   double last_p_kpa_ = 0, last_psi_deg_ = 0;
@@ -199,14 +203,34 @@ void Simulation::Fork() {
 void Simulation::StartStage() {
   runner_.stage_started = true;
   StageClock& clock = runner_.clock;
+  // A stage that continues the previous one's path keeps the detector's
+  // samples, their strains counted from the new stage's start.
+  std::vector<AsymptoteDetector::Sample> carried;
+  if (runner_.stage > 0 && stage().ContinuesDetection(scene_.stages[runner_.stage - 1])) {
+    carried = detector_.samples();
+    for (AsymptoteDetector::Sample& sample : carried) sample.strain -= clock.strain_norm;
+  }
   clock = StageClock{};
   clock.start_step = engine_->step();
   clock.start_time = engine_->time();
   clock.start_cell = engine_->cell();
   clock.first_row = static_cast<int64_t>(series_.rows());
   detector_ = AsymptoteDetector(stage().asymptote);
+  detector_.set_samples(std::move(carried));
+  detector_first_row_ = DetectorFirstRow();
   controller_ = stage().spec->MakeController();
   engine_->SetVelocityGradient(controller_->Start());
+}
+
+int64_t Simulation::DetectorFirstRow() const {
+  const size_t current = static_cast<size_t>(runner_.stage);
+  size_t k = current;
+  while (k > 0 && k <= records_.size() &&
+         scene_.stages[k].ContinuesDetection(scene_.stages[k - 1])) {
+    --k;
+  }
+  return k < current && k < records_.size() ? records_[k].first_row
+                                                   : runner_.clock.first_row;
 }
 
 void Simulation::AddRow() {
@@ -306,7 +330,8 @@ void Simulation::FinishStage(const std::string& reason, bool failed) {
   RowState state;
   if (has_rows) {
     const int64_t state_row =
-        window ? FirstRowAfter(series_, record.first_row, record.last_row, result.window_start_time)
+        window ? FirstRowAfter(series_, detector_first_row_, record.last_row,
+                               result.window_start_time)
                : record.last_row;
     state = RowState::Mean(series_, state_row, record.last_row);
     record.validity = StageValidity::FromRows(series_, record.first_row, record.last_row, state);
@@ -483,6 +508,7 @@ void Simulation::LoadCheckpoint() {
   if (!done()) {
     detector_ = AsymptoteDetector(stage().asymptote);
     detector_.set_samples(runner_.detector_samples);
+    detector_first_row_ = DetectorFirstRow();
     if (runner_.stage_started) {
       controller_ = stage().spec->MakeController();
       controller_->RestoreState(runner_.controller_state);
@@ -642,7 +668,7 @@ Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_sec
       bool valid = result.detected() && last_row >= clock.first_row;
       if (valid) {
         const RowState state = RowState::Mean(
-            series_, FirstRowAfter(series_, clock.first_row, last_row, result.window_start_time),
+            series_, FirstRowAfter(series_, detector_first_row_, last_row, result.window_start_time),
             last_row);
         valid = !IsGas(result.mean_stress_kpa, state.mechanical_coordination) &&
                 state.max_relative_overlap <= kValidityLimits.overlap_unreliable;

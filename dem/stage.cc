@@ -131,4 +131,10 @@ std::string StrainOrDurationReason(const StopConditions& stop, const StageClock&
   return "strain target reached";
 }
 
+bool Stage::ContinuesDetection(const Stage& previous) const {
+  return detect_asymptote && previous.detect_asymptote &&
+         asymptote.Describe() == previous.asymptote.Describe() &&
+         spec->ContinuesPath(*previous.spec);
+}
+
 }  // namespace granasym::dem

@@ -134,6 +134,10 @@ class StageSpec {
   virtual bool StopsByItself() const { return false; }
   // The kind of asymptote the stage can reach; nullopt: none (no detector).
   virtual std::optional<PathKind> path_kind() const { return std::nullopt; }
+  // True when a stage of this spec continues the path of `previous` (the
+  // same proportional straining), so that the asymptote detector keeps its
+  // samples across the boundary (an NCL saved at several stresses).
+  virtual bool ContinuesPath(const StageSpec& previous) const { return false; }
   virtual std::unique_ptr<StageController> MakeController() const = 0;
   // The type's keys for the canonical scene (`prefix` ends with '.').
   virtual void Canonical(CanonicalText& text, const std::string& prefix) const = 0;
@@ -154,6 +158,9 @@ struct Stage {
     return dynamic_cast<const Spec*>(spec.get());
   }
   void Canonical(CanonicalText& text, const std::string& prefix) const;
+  // Both stages detect asymptotes with the same criterion and this one
+  // continues the path of `previous` (StageSpec::ContinuesPath).
+  bool ContinuesDetection(const Stage& previous) const;
 };
 
 // The shared stop conditions, in the order of their reasons: the mean-stress

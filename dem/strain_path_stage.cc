@@ -52,4 +52,10 @@ void StrainPathStage::Describe(Hdf5File& file, const std::string& group) const {
   file.SetAttribute(group, record::kStageStretchingRate, stretching_rate);
 }
 
+bool StrainPathStage::ContinuesPath(const StageSpec& previous) const {
+  const auto* path = dynamic_cast<const StrainPathStage*>(&previous);
+  return path && path->psi_epsilon_deg == psi_epsilon_deg &&
+         path->stretching_rate == stretching_rate;
+}
+
 }  // namespace granasym::dem

@@ -15,6 +15,8 @@ class StrainPathStage final : public StageSpec {
   double psi_epsilon() const;  // (rad)
   std::string type() const override { return "strain_path"; }
   std::optional<PathKind> path_kind() const override { return StrainPathKind(psi_epsilon_deg); }
+  // The same ψ_ε and ‖D‖.
+  bool ContinuesPath(const StageSpec& previous) const override;
   std::unique_ptr<StageController> MakeController() const override;
   void Canonical(CanonicalText& text, const std::string& prefix) const override;
   void Describe(Hdf5File& file, const std::string& group) const override;

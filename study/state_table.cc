@@ -97,7 +97,7 @@ StateRow RowFrom(const CaseFolder& c, const dem::StageRecord& stage) {
   row.status = ToString(a.status);
   row.detector = stage.asymptote_criterion;
   for (dem::ValidityFlag flag : stage.validity.flags) {
-    row.flags += (row.flags.empty() ? "" : ";") + ToString(flag);
+    row.flags += std::string(row.flags.empty() ? "" : ";") + ToString(flag);
   }
   row.message = stage.stop_reason;
   row.psi_epsilon_deg = a.psi_epsilon_deg;
@@ -111,6 +111,12 @@ StateRow RowFrom(const CaseFolder& c, const dem::StageRecord& stage) {
   row.coordination = a.coordination;
   row.mechanical_coordination = a.mechanical_coordination;
   row.max_relative_overlap = a.max_relative_overlap;
+  row.window_strain = a.window_strain;
+  row.window_lnp = a.window_lnp;
+  row.psi_change_deg = a.psi_change_deg;
+  row.slope_change = a.slope_change;
+  row.lnp_change = a.lnp_change;
+  row.dln1pe_dlnp = a.dln1pe_dlnp;
   row.ocr = kNaN;
   row.p_e_star_kpa = kNaN;
   return row;
@@ -129,7 +135,8 @@ StateRow MissingRow(const CaseFolder& c) {
   for (double* v : {&row.psi_epsilon_deg, &row.p_kpa, &row.e, &row.ln_1_plus_e, &row.psi_sigma_deg,
                     &row.q_over_p, &row.ocr, &row.p_e_star_kpa, &row.inertial_number_dmin,
                     &row.inertial_number_dmax, &row.coordination, &row.mechanical_coordination,
-                    &row.max_relative_overlap}) {
+                    &row.max_relative_overlap, &row.window_strain, &row.window_lnp,
+                    &row.psi_change_deg, &row.slope_change, &row.lnp_change, &row.dln1pe_dlnp}) {
     *v = kNaN;
   }
   return row;
@@ -167,10 +174,6 @@ double StudentT95(int dof) {
 
 // A path as monotone samples in x = ln p (the running extreme in the
 // direction the path moves: rising for compression, falling for extension).
-struct PathSamples {
-  std::vector<double> x, ln_v, psi;
-};
-
 PathSamples MonotonePath(const TimeSeries& series, int64_t first, int64_t last, bool rising) {
   PathSamples path;
   const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
@@ -202,11 +205,10 @@ double Interpolate(const std::vector<double>& x, const std::vector<double>& y, d
   return y[k - 1] + t * (y[k] - y[k - 1]);
 }
 
-// Where two paths of one ψ_ε join: the first grid point of their common
-// ln p range from which both ln(1+e) and ψ_σ stay within the tolerances
-// (in the direction the paths move).
-ConvergenceRow Join(const PathSamples& a, const PathSamples& b, bool rising,
-                    const ConvergenceTolerance& tolerance) {
+}  // namespace
+
+ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising,
+                         const ConvergenceTolerance& tolerance) {
   ConvergenceRow row;
   row.joined_at_p_kpa = row.ln_1_plus_e = row.psi_sigma_deg = kNaN;
   row.overlap_from_p_kpa = row.overlap_to_p_kpa = kNaN;
@@ -249,6 +251,8 @@ ConvergenceRow Join(const PathSamples& a, const PathSamples& b, bool rising,
   return row;
 }
 
+namespace {
+
 std::string CsvText(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
   std::string out = "\"";
@@ -283,6 +287,12 @@ constexpr NumberColumn kNumberColumns[] = {
     {"coordination", "1", &StateRow::coordination},
     {"mechanical_coordination", "1", &StateRow::mechanical_coordination},
     {"max_relative_overlap", "1", &StateRow::max_relative_overlap},
+    {"window_strain", "1", &StateRow::window_strain},
+    {"window_lnp", "1", &StateRow::window_lnp},
+    {"psi_change_deg", "deg", &StateRow::psi_change_deg},
+    {"slope_change", "1", &StateRow::slope_change},
+    {"lnp_change", "1", &StateRow::lnp_change},
+    {"dln1pe_dlnp", "1", &StateRow::dln1pe_dlnp},
 };
 struct TextColumn {
   const char* name;
@@ -497,7 +507,7 @@ StateTableSummary WriteStateTable(const std::string& directory,
     std::sort(group.begin(), group.end(),
               [](const Path& a, const Path& b) { return a.start_p < b.start_p; });
     for (size_t k = 1; k < group.size(); ++k) {
-      ConvergenceRow row = Join(group[k - 1].samples, group[k].samples, rising, tolerance);
+      ConvergenceRow row = JoinPaths(group[k - 1].samples, group[k].samples, rising, tolerance);
       row.replicate = replicate;
       row.kind = kind;
       row.psi_epsilon_deg = psi;

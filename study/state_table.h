@@ -26,6 +26,9 @@ struct StateRow {
          q_over_p = 0, ocr = 0, p_e_star_kpa = 0, inertial_number_dmin = 0,
          inertial_number_dmax = 0, coordination = 0, mechanical_coordination = 0,
          max_relative_overlap = 0;
+  // The detector's window and measures (AsymptoteRecord).
+  double window_strain = 0, window_lnp = 0, psi_change_deg = 0, slope_change = 0,
+         lnp_change = 0, dln1pe_dlnp = 0;
 };
 
 // The isotropic NCL ln(1+e) = N − λ* ln(p / 1 kPa) of one replicate, fitted
@@ -55,6 +58,18 @@ struct ConvergenceTolerance {
   double psi_sigma_deg = 1.0;
   int grid_points = 40;
 };
+
+// A path as samples ascending in ln p, with ln(1+e) and ψ_σ (deg).
+struct PathSamples {
+  std::vector<double> x, ln_v, psi;
+};
+// Where two paths of one ψ_ε join: the first point of a grid over their
+// common ln p range, taken in the direction the paths move (`rising` for
+// compression), from which both ln(1+e) and ψ_σ stay within the tolerances
+// to the end; joined only if they stay together over at least a quarter of
+// the common range.
+ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising,
+                         const ConvergenceTolerance& tolerance);
 
 struct StateTableSummary {
   std::string directory;

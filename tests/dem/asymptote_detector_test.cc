@@ -270,7 +270,9 @@ TEST(CompressionDetector, ASlopeThatStillChangesIsDrifting) {
     const AsymptoteDetector::Result result = detector.Evaluate();
     ASSERT_NE(result.status, AsymptoteStatus::kNotReached);
     EXPECT_EQ(result.detected(), curvature < 100) << curvature << " " << result.slope_change;
-    if (curvature > 100) EXPECT_GT(result.slope_change, 0.3);
+    if (curvature > 100) {
+      EXPECT_GT(result.slope_change, 0.3);
+    }
   }
 }
 

@@ -495,3 +495,60 @@ steps = 500
 
 }  // namespace
 }  // namespace granasym::dem
+
+namespace granasym::dem {
+namespace {
+
+// An NCL saved at several stresses: consecutive stages of one path keep the
+// detector's samples, so that the window in ln p spans the stage boundaries
+// (each stage alone spans less than the window), and a restart in the
+// second stage continues with the same samples.
+TEST(AsymptoteDetection, ConsecutiveStagesOfOnePathShareTheDetectorWindow) {
+  std::string stages;
+  for (int p : {100, 160, 250, 400}) {
+    stages += "[[stage]]\nname = \"p" + std::to_string(p) +
+              "\"\npsi_epsilon_deg = 0.0\nstretching_rate = 167.0\n[stage.stop]\n"
+              "mean_stress_kpa = " + std::to_string(p) + ".0\n[stage.asymptote]\n";
+  }
+  const std::string text = SampleToml(500, 4.6, 1) + "[output]\ninterval_strain = 0.002\n" + stages;
+  const Result whole = RunText(text, "chain");
+  ASSERT_EQ(whole.summary.termination, Termination::kCompleted) << whole.summary.message;
+  const std::vector<StageRecord> records = ReadStageRecords(Hdf5File::OpenRead(TempPath("chain.h5")));
+  ASSERT_EQ(records.size(), 4u);
+  for (size_t k = 1; k < records.size(); ++k) {
+    ASSERT_TRUE(records[k].asymptote);
+    // ln(400/250) = 0.47 < the window of 1 in ln p: the window reaches back.
+    EXPECT_NEAR(records[k].asymptote->window_lnp, 1.0, 0.1) << records[k].name;
+  }
+
+  // Interrupted inside the third stage and restarted: the same records.
+  const std::vector<double>& stage_of_row = whole.series.Values("stage");
+  const std::vector<double>& step_of_row = whole.series.Values("step");
+  int64_t inside_third = 0;
+  for (size_t r = 0; r < stage_of_row.size(); ++r) {
+    if (stage_of_row[r] == 2) inside_third = static_cast<int64_t>(step_of_row[r]) + 7;
+  }
+  ASSERT_GT(inside_third, 0);
+  RunOptions options;
+  options.stop_requested = [inside_third](int64_t step) { return step == inside_third; };
+  options.keep_checkpoint = true;
+  const Result first = RunText(text, "chain_restart", options);
+  ASSERT_EQ(first.summary.termination, Termination::kInterrupted);
+  RunOptions again;
+  again.restart = true;
+  const Result resumed = RunText(text, "chain_restart", again);
+  ASSERT_EQ(resumed.summary.termination, Termination::kCompleted) << resumed.summary.message;
+  const std::vector<StageRecord> after =
+      ReadStageRecords(Hdf5File::OpenRead(TempPath("chain_restart.h5")));
+  ASSERT_EQ(after.size(), records.size());
+  for (size_t k = 0; k < records.size(); ++k) {
+    ASSERT_EQ(after[k].asymptote.has_value(), records[k].asymptote.has_value());
+    EXPECT_EQ(after[k].asymptote->window_lnp, records[k].asymptote->window_lnp);
+    EXPECT_EQ(after[k].asymptote->mean_stress_kpa, records[k].asymptote->mean_stress_kpa);
+    EXPECT_EQ(after[k].asymptote->status, records[k].asymptote->status);
+  }
+  EXPECT_EQ(resumed.series.Values("p_kpa"), whole.series.Values("p_kpa"));
+}
+
+}  // namespace
+}  // namespace granasym::dem

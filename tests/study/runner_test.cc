@@ -80,7 +80,7 @@ std::string Dir(const std::string& name) {
   return dir.string();
 }
 
-StudyOutcome Run(const std::string& text, const std::string& dir, RunnerOptions options = {},
+StudyOutcome RunProgramme(const std::string& text, const std::string& dir, RunnerOptions options = {},
                  int threads = 1) {
   const Programme programme = Programme::Parse(text, "runner_test.toml", ".");
   const Plan plan = Plan::Make(programme, Scale::kTiny, threads, dir);
@@ -117,16 +117,16 @@ std::map<std::string, std::string> Series(const std::string& dir) {
 
 TEST(StudyRunner, SecondRunComputesNothingAndAChangeRerunsItsDescendantsOnly) {
   const std::string dir = Dir("cache");
-  const StudyOutcome first = Run(kProgramme, dir);
+  const StudyOutcome first = RunProgramme(kProgramme, dir);
   ASSERT_EQ(first.Count(CaseStatus::kComputed), 5) << first.OneLine();
   EXPECT_TRUE(fs::exists(dir + "/samples/r1/packing.txt"));
 
-  const StudyOutcome second = Run(kProgramme, dir);
+  const StudyOutcome second = RunProgramme(kProgramme, dir);
   EXPECT_EQ(second.Count(CaseStatus::kCached), 5) << second.OneLine();
 
   std::string changed = kProgramme;
   changed.replace(changed.find("strain_norm = 0.03"), 18, "strain_norm = 0.035");
-  const std::map<std::string, CaseStatus> third = Statuses(Run(changed, dir));
+  const std::map<std::string, CaseStatus> third = Statuses(RunProgramme(changed, dir));
   EXPECT_EQ(third.at("r1/ncl"), CaseStatus::kCached);
   EXPECT_EQ(third.at("r1/nc20_psi90"), CaseStatus::kCached);
   EXPECT_EQ(third.at("r1/nc50_psi90"), CaseStatus::kCached);
@@ -134,19 +134,19 @@ TEST(StudyRunner, SecondRunComputesNothingAndAChangeRerunsItsDescendantsOnly) {
   EXPECT_EQ(third.at("r1/after60"), CaseStatus::kComputed);
 
   // Another thread count is another key: everything runs again.
-  const StudyOutcome threads = Run(changed, dir, {}, 2);
+  const StudyOutcome threads = RunProgramme(changed, dir, {}, 2);
   EXPECT_EQ(threads.Count(CaseStatus::kComputed), 5) << threads.OneLine();
 }
 
 TEST(StudyRunner, TwoShardsMergedGiveTheBytesOfOneRun) {
   const std::string single = Dir("single"), sharded = Dir("sharded"), merged = Dir("merged");
-  ASSERT_EQ(Run(kProgramme, single).Count(CaseStatus::kComputed), 5);
+  ASSERT_EQ(RunProgramme(kProgramme, single).Count(CaseStatus::kComputed), 5);
   for (int k = 1; k <= 2; ++k) {
     RunnerOptions options;
     options.shard_index = k;
     options.shard_count = 2;
     options.jobs = 1;
-    const StudyOutcome shard = Run(kProgramme, sharded, options);
+    const StudyOutcome shard = RunProgramme(kProgramme, sharded, options);
     EXPECT_EQ(shard.Count(CaseStatus::kFailed), 0) << shard.OneLine();
   }
   EXPECT_EQ(MergeStudies({sharded}, merged), 5);
@@ -163,13 +163,13 @@ TEST(StudyRunner, TwoShardsMergedGiveTheBytesOfOneRun) {
 
 TEST(StudyRunner, AnInterruptedStudyResumesToTheSameBytes) {
   const std::string whole = Dir("whole"), resumed = Dir("resumed");
-  ASSERT_EQ(Run(kProgramme, whole).Count(CaseStatus::kComputed), 5);
+  ASSERT_EQ(RunProgramme(kProgramme, whole).Count(CaseStatus::kComputed), 5);
   std::atomic<int> polls{0};
   RunnerOptions options;
   options.stop_requested = [&polls] { return ++polls > 4000; };
-  const StudyOutcome interrupted = Run(kProgramme, resumed, options);
+  const StudyOutcome interrupted = RunProgramme(kProgramme, resumed, options);
   ASSERT_TRUE(interrupted.interrupted()) << interrupted.OneLine();
-  const StudyOutcome rest = Run(kProgramme, resumed);
+  const StudyOutcome rest = RunProgramme(kProgramme, resumed);
   EXPECT_FALSE(rest.interrupted());
   EXPECT_EQ(rest.Count(CaseStatus::kFailed), 0) << rest.OneLine();
   EXPECT_EQ(Series(whole), Series(resumed));
@@ -179,7 +179,7 @@ TEST(StudyRunner, RefusesAFolderThatHoldsSomethingElse) {
   const std::string dir = Dir("occupied");
   fs::create_directories(dir);
   WriteTextFileAtomically(dir + "/notes.txt", "mine\n");
-  EXPECT_THROW(Run(kProgramme, dir), InputError);
+  EXPECT_THROW(RunProgramme(kProgramme, dir), InputError);
   EXPECT_EQ(ReadTextFile(dir + "/notes.txt"), "mine\n");
 }
 
