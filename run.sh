@@ -1,13 +1,24 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds, and runs the default scene
-# (the paper's 150 000-sphere sample along ψ_ε = 0° to 1000 kPa).
-# Results: out/ncl_default.h5 and out/ncl_default.csv.
+# The main job: installs what is missing, builds, and runs the paper's
+# programme (studies/programmes/paper.toml) at the small scale into
+# out/paper-small/ (the state table: out/paper-small/asymptotic_states.csv).
+# Running it again computes only what is missing or changed.
+#
+#   ./run.sh                       the paper's programme, small scale
+#   ./run.sh PROGRAMME.toml [SCALE] another programme, or another scale (tiny, small, paper)
+#   ./run.sh SCENE.toml            one DEM scene (out/SCENE.h5 and out/SCENE.csv)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 "$root/scripts/install_deps.sh"
 "$root/scripts/build.sh"
 mkdir -p "$root/out"
-scene="${1:-$root/studies/scenes/ncl_default.toml}"
-name="$(basename "$scene" .toml)"
-"$root/build/app/granasym" dem run "$scene" --out "$root/out/$name.h5"
-"$root/build/app/granasym" export "$root/out/$name.h5" --csv "$root/out/$name.csv"
+input="${1:-$root/studies/programmes/paper.toml}"
+name="$(basename "$input" .toml)"
+granasym="$root/build/app/granasym"
+if grep -q '^\[study\]' "$input"; then
+  scale="${2:-small}"
+  "$granasym" study run "$input" --scale "$scale" --out "$root/out/$name-$scale"
+else
+  "$granasym" dem run "$input" --out "$root/out/$name.h5"
+  "$granasym" export "$root/out/$name.h5" --csv "$root/out/$name.csv"
+fi

@@ -87,8 +87,7 @@ struct AsymptoteCriterion {
   // extension: the longest window (0.3), for paths along which p changes slowly.
   double window_strain = 0.15;
   double window_lnp = 1.0;                 // compression, extension: |Δ ln p| of the window
-  double psi_tolerance_deg = 1.0;          // fitted change of ψ_σ across the window (0.5
-                                           // for compression and extension)
+  double psi_tolerance_deg = 1.0;          // fitted change of ψ_σ across the window (every kind)
   double lnp_tolerance = 0.05;             // isochoric: fitted change of ln p across the window
   double slope_tolerance = 0.1;            // compression, extension: relative change of the slope
   double psi_epsilon_tolerance_deg = 3.0;  // stress-controlled: ψ_ε(2nd half) − ψ_ε(1st half)

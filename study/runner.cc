@@ -139,6 +139,9 @@ void PrepareDirectory(const Plan& plan) {
   if (fs::exists(dir) && !fs::is_directory(dir)) {
     throw InputError("--out " + plan.directory + ": exists and is not a folder");
   }
+  fs::create_directories(dir);
+  // Shards of one study start at the same time: one of them writes study.toml.
+  const FileLock lock(plan.directory + "/.lock", {});
   if (fs::exists(record)) {
     const ConfigTable table = ConfigTable::ParseFile(record);
     const std::string programme = table.GetString("programme", "");
@@ -148,14 +151,17 @@ void PrepareDirectory(const Plan& plan) {
                        "' at scale " + scale + ", not '" + plan.programme.name + "' at " +
                        ToString(plan.scale) + ": give another output folder");
     }
-  } else if (fs::exists(dir) && !fs::is_empty(dir)) {
-    throw InputError("--out " + plan.directory +
-                     ": is not empty and holds no study (no study.toml): give a new or empty "
-                     "folder, so that nothing in it is overwritten");
+  } else {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      if (entry.path().filename() == ".lock") continue;
+      throw InputError("--out " + plan.directory +
+                       ": is not empty and holds no study (no study.toml): give a new or empty "
+                       "folder, so that nothing in it is overwritten");
+    }
   }
   fs::create_directories(dir / "cases");
   fs::create_directories(dir / "samples");
-  WriteTextFileAtomically(record, StudyRecordText(plan));
+  WriteIfChanged(record, StudyRecordText(plan));
 }
 
 void GenerateSample(const PlannedSample& sample, const std::function<bool()>& stop,
@@ -557,12 +563,31 @@ std::string DescribeStudy(const std::string& directory) {
     }
   }
   std::sort(folders.begin(), folders.end());
+  // Each case's own steps: its engine steps less its parent's.
+  std::map<std::string, int64_t> total_steps;
+  for (const fs::path& folder : folders) {
+    if (const std::optional<DoneRecord> done = ReadDone(folder.string())) {
+      total_steps[folder.parent_path().filename().string() + "/" + folder.filename().string()] =
+          done->steps;
+    }
+  }
+  double particle_steps = 0, wall_seconds = 0;
+  int64_t case_steps = 0;
   for (const fs::path& folder : folders) {
     const std::string id = folder.parent_path().filename().string() + "/" + folder.filename().string();
     std::string status;
     if (const std::optional<DoneRecord> done = ReadDone(folder.string())) {
       status = ToString(done->termination);
-      lines.push_back(fmt::format("{:<40} {:<11} {}", id, status, done->message));
+      int64_t own = done->steps;
+      if (fs::exists(folder / "case.toml")) {
+        const std::string parent =
+            ConfigTable::ParseFile((folder / "case.toml").string()).GetString("parent", "");
+        if (total_steps.count(parent)) own -= total_steps[parent];
+      }
+      case_steps += own;
+      particle_steps += static_cast<double>(own) * static_cast<double>(done->particles);
+      wall_seconds += done->wall_seconds;
+      lines.push_back(fmt::format("{:<40} {:<11} {:>9} steps  {}", id, status, own, done->message));
     } else if (fs::exists(folder / "result.h5.ckpt")) {
       status = "checkpointed";
       lines.push_back(fmt::format("{:<40} {}", id, "checkpointed (resumes on the next run)"));
@@ -575,6 +600,11 @@ std::string DescribeStudy(const std::string& directory) {
   for (const std::string& line : lines) text += line + "\n";
   std::string summary = fmt::format("{} case folders:", folders.size());
   for (const auto& [status, count] : counts) summary += fmt::format(" {} {}", count, status);
+  summary += fmt::format(
+      "\nfinished cases: {} steps of their own, {:.4g} particle-steps, {:.1f} s of case wall "
+      "time ({:.3g} particle-steps/s per case)",
+      case_steps, particle_steps, wall_seconds,
+      wall_seconds > 0 ? particle_steps / wall_seconds : 0.0);
   return text + summary + "\n";
 }
 

@@ -16,6 +16,7 @@
 #include "common/time_series.h"
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
+#include "dem/stage_validity.h"
 
 namespace granasym::study {
 namespace fs = std::filesystem;
@@ -84,6 +85,33 @@ std::vector<CaseFolder> ListCases(const std::string& directory) {
   return cases;
 }
 
+// Which tests of the criterion failed at the stage end.
+std::string DriftReason(const dem::AsymptoteRecord& a) {
+  const dem::AsymptoteCriterion& c = a.criterion;
+  std::vector<std::string> failed;
+  auto check = [&failed](double value, double tolerance, const char* what) {
+    if (!(value < tolerance)) failed.push_back(fmt::format("{} {:.3g} (< {:g})", what, value, tolerance));
+  };
+  check(a.psi_change_deg, c.psi_tolerance_deg, "psi_sigma changed by deg");
+  switch (a.path_kind) {
+    case dem::PathKind::kIsochoric:
+      check(a.lnp_change, c.lnp_tolerance, "ln p changed by");
+      break;
+    case dem::PathKind::kCompression:
+    case dem::PathKind::kExtension:
+      check(a.slope_change, c.slope_tolerance, "d ln(1+e)/d ln p changed by a fraction");
+      break;
+    case dem::PathKind::kStressControlled:
+      check(a.psi_epsilon_change_deg, c.psi_epsilon_tolerance_deg, "psi_epsilon changed by deg");
+      check(a.lnv_change, c.lnv_tolerance, "ln(1+e) changed by");
+      break;
+  }
+  std::string text = "still drifting:";
+  for (const std::string& f : failed) text += " " + f + ";";
+  if (!text.empty() && text.back() == ';') text.pop_back();
+  return text;
+}
+
 StateRow RowFrom(const CaseFolder& c, const dem::StageRecord& stage) {
   const dem::AsymptoteRecord& a = *stage.asymptote;
   StateRow row;
@@ -100,6 +128,7 @@ StateRow RowFrom(const CaseFolder& c, const dem::StageRecord& stage) {
     row.flags += std::string(row.flags.empty() ? "" : ";") + ToString(flag);
   }
   row.message = stage.stop_reason;
+  if (a.status == dem::AsymptoteStatus::kDrifting) row.message = DriftReason(a) + "; " + row.message;
   row.psi_epsilon_deg = a.psi_epsilon_deg;
   row.p_kpa = a.mean_stress_kpa;
   row.e = a.void_ratio;
@@ -179,9 +208,10 @@ PathSamples MonotonePath(const TimeSeries& series, int64_t first, int64_t last, 
   const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
   const std::vector<double>& e = series.Values(dem::record::kColumnVoidRatio);
   const std::vector<double>& psi = series.Values(dem::record::kColumnPsiSigma);
+  const std::vector<double>& coordination = series.Values("mechanical_coordination");
   for (int64_t r = first; r <= last && r < static_cast<int64_t>(p.size()); ++r) {
     const size_t k = static_cast<size_t>(r);
-    if (!(p[k] > 0)) continue;
+    if (!(p[k] > 0) || dem::IsGas(p[k], coordination[k])) continue;
     const double x = std::log(p[k]);
     if (!path.x.empty() && (rising ? x <= path.x.back() : x >= path.x.back())) continue;
     path.x.push_back(x);
@@ -196,7 +226,16 @@ PathSamples MonotonePath(const TimeSeries& series, int64_t first, int64_t last, 
   return path;
 }
 
-double Interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
+// y at `at`: the mean of the samples within ±h in x (the fluctuations of a
+// small sample smoothed), or linear interpolation where none is that close.
+double Smoothed(const std::vector<double>& x, const std::vector<double>& y, double at, double h) {
+  const auto lo = std::lower_bound(x.begin(), x.end(), at - h);
+  const auto hi = std::upper_bound(x.begin(), x.end(), at + h);
+  if (hi > lo) {
+    double sum = 0;
+    for (auto it = lo; it != hi; ++it) sum += y[static_cast<size_t>(it - x.begin())];
+    return sum / static_cast<double>(hi - lo);
+  }
   const auto it = std::lower_bound(x.begin(), x.end(), at);
   if (it == x.begin()) return y.front();
   if (it == x.end()) return y.back();
@@ -224,15 +263,16 @@ ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising
   row.overlap_from_p_kpa = std::exp(rising ? lo : hi);
   row.overlap_to_p_kpa = std::exp(rising ? hi : lo);
   const int n = tolerance.grid_points;
+  const double h = tolerance.smoothing_lnp;
   std::vector<bool> close(static_cast<size_t>(n));
   for (int g = 0; g < n; ++g) {
     // Grid in the direction of travel.
     const double t = static_cast<double>(g) / (n - 1);
     const double x = rising ? lo + t * (hi - lo) : hi - t * (hi - lo);
     close[static_cast<size_t>(g)] =
-        std::abs(Interpolate(a.x, a.ln_v, x) - Interpolate(b.x, b.ln_v, x)) <
+        std::abs(Smoothed(a.x, a.ln_v, x, h) - Smoothed(b.x, b.ln_v, x, h)) <
             tolerance.ln_1_plus_e &&
-        std::abs(Interpolate(a.x, a.psi, x) - Interpolate(b.x, b.psi, x)) <
+        std::abs(Smoothed(a.x, a.psi, x, h) - Smoothed(b.x, b.psi, x, h)) <
             tolerance.psi_sigma_deg;
   }
   int first = n;
@@ -246,8 +286,8 @@ ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising
   const double x = rising ? lo + t * (hi - lo) : hi - t * (hi - lo);
   row.status = "joined";
   row.joined_at_p_kpa = std::exp(x);
-  row.ln_1_plus_e = 0.5 * (Interpolate(a.x, a.ln_v, x) + Interpolate(b.x, b.ln_v, x));
-  row.psi_sigma_deg = 0.5 * (Interpolate(a.x, a.psi, x) + Interpolate(b.x, b.psi, x));
+  row.ln_1_plus_e = 0.5 * (Smoothed(a.x, a.ln_v, x, h) + Smoothed(b.x, b.ln_v, x, h));
+  row.psi_sigma_deg = 0.5 * (Smoothed(a.x, a.psi, x, h) + Smoothed(b.x, b.psi, x, h));
   return row;
 }
 
@@ -410,6 +450,31 @@ void WriteSummary(const std::string& directory, const std::vector<StateRow>& row
   WriteTextFileAtomically(directory + "/asymptotic_states_summary.csv", csv);
 }
 
+// The state where two paths joined, as a row of the table.
+StateRow JoinedRow(const ConvergenceRow& joined, const ConvergenceTolerance& tolerance) {
+  StateRow row = MissingRow({});
+  row.case_name = joined.case_a + "+" + joined.case_b;
+  row.case_id = "r" + std::to_string(joined.replicate) + "/" + row.case_name;
+  row.replicate = joined.replicate;
+  row.stage = "joined";
+  row.kind = joined.kind;
+  row.status = "detected";
+  row.message.clear();
+  row.detector = fmt::format(
+      "path_convergence: paths of psi_epsilon = {:g} deg from different starting states agree "
+      "within {:g} in ln(1+e) and {:g} deg in psi_sigma (averaged over +-{:g} in ln p) from here "
+      "on, over at least a quarter of their common range",
+      joined.psi_epsilon_deg, tolerance.ln_1_plus_e, tolerance.psi_sigma_deg,
+      tolerance.smoothing_lnp);
+  row.psi_epsilon_deg = joined.psi_epsilon_deg;
+  row.p_kpa = joined.joined_at_p_kpa;
+  row.ln_1_plus_e = joined.ln_1_plus_e;
+  row.e = std::expm1(joined.ln_1_plus_e);
+  row.psi_sigma_deg = joined.psi_sigma_deg;
+  row.q_over_p = 3.0 / std::sqrt(2.0) * std::tan(joined.psi_sigma_deg * M_PI / 180.0);
+  return row;
+}
+
 }  // namespace
 
 StateTableSummary WriteStateTable(const std::string& directory,
@@ -459,7 +524,30 @@ StateTableSummary WriteStateTable(const std::string& directory,
     if (!any && c.termination != "completed") rows.push_back(MissingRow(c));
   }
 
-  // The study's NCL, per replicate, through the detected states of its NCL case.
+  // Paper Sec. 4.3: paths of one ψ_ε from successive starting states.
+  std::vector<ConvergenceRow> convergence;
+  for (auto& [key, group] : paths) {
+    const auto& [replicate, kind, psi] = key;
+    const bool rising = kind == "compression";
+    std::sort(group.begin(), group.end(),
+              [](const Path& a, const Path& b) { return a.start_p < b.start_p; });
+    for (size_t k = 1; k < group.size(); ++k) {
+      ConvergenceRow row = JoinPaths(group[k - 1].samples, group[k].samples, rising, tolerance);
+      row.replicate = replicate;
+      row.kind = kind;
+      row.psi_epsilon_deg = psi;
+      row.case_a = group[k - 1].case_name;
+      row.case_b = group[k].case_name;
+      summary.joined += row.status == "joined";
+      summary.not_joined += row.status != "joined";
+      convergence.push_back(row);
+      if (row.status == "joined") rows.push_back(JoinedRow(row, tolerance));
+    }
+  }
+  // The study's NCL, per replicate, through the stage-end states of its NCL
+  // case that are load-bearing and reliable: detected or drifting (the
+  // detector's ψ_σ and slope tests are at the noise of a small sample on a
+  // ψ_ε = 0° path), not a gas, overlaps below 10 %.
   std::set<int> replicates;
   for (const StateRow& row : rows) replicates.insert(row.replicate);
   for (int r : replicates) {
@@ -468,9 +556,11 @@ StateTableSummary WriteStateTable(const std::string& directory,
     std::vector<double> x, y;
     for (const StateRow& row : rows) {
       if (row.replicate != r || row.case_name != ncl_case || row.kind != "ncl" ||
-          row.status != "detected") {
+          (row.status != "detected" && row.status != "drifting") ||
+          row.flags.find("overlap_above_10pct") != std::string::npos) {
         continue;
       }
+      ++(row.status == "detected" ? fit.detected : fit.drifting);
       x.push_back(std::log(row.p_kpa));
       y.push_back(row.ln_1_plus_e);
     }
@@ -490,34 +580,16 @@ StateTableSummary WriteStateTable(const std::string& directory,
       row.ocr = row.p_e_star_kpa / row.p_kpa;
     }
   }
-  std::string ncl_csv = "replicate,points,N,lambda_star,p_min_kpa,p_max_kpa\n";
+  std::string ncl_csv = "replicate,points,detected,drifting,N,lambda_star,p_min_kpa,p_max_kpa\n";
   for (const NclFit& fit : summary.ncl) {
-    ncl_csv += fmt::format("{},{},{},{},{},{}\n", fit.replicate, fit.points,
+    ncl_csv += fmt::format("{},{},{},{},{},{},{},{}\n", fit.replicate, fit.points, fit.detected,
+                           fit.drifting,
                            Number(fit.valid() ? fit.n : kNaN),
                            Number(fit.valid() ? fit.lambda : kNaN), Number(fit.p_min_kpa),
                            Number(fit.p_max_kpa));
   }
   WriteTextFileAtomically(directory + "/ncl_fit.csv", ncl_csv);
 
-  // Paper Sec. 4.3: paths of one ψ_ε from successive starting states.
-  std::vector<ConvergenceRow> convergence;
-  for (auto& [key, group] : paths) {
-    const auto& [replicate, kind, psi] = key;
-    const bool rising = kind == "compression";
-    std::sort(group.begin(), group.end(),
-              [](const Path& a, const Path& b) { return a.start_p < b.start_p; });
-    for (size_t k = 1; k < group.size(); ++k) {
-      ConvergenceRow row = JoinPaths(group[k - 1].samples, group[k].samples, rising, tolerance);
-      row.replicate = replicate;
-      row.kind = kind;
-      row.psi_epsilon_deg = psi;
-      row.case_a = group[k - 1].case_name;
-      row.case_b = group[k].case_name;
-      summary.joined += row.status == "joined";
-      summary.not_joined += row.status != "joined";
-      convergence.push_back(row);
-    }
-  }
   std::string conv_csv = fmt::format(
       "# paths of one psi_epsilon from different starting states join where ln(1+e) and "
       "psi_sigma agree within {} and {} deg at a common p from there on\n"
@@ -564,11 +636,11 @@ std::string StateTableSummary::Text() const {
   }
   for (const NclFit& fit : ncl) {
     text += fit.valid()
-                ? fmt::format("  NCL r{}: N = {:.4f}, lambda* = {:.4f} through {} states, "
-                              "{:.4g}-{:.4g} kPa\n",
-                              fit.replicate, fit.n, fit.lambda, fit.points, fit.p_min_kpa,
-                              fit.p_max_kpa)
-                : fmt::format("  NCL r{}: not determined ({} detected NCL states; OCR and p_e* "
+                ? fmt::format("  NCL r{}: N = {:.4f}, lambda* = {:.4f} through {} states "
+                              "({} detected, {} drifting), {:.4g}-{:.4g} kPa\n",
+                              fit.replicate, fit.n, fit.lambda, fit.points, fit.detected,
+                              fit.drifting, fit.p_min_kpa, fit.p_max_kpa)
+                : fmt::format("  NCL r{}: not determined ({} usable NCL states; OCR and p_e* "
                               "left empty)\n",
                               fit.replicate, fit.points);
   }

@@ -82,7 +82,7 @@ TEST(AsymptoteDetector, DefaultCriteriaAreTheDocumentedOnes) {
     EXPECT_EQ(c.kind, kind);
     EXPECT_EQ(c.window_lnp, 1.0);
     EXPECT_EQ(c.window_strain, 0.3);
-    EXPECT_EQ(c.psi_tolerance_deg, 0.5);
+    EXPECT_EQ(c.psi_tolerance_deg, 1.0);
     EXPECT_EQ(c.slope_tolerance, 0.1);
   }
   const AsymptoteCriterion stress = Criterion(PathKind::kStressControlled);

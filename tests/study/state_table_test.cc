@@ -23,7 +23,9 @@ PathSamples Path(double start_lnp, double offset, double decay) {
 
 TEST(PathConvergence, PathsThatApproachOneLineJoinWhereTheirGapFallsBelowTheTolerance) {
   const PathSamples low = Path(1.0, 0.02, 0.5), high = Path(3.0, -0.02, 0.5);
-  const ConvergenceTolerance tolerance;  // 0.005 in ln(1+e), 1 deg
+  ConvergenceTolerance tolerance;
+  tolerance.psi_sigma_deg = 1.0;
+  tolerance.smoothing_lnp = 0.0;  // exact paths: no averaging
   const ConvergenceRow row = JoinPaths(low, high, true, tolerance);
   ASSERT_EQ(row.status, "joined");
   // The ψ_σ gap 400 (g_low + |g_high|) < 1 deg decides (the ln(1+e) gap is
