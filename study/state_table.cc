@@ -430,20 +430,8 @@ void WriteSummary(const std::string& directory, const std::vector<StateRow>& row
       for (const StateRow* row : detected) {
         if (std::isfinite(row->*column.member)) values.push_back(row->*column.member);
       }
-      double mean = kNaN, half = kNaN;
-      if (!values.empty()) {
-        mean = 0;
-        for (double v : values) mean += v;
-        mean /= static_cast<double>(values.size());
-      }
-      if (values.size() >= 2) {
-        double var = 0;
-        for (double v : values) var += (v - mean) * (v - mean);
-        var /= static_cast<double>(values.size() - 1);
-        half = StudentT95(static_cast<int>(values.size()) - 1) *
-               std::sqrt(var / static_cast<double>(values.size()));
-      }
-      csv += "," + Number(mean) + "," + Number(half);
+      const Interval interval = MeanInterval95(values);
+      csv += "," + Number(interval.mean) + "," + Number(interval.half_width);
     }
     csv += "\n";
   }
@@ -476,6 +464,21 @@ StateRow JoinedRow(const ConvergenceRow& joined, const ConvergenceTolerance& tol
 }
 
 }  // namespace
+
+Interval MeanInterval95(const std::vector<double>& values) {
+  Interval interval{kNaN, kNaN};
+  if (values.empty()) return interval;
+  interval.mean = 0;
+  for (double v : values) interval.mean += v;
+  interval.mean /= static_cast<double>(values.size());
+  if (values.size() < 2) return interval;
+  double var = 0;
+  for (double v : values) var += (v - interval.mean) * (v - interval.mean);
+  var /= static_cast<double>(values.size() - 1);
+  interval.half_width = StudentT95(static_cast<int>(values.size()) - 1) *
+                        std::sqrt(var / static_cast<double>(values.size()));
+  return interval;
+}
 
 StateTableSummary WriteStateTable(const std::string& directory,
                                   const ConvergenceTolerance& tolerance) {

@@ -87,6 +87,13 @@ struct StateTableSummary {
   std::string Text() const;
 };
 
+// Mean and half-width of the two-sided 95 % confidence interval of the mean
+// (Student t with n − 1 degrees of freedom); NaN half-width below 2 values.
+struct Interval {
+  double mean, half_width;
+};
+Interval MeanInterval95(const std::vector<double>& values);
+
 // Builds the tables from the case folders below `directory` and writes them.
 StateTableSummary WriteStateTable(const std::string& directory,
                                   const ConvergenceTolerance& tolerance = {});

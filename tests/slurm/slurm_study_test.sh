@@ -88,11 +88,12 @@ timeout "$timeout_s" "$granasym" study run "$programme" --scale "$scale" \
 single_s="$(echo "$(date +%s.%N) $start" | awk '{ printf "%.1f", $1 - $2 }')"
 
 # The same cases, with the same series and the same state table.
-list_cases() { (cd "$1/cases" && find . -mindepth 2 -maxdepth 2 -name result.h5 -printf '%h\n' |
+# Case folders are cases/r<replicate>/<case>.
+list_cases() { (cd "$1/cases" && find . -mindepth 3 -maxdepth 3 -name result.h5 -printf '%h\n' |
                  sed 's|^\./||' | sort); }
 sharded_cases="$(list_cases "$work/sharded")"
 single_cases="$(list_cases "$work/single")"
-[ -n "$single_cases" ] || fail "the single run wrote no cases/<case>/result.h5"
+[ -n "$single_cases" ] || fail "the single run wrote no cases/r<K>/<case>/result.h5"
 if [ "$sharded_cases" != "$single_cases" ]; then
   diff <(echo "$sharded_cases") <(echo "$single_cases") >&2 || true
   fail "the sharded and the single run have different cases (< sharded, > single)"
@@ -100,6 +101,7 @@ fi
 cases=0
 while read -r case_name; do
   for run in sharded single; do
+    mkdir -p "$(dirname "$work/csv/$run/$case_name.csv")"
     "$granasym" export "$work/$run/cases/$case_name/result.h5" \
       --csv "$work/csv/$run/$case_name.csv" >/dev/null ||
       fail "granasym export of the $run case $case_name failed"

@@ -175,6 +175,27 @@ TEST(StudyRunner, AnInterruptedStudyResumesToTheSameBytes) {
   EXPECT_EQ(Series(whole), Series(resumed));
 }
 
+TEST(StudyRunner, ReplicatesHaveTheirOwnSamplesAndTheirStatesAreSummarised) {
+  const std::string dir = Dir("replicates");
+  std::string text = kProgramme;
+  text.replace(text.find("count = 250"), 11, "count = 250\nreplicates = 2");
+  const StudyOutcome outcome = RunProgramme(text, dir);
+  ASSERT_EQ(outcome.Count(CaseStatus::kComputed), 10) << outcome.OneLine();
+  EXPECT_NE(ReadTextFile(dir + "/samples/r1/packing.txt"),
+            ReadTextFile(dir + "/samples/r2/packing.txt"));
+  const StateTableSummary summary = WriteStateTable(dir);
+  EXPECT_EQ(summary.ncl.size(), 2u);
+  const std::vector<StateRow> rows = ReadStateTable(dir);
+  int psi90 = 0;
+  for (const StateRow& row : rows) psi90 += row.case_name == "nc50_psi90";
+  EXPECT_EQ(psi90, 2);  // one row per replicate
+  // The summary: one line per case and stage, over both replicates.
+  const std::string table = ReadTextFile(dir + "/asymptotic_states_summary.csv");
+  EXPECT_EQ(table.rfind("case_name,stage,kind,replicates,detected,p_kpa_mean,p_kpa_ci95", 0), 0u)
+      << table.substr(0, 200);
+  EXPECT_NE(table.find("\nnc50_psi90,stage1,csl,2,"), std::string::npos) << table;
+}
+
 TEST(StudyRunner, RefusesAFolderThatHoldsSomethingElse) {
   const std::string dir = Dir("occupied");
   fs::create_directories(dir);

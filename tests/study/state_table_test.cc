@@ -50,5 +50,17 @@ TEST(PathConvergence, ParallelPathsThatStayApartDoNotJoin) {
   EXPECT_EQ(JoinPaths(c, d, true, {}).status, "no_overlap");
 }
 
+TEST(Replicates, MeanAndStudentIntervalOfTheMean) {
+  // n = 3: mean 2, s = 1, t(0.975, 2) = 4.303: half-width 4.303 / sqrt(3).
+  const Interval three = MeanInterval95({1.0, 2.0, 3.0});
+  EXPECT_DOUBLE_EQ(three.mean, 2.0);
+  EXPECT_NEAR(three.half_width, 4.303 / std::sqrt(3.0), 1e-12);
+  // n = 2: t(0.975, 1) = 12.706, s = sqrt(2) * 0.5.
+  const Interval two = MeanInterval95({10.0, 11.0});
+  EXPECT_NEAR(two.half_width, 12.706 * std::sqrt(0.5) / std::sqrt(2.0), 1e-12);
+  EXPECT_TRUE(std::isnan(MeanInterval95({5.0}).half_width));
+  EXPECT_TRUE(std::isnan(MeanInterval95({}).mean));
+}
+
 }  // namespace
 }  // namespace granasym::study
