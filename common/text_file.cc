@@ -36,4 +36,17 @@ void WriteTextFileAtomically(const std::string& path, const std::string& text) {
   }
 }
 
+std::string TomlQuoted(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
 }  // namespace granasym

@@ -11,5 +11,8 @@ namespace granasym {
 std::string ReadTextFile(const std::string& path);
 // RuntimeError naming the file when it cannot be written or renamed.
 void WriteTextFileAtomically(const std::string& path, const std::string& text);
+// `text` as a TOML basic string: in double quotes, with '"', '\\' and line
+// breaks escaped (for the small TOML records a program writes).
+std::string TomlQuoted(const std::string& text);
 
 }  // namespace granasym

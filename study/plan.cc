@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/provenance.h"
+#include "common/text_file.h"
 #include "dem/grain_size_distribution.h"
 #include "dem/scene.h"
 #include "dem/strain_path_stage.h"
@@ -16,29 +17,12 @@
 namespace granasym::study {
 namespace {
 
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read the file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // A framed field of a cache key: a name, the length and the bytes, so that
 // no two different inputs give the same hashed text.
 void AddField(Sha256& hash, const std::string& name, const std::string& value) {
   hash.Update(name + "=" + std::to_string(value.size()) + ":");
   hash.Update(value);
   hash.Update("\n");
-}
-
-std::string Quoted(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
 }
 
 // Steps a stage is expected to take, from its stop conditions (a rough
@@ -69,7 +53,7 @@ Plan Plan::Make(const Programme& programme, Scale scale, int threads,
   plan.program_version = ProgramVersion();
   const ScaleSpec& spec = programme.At(scale);
   const std::string gsd_text =
-      programme.sample.gsd_path.empty() ? "default" : ReadFile(programme.sample.gsd_path);
+      programme.sample.gsd_path.empty() ? "default" : ReadTextFile(programme.sample.gsd_path);
   for (int r = 1; r <= spec.replicates; ++r) {
     PlannedSample sample;
     sample.replicate = r;
@@ -109,14 +93,14 @@ Plan Plan::Make(const Programme& programme, Scale scale, int threads,
       std::string sample_table = "[sample]\n";
       std::string parent_key;
       if (case_spec.parent.empty()) {
-        sample_table += "packing = " + Quoted("../../../samples/" + replicate + "/packing.txt") + "\n";
+        sample_table += "packing = " + TomlQuoted("../../../samples/" + replicate + "/packing.txt") + "\n";
         parent_key = plan.samples[static_cast<size_t>(r - 1)].key;
       } else {
         c.parent = plan.Find(replicate + "/" + case_spec.parent);
         GRANASYM_CHECK(c.parent >= 0) << "the programme orders parents first";
-        sample_table += "state = " + Quoted("../" + case_spec.parent + "/result.h5") + "\n";
+        sample_table += "state = " + TomlQuoted("../" + case_spec.parent + "/result.h5") + "\n";
         if (!case_spec.parent_stage.empty()) {
-          sample_table += "stage = " + Quoted(case_spec.parent_stage) + "\n";
+          sample_table += "stage = " + TomlQuoted(case_spec.parent_stage) + "\n";
         }
         parent_key = plan.cases[static_cast<size_t>(c.parent)].key;
       }
@@ -197,15 +181,15 @@ std::vector<int> Plan::Shard(int index, int count) const {
 std::string StudyRecordText(const Plan& plan) {
   std::ostringstream out;
   out << "# written by granasym study run; describes the cases below cases/\n"
-      << "programme = " << Quoted(plan.programme.name) << "\n"
-      << "programme_file = " << Quoted(std::filesystem::path(plan.programme.origin).filename().string())
+      << "programme = " << TomlQuoted(plan.programme.name) << "\n"
+      << "programme_file = " << TomlQuoted(std::filesystem::path(plan.programme.origin).filename().string())
       << "\n"
-      << "scale = " << Quoted(ToString(plan.scale)) << "\n"
+      << "scale = " << TomlQuoted(ToString(plan.scale)) << "\n"
       << "threads = " << plan.threads << "\n"
       << "replicates = " << plan.samples.size() << "\n"
       << "count = " << plan.programme.At(plan.scale).count << "\n"
-      << "ncl = " << Quoted(plan.programme.ncl_case) << "\n"
-      << "program_version = " << Quoted(plan.program_version) << "\n";
+      << "ncl = " << TomlQuoted(plan.programme.ncl_case) << "\n"
+      << "program_version = " << TomlQuoted(plan.program_version) << "\n";
   return out.str();
 }
 

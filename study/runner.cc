@@ -63,19 +63,6 @@ class FileLock {
   bool locked_ = false;
 };
 
-std::string Quoted(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    if (c == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += c;
-  }
-  return out + "\"";
-}
-
 // What done.toml records of a finished case.
 struct DoneRecord {
   std::string key;
@@ -106,7 +93,7 @@ void WriteDone(const std::string& directory, const DoneRecord& done) {
       fmt::format("# written when the case ended; its key names the inputs it was computed for\n"
                   "key = {}\ntermination = {}\nmessage = {}\nsteps = {}\nparticles = {}\n"
                   "wall_seconds = {:.3f}\n",
-                  Quoted(done.key), Quoted(ToString(done.termination)), Quoted(done.message),
+                  TomlQuoted(done.key), TomlQuoted(ToString(done.termination)), TomlQuoted(done.message),
                   done.steps, done.particles, done.wall_seconds));
 }
 
@@ -116,13 +103,13 @@ std::string CaseRecordText(const Plan& plan, const PlannedCase& c) {
       "id = {}\nname = {}\nreplicate = {}\nkey = {}\nparent = {}\nparent_stage = {}\n"
       "run = {}\nfigures = {}\nprogramme = {}\nscale = {}\nthreads = {}\n"
       "program_version = {}\n",
-      Quoted(c.id), Quoted(c.spec.name), c.replicate, Quoted(c.key),
-      Quoted(c.parent >= 0 ? plan.cases[static_cast<size_t>(c.parent)].id : ""),
-      Quoted(c.spec.parent_stage), Quoted(c.spec.run), Quoted(c.spec.figures),
-      Quoted(plan.programme.name), Quoted(ToString(plan.scale)), plan.threads,
-      Quoted(plan.program_version));
+      TomlQuoted(c.id), TomlQuoted(c.spec.name), c.replicate, TomlQuoted(c.key),
+      TomlQuoted(c.parent >= 0 ? plan.cases[static_cast<size_t>(c.parent)].id : ""),
+      TomlQuoted(c.spec.parent_stage), TomlQuoted(c.spec.run), TomlQuoted(c.spec.figures),
+      TomlQuoted(plan.programme.name), TomlQuoted(ToString(plan.scale)), plan.threads,
+      TomlQuoted(plan.program_version));
   text += "[variables]\n";
-  for (const auto& [name, value] : c.spec.variables) text += name + " = " + Quoted(value) + "\n";
+  for (const auto& [name, value] : c.spec.variables) text += name + " = " + TomlQuoted(value) + "\n";
   return text;
 }
 
@@ -421,7 +408,7 @@ CaseOutcome Scheduler::Execute(int k) {
   }
   const std::string running_path = c.directory + "/running.toml";
   const bool resume = fs::exists(running_path) && fs::exists(c.result_path() + ".ckpt") &&
-                      ReadTextFile(running_path) == "key = " + Quoted(c.key) + "\n";
+                      ReadTextFile(running_path) == "key = " + TomlQuoted(c.key) + "\n";
   if (!resume) {
     for (const char* name : {"/result.h5", "/result.h5.ckpt", "/done.toml"}) {
       fs::remove(c.directory + name);
@@ -429,7 +416,7 @@ CaseOutcome Scheduler::Execute(int k) {
   }
   WriteIfChanged(c.directory + "/scene.toml", c.scene_text);
   WriteIfChanged(c.directory + "/case.toml", CaseRecordText(plan_, c));
-  WriteTextFileAtomically(running_path, "key = " + Quoted(c.key) + "\n");
+  WriteTextFileAtomically(running_path, "key = " + TomlQuoted(c.key) + "\n");
 
   const dem::Scene scene = dem::Scene::Parse(c.scene_text, c.directory + "/scene.toml", c.directory);
   dem::RunOptions run;
