@@ -41,6 +41,7 @@ std::string KindOf(dem::PathKind path, double psi_epsilon_deg) {
 
 struct CaseFolder {
   std::string directory, id, name, run, figures, key;
+  std::string parent_name;  // empty: the sample
   int replicate = 1;
   bool finished = false;  // done.toml for the current key, and a result
   std::string termination, message;
@@ -69,6 +70,8 @@ std::vector<CaseFolder> ListCases(const std::string& directory) {
     c.run = record.GetString("run", "");
     c.figures = record.GetString("figures", "");
     c.key = record.GetString("key");
+    const std::string parent = record.GetString("parent", "");  // "r<K>/<name>"
+    c.parent_name = parent.substr(parent.find('/') + 1);
     c.replicate = static_cast<int>(record.GetInt("replicate", 1, Range::AtLeast(1)));
     if (fs::exists(folder / "done.toml")) {
       const ConfigTable done = ConfigTable::ParseFile((folder / "done.toml").string());
@@ -344,18 +347,19 @@ constexpr TextColumn kTextColumns[] = {
     {"stage", &StateRow::stage},     {"run", &StateRow::run},
     {"figures", &StateRow::figures}, {"flags", &StateRow::flags},
     {"detector", &StateRow::detector}, {"message", &StateRow::message},
+    {"ncl_reference", &StateRow::ncl_reference},
 };
 
 void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
                const std::vector<NclFit>& fits) {
   std::string csv = "replicate,kind,status,case,case_name,stage";
   for (const NumberColumn& column : kNumberColumns) csv += std::string(",") + column.name;
-  csv += ",run,figures,flags,detector,message\n";
+  csv += ",ncl_reference,run,figures,flags,detector,message\n";
   for (const StateRow& row : rows) {
     csv += std::to_string(row.replicate) + "," + row.kind + "," + row.status + "," +
            CsvText(row.case_id) + "," + CsvText(row.case_name) + "," + CsvText(row.stage);
     for (const NumberColumn& column : kNumberColumns) csv += "," + Number(row.*column.member);
-    csv += "," + CsvText(row.run) + "," + CsvText(row.figures) + "," + CsvText(row.flags) + "," +
+    csv += "," + CsvText(row.ncl_reference) + "," + CsvText(row.run) + "," + CsvText(row.figures) + "," + CsvText(row.flags) + "," +
            CsvText(row.detector) + "," + CsvText(row.message) + "\n";
   }
   WriteTextFileAtomically(directory + "/asymptotic_states.csv", csv);
@@ -381,7 +385,9 @@ void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
   file.CreateGroup("/ncl_fit");
   std::vector<double> n, lambda, pmin, pmax;
   std::vector<int64_t> reps, points;
+  std::vector<std::string> names;
   for (const NclFit& fit : fits) {
+    names.push_back(fit.case_name);
     reps.push_back(fit.replicate);
     points.push_back(fit.points);
     n.push_back(fit.valid() ? fit.n : kNaN);
@@ -391,6 +397,7 @@ void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
   }
   file.WriteInts("/ncl_fit/replicate", reps);
   file.WriteInts("/ncl_fit/points", points);
+  file.WriteStrings("/ncl_fit/case", names);
   file.WriteDoubles("/ncl_fit/N", n, "1");
   file.WriteDoubles("/ncl_fit/lambda_star", lambda, "1");
   file.WriteDoubles("/ncl_fit/p_min_kpa", pmin, "kPa");
@@ -497,7 +504,9 @@ StateTableSummary WriteStateTable(const std::string& directory,
     PathSamples samples;
   };
   std::map<std::tuple<int, std::string, double>, std::vector<Path>> paths;
+  std::map<std::pair<int, std::string>, std::string> parent_of;  // (replicate, case) → parent
   for (const CaseFolder& c : ListCases(directory)) {
+    parent_of[{c.replicate, c.name}] = c.parent_name;
     if (!c.finished) {
       rows.push_back(MissingRow(c));
       continue;
@@ -547,25 +556,28 @@ StateTableSummary WriteStateTable(const std::string& directory,
       if (row.status == "joined") rows.push_back(JoinedRow(row, tolerance));
     }
   }
-  // The study's NCL, per replicate, through the stage-end states of its NCL
-  // case that are load-bearing and reliable: detected or drifting (the
-  // detector's ψ_σ and slope tests are at the noise of a small sample on a
-  // ψ_ε = 0° path), not a gas, overlaps below 10 %.
-  std::set<int> replicates;
-  for (const StateRow& row : rows) replicates.insert(row.replicate);
-  for (int r : replicates) {
+  // An NCL per replicate and NCL-carrying case (the study's NCL, and the
+  // NCLs of samples with another material or time step), through the
+  // stage-end states that are load-bearing and reliable: detected or
+  // drifting (the detector's ψ_σ and slope tests are at the noise of a small
+  // sample on a ψ_ε = 0° path), not a gas, overlaps below 10 %.
+  std::map<std::pair<int, std::string>, size_t> fit_of;  // (replicate, case) → summary.ncl
+  for (const StateRow& row : rows) {
+    const auto key = std::make_pair(row.replicate, row.case_name);
+    if (row.kind != "ncl" || fit_of.count(key)) continue;
     NclFit fit;
-    fit.replicate = r;
+    fit.replicate = row.replicate;
+    fit.case_name = row.case_name;
     std::vector<double> x, y;
-    for (const StateRow& row : rows) {
-      if (row.replicate != r || row.case_name != ncl_case || row.kind != "ncl" ||
-          (row.status != "detected" && row.status != "drifting") ||
-          row.flags.find("overlap_above_10pct") != std::string::npos) {
+    for (const StateRow& other : rows) {
+      if (other.replicate != fit.replicate || other.case_name != fit.case_name ||
+          other.kind != "ncl" || (other.status != "detected" && other.status != "drifting") ||
+          other.flags.find("overlap_above_10pct") != std::string::npos) {
         continue;
       }
-      ++(row.status == "detected" ? fit.detected : fit.drifting);
-      x.push_back(std::log(row.p_kpa));
-      y.push_back(row.ln_1_plus_e);
+      ++(other.status == "detected" ? fit.detected : fit.drifting);
+      x.push_back(std::log(other.p_kpa));
+      y.push_back(other.ln_1_plus_e);
     }
     fit.points = static_cast<int>(x.size());
     double a = 0, b = 0;
@@ -575,17 +587,38 @@ StateTableSummary WriteStateTable(const std::string& directory,
       fit.p_min_kpa = std::exp(*std::min_element(x.begin(), x.end()));
       fit.p_max_kpa = std::exp(*std::max_element(x.begin(), x.end()));
     }
+    fit_of[key] = summary.ncl.size();
     summary.ncl.push_back(fit);
-    if (!fit.valid()) continue;
-    for (StateRow& row : rows) {
-      if (row.replicate != r || !(row.p_kpa > 0)) continue;
-      row.p_e_star_kpa = std::exp((fit.n - row.ln_1_plus_e) / fit.lambda);
-      row.ocr = row.p_e_star_kpa / row.p_kpa;
-    }
   }
-  std::string ncl_csv = "replicate,points,detected,drifting,N,lambda_star,p_min_kpa,p_max_kpa\n";
+  // Each state refers to the NCL of its nearest ancestor (or itself) that
+  // has one, else to the study's NCL.
+  for (StateRow& row : rows) {
+    if (!(row.p_kpa > 0)) continue;
+    std::string name = row.case_name.substr(0, row.case_name.find('+'));  // joined: first path
+    const NclFit* fit = nullptr;
+    for (int guard = 0; !name.empty() && guard < 1000; ++guard) {
+      const auto it = fit_of.find({row.replicate, name});
+      if (it != fit_of.end() && summary.ncl[it->second].valid()) {
+        fit = &summary.ncl[it->second];
+        break;
+      }
+      const auto up = parent_of.find({row.replicate, name});
+      name = up == parent_of.end() ? "" : up->second;
+    }
+    if (!fit) {
+      const auto it = fit_of.find({row.replicate, ncl_case});
+      if (it != fit_of.end() && summary.ncl[it->second].valid()) fit = &summary.ncl[it->second];
+    }
+    if (!fit) continue;
+    row.ncl_reference = fit->case_name;
+    row.p_e_star_kpa = std::exp((fit->n - row.ln_1_plus_e) / fit->lambda);
+    row.ocr = row.p_e_star_kpa / row.p_kpa;
+  }
+  std::string ncl_csv =
+      "replicate,case,points,detected,drifting,N,lambda_star,p_min_kpa,p_max_kpa\n";
   for (const NclFit& fit : summary.ncl) {
-    ncl_csv += fmt::format("{},{},{},{},{},{},{},{}\n", fit.replicate, fit.points, fit.detected,
+    ncl_csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", fit.replicate, fit.case_name,
+                           fit.points, fit.detected,
                            fit.drifting,
                            Number(fit.valid() ? fit.n : kNaN),
                            Number(fit.valid() ? fit.lambda : kNaN), Number(fit.p_min_kpa),
@@ -639,13 +672,12 @@ std::string StateTableSummary::Text() const {
   }
   for (const NclFit& fit : ncl) {
     text += fit.valid()
-                ? fmt::format("  NCL r{}: N = {:.4f}, lambda* = {:.4f} through {} states "
+                ? fmt::format("  NCL r{} {}: N = {:.4f}, lambda* = {:.4f} through {} states "
                               "({} detected, {} drifting), {:.4g}-{:.4g} kPa\n",
-                              fit.replicate, fit.n, fit.lambda, fit.points, fit.detected,
+                              fit.replicate, fit.case_name, fit.n, fit.lambda, fit.points, fit.detected,
                               fit.drifting, fit.p_min_kpa, fit.p_max_kpa)
-                : fmt::format("  NCL r{}: not determined ({} usable NCL states; OCR and p_e* "
-                              "left empty)\n",
-                              fit.replicate, fit.points);
+                : fmt::format("  NCL r{} {}: not determined ({} usable states)\n",
+                              fit.replicate, fit.case_name, fit.points);
   }
   text += fmt::format("  path convergence: {} pairs joined, {} not\n", joined, not_joined);
   return text;

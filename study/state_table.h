@@ -2,8 +2,9 @@
 // DIR/asymptotic_states.csv and .h5 (one row per detector-carrying stage of
 // every case, and one per case without a result, so that nothing is silently
 // missing), DIR/asymptotic_states_summary.csv (mean and 95 % confidence
-// interval over replicates), DIR/ncl_fit.csv (the study's own NCL that OCR
-// and p_e* refer to), and DIR/path_convergence.csv (the paper's Sec. 4.3
+// interval over replicates), DIR/ncl_fit.csv (the study's own NCLs that OCR
+// and p_e* refer to: a state uses the NCL of its nearest ancestor case that
+// has one, else the study's `ncl`), and DIR/path_convergence.csv (the paper's Sec. 4.3
 // evidence: where paths of one ψ_ε from different starting states join).
 #pragma once
 
@@ -22,6 +23,7 @@ struct StateRow {
   std::string detector;
   std::string flags;  // validity flags, ';'-separated
   std::string message;
+  std::string ncl_reference;  // the case whose NCL gives OCR and p_e* (empty: none)
   double psi_epsilon_deg = 0, p_kpa = 0, e = 0, ln_1_plus_e = 0, psi_sigma_deg = 0,
          q_over_p = 0, ocr = 0, p_e_star_kpa = 0, inertial_number_dmin = 0,
          inertial_number_dmax = 0, coordination = 0, mechanical_coordination = 0,
@@ -31,12 +33,14 @@ struct StateRow {
          lnp_change = 0, dln1pe_dlnp = 0;
 };
 
-// The isotropic NCL ln(1+e) = N − λ* ln(p / 1 kPa) of one replicate, fitted
-// through the stage-end states of the study's NCL case that are not a gas
+// The isotropic NCL ln(1+e) = N − λ* ln(p / 1 kPa) of one replicate and one
+// case with ψ_ε = 0° stages (the study's NCL, or one of a sample with another
+// material or time step), fitted through its stage-end states that are not a gas
 // and have overlaps below 10 % (detected or drifting: on a ψ_ε = 0° path the
 // detector's tests are at the noise level of a small sample).
 struct NclFit {
   int replicate = 1;
+  std::string case_name;
   int points = 0;
   int detected = 0, drifting = 0;  // the states' detector statuses
   double n = 0, lambda = 0;  // N and λ*
