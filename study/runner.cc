@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <chrono>
 #include <condition_variable>
+#include <exception>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -245,6 +246,15 @@ class Scheduler {
       }
     }
     for (std::thread& worker : workers) worker.join();
+    if (error_) {
+      try {
+        std::rethrow_exception(error_);
+      } catch (const InputError& error) {
+        throw InputError("case " + error_case_ + ": " + error.what());
+      } catch (const RuntimeError& error) {
+        throw RuntimeError("case " + error_case_ + ": " + error.what());
+      }
+    }
     StudyOutcome outcome;
     for (int k : selected_) outcome.cases.push_back(outcomes_[k]);
     outcome.wall_seconds = clock.Seconds();
@@ -254,7 +264,11 @@ class Scheduler {
  private:
   enum class State { kWaiting, kRunning, kFinished };
 
-  bool StopRequested() const { return options_.stop_requested && options_.stop_requested(); }
+  // A stop request, or an error in another case: the running cases
+  // checkpoint and no new case starts.
+  bool StopRequested() const {
+    return aborted_.load() || (options_.stop_requested && options_.stop_requested());
+  }
 
   void Work() {
     for (;;) {
@@ -272,7 +286,22 @@ class Scheduler {
         outcome.status = CaseStatus::kInterrupted;
         outcome.message = "not started: the study was interrupted";
       } else {
-        outcome = Execute(k);
+        try {
+          outcome = Execute(k);
+        } catch (...) {
+          // An error that is not a result of the case (bad input, a full
+          // disk, a violated invariant): the study stops, and RunStudy
+          // rethrows it once every worker has ended.
+          std::lock_guard<std::mutex> lock(mutex_);
+          if (!error_) {
+            error_ = std::current_exception();
+            error_case_ = plan_.cases[static_cast<size_t>(k)].id;
+          }
+          aborted_ = true;
+          outcome.id = plan_.cases[static_cast<size_t>(k)].id;
+          outcome.status = CaseStatus::kInterrupted;
+          outcome.message = "stopped by an error";
+        }
       }
       {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -374,6 +403,9 @@ class Scheduler {
   std::map<int, double> running_particle_steps_;
   int64_t done_particle_steps_ = 0;
   size_t finished_ = 0;
+  std::atomic<bool> aborted_{false};
+  std::exception_ptr error_;
+  std::string error_case_;
 };
 
 CaseOutcome Scheduler::Execute(int k) {

@@ -196,6 +196,20 @@ TEST(StudyRunner, ReplicatesHaveTheirOwnSamplesAndTheirStatesAreSummarised) {
   EXPECT_NE(table.find("\nnc50_psi90,stage1,csl,2,"), std::string::npos) << table;
 }
 
+TEST(StudyRunner, AnErrorInOneCaseStopsTheStudyAndNamesTheCase) {
+  const std::string dir = Dir("error");
+  ASSERT_EQ(RunProgramme(kProgramme, dir).Count(CaseStatus::kComputed), 5);
+  // The sample is damaged and the NCL has to run again.
+  WriteTextFileAtomically(dir + "/samples/r1/packing.txt", "3 0.01 0.01 0.01\n0 0 0 nan\n");
+  fs::remove(dir + "/cases/r1/ncl/done.toml");
+  try {
+    RunProgramme(kProgramme, dir);
+    FAIL() << "a damaged packing was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("case r1/ncl"), std::string::npos) << error.what();
+  }
+}
+
 TEST(StudyRunner, RefusesAFolderThatHoldsSomethingElse) {
   const std::string dir = Dir("occupied");
   fs::create_directories(dir);
