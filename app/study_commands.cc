@@ -13,6 +13,7 @@
 #include "study/plan.h"
 #include "study/programme.h"
 #include "study/runner.h"
+#include "study/study_folder.h"
 #include "study/state_table.h"
 
 namespace granasym {

@@ -1,16 +1,12 @@
 #include "study/runner.h"
 
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <condition_variable>
-#include <exception>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -26,6 +22,7 @@
 #include "dem/grain_size_distribution.h"
 #include "dem/scene.h"
 #include "dem/simulation.h"
+#include "study/study_folder.h"
 
 #ifdef GRANASYM_STUDY_HAS_MODELS
 #include "constitutive/model_config.h"
@@ -34,69 +31,6 @@
 namespace granasym::study {
 namespace fs = std::filesystem;
 namespace {
-
-// An exclusive flock on a file, waited for while polling the stop request.
-// Locks of one process's threads exclude each other too (one open file
-// description each).
-class FileLock {
- public:
-  FileLock(const std::string& path, const std::function<bool()>& stop_requested) {
-    fd_ = ::open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
-    if (fd_ < 0) throw RuntimeError("cannot open the lock file '" + path + "': " + std::strerror(errno));
-    while (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      if (errno != EWOULDBLOCK && errno != EINTR) {
-        throw RuntimeError("cannot lock '" + path + "': " + std::strerror(errno));
-      }
-      if (stop_requested && stop_requested()) return;
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-    locked_ = true;
-  }
-  ~FileLock() {
-    if (fd_ >= 0) ::close(fd_);  // releases the lock
-  }
-  FileLock(const FileLock&) = delete;
-  FileLock& operator=(const FileLock&) = delete;
-  bool locked() const { return locked_; }
-
- private:
-  int fd_ = -1;
-  bool locked_ = false;
-};
-
-// What done.toml records of a finished case.
-struct DoneRecord {
-  std::string key;
-  dem::Termination termination = dem::Termination::kNotRun;
-  std::string message;
-  int64_t steps = 0;  // engine steps at the end, the parent's included
-  int64_t particles = 0;
-  double wall_seconds = 0;
-};
-
-std::optional<DoneRecord> ReadDone(const std::string& directory) {
-  const std::string path = directory + "/done.toml";
-  if (!fs::exists(path)) return std::nullopt;
-  const ConfigTable table = ConfigTable::ParseFile(path);
-  DoneRecord done;
-  done.key = table.GetString("key");
-  done.termination = table.GetEnum<dem::Termination>("termination");
-  done.message = table.GetString("message", "");
-  done.steps = table.GetInt("steps", 0, Range::NonNegative());
-  done.particles = table.GetInt("particles", 0, Range::NonNegative());
-  done.wall_seconds = table.GetDouble("wall_seconds", 0.0, Range::NonNegative());
-  return done;
-}
-
-void WriteDone(const std::string& directory, const DoneRecord& done) {
-  WriteTextFileAtomically(
-      directory + "/done.toml",
-      fmt::format("# written when the case ended; its key names the inputs it was computed for\n"
-                  "key = {}\ntermination = {}\nmessage = {}\nsteps = {}\nparticles = {}\n"
-                  "wall_seconds = {:.3f}\n",
-                  TomlQuoted(done.key), TomlQuoted(ToString(done.termination)), TomlQuoted(done.message),
-                  done.steps, done.particles, done.wall_seconds));
-}
 
 std::string CaseRecordText(const Plan& plan, const PlannedCase& c) {
   std::string text = fmt::format(
@@ -114,13 +48,6 @@ std::string CaseRecordText(const Plan& plan, const PlannedCase& c) {
   return text;
 }
 
-void WriteIfChanged(const std::string& path, const std::string& text) {
-  if (fs::exists(path) && ReadTextFile(path) == text) return;
-  WriteTextFileAtomically(path, text);
-}
-
-// Refuses to write a study into a folder that holds something else, or a
-// study of another programme or scale.
 void PrepareDirectory(const Plan& plan) {
   const fs::path dir(plan.directory);
   const std::string record = plan.directory + "/study.toml";
@@ -562,155 +489,6 @@ StudyOutcome RunStudy(const Plan& plan, const RunnerOptions& options) {
   StudyOutcome outcome = scheduler.Run();
   outcome.cases.insert(outcome.cases.end(), models.begin(), models.end());
   return outcome;
-}
-
-std::string DescribeStudy(const std::string& directory) {
-  if (!fs::exists(directory + "/study.toml")) {
-    throw InputError(directory + ": not a study folder (no study.toml)");
-  }
-  std::string text = ReadTextFile(directory + "/study.toml");
-  std::map<std::string, int> counts;
-  std::vector<std::string> lines;
-  const fs::path cases = fs::path(directory) / "cases";
-  std::vector<fs::path> folders;
-  if (fs::exists(cases)) {
-    for (const auto& replicate : fs::directory_iterator(cases)) {
-      if (!replicate.is_directory()) continue;
-      for (const auto& entry : fs::directory_iterator(replicate.path())) {
-        if (entry.is_directory()) folders.push_back(entry.path());
-      }
-    }
-  }
-  std::sort(folders.begin(), folders.end());
-  // Each case's own steps: its engine steps less its parent's.
-  std::map<std::string, int64_t> total_steps;
-  for (const fs::path& folder : folders) {
-    if (const std::optional<DoneRecord> done = ReadDone(folder.string())) {
-      total_steps[folder.parent_path().filename().string() + "/" + folder.filename().string()] =
-          done->steps;
-    }
-  }
-  double particle_steps = 0, wall_seconds = 0;
-  int64_t case_steps = 0;
-  for (const fs::path& folder : folders) {
-    const std::string id = folder.parent_path().filename().string() + "/" + folder.filename().string();
-    std::string status;
-    if (const std::optional<DoneRecord> done = ReadDone(folder.string())) {
-      status = ToString(done->termination);
-      int64_t own = done->steps;
-      if (fs::exists(folder / "case.toml")) {
-        const std::string parent =
-            ConfigTable::ParseFile((folder / "case.toml").string()).GetString("parent", "");
-        if (total_steps.count(parent)) own -= total_steps[parent];
-      }
-      case_steps += own;
-      particle_steps += static_cast<double>(own) * static_cast<double>(done->particles);
-      wall_seconds += done->wall_seconds;
-      lines.push_back(fmt::format("{:<40} {:<11} {:>9} steps  {}", id, status, own, done->message));
-    } else if (fs::exists(folder / "result.h5.ckpt")) {
-      status = "checkpointed";
-      lines.push_back(fmt::format("{:<40} {}", id, "checkpointed (resumes on the next run)"));
-    } else {
-      status = "not_run";
-      lines.push_back(fmt::format("{:<40} {}", id, "not run"));
-    }
-    ++counts[status];
-  }
-  for (const std::string& line : lines) text += line + "\n";
-  std::string summary = fmt::format("{} case folders:", folders.size());
-  for (const auto& [status, count] : counts) summary += fmt::format(" {} {}", count, status);
-  summary += fmt::format(
-      "\nfinished cases: {} steps of their own, {:.4g} particle-steps, {:.1f} s of case wall "
-      "time ({:.3g} particle-steps/s per case)",
-      case_steps, particle_steps, wall_seconds,
-      wall_seconds > 0 ? particle_steps / wall_seconds : 0.0);
-  return text + summary + "\n";
-}
-
-int MergeStudies(const std::vector<std::string>& inputs, const std::string& output) {
-  if (inputs.empty()) throw InputError("study merge: give at least one study folder");
-  std::string record;
-  for (const std::string& input : inputs) {
-    if (!fs::exists(input + "/study.toml")) {
-      throw InputError(input + ": not a study folder (no study.toml)");
-    }
-    const std::string text = ReadTextFile(input + "/study.toml");
-    if (record.empty()) record = text;
-    if (text != record) {
-      throw InputError(input + "/study.toml differs from " + inputs.front() +
-                       "/study.toml: only shards of one study (programme, scale, threads, "
-                       "version) can be merged");
-    }
-  }
-  const bool in_place = inputs.size() == 1 && fs::exists(output) &&
-                        fs::equivalent(fs::path(inputs.front()), fs::path(output));
-  if (!in_place) {
-    for (const std::string& input : inputs) {
-      if (fs::exists(output) && fs::equivalent(input, output)) {
-        throw InputError("study merge: --out " + output +
-                         " is one of several inputs; merge into a new folder");
-      }
-    }
-    if (fs::exists(output) && !fs::is_empty(output)) {
-      throw InputError("study merge: --out " + output + " is not empty; give a new folder");
-    }
-    fs::create_directories(output);
-    WriteTextFileAtomically(output + "/study.toml", record);
-  }
-  std::map<std::string, std::string> keys;  // case id → key
-  for (const std::string& input : inputs) {
-    for (const char* top : {"samples", "cases", "models"}) {
-      const fs::path base = fs::path(input) / top;
-      if (!fs::exists(base)) continue;
-      for (const auto& replicate : fs::directory_iterator(base)) {
-        if (!replicate.is_directory()) continue;
-        std::vector<fs::path> folders;
-        if (std::string(top) != "cases") {
-          folders.push_back(replicate.path());
-        } else {
-          for (const auto& entry : fs::directory_iterator(replicate.path())) {
-            if (entry.is_directory()) folders.push_back(entry.path());
-          }
-        }
-        for (const fs::path& folder : folders) {
-          const std::string id = fs::relative(folder, input).string();
-          std::string key;
-          if (std::string(top) != "samples") {
-            const std::optional<DoneRecord> done = ReadDone(folder.string());
-            if (!done) continue;  // not finished in this input
-            key = done->key;
-          } else {
-            if (!fs::exists(folder / "key")) continue;
-            key = ReadTextFile((folder / "key").string());
-          }
-          const auto [it, inserted] = keys.emplace(id, key);
-          if (!inserted) {
-            if (it->second != key) {
-              throw InputError("study merge: " + id + " has different inputs in two folders (" +
-                               input + " and an earlier one)");
-            }
-            continue;
-          }
-          if (in_place) continue;
-          const fs::path target = fs::path(output) / id;
-          fs::create_directories(target);
-          for (const auto& file : fs::directory_iterator(folder)) {
-            const std::string name = file.path().filename().string();
-            if (!file.is_regular_file() || name == ".lock" || name == "running.toml" ||
-                (name.size() > 5 && name.substr(name.size() - 5) == ".ckpt")) {
-              continue;
-            }
-            std::error_code error;
-            fs::create_hard_link(file.path(), target / name, error);
-            if (error) fs::copy_file(file.path(), target / name);
-          }
-        }
-      }
-    }
-  }
-  int cases = 0;
-  for (const auto& [id, key] : keys) cases += id.rfind("cases/", 0) == 0;
-  return cases;
 }
 
 }  // namespace granasym::study

@@ -69,15 +69,4 @@ struct StudyOutcome {
 // samples and runs the shard's cases.
 StudyOutcome RunStudy(const Plan& plan, const RunnerOptions& options);
 
-// What a study folder holds: one line per case with its status
-// (done with its termination, running or interrupted with a checkpoint, or
-// not started), and a count line.
-std::string DescribeStudy(const std::string& directory);
-
-// Combines the case folders of `inputs` into `output` (hard links where the
-// filesystem allows, copies otherwise); `output` may be the only input.
-// Two inputs with different keys for one case are an error. Returns the
-// number of cases in `output`.
-int MergeStudies(const std::vector<std::string>& inputs, const std::string& output);
-
 }  // namespace granasym::study

@@ -2,6 +2,7 @@
 // of exactly the changed cases and their descendants, shards merged into
 // the same bytes as one run, and resuming an interrupted study.
 #include "study/runner.h"
+#include "study/study_folder.h"
 
 #include <gtest/gtest.h>
 

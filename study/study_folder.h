@@ -1,0 +1,59 @@
+// The records of a study folder that the runner, status and merge share:
+// the exclusive lock of a case folder, done.toml (what a finished case was
+// computed for and how it ended), and the folder-level commands.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dem/run_record.h"
+
+namespace granasym::study {
+
+// An exclusive flock on a file, waited for while polling the stop request
+// (`locked()` is false when the wait ended by a stop request). Locks taken
+// by threads of one process exclude each other too (one open file
+// description each).
+class FileLock {
+ public:
+  FileLock(const std::string& path, const std::function<bool()>& stop_requested);
+  ~FileLock();
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+  bool locked() const { return locked_; }
+
+ private:
+  int fd_ = -1;
+  bool locked_ = false;
+};
+
+// What DIR/.../done.toml records of a finished case.
+struct DoneRecord {
+  std::string key;
+  dem::Termination termination = dem::Termination::kNotRun;
+  std::string message;
+  int64_t steps = 0;  // engine steps at the end, the parent's included
+  int64_t particles = 0;
+  double wall_seconds = 0;
+};
+std::optional<DoneRecord> ReadDone(const std::string& directory);
+void WriteDone(const std::string& directory, const DoneRecord& done);
+
+// Writes `text` to `path` (atomically) unless the file holds it already.
+void WriteIfChanged(const std::string& path, const std::string& text);
+
+// What a study folder holds: one line per case with its status
+// (done with its termination and own steps, checkpointed, or not run), a
+// count line and the totals of steps and particle-steps.
+std::string DescribeStudy(const std::string& directory);
+
+// Combines the case folders of `inputs` into `output` (hard links where the
+// filesystem allows, copies otherwise); `output` may be the only input.
+// Two inputs with different keys for one case are an error. Returns the
+// number of finished cases in `output`.
+int MergeStudies(const std::vector<std::string>& inputs, const std::string& output);
+
+}  // namespace granasym::study
