@@ -57,8 +57,12 @@ class BlockFile {
     if (kept == 0) return;
     text_ += (blocks_ ? "\n\n" : "") + block;
     ++blocks_;
+    titles_ += (titles_.empty() ? "\"" : " \"") + Clean(title) + "\"";
   }
   int blocks() const { return blocks_; }
+  // The blocks' titles as gnuplot words ("a b" "c"), for legend entries of
+  // blocks drawn with `pt variable` (whose own key sample is a dot).
+  const std::string& titles() const { return titles_; }
   void Write(const std::string& path) const { WriteTextFileAtomically(path, text_); }
 
  private:
@@ -69,7 +73,7 @@ class BlockFile {
     return s;
   }
   std::vector<std::string> columns_;
-  std::string text_;
+  std::string text_, titles_;
   int blocks_ = 0;
 };
 
@@ -230,7 +234,12 @@ std::string StartLabel(const std::vector<CaseData>& cases, const CaseData& c) {
   for (size_t j = 0; j < parent->stages.size(); ++j) {
     if (parent->stages[j].name == c.parent_stage) k = j;
   }
-  const double p = parent->stages[k].validity.final_mean_stress_kpa;
+  // Two significant digits: the stop condition overshoots its target slightly.
+  double p = parent->stages[k].validity.final_mean_stress_kpa;
+  if (p > 0) {
+    const double unit = std::pow(10.0, std::floor(std::log10(p)) - 1);
+    p = std::round(p / unit) * unit;
+  }
   const double psi = parent->stage_psi_epsilon[k];
   const std::string kind = std::abs(psi - 180) < 1 ? "OC" : std::abs(psi) < 1 ? "NC" : "";
   return fmt::format("{}{}{} kPa", kind, kind.empty() ? "" : " ", Short(p));
@@ -499,8 +508,18 @@ FigureSpec PathFamily(const Context& ctx, const std::string& figure, const std::
     return std::isfinite(pa) && std::isfinite(pb) && pa != pb ? pa < pb : false;
   });
   std::set<std::string> names;
+  // Colour by direction (or σ_r), dash type by start.
+  std::vector<std::string> directions, starts;
+  std::string colours, dashes;
+  auto index_of = [](std::vector<std::string>* list, const std::string& item) {
+    auto it = std::find(list->begin(), list->end(), item);
+    if (it == list->end()) it = list->insert(list->end(), item);
+    return static_cast<int>(it - list->begin()) + 1;
+  };
   for (const CaseData* c : cases) {
     names.insert(c->name);
+    colours += fmt::format("{} ", index_of(&directions, DirectionLabel(*c)));
+    dashes += fmt::format("{} ", index_of(&starts, StartLabel(ctx.cases, *c)));
     paths.Add(DirectionLabel(*c) + ", " + StartLabel(ctx.cases, *c),
               Rows({&c->path.p, &c->path.ln_v, &c->path.psi_sigma, &c->path.eps_s,
                     &c->path.psi_epsilon, &c->path.q}));
@@ -529,6 +548,8 @@ FigureSpec PathFamily(const Context& ctx, const std::string& figure, const std::
   marks.Write(ctx.File(stem + "_states.tsv"));
   Set(&spec, "stem", stem);
   Set(&spec, "n_paths", paths.blocks());
+  Set(&spec, "path_colours", colours);
+  Set(&spec, "path_dashes", dashes);
   Set(&spec, "n_marks", marks.blocks());
   // Open marks are the second block only when there are detected ones.
   Set(&spec, "first_open", detected.empty() ? 0 : 1);
@@ -592,12 +613,20 @@ FigureSpec Fig16(const Context& ctx) {
       rows.push_back({});
     }
     lines.Add(model.title, rows);
-    curves.Add(model.title, Rows({&model.psi_epsilon_deg, &model.psi_sigma_deg}));
+    // The paper's ψ_ε ≥ 0 (the curve spans the whole circle).
+    std::vector<std::vector<double>> curve;
+    for (size_t k = 0; k < model.psi_epsilon_deg.size() && k < model.psi_sigma_deg.size(); ++k) {
+      if (model.psi_epsilon_deg[k] >= 0) {
+        curve.push_back({model.psi_epsilon_deg[k], model.psi_sigma_deg[k]});
+      }
+    }
+    curves.Add(model.title, curve);
   }
   lines.Write(ctx.File("fig16_model_lines.tsv"));
   curves.Write(ctx.File("fig16_model_curves.tsv"));
   spec.caption += " " + ctx.models_note;
   Set(&spec, "n_states", states.blocks());
+  Set(&spec, "state_titles", states.titles());
   Set(&spec, "n_models", std::min(lines.blocks(), curves.blocks()));
   return spec;
 }
@@ -680,6 +709,7 @@ FigureSpec Fig17(const Context& ctx) {
   model_file.Write(ctx.File("fig17_models.tsv"));
   spec.caption += " " + ctx.models_note;
   Set(&spec, "n_levels", static_cast<int>(drawn.size()));
+  Set(&spec, "level_titles", dem_file.titles());
   Set(&spec, "n_models", model_file.blocks() / static_cast<int>(drawn.size()));
   return spec;
 }
@@ -787,6 +817,7 @@ FigureSpec Fig19(const Context& ctx) {
   if (picked == 0) return NotDrawn(spec, "no triaxial path reaches the ψ_ε of a constant-ψ_ε path");
   file.Write(ctx.File("fig19_states.tsv"));
   Set(&spec, "n_directions", file.blocks());
+  Set(&spec, "direction_titles", file.titles());
   return spec;
 }
 

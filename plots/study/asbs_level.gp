@@ -25,7 +25,9 @@ plot @paths_a @models_a \
      dem index 0 using "p_over_pe":"q_over_pe":(sprintf("%.0f", column("psi_epsilon_deg"))) \
        with labels offset char 0.9,0.5 font ",7", \
      dem index 0 using "p_over_pe":"q_over_pe":"point_type" with points pt variable ps 0.9 \
-       lc rgb "black" title columnheader(5)
+       lc rgb "black", \
+     keyentry with points pt 7 ps 0.9 lc rgb "black" title "asymptotic states, detected", \
+     keyentry with points pt 6 ps 0.9 lc rgb "black" title "still drifting"
 unset key
 unset logscale x
 set format x "%g"

@@ -2,7 +2,7 @@
 # p/p_e* (data/fig17_dem.tsv, one block per ln(1+e) level; point_type 7
 # detected, 6 drifting; labels: psi_epsilon) with each calibrated model's
 # section at the same levels (data/fig17_models.tsv, blocks model-major:
-# block m*n_levels + l). Variables: n_levels, n_models.
+# block m*n_levels + l). Variables: n_levels, level_titles (quoted words), n_models.
 width = 9.0; height = 5.5
 panels_right = 0.64
 load scripts."/common.gp"
@@ -19,7 +19,8 @@ set ylabel label_q_norm
 set xrange [0:*]
 set yrange [*:*]
 plot for [l=0:n_levels-1] dem index l using "p_over_pe":"q_over_pe":"point_type" \
-       with points pt variable ps 0.9 lt (l+1) title columnheader(5), \
+       with points pt variable ps 0.9 lt (l+1), \
+     for [l=0:n_levels-1] keyentry with points pt 7 ps 0.9 lt (l+1) title word(level_titles, l+1), \
      for [l=0:n_levels-1] dem index l using "p_over_pe":"q_over_pe":(sprintf("%.0f", column("psi_epsilon_deg"))) \
        with labels offset char 0.9,0.5 font ",7" tc lt (l+1), \
      @models_clause keyentry with points pt 7 lc rgb "black" title "detected", \

@@ -3,7 +3,7 @@
 # calibrated models' asymptotic lines (data/fig16_model_lines.tsv) and
 # psi_sigma(psi_epsilon) (data/fig16_model_curves.tsv), one block per model.
 # (a) psi_sigma-p, (b) ln(1+e)-p, (c) psi_sigma-ln(1+e), (d) psi_sigma-psi_epsilon.
-# Variables: n_states, n_models.
+# Variables: n_states, state_titles (quoted words), n_models.
 width = 11.0; height = 7.5
 panels_right = 0.74
 load scripts."/common.gp"
@@ -27,7 +27,8 @@ set key at screen panels_right + 0.015, 0.95 left top Left reverse samplen 3 spa
 set ylabel label_lnv
 set title "(b)"
 plot for [i=0:n_states-1] states index i using "p_kpa":"ln_1_plus_e":"point_type" \
-       with points pt variable ps 0.8 lt (i+1) title columnheader(6), \
+       with points pt variable ps 0.8 lt (i+1), \
+     for [i=0:n_states-1] keyentry with points pt 7 ps 0.8 lt (i+1) title word(state_titles, i+1), \
      @models_b keyentry with points pt 7 lc rgb "black" title "detected", \
      keyentry with points pt 6 lc rgb "black" title "still drifting"
 unset key

@@ -1,12 +1,13 @@
 # Paper Fig. 5: the hypoplastic model's paths A (compression), B (isochoric)
 # and C (extension) from normally and overconsolidated states
 # (data/fig05_paths.tsv, one block per element test). Variables: n_paths.
-width = 12.0; height = 4.2
+width = 10.0; height = 7.5
 load scripts."/common.gp"
 file = data."/fig05_paths.tsv"
 start_dt(i) = i%2 + 1
-set multiplot layout 1,3 margins 0.05,panels_right,0.14,0.92 spacing 0.065,0.1
-set key at screen panels_right + 0.015, 0.92 left top Left reverse samplen 2 spacing 1.05 font ",8"
+# Panels (a)-(c) in a 2 x 2 grid; the legend fills the fourth cell.
+set multiplot layout 2,2 margins 0.08,0.97,0.07,0.96 spacing 0.1,0.1
+set key at screen 0.58, 0.44 left top Left reverse samplen 3 spacing 1.1 font ",9"
 # Colour by path (A, B, C: two tests each), dash by the start.
 set logscale x
 set format x "10^{%T}"

@@ -2,7 +2,7 @@
 # psi_epsilon reaches that of a constant-psi_epsilon path (point_type 8,
 # open triangles) against those paths' asymptotic states (7, circles),
 # one block per psi_epsilon (data/fig19_states.tsv): (a) psi_sigma-ln(1+e),
-# (b) ln(1+e)-p. Variables: n_directions.
+# (b) ln(1+e)-p. Variables: n_directions, direction_titles (quoted words).
 width = 10.0; height = 4.5
 panels_right = 0.78
 load scripts."/common.gp"
@@ -13,7 +13,8 @@ set xlabel label_lnv
 set ylabel label_psi_sigma
 set title "(a)"
 plot for [i=0:n_directions-1] file index i using "ln_1_plus_e":"psi_sigma_deg":"point_type" \
-       with points pt variable ps 0.9 lt (i+1) title columnheader(5), \
+       with points pt variable ps 0.9 lt (i+1), \
+     for [i=0:n_directions-1] keyentry with points pt 7 ps 0.9 lt (i+1) title word(direction_titles, i+1), \
      keyentry with points pt 7 lc rgb "black" title "asymptotic state", \
      keyentry with points pt 8 lc rgb "black" title "on a triaxial path"
 unset key
