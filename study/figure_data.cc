@@ -1,0 +1,1193 @@
+#include "study/figure_data.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "common/config.h"
+#include "common/csv_table.h"
+#include "common/error.h"
+#include "common/hdf5_file.h"
+#include "common/text_file.h"
+#include "common/time_series.h"
+#include "dem/run_record.h"
+#include "dem/run_record_names.h"
+
+namespace granasym::study {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kDegree = M_PI / 180.0;
+
+// ---------------------------------------------------------------- data files
+
+// A data file of blocks: a header (column names, then the legend title) and rows.
+class BlockFile {
+ public:
+  explicit BlockFile(std::vector<std::string> columns) : columns_(std::move(columns)) {}
+  // Adds a block; rows with a non-finite value are dropped; an empty block
+  // is not written (gnuplot warns about blocks without points).
+  void Add(const std::string& title, const std::vector<std::vector<double>>& rows) {
+    std::string block;
+    for (size_t k = 0; k < columns_.size(); ++k) block += columns_[k] + "\t";
+    block += Clean(title) + "\n";
+    int kept = 0;
+    for (const std::vector<double>& row : rows) {
+      if (row.empty()) {  // a break in the curve (one blank line)
+        if (kept > 0) block += "\n";
+        continue;
+      }
+      bool finite = true;
+      for (double v : row) finite = finite && std::isfinite(v);
+      if (!finite) continue;
+      for (size_t k = 0; k < row.size(); ++k) {
+        block += fmt::format("{}{:.8g}", k ? "\t" : "", row[k]);
+      }
+      block += "\n";
+      ++kept;
+    }
+    if (kept == 0) return;
+    text_ += (blocks_ ? "\n\n" : "") + block;
+    ++blocks_;
+    titles_ += (titles_.empty() ? "\"" : " \"") + Clean(title) + "\"";
+  }
+  int blocks() const { return blocks_; }
+  // The blocks' titles as gnuplot words ("a b" "c"), for legend entries of
+  // blocks drawn with `pt variable` (whose own key sample is a dot).
+  const std::string& titles() const { return titles_; }
+  void Write(const std::string& path) const { WriteTextFileAtomically(path, text_); }
+
+ private:
+  static std::string Clean(std::string s) {
+    for (char& c : s) {
+      if (c == '\t' || c == '\n') c = ' ';
+    }
+    return s;
+  }
+  std::vector<std::string> columns_;
+  std::string text_, titles_;
+  int blocks_ = 0;
+};
+
+std::string Quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string Trim(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
+}
+
+std::vector<std::string> SplitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (!Trim(item).empty()) items.push_back(Trim(item));
+  }
+  return items;
+}
+
+// A number for a legend: 3 significant digits, no exponent for kPa values.
+std::string Short(double v) {
+  if (!std::isfinite(v)) return "?";
+  const double a = std::abs(v);
+  if (a >= 10) return fmt::format("{:.0f}", v);
+  if (a >= 1) return fmt::format("{:.3g}", v);
+  return fmt::format("{:.2g}", v);
+}
+
+// ---------------------------------------------------------------- cases
+
+struct Path {
+  std::vector<double> p, ln_v, psi_sigma, psi_epsilon, eps_s, q, i_dmin, i_dmax;
+  bool empty() const { return p.empty(); }
+};
+
+struct CaseData {
+  std::string name, directory, parent_name, parent_stage;
+  int replicate = 1;
+  std::vector<std::string> figures;
+  bool finished = false;
+  // From the result.
+  std::vector<dem::StageRecord> stages;
+  std::vector<double> stage_psi_epsilon;  // nominal ψ_ε per stage (NaN: not a strain path)
+  std::vector<double> stage_radial_stress;
+  double time_step = 0;
+  double friction = std::numeric_limits<double>::quiet_NaN();
+  Path path;  // the case's own rows
+  bool Serves(const std::string& figure) const {
+    return std::find(figures.begin(), figures.end(), figure) != figures.end();
+  }
+  double NominalPsiEpsilon() const {
+    for (double v : stage_psi_epsilon) {
+      if (std::isfinite(v)) return v;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
+double AttributeOr(const Hdf5File& file, const std::string& group, const char* name,
+                   double fallback) {
+  return file.HasAttribute(group, name) ? file.ReadDoubleAttribute(group, name) : fallback;
+}
+
+Path ReadPath(const TimeSeries& series, int64_t first, int64_t last, int half_rows) {
+  Path path;
+  if (series.rows() == 0 || last < first) return path;
+  first = std::max<int64_t>(first, 0);
+  last = std::min<int64_t>(last, static_cast<int64_t>(series.rows()) - 1);
+  auto slice = [&](const char* name) {
+    const std::vector<double>& v = series.Values(name);
+    return std::vector<double>(v.begin() + first, v.begin() + last + 1);
+  };
+  path.p = slice(dem::record::kColumnMeanStress);
+  path.ln_v = slice("ln_1_plus_e");
+  path.psi_sigma = slice(dem::record::kColumnPsiSigma);
+  path.q = slice("q_kpa");
+  path.i_dmin = slice(dem::record::kColumnInertialNumberDmin);
+  path.i_dmax = slice(dem::record::kColumnInertialNumberDmax);
+  const std::vector<double> eps_a = slice("eps_a"), eps_r = slice("eps_r");
+  path.eps_s.resize(eps_a.size());
+  for (size_t k = 0; k < eps_a.size(); ++k) {
+    path.eps_s[k] = 2.0 * ((eps_a[k] - eps_a[0]) - (eps_r[k] - eps_r[0])) / 3.0;
+  }
+  path.psi_epsilon = PathPsiEpsilon(eps_a, eps_r, half_rows);
+  return path;
+}
+
+std::vector<CaseData> LoadCases(const std::string& directory, int half_rows) {
+  std::vector<CaseData> cases;
+  const fs::path base = fs::path(directory) / "cases";
+  if (!fs::exists(base)) return cases;
+  std::vector<fs::path> folders;
+  for (const auto& replicate : fs::directory_iterator(base)) {
+    if (!replicate.is_directory()) continue;
+    for (const auto& entry : fs::directory_iterator(replicate.path())) {
+      if (entry.is_directory() && fs::exists(entry.path() / "case.toml")) {
+        folders.push_back(entry.path());
+      }
+    }
+  }
+  std::sort(folders.begin(), folders.end());
+  for (const fs::path& folder : folders) {
+    const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
+    CaseData c;
+    c.directory = folder.string();
+    c.name = record.GetString("name");
+    c.replicate = static_cast<int>(record.GetInt("replicate", 1, Range::AtLeast(1)));
+    c.figures = SplitList(record.GetString("figures", ""));
+    const std::string parent = record.GetString("parent", "");
+    c.parent_name = parent.empty() ? "" : parent.substr(parent.find('/') + 1);
+    c.parent_stage = record.GetString("parent_stage", "");
+    if (fs::exists(folder / "done.toml")) {
+      const ConfigTable done = ConfigTable::ParseFile((folder / "done.toml").string());
+      c.finished = done.GetString("key") == record.GetString("key") &&
+                   fs::exists(folder / "result.h5");
+    }
+    if (c.finished) {
+      const Hdf5File file = Hdf5File::OpenRead((folder / "result.h5").string());
+      c.stages = dem::ReadStageRecords(file);
+      for (size_t k = 0; k < c.stages.size(); ++k) {
+        const std::string group = dem::StageGroup(k);
+        c.stage_psi_epsilon.push_back(AttributeOr(file, group, dem::record::kStagePsiEpsilonDeg,
+                                                  std::numeric_limits<double>::quiet_NaN()));
+        c.stage_radial_stress.push_back(AttributeOr(
+            file, group, dem::record::kStageRadialStressKpa,
+            std::numeric_limits<double>::quiet_NaN()));
+      }
+      c.time_step = dem::ReadSummary(file).time_step;
+      const TimeSeries series = TimeSeries::Read(file, dem::record::kSeries);
+      if (!c.stages.empty()) {
+        c.path = ReadPath(series, c.stages.front().first_row, c.stages.back().last_row, half_rows);
+      }
+    }
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+const CaseData* FindCase(const std::vector<CaseData>& cases, int replicate,
+                         const std::string& name) {
+  for (const CaseData& c : cases) {
+    if (c.replicate == replicate && c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+// "NC 100 kPa", "OC 20 kPa" (unloaded from the NCL), from the parent stage.
+std::string StartLabel(const std::vector<CaseData>& cases, const CaseData& c) {
+  const CaseData* parent = FindCase(cases, c.replicate, c.parent_name);
+  if (!parent || !parent->finished) return "from " + (c.parent_name.empty() ? "the sample" : c.parent_name);
+  size_t k = parent->stages.size() - 1;
+  for (size_t j = 0; j < parent->stages.size(); ++j) {
+    if (parent->stages[j].name == c.parent_stage) k = j;
+  }
+  // Two significant digits: the stop condition overshoots its target slightly.
+  double p = parent->stages[k].validity.final_mean_stress_kpa;
+  if (p > 0) {
+    const double unit = std::pow(10.0, std::floor(std::log10(p)) - 1);
+    p = std::round(p / unit) * unit;
+  }
+  const double psi = parent->stage_psi_epsilon[k];
+  const std::string kind = std::abs(psi - 180) < 1 ? "OC" : std::abs(psi) < 1 ? "NC" : "";
+  return fmt::format("{}{}{} kPa", kind, kind.empty() ? "" : " ", Short(p));
+}
+
+std::string DirectionLabel(const CaseData& c) {
+  for (size_t k = 0; k < c.stages.size(); ++k) {
+    if (std::isfinite(c.stage_radial_stress[k])) {
+      return fmt::format("σ_r = {} kPa", Short(c.stage_radial_stress[k]));
+    }
+  }
+  return fmt::format("ψ_ε = {}°", Short(c.NominalPsiEpsilon()));
+}
+
+std::vector<std::vector<double>> Rows(std::initializer_list<const std::vector<double>*> columns) {
+  std::vector<std::vector<double>> rows;
+  const size_t n = (*columns.begin())->size();
+  for (size_t k = 0; k < n; ++k) {
+    std::vector<double> row;
+    for (const std::vector<double>* column : columns) row.push_back((*column)[k]);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The NCL of a replicate and NCL case from DIR/asymptotic_states.h5.
+std::map<std::pair<int, std::string>, NclLine> ReadNclFits(const std::string& directory) {
+  std::map<std::pair<int, std::string>, NclLine> fits;
+  const Hdf5File file = Hdf5File::OpenRead(directory + "/asymptotic_states.h5");
+  if (!file.Exists("/ncl_fit/N")) return fits;
+  const std::vector<int64_t> replicate = file.ReadInts("/ncl_fit/replicate");
+  const std::vector<std::string> names = file.ReadStrings("/ncl_fit/case");
+  const std::vector<double> n = file.ReadDoubles("/ncl_fit/N");
+  const std::vector<double> lambda = file.ReadDoubles("/ncl_fit/lambda_star");
+  for (size_t k = 0; k < replicate.size() && k < names.size() && k < n.size() && k < lambda.size();
+       ++k) {
+    if (std::isfinite(n[k]) && std::isfinite(lambda[k]) && lambda[k] > 0) {
+      fits[{static_cast<int>(replicate[k]), names[k]}] = NclLine{n[k], lambda[k]};
+    }
+  }
+  return fits;
+}
+
+std::string StudyNclName(const std::string& directory) {
+  const std::string path = directory + "/study.toml";
+  if (!fs::exists(path)) return "ncl";
+  const ConfigTable record = ConfigTable::ParseFile(path);
+  return record.GetString("ncl", "ncl");
+}
+
+bool UsableState(const StateRow& row) {
+  return (row.status == "detected" || row.status == "drifting") && row.p_kpa > 0 &&
+         std::isfinite(row.ln_1_plus_e);
+}
+
+std::string ModelTitle(const std::string& name) {
+  if (name == "hypoplastic_clay") return "hypoplastic clay (Mašín 2005)";
+  if (name == "modified_cam_clay") return "Modified Cam clay";
+  if (name == "hypoplastic_sand") return "hypoplastic sand (von Wolffersdorff 1996)";
+  std::string title = name;
+  std::replace(title.begin(), title.end(), '_', ' ');
+  return title;
+}
+
+struct Context {
+  std::string directory, data;  // DIR, DIR/figures/data
+  FigureDataOptions options;
+  std::vector<CaseData> cases;
+  std::vector<StateRow> states;
+  std::map<std::pair<int, std::string>, NclLine> ncl_fits;
+  std::string study_ncl;
+  std::vector<ModelOverlay> models;
+  std::string models_note;  // which models are overlaid, which absent
+
+  std::string File(const std::string& name) const { return data + "/" + name; }
+  // Replicate 1's finished cases that serve `figure`.
+  std::vector<const CaseData*> Serving(const std::string& figure) const {
+    std::vector<const CaseData*> out;
+    for (const CaseData& c : cases) {
+      if (c.replicate == 1 && c.finished && !c.path.empty() && c.Serves(figure)) out.push_back(&c);
+    }
+    return out;
+  }
+  NclLine StudyNcl(int replicate) const {
+    const auto it = ncl_fits.find({replicate, study_ncl});
+    return it == ncl_fits.end() ? NclLine{} : it->second;
+  }
+};
+
+FigureSpec Spec(const std::string& stem, const std::string& figure, const std::string& title,
+                const std::string& caption, const std::string& script) {
+  FigureSpec spec;
+  spec.stem = stem;
+  spec.figure = figure;
+  spec.title = title;
+  spec.caption = caption;
+  spec.script = script;
+  return spec;
+}
+
+FigureSpec NotDrawn(FigureSpec spec, const std::string& why) {
+  spec.not_drawn = why;
+  spec.caption += " Not drawn: " + why + ".";
+  return spec;
+}
+
+void Set(FigureSpec* spec, const std::string& name, int value) {
+  spec->variables.emplace_back(name, std::to_string(value));
+}
+void Set(FigureSpec* spec, const std::string& name, const std::string& value) {
+  spec->variables.emplace_back(name, Quoted(value));
+}
+
+// ---------------------------------------------------------------- figures
+
+FigureSpec Fig05(const Context& ctx) {
+  FigureSpec spec = Spec("fig05_model_paths", "5", "Asymptotic states of the hypoplastic model for clays",
+                  "Element tests of the hypoplastic model for clays (Mašín 2005; the programme's "
+                  "[[model_run]] parameters) along proportional paths: compression (A, 0° < ψ_ε "
+                  "< 90°), isochoric (B, ψ_ε = 90°) and extension (C, ψ_ε > 90°), each from a "
+                  "normally and an overconsolidated state; paths of one ψ_ε reach one asymptotic "
+                  "ψ_σ and a line parallel to the NCL. Data: DIR/models/<name>/result.csv.",
+                  "model_paths.gp");
+  BlockFile file({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
+  const fs::path models = fs::path(ctx.directory) / "models";
+  std::vector<fs::path> folders;
+  if (fs::exists(models)) {
+    for (const auto& entry : fs::directory_iterator(models)) {
+      if (fs::exists(entry.path() / "result.csv") && fs::exists(entry.path() / "done.toml")) {
+        folders.push_back(entry.path());
+      }
+    }
+  }
+  std::sort(folders.begin(), folders.end(), [](const fs::path& a, const fs::path& b) {
+    const CsvTable ta = CsvTable::ReadFile((a / "result.csv").string());
+    const CsvTable tb = CsvTable::ReadFile((b / "result.csv").string());
+    const double pa = ta.rows.empty() ? 0 : ta.rows[0][ta.Column("psi_epsilon_deg")];
+    const double pb = tb.rows.empty() ? 0 : tb.rows[0][tb.Column("psi_epsilon_deg")];
+    return pa != pb ? pa < pb : a < b;
+  });
+  for (const fs::path& folder : folders) {
+    const CsvTable table = CsvTable::ReadFile((folder / "result.csv").string());
+    if (table.rows.empty()) continue;
+    const size_t p = table.Column("p_kpa"), e = table.Column("void_ratio"),
+                 psi = table.Column("psi_sigma_deg"), dir = table.Column("psi_epsilon_deg"),
+                 ocr = table.Column("ocr");
+    std::vector<std::vector<double>> rows;
+    for (const std::vector<double>& r : table.rows) rows.push_back({r[p], std::log1p(r[e]), r[psi]});
+    const double psi_e = table.rows[0][dir];
+    const char* path = psi_e < 89.5 ? "A" : psi_e < 90.5 ? "B" : "C";
+    file.Add(fmt::format("{}: ψ_ε = {}°, OCR {}", path, Short(psi_e), Short(table.rows[0][ocr])),
+             rows);
+  }
+  if (file.blocks() == 0) return NotDrawn(spec, "no finished model runs in DIR/models");
+  file.Write(ctx.File("fig05_paths.tsv"));
+  Set(&spec, "n_paths", file.blocks());
+  return spec;
+}
+
+FigureSpec Fig08(const Context& ctx) {
+  FigureSpec spec = Spec("fig08_overlaps", "8", "Relative overlaps along the isotropic NCL",
+                  "Frequency of relative overlaps Δu/(r_i + r_j) among the contacts (a) at the end "
+                  "of each ψ_ε = 0° stage of the NCL case (replicate 1, /series_histogram), and "
+                  "(b) the coordination number against p along the same path. The paper takes "
+                  "2 % as the limit of accuracy and 10 % as unreliable.",
+                  "overlaps.gp");
+  const CaseData* ncl = FindCase(ctx.cases, 1, ctx.study_ncl);
+  if (!ncl || !ncl->finished) return NotDrawn(spec, "the NCL case has no result");
+  const Hdf5File file = Hdf5File::OpenRead(ncl->directory + "/result.h5");
+  const std::string edges_name = std::string(dem::record::kSeriesHistogram) + "/edges";
+  if (!file.Exists(edges_name)) return NotDrawn(spec, "the NCL case has no overlap histograms");
+  const std::vector<double> edges = file.ReadDoubles(edges_name);
+  const std::vector<double> counts = dem::ReadHistogramRows(file);
+  const size_t bins = edges.size() - 1;
+  BlockFile histograms({"relative_overlap", "fraction", "contacts"});
+  for (const dem::StageRecord& stage : ncl->stages) {
+    const size_t row = static_cast<size_t>(stage.last_row);
+    if ((row + 1) * bins > counts.size()) continue;
+    double total = 0;
+    for (size_t b = 0; b < bins; ++b) total += counts[row * bins + b];
+    if (!(total > 0)) continue;
+    std::vector<std::vector<double>> rows;
+    for (size_t b = 0; b < bins; ++b) {
+      const double centre = edges[b] > 0 ? std::sqrt(edges[b] * edges[b + 1]) : edges[b + 1] / 2;
+      rows.push_back({centre, counts[row * bins + b] / total, counts[row * bins + b]});
+    }
+    histograms.Add(fmt::format("p = {} kPa", Short(stage.validity.final_mean_stress_kpa)), rows);
+  }
+  if (histograms.blocks() == 0) return NotDrawn(spec, "the NCL histograms are empty");
+  histograms.Write(ctx.File("fig08_histograms.tsv"));
+  const TimeSeries series = TimeSeries::Read(file, dem::record::kSeries);
+  BlockFile contacts({"p_kpa", "coordination", "contacts"});
+  const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
+  const std::vector<double>& z = series.Values(dem::record::kColumnCoordination);
+  const std::vector<double>& n = series.Values("contacts");
+  std::vector<std::vector<double>> rows;
+  for (size_t k = 0; k < p.size(); ++k) {
+    if (p[k] > 0) rows.push_back({p[k], z[k], n[k]});
+  }
+  contacts.Add("ψ_ε = 0°", rows);
+  contacts.Write(ctx.File("fig08_contacts.tsv"));
+  Set(&spec, "n_histograms", histograms.blocks());
+  Set(&spec, "has_contacts", contacts.blocks());
+  return spec;
+}
+
+void AddLine(BlockFile* file, const std::string& title, const NclLine& line, double p_min,
+             double p_max) {
+  std::vector<std::vector<double>> rows;
+  for (int k = 0; k <= 20; ++k) {
+    const double ln_p = std::log(p_min) + (std::log(p_max) - std::log(p_min)) * k / 20;
+    rows.push_back({std::exp(ln_p), line.n - line.lambda * ln_p});
+  }
+  file->Add(title, rows);
+}
+
+FigureSpec Fig09(const Context& ctx) {
+  FigureSpec spec = Spec("fig09_ncl", "9", "Isotropic compression: monotonic and with unload/reload cycles",
+                  "ln(1+e) against p (log scale) along ψ_ε = 0° (the NCL case) and along the "
+                  "unload (ψ_ε = 180°)/reload (0°) cycles that start from it (replicate 1); the "
+                  "line is the NCL fitted through the NCL case's stage-end states (ncl_fit.csv).",
+                  "ncl.gp");
+  BlockFile file({"p_kpa", "ln_1_plus_e"});
+  std::vector<const CaseData*> cases = ctx.Serving("9");
+  double p_min = 1e300, p_max = 0;
+  for (const CaseData* c : cases) {
+    std::vector<std::vector<double>> rows;
+    for (size_t k = 0; k < c->path.p.size(); ++k) {
+      if (!(c->path.p[k] > 0)) continue;
+      rows.push_back({c->path.p[k], c->path.ln_v[k]});
+      p_min = std::min(p_min, c->path.p[k]);
+      p_max = std::max(p_max, c->path.p[k]);
+    }
+    const bool cycles = c->stages.size() > 1 && c->name != ctx.study_ncl;
+    file.Add(cycles ? "unload (ψ_ε = 180°)/reload (0°) cycles" : "monotonic, ψ_ε = 0°", rows);
+  }
+  if (file.blocks() == 0) return NotDrawn(spec, "no finished case serves Fig. 9");
+  const NclLine ncl = ctx.StudyNcl(1);
+  const int paths = file.blocks();
+  if (ncl.valid()) {
+    AddLine(&file, fmt::format("fitted NCL: N = {:.3f}, λ* = {:.4f}", ncl.n, ncl.lambda), ncl,
+            p_min, p_max);
+  }
+  file.Write(ctx.File("fig09_paths.tsv"));
+  Set(&spec, "n_paths", paths);
+  Set(&spec, "has_fit", file.blocks() - paths);
+  return spec;
+}
+
+// A figure of path families (Figs. 10, 11, 13-15): ψ_σ–p, ln(1+e)–p,
+// ψ_σ–ln(1+e), with the cases' asymptotic states of all replicates marked.
+FigureSpec PathFamily(const Context& ctx, const std::string& figure, const std::string& stem,
+                      const std::string& title, const std::string& what,
+                      const std::vector<std::pair<std::string, std::string>>& reference_kinds) {
+  FigureSpec spec = Spec(stem, figure, title,
+                  what + " Paths of replicate 1 (cases whose `figures` include " + figure +
+                      "): (a) ψ_σ against p, (b) ln(1+e) against p, (c) ψ_σ against ln(1+e). "
+                      "Marks: the detector's asymptotic states of these cases, all replicates "
+                      "(filled: detected; open: still drifting at the stage end; gases and "
+                      "invalid stages omitted).",
+                  "paths.gp");
+  BlockFile paths({"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "eps_s", "psi_epsilon_deg", "q_kpa"});
+  std::vector<const CaseData*> cases = ctx.Serving(figure);
+  std::stable_sort(cases.begin(), cases.end(), [](const CaseData* a, const CaseData* b) {
+    const double pa = a->NominalPsiEpsilon(), pb = b->NominalPsiEpsilon();
+    return std::isfinite(pa) && std::isfinite(pb) && pa != pb ? pa < pb : false;
+  });
+  std::set<std::string> names;
+  // Colour by direction (or σ_r), dash type by start.
+  std::vector<std::string> directions, starts;
+  std::string colours, dashes;
+  auto index_of = [](std::vector<std::string>* list, const std::string& item) {
+    auto it = std::find(list->begin(), list->end(), item);
+    if (it == list->end()) it = list->insert(list->end(), item);
+    return static_cast<int>(it - list->begin()) + 1;
+  };
+  for (const CaseData* c : cases) {
+    names.insert(c->name);
+    colours += fmt::format("{} ", index_of(&directions, DirectionLabel(*c)));
+    dashes += fmt::format("{} ", index_of(&starts, StartLabel(ctx.cases, *c)));
+    paths.Add(DirectionLabel(*c) + ", " + StartLabel(ctx.cases, *c),
+              Rows({&c->path.p, &c->path.ln_v, &c->path.psi_sigma, &c->path.eps_s,
+                    &c->path.psi_epsilon, &c->path.q}));
+  }
+  if (paths.blocks() == 0) return NotDrawn(spec, "no finished case serves Fig. " + figure);
+  BlockFile marks({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
+  std::vector<std::vector<double>> detected, drifting;
+  for (const StateRow& row : ctx.states) {
+    if (!names.count(row.case_name) || !UsableState(row)) continue;
+    (row.status == "detected" ? detected : drifting)
+        .push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg});
+  }
+  marks.Add("asymptotic states (detected)", detected);
+  marks.Add("still drifting at the stage end", drifting);
+  for (const auto& [kind, label] : reference_kinds) {
+    std::vector<std::vector<double>> rows;
+    for (const StateRow& row : ctx.states) {
+      if (row.kind == kind && row.status == "detected") {
+        rows.push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg});
+      }
+    }
+    marks.Add(label, rows);
+    if (!rows.empty()) spec.caption += " Grey marks: " + label + ".";
+  }
+  paths.Write(ctx.File(stem + "_paths.tsv"));
+  marks.Write(ctx.File(stem + "_states.tsv"));
+  Set(&spec, "stem", stem);
+  Set(&spec, "n_paths", paths.blocks());
+  Set(&spec, "path_colours", colours);
+  Set(&spec, "path_dashes", dashes);
+  Set(&spec, "n_marks", marks.blocks());
+  // Open marks are the second block only when there are detected ones.
+  Set(&spec, "first_open", detected.empty() ? 0 : 1);
+  Set(&spec, "n_own_marks", (detected.empty() ? 0 : 1) + (drifting.empty() ? 0 : 1));
+  return spec;
+}
+
+FigureSpec Fig12(const Context& ctx) {
+  FigureSpec spec = Spec("fig12_triaxial_strain", "12", "Drained triaxial tests against shear strain",
+                  "Constant-σ_r tests from NC and OC states (replicate 1) with the axial rate of "
+                  "the ψ_ε = 90° tests: (a) ψ_σ and (b) the stretching direction ψ_ε (from the "
+                  "strain increments over ±2 output rows) against the stage's shear strain "
+                  "ε_s = 2(ε_a − ε_r)/3.",
+                  "triaxial_strain.gp");
+  BlockFile paths({"eps_s", "psi_sigma_deg", "psi_epsilon_deg"});
+  for (const CaseData* c : ctx.Serving("12")) {
+    paths.Add(DirectionLabel(*c) + ", " + StartLabel(ctx.cases, *c),
+              Rows({&c->path.eps_s, &c->path.psi_sigma, &c->path.psi_epsilon}));
+  }
+  if (paths.blocks() == 0) return NotDrawn(spec, "no finished case serves Fig. 12");
+  paths.Write(ctx.File("fig12_paths.tsv"));
+  Set(&spec, "n_paths", paths.blocks());
+  return spec;
+}
+
+// Nominal ψ_ε of a state: the measured one, rounded to 0.1°.
+double NominalOf(const StateRow& row) { return std::round(row.psi_epsilon_deg * 10) / 10; }
+
+bool ConstantDirectionKind(const std::string& kind) {
+  return kind == "ncl" || kind == "csl" || kind == "compression" || kind == "extension";
+}
+
+FigureSpec Fig16(const Context& ctx) {
+  FigureSpec spec = Spec("fig16_asymptotic_states", "16", "Asymptotic states: summary",
+                  "The asymptotic states of all constant-ψ_ε paths, all replicates (filled: "
+                  "detected; open: still drifting at the stage end; gases and invalid stages "
+                  "omitted), with the joined parts of paths of one ψ_ε from different starts "
+                  "(path_convergence.csv): (a) ψ_σ against p, (b) ln(1+e) against p, (c) ψ_σ "
+                  "against ln(1+e), (d) ψ_σ against ψ_ε. Lines: the calibrated models' "
+                  "asymptotic lines in (b) and their ψ_σ(ψ_ε) in (d).",
+                  "asymptotic_states.gp");
+  std::map<double, std::vector<std::vector<double>>> by_direction;
+  for (const StateRow& row : ctx.states) {
+    if (!ConstantDirectionKind(row.kind) || !UsableState(row)) continue;
+    by_direction[NominalOf(row)].push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg,
+                                            row.psi_epsilon_deg,
+                                            row.status == "detected" ? 7.0 : 6.0});
+  }
+  BlockFile states({"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "psi_epsilon_deg", "point_type"});
+  for (const auto& [psi, rows] : by_direction) states.Add(fmt::format("ψ_ε = {}°", Short(psi)), rows);
+  if (states.blocks() == 0) return NotDrawn(spec, "the state table has no usable asymptotic states");
+  states.Write(ctx.File("fig16_states.tsv"));
+  BlockFile lines({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
+  BlockFile curves({"psi_epsilon_deg", "psi_sigma_deg"});
+  for (const ModelOverlay& model : ctx.models) {
+    std::vector<std::vector<double>> rows;
+    for (const ModelOverlay::Line& line : model.lines) {
+      for (size_t k = 0; k < line.ln_p.size(); ++k) {
+        rows.push_back({std::exp(line.ln_p[k]), line.ln_1_plus_e[k], line.psi_sigma_deg});
+      }
+      rows.push_back({});
+    }
+    lines.Add(model.title, rows);
+    // The paper's ψ_ε ≥ 0 (the curve spans the whole circle).
+    std::vector<std::vector<double>> curve;
+    for (size_t k = 0; k < model.psi_epsilon_deg.size() && k < model.psi_sigma_deg.size(); ++k) {
+      if (model.psi_epsilon_deg[k] >= 0) {
+        curve.push_back({model.psi_epsilon_deg[k], model.psi_sigma_deg[k]});
+      }
+    }
+    curves.Add(model.title, curve);
+  }
+  lines.Write(ctx.File("fig16_model_lines.tsv"));
+  curves.Write(ctx.File("fig16_model_curves.tsv"));
+  spec.caption += " " + ctx.models_note;
+  Set(&spec, "n_states", states.blocks());
+  Set(&spec, "state_titles", states.titles());
+  Set(&spec, "n_models", std::min(lines.blocks(), curves.blocks()));
+  return spec;
+}
+
+// The states projected to each level, and which levels.
+struct Sections {
+  std::vector<double> levels;
+  std::vector<std::vector<std::vector<double>>> rows;  // per level: p/pe, q/pe, ψ_ε, point type
+};
+
+Sections Project(const Context& ctx, std::vector<double> levels) {
+  Sections s;
+  s.levels = levels;
+  s.rows.resize(levels.size());
+  for (const StateRow& row : ctx.states) {
+    if (!ConstantDirectionKind(row.kind) || !UsableState(row)) continue;
+    const NclLine ncl = ctx.StudyNcl(row.replicate);
+    for (size_t l = 0; l < levels.size(); ++l) {
+      SectionPoint point;
+      if (ProjectToLevel(row, levels[l], ncl, ctx.options.max_projection_lnp, &point)) {
+        s.rows[l].push_back({point.p_over_pe, point.q_over_pe, point.psi_epsilon_deg,
+                             row.status == "detected" ? 7.0 : 6.0});
+      }
+    }
+  }
+  return s;
+}
+
+std::vector<double> StateLevels(const Context& ctx) {
+  std::vector<double> ln_v;
+  for (const StateRow& row : ctx.states) {
+    if (ConstantDirectionKind(row.kind) && UsableState(row)) ln_v.push_back(row.ln_1_plus_e);
+  }
+  return ln_v;
+}
+
+std::string ProjectionMethod(const FigureDataOptions& options) {
+  return fmt::format(
+      "Each asymptotic state (all replicates; filled: detected, open: drifting) is moved to the "
+      "level along its own asymptotic line — the detector's slope d ln(1+e)/d ln p for "
+      "compression and extension states, the line parallel to the NCL (constant OCR) for "
+      "isochoric and NCL states — keeping ψ_σ, if that moves it by at most {:g} in ln p; p_e* is "
+      "that of the replicate's NCL at the level.",
+      options.max_projection_lnp);
+}
+
+FigureSpec Fig17(const Context& ctx) {
+  FigureSpec spec = Spec("fig17_asbs_sections", "17", "Constant-e cross-sections of the ASBS",
+                  "q/p_e* against p/p_e* at constant ln(1+e) (each level its own colour; labels: "
+                  "ψ_ε in degrees). " +
+                      ProjectionMethod(ctx.options) +
+                      " Lines: each calibrated model's cross-section at the same ln(1+e), "
+                      "normalised by the same p_e* (dash type per model).",
+                  "asbs_sections.gp");
+  const NclLine ncl = ctx.StudyNcl(1);
+  if (!ncl.valid()) return NotDrawn(spec, "the study's NCL could not be fitted");
+  std::vector<double> levels = ctx.options.asbs_levels;
+  if (levels.empty()) levels = SectionLevels(StateLevels(ctx), 3);
+  if (levels.empty()) return NotDrawn(spec, "the state table has no usable asymptotic states");
+  const Sections sections = Project(ctx, levels);
+  BlockFile dem_file({"p_over_pe", "q_over_pe", "psi_epsilon_deg", "point_type"});
+  std::vector<double> drawn;
+  for (size_t l = 0; l < levels.size(); ++l) {
+    const int before = dem_file.blocks();
+    dem_file.Add(fmt::format("ln(1+e) = {:.3f}", levels[l]), sections.rows[l]);
+    if (dem_file.blocks() > before) drawn.push_back(levels[l]);
+  }
+  if (dem_file.blocks() == 0) {
+    return NotDrawn(spec, "no asymptotic state lies within the projection distance of a level");
+  }
+  dem_file.Write(ctx.File("fig17_dem.tsv"));
+  BlockFile model_file({"p_over_pe", "q_over_pe"});
+  for (const ModelOverlay& model : ctx.models) {
+    for (double level : drawn) {
+      std::vector<double> x, y;
+      ModelSectionAt(model, level, ncl, &x, &y);
+      model_file.Add(fmt::format("{}, ln(1+e) = {:.3f}", model.title, level), Rows({&x, &y}));
+    }
+  }
+  model_file.Write(ctx.File("fig17_models.tsv"));
+  spec.caption += " " + ctx.models_note;
+  Set(&spec, "n_levels", static_cast<int>(drawn.size()));
+  Set(&spec, "level_titles", dem_file.titles());
+  Set(&spec, "n_models", model_file.blocks() / static_cast<int>(drawn.size()));
+  return spec;
+}
+
+double Mean(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x;
+  return v.empty() ? std::numeric_limits<double>::quiet_NaN() : s / v.size();
+}
+
+FigureSpec Fig18(const Context& ctx) {
+  FigureSpec spec = Spec("fig18_asbs_level", "18", "The ASBS cross-section with ψ_ε = 90° paths",
+                  "", "asbs_level.gp");
+  const NclLine ncl = ctx.StudyNcl(1);
+  if (!ncl.valid()) return NotDrawn(spec, "the study's NCL could not be fitted");
+  std::vector<double> ln_v = StateLevels(ctx);
+  if (ln_v.empty()) return NotDrawn(spec, "the state table has no usable asymptotic states");
+  const double lo = *std::min_element(ln_v.begin(), ln_v.end());
+  const double hi = *std::max_element(ln_v.begin(), ln_v.end());
+  const double level = std::clamp(ctx.options.fig18_level, lo, hi);
+  spec.caption = fmt::format(
+      "The cross-section of the ASBS at ln(1+e) = {:.3f}{} in (a) logarithmic and (b) linear "
+      "p/p_e*, with the NC and OC ψ_ε = 90° paths of replicate 1 (cases serving Fig. 18) whose "
+      "mean ln(1+e) is nearest to the level, each row normalised by p_e* at its own void ratio. ",
+      level,
+      level == ctx.options.fig18_level
+          ? " (the paper's level)"
+          : fmt::format(" (the paper's {:g} lies outside the states' range {:.3f}–{:.3f})",
+                        ctx.options.fig18_level, lo, hi));
+  spec.caption += ProjectionMethod(ctx.options);
+  const Sections sections = Project(ctx, {level});
+  BlockFile dem_file({"p_over_pe", "q_over_pe", "psi_epsilon_deg", "point_type"});
+  dem_file.Add(fmt::format("asymptotic states at ln(1+e) = {:.3f}", level), sections.rows[0]);
+  if (dem_file.blocks() == 0) {
+    return NotDrawn(spec, "no asymptotic state lies within the projection distance of the level");
+  }
+  dem_file.Write(ctx.File("fig18_dem.tsv"));
+  // The NC and OC 90° paths nearest to the level.
+  const CaseData* best[2] = {nullptr, nullptr};
+  double distance[2] = {1e300, 1e300};
+  for (const CaseData* c : ctx.Serving("18")) {
+    if (std::abs(c->NominalPsiEpsilon() - 90) > 0.5) continue;
+    const std::string start = StartLabel(ctx.cases, *c);
+    const int k = start.rfind("NC", 0) == 0 ? 0 : start.rfind("OC", 0) == 0 ? 1 : -1;
+    if (k < 0) continue;
+    const double d = std::abs(Mean(c->path.ln_v) - level);
+    if (d < distance[k]) distance[k] = d, best[k] = c;
+  }
+  BlockFile path_file({"p_over_pe", "q_over_pe"});
+  for (const CaseData* c : best) {
+    if (!c) continue;
+    std::vector<std::vector<double>> rows;
+    for (size_t k = 0; k < c->path.p.size(); ++k) {
+      const double pe = ncl.EquivalentPressure(c->path.ln_v[k]);
+      rows.push_back({c->path.p[k] / pe, c->path.q[k] / pe});
+    }
+    path_file.Add(fmt::format("ψ_ε = 90°, {} (mean ln(1+e) = {:.3f})", StartLabel(ctx.cases, *c),
+                              Mean(c->path.ln_v)),
+                  rows);
+  }
+  path_file.Write(ctx.File("fig18_paths.tsv"));
+  BlockFile model_file({"p_over_pe", "q_over_pe"});
+  for (const ModelOverlay& model : ctx.models) {
+    std::vector<double> x, y;
+    ModelSectionAt(model, level, ncl, &x, &y);
+    model_file.Add(model.title, Rows({&x, &y}));
+  }
+  model_file.Write(ctx.File("fig18_models.tsv"));
+  spec.caption += " " + ctx.models_note;
+  Set(&spec, "n_paths", path_file.blocks());
+  Set(&spec, "n_models", model_file.blocks());
+  return spec;
+}
+
+FigureSpec Fig19(const Context& ctx) {
+  FigureSpec spec = Spec(
+      "fig19_triaxial_directions", "19", "Stretching directions along drained triaxial paths",
+      fmt::format("States picked along the constant-σ_r paths (all replicates; open triangles) "
+                  "where their stretching direction ψ_ε (strain increments over ±{} output rows) "
+                  "first reaches the ψ_ε of a constant-ψ_ε path, against the asymptotic states of "
+                  "those paths (all replicates; circles), one colour per ψ_ε: (a) ψ_σ against "
+                  "ln(1+e), (b) ln(1+e) against p.",
+                  ctx.options.psi_epsilon_half_rows),
+      "triaxial_picks.gp");
+  std::map<double, std::vector<std::vector<double>>> by_direction;
+  for (const StateRow& row : ctx.states) {
+    if (row.kind == "ncl" || !ConstantDirectionKind(row.kind) || !UsableState(row)) continue;
+    by_direction[NominalOf(row)].push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg, 7.0});
+  }
+  std::vector<double> targets;
+  for (const auto& [psi, rows] : by_direction) targets.push_back(psi);
+  int picked = 0;
+  for (const CaseData& c : ctx.cases) {
+    if (!c.finished || !c.Serves("19") || c.path.empty()) continue;
+    for (const StretchingPick& pick : PickStretchingDirections(
+             c.path.psi_epsilon, c.path.p, c.path.ln_v, c.path.psi_sigma, targets)) {
+      by_direction[pick.psi_epsilon_deg].push_back(
+          {pick.p_kpa, pick.ln_1_plus_e, pick.psi_sigma_deg, 8.0});
+      ++picked;
+    }
+  }
+  BlockFile file({"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "point_type"});
+  for (const auto& [psi, rows] : by_direction) file.Add(fmt::format("ψ_ε = {}°", Short(psi)), rows);
+  if (targets.empty()) return NotDrawn(spec, "the state table has no usable asymptotic states");
+  if (picked == 0) return NotDrawn(spec, "no triaxial path reaches the ψ_ε of a constant-ψ_ε path");
+  file.Write(ctx.File("fig19_states.tsv"));
+  Set(&spec, "n_directions", file.blocks());
+  Set(&spec, "direction_titles", file.titles());
+  return spec;
+}
+
+// The counterpart of a variant case: "phi0_nc100_psi90" → "nc100_psi90",
+// "ncl_phi0" → "ncl".
+std::string Counterpart(const std::string& name, const std::string& tag) {
+  if (name.rfind(tag + "_", 0) == 0) return name.substr(tag.size() + 1);
+  const std::string suffix = "_" + tag;
+  if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
+    return name.substr(0, name.size() - suffix.size());
+  }
+  return "";
+}
+
+// Variant cases (tag) against their counterparts: NCLs in ln(1+e)–p and the
+// 90° paths in a second panel.
+FigureSpec Variants(const Context& ctx, FigureSpec spec, const std::string& tag,
+                    const std::function<std::string(const CaseData&)>& label) {
+  BlockFile ncl({"p_kpa", "ln_1_plus_e"});
+  BlockFile paths({"p_kpa", "q_kpa", "psi_sigma_deg", "eps_s"});
+  std::vector<const CaseData*> pairs;
+  for (const CaseData* c : ctx.Serving(spec.figure)) {
+    const std::string other = Counterpart(c->name, tag);
+    const CaseData* reference = FindCase(ctx.cases, 1, other);
+    if (reference && reference->finished && !reference->path.empty()) pairs.push_back(reference);
+    pairs.push_back(c);
+  }
+  for (const CaseData* c : pairs) {
+    const bool is_ncl = std::abs(c->NominalPsiEpsilon()) < 0.5;
+    const std::string title =
+        label(*c) + (is_ncl ? "" : ", " + DirectionLabel(*c) + ", " + StartLabel(ctx.cases, *c));
+    if (is_ncl) {
+      ncl.Add(title, Rows({&c->path.p, &c->path.ln_v}));
+    } else {
+      paths.Add(title, Rows({&c->path.p, &c->path.q, &c->path.psi_sigma, &c->path.eps_s}));
+    }
+  }
+  if (ncl.blocks() == 0 && paths.blocks() == 0) {
+    return NotDrawn(spec, "no finished case serves " + spec.figure);
+  }
+  if (ncl.blocks() == 0 || paths.blocks() == 0) {
+    return NotDrawn(spec, ncl.blocks() == 0 ? "no NCL to compare" : "no ψ_ε = 90° path to compare");
+  }
+  ncl.Write(ctx.File(spec.stem + "_ncl.tsv"));
+  paths.Write(ctx.File(spec.stem + "_paths.tsv"));
+  Set(&spec, "stem", spec.stem);
+  Set(&spec, "n_ncl", ncl.blocks());
+  Set(&spec, "n_paths", paths.blocks());
+  return spec;
+}
+
+FigureSpec Fig20(const Context& ctx) {
+  FigureSpec spec = Spec("fig20_friction", "20", "Contact friction φ = 0 against φ = 0.5 rad",
+                  "(a) The isotropic NCL in ln(1+e) against p and (b) the stress paths q against "
+                  "p of the ψ_ε = 90° tests from NC states, for frictionless contacts (cases "
+                  "serving Fig. 20) and the paper's φ = 0.5 rad (the same cases without the "
+                  "phi0 tag), replicate 1.",
+                  "friction.gp");
+  return Variants(ctx, spec, "phi0",
+                  [](const CaseData& c) {
+                    return c.name.find("phi0") != std::string::npos ? "φ = 0" : "φ = 0.5 rad";
+                  });
+}
+
+FigureSpec Sec52(const Context& ctx) {
+  FigureSpec spec = Spec("sec52_time_step", "Sec. 5.2", "Time-step independence: Δt against Δt/5",
+                  "(a) The isotropic NCL in ln(1+e) against p and (b) ψ_σ against the shear "
+                  "strain ε_s of the ψ_ε = 90° path from NC 100 kPa, with the programme's time "
+                  "step and with a fifth of it (cases serving Sec. 5.2 against the same cases "
+                  "without the dt5 tag), replicate 1.",
+                  "time_step.gp");
+  return Variants(ctx, spec, "dt5",
+                  [](const CaseData& c) {
+                    return fmt::format("Δt = {:.3g} s", c.time_step);
+                  });
+}
+
+FigureSpec Fig22(const Context& ctx) {
+  FigureSpec spec = Spec("fig22_inertial_number", "22", "Inertial number against mean stress",
+                  "The inertial number I = ‖D‖ d √(2ρ_s/p) (paper Eq. 5) for the smallest and the "
+                  "largest particle diameter along the cases serving Figs. 21–22 (the isotropic "
+                  "NCL, replicate 1), with I = 10^{-2} (quasi-static) and the stricter 10^{-3}.",
+                  "inertial.gp");
+  BlockFile file({"p_kpa", "inertial_number"});
+  std::set<const CaseData*> cases;
+  for (const char* f : {"21", "22"}) {
+    for (const CaseData* c : ctx.Serving(f)) cases.insert(c);
+  }
+  for (const CaseData* c : cases) {
+    auto positive = [&](const std::vector<double>& i) {
+      std::vector<std::vector<double>> rows;
+      for (size_t k = 0; k < c->path.p.size(); ++k) {
+        if (c->path.p[k] > 0 && i[k] > 0) rows.push_back({c->path.p[k], i[k]});
+      }
+      return rows;
+    };
+    file.Add("d_{min}, " + DirectionLabel(*c), positive(c->path.i_dmin));
+    file.Add("d_{max}, " + DirectionLabel(*c), positive(c->path.i_dmax));
+  }
+  if (file.blocks() == 0) return NotDrawn(spec, "no finished case serves Figs. 21-22");
+  file.Write(ctx.File("fig22_inertial.tsv"));
+  Set(&spec, "n_curves", file.blocks());
+  return spec;
+}
+
+}  // namespace
+
+bool FigureDataOptions::IsValid(std::string* why) const {
+  for (double level : asbs_levels) {
+    if (!(std::isfinite(level) && level > 0)) {
+      *why = fmt::format("asbs_levels: {} is not a finite positive ln(1+e)", level);
+      return false;
+    }
+  }
+  if (!(fig18_level > 0)) {
+    *why = "fig18_level: must be a positive ln(1+e)";
+    return false;
+  }
+  if (!(max_projection_lnp > 0)) {
+    *why = "max_projection_lnp: must be positive";
+    return false;
+  }
+  if (psi_epsilon_half_rows < 1) {
+    *why = "psi_epsilon_half_rows: must be at least 1";
+    return false;
+  }
+  return true;
+}
+
+double NclLine::EquivalentPressure(double ln_v) const { return std::exp((n - ln_v) / lambda); }
+
+bool ProjectToLevel(const StateRow& state, double level, const NclLine& ncl, double max_lnp,
+                    SectionPoint* point) {
+  if (!ncl.valid() || !(state.p_kpa > 0) || !std::isfinite(state.ln_1_plus_e)) return false;
+  double slope = -ncl.lambda;
+  if ((state.kind == "compression" || state.kind == "extension") &&
+      std::isfinite(state.dln1pe_dlnp) && state.dln1pe_dlnp < -1e-3) {
+    slope = state.dln1pe_dlnp;
+  }
+  const double shift = (level - state.ln_1_plus_e) / slope;
+  if (!(std::abs(shift) <= max_lnp)) return false;
+  const double p = state.p_kpa * std::exp(shift);
+  const double pe = ncl.EquivalentPressure(level);
+  const double q_over_p = 3.0 / std::sqrt(2.0) * std::tan(state.psi_sigma_deg * kDegree);
+  point->p_over_pe = p / pe;
+  point->q_over_pe = q_over_p * p / pe;
+  point->psi_epsilon_deg = state.psi_epsilon_deg;
+  point->lnp_shift = shift;
+  return true;
+}
+
+std::vector<double> PathPsiEpsilon(const std::vector<double>& eps_a,
+                                   const std::vector<double>& eps_r, int half_rows) {
+  const int n = static_cast<int>(std::min(eps_a.size(), eps_r.size()));
+  std::vector<double> psi(n, std::numeric_limits<double>::quiet_NaN());
+  for (int k = 0; k < n; ++k) {
+    const int a = std::max(0, k - half_rows), b = std::min(n - 1, k + half_rows);
+    if (a == b) continue;
+    const double da = eps_a[b] - eps_a[a], dr = eps_r[b] - eps_r[a];
+    if (da == 0 && dr == 0) continue;
+    psi[k] = std::atan2(std::sqrt(2.0) * (da - dr), da + 2 * dr) / kDegree;
+  }
+  return psi;
+}
+
+std::vector<StretchingPick> PickStretchingDirections(const std::vector<double>& psi_epsilon_deg,
+                                                     const std::vector<double>& p_kpa,
+                                                     const std::vector<double>& ln_1_plus_e,
+                                                     const std::vector<double>& psi_sigma_deg,
+                                                     const std::vector<double>& targets_deg) {
+  std::vector<StretchingPick> picks;
+  const size_t n = std::min({psi_epsilon_deg.size(), p_kpa.size(), ln_1_plus_e.size(),
+                             psi_sigma_deg.size()});
+  for (double target : targets_deg) {
+    for (size_t k = 1; k < n; ++k) {
+      const double a = psi_epsilon_deg[k - 1] - target, b = psi_epsilon_deg[k] - target;
+      if (!std::isfinite(a) || !std::isfinite(b)) continue;
+      if (!((a < 0 && b >= 0) || (a > 0 && b <= 0))) continue;
+      const double t = a / (a - b);
+      auto at = [&](const std::vector<double>& v) { return v[k - 1] + t * (v[k] - v[k - 1]); };
+      StretchingPick pick;
+      pick.psi_epsilon_deg = target;
+      pick.p_kpa = std::exp(std::log(p_kpa[k - 1]) + t * (std::log(p_kpa[k]) - std::log(p_kpa[k - 1])));
+      pick.ln_1_plus_e = at(ln_1_plus_e);
+      pick.psi_sigma_deg = at(psi_sigma_deg);
+      pick.row = static_cast<double>(k - 1) + t;
+      if (std::isfinite(pick.p_kpa)) picks.push_back(pick);
+      break;
+    }
+  }
+  return picks;
+}
+
+std::vector<double> SectionLevels(std::vector<double> ln_v, int count) {
+  ln_v.erase(std::remove_if(ln_v.begin(), ln_v.end(), [](double v) { return !std::isfinite(v); }),
+             ln_v.end());
+  if (ln_v.empty() || count < 1) return {};
+  const double lo = *std::min_element(ln_v.begin(), ln_v.end());
+  const double hi = *std::max_element(ln_v.begin(), ln_v.end());
+  auto round = [](double v) { return std::round(v / 0.005) * 0.005; };
+  if (hi - lo < 0.01 || count == 1) return {round(0.5 * (lo + hi))};
+  std::vector<double> levels;
+  for (int k = 0; k < count; ++k) {
+    const double level = round(lo + (hi - lo) * (0.2 + 0.6 * k / (count - 1)));
+    if (levels.empty() || level > levels.back()) levels.push_back(level);
+  }
+  return levels;
+}
+
+ModelOverlay ReadModelOverlay(const std::string& folder, const std::string& name) {
+  ModelOverlay model;
+  model.name = name;
+  model.title = ModelTitle(name);
+  const CsvTable curve = CsvTable::ReadFile(folder + "/model_curve.csv");
+  model.psi_epsilon_deg = curve.ColumnValues("psi_epsilon_deg");
+  model.psi_sigma_deg = curve.ColumnValues("psi_sigma_deg");
+  model.p_over_pe = curve.ColumnValues("p_over_pe");
+  model.q_over_pe = curve.ColumnValues("q_over_pe");
+  // model_lines.dat: comma-separated psi_epsilon_deg, ln_p, ln_1_plus_e,
+  // psi_sigma_deg, '#' comments, blocks by blank lines.
+  const std::string path = folder + "/model_lines.dat";
+  std::istringstream in(ReadTextFile(path));
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (Trim(line).empty() || Trim(line)[0] == '#') continue;
+    double v[4];
+    std::istringstream fields(line);
+    std::string field;
+    for (int k = 0; k < 4; ++k) {
+      if (!std::getline(fields, field, ',')) {
+        throw InputError(fmt::format("{}:{}: expected 4 comma-separated numbers, got '{}'", path,
+                                     number, line));
+      }
+      try {
+        size_t used = 0;
+        v[k] = std::stod(field, &used);
+        if (Trim(field.substr(used)) != "") throw std::invalid_argument(field);
+      } catch (const std::exception&) {
+        throw InputError(fmt::format("{}:{}: '{}' is not a number", path, number, field));
+      }
+    }
+    if (model.lines.empty() || model.lines.back().psi_epsilon_deg != v[0]) {
+      model.lines.push_back({v[0], v[3], {}, {}});
+    }
+    model.lines.back().ln_p.push_back(v[1]);
+    model.lines.back().ln_1_plus_e.push_back(v[2]);
+  }
+  // The model's NCL from its ψ_ε = 0° line (least squares: a straight line
+  // for the clay models; the sand's Bauer curve gets its mean slope).
+  for (const ModelOverlay::Line& l : model.lines) {
+    if (std::abs(l.psi_epsilon_deg) > 1e-9 || l.ln_p.size() < 2) continue;
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    const double m = static_cast<double>(l.ln_p.size());
+    for (size_t k = 0; k < l.ln_p.size(); ++k) {
+      sx += l.ln_p[k], sy += l.ln_1_plus_e[k];
+      sxx += l.ln_p[k] * l.ln_p[k], sxy += l.ln_p[k] * l.ln_1_plus_e[k];
+    }
+    const double slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
+    model.ncl = NclLine{(sy - slope * sx) / m, -slope};
+  }
+  if (!model.ncl.valid()) {
+    throw RuntimeError(path + ": no psi_epsilon = 0 line with a falling ln(1+e) (the model's NCL)");
+  }
+  return model;
+}
+
+void ModelSectionAt(const ModelOverlay& model, double level, const NclLine& study_ncl,
+                    std::vector<double>* p_over_pe, std::vector<double>* q_over_pe) {
+  p_over_pe->clear();
+  q_over_pe->clear();
+  const double scale = model.ncl.EquivalentPressure(level) / study_ncl.EquivalentPressure(level);
+  for (size_t k = 0; k < model.p_over_pe.size() && k < model.q_over_pe.size(); ++k) {
+    p_over_pe->push_back(model.p_over_pe[k] * scale);
+    q_over_pe->push_back(model.q_over_pe[k] * scale);
+  }
+}
+
+std::vector<FigureSpec> WriteFigureData(const std::string& directory,
+                                        const FigureDataOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("figure options: " + why);
+  const std::string table = directory + "/asymptotic_states.h5";
+  if (!fs::exists(table)) {
+    throw InputError(table + " does not exist: run `granasym study run` (or `study merge`) "
+                     "on the study folder first");
+  }
+  Context ctx;
+  ctx.directory = directory;
+  ctx.data = directory + "/figures/data";
+  ctx.options = options;
+  fs::create_directories(ctx.data);
+  for (const auto& entry : fs::directory_iterator(ctx.data)) {
+    if (entry.path().extension() == ".tsv") fs::remove(entry.path());
+  }
+  ctx.cases = LoadCases(directory, options.psi_epsilon_half_rows);
+  ctx.states = ReadStateTable(directory);
+  ctx.ncl_fits = ReadNclFits(directory);
+  ctx.study_ncl = StudyNclName(directory);
+  std::vector<std::string> overlaid, absent;
+  for (const std::string& name : options.models) {
+    const std::string folder = directory + "/calibration/" + name + "/plot_data";
+    if (fs::exists(folder + "/model_curve.csv") && fs::exists(folder + "/model_lines.dat")) {
+      ctx.models.push_back(ReadModelOverlay(folder, name));
+      overlaid.push_back(ModelTitle(name));
+    } else {
+      absent.push_back(ModelTitle(name));
+    }
+  }
+  auto join = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (size_t k = 0; k < v.size(); ++k) s += (k ? ", " : "") + v[k];
+    return s;
+  };
+  ctx.models_note = overlaid.empty() ? "No calibrated model is overlaid"
+                                     : "Models overlaid (DIR/calibration/<model>/plot_data): " +
+                                           join(overlaid);
+  if (!absent.empty()) ctx.models_note += "; not calibrated in this study, so not shown: " + join(absent);
+  ctx.models_note += ".";
+
+  std::vector<FigureSpec> figures;
+  figures.push_back(Fig05(ctx));
+  figures.push_back(Fig08(ctx));
+  figures.push_back(Fig09(ctx));
+  figures.push_back(PathFamily(ctx, "10", "fig10_csl_nc", "Isochoric paths from NC states",
+                               "ψ_ε = 90° paths from normally consolidated states: the critical "
+                               "state line.",
+                               {}));
+  figures.push_back(PathFamily(ctx, "11", "fig11_csl_oc", "Isochoric paths from OC states",
+                               "ψ_ε = 90° paths from overconsolidated states (loaded to 1000 kPa, "
+                               "unloaded along ψ_ε = 180°): the asymptotic state does not depend "
+                               "on the start.",
+                               {{"csl", "NC ψ_ε = 90° asymptotes (Fig. 10), all replicates"}}));
+  figures.push_back(Fig12(ctx));
+  figures.push_back(PathFamily(ctx, "13", "fig13_triaxial", "Drained triaxial paths",
+                               "Constant-σ_r paths from NC and OC states.",
+                               {{"csl", "ψ_ε = 90° asymptotes (Figs. 10-11), all replicates"}}));
+  figures.push_back(PathFamily(ctx, "14", "fig14_compression", "Compression asymptotic states",
+                               "Proportional compression paths, 0° < ψ_ε < 90°, from NC states.",
+                               {}));
+  figures.push_back(PathFamily(ctx, "15", "fig15_extension", "Extension asymptotic states",
+                               "Proportional extension paths, ψ_ε > 90°, from NC states: the "
+                               "normal extension lines (a path that ends as a gas has no "
+                               "asymptotic state).",
+                               {}));
+  figures.push_back(Fig16(ctx));
+  figures.push_back(Fig17(ctx));
+  figures.push_back(Fig18(ctx));
+  figures.push_back(Fig19(ctx));
+  figures.push_back(Fig20(ctx));
+  figures.push_back(Fig22(ctx));
+  figures.push_back(Sec52(ctx));
+  return figures;
+}
+
+void WriteFigureIndex(const std::string& directory, const std::vector<FigureSpec>& figures) {
+  auto clean = [](std::string s) {
+    for (char& c : s) {
+      if (c == '\t' || c == '\n' || c == '\r') c = ' ';
+    }
+    return s;
+  };
+  std::string text = "stem\tfigure\ttitle\tcaption\n";
+  for (const FigureSpec& f : figures) {
+    text += clean(f.stem) + "\t" + clean(f.figure) + "\t" + clean(f.title) + "\t" +
+            clean(f.caption) + "\n";
+  }
+  fs::create_directories(directory + "/figures");
+  WriteTextFileAtomically(directory + "/figures/index.tsv", text);
+}
+
+}  // namespace granasym::study

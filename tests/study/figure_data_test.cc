@@ -1,0 +1,207 @@
+#include "study/figure_data.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "common/error.h"
+#include "common/text_file.h"
+
+namespace granasym::study {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kDegree = M_PI / 180.0;
+
+StateRow State(const std::string& kind, double p, double ln_v, double psi_sigma,
+               double slope) {
+  StateRow row;
+  row.kind = kind;
+  row.status = "detected";
+  row.p_kpa = p;
+  row.ln_1_plus_e = ln_v;
+  row.e = std::expm1(ln_v);
+  row.psi_sigma_deg = psi_sigma;
+  row.psi_epsilon_deg = kind == "csl" ? 90 : 50;
+  row.dln1pe_dlnp = slope;
+  return row;
+}
+
+TEST(FigureDataOptions, DefaultOptionsAreValid) {
+  std::string why;
+  EXPECT_TRUE(FigureDataOptions().IsValid(&why)) << why;
+  FigureDataOptions bad;
+  bad.asbs_levels = {0.6, -1.0};
+  EXPECT_FALSE(bad.IsValid(&why));
+  EXPECT_NE(why.find("asbs_levels"), std::string::npos);
+}
+
+TEST(ProjectToLevel, ACompressionStateMovesAlongItsOwnAsymptoticLine) {
+  const NclLine ncl{0.8, 0.03};
+  const StateRow state = State("compression", 100.0, 0.60, 20.0, -0.05);
+  SectionPoint point;
+  ASSERT_TRUE(ProjectToLevel(state, 0.59, ncl, 1.0, &point));
+  // (0.59 − 0.60)/(−0.05) = 0.2 in ln p, at ψ_σ kept.
+  EXPECT_NEAR(point.lnp_shift, 0.2, 1e-12);
+  const double p = 100.0 * std::exp(0.2);
+  const double pe = std::exp((0.8 - 0.59) / 0.03);
+  EXPECT_NEAR(point.p_over_pe, p / pe, 1e-12);
+  EXPECT_NEAR(point.q_over_pe, 3.0 / std::sqrt(2.0) * std::tan(20 * kDegree) * p / pe, 1e-12);
+  EXPECT_EQ(point.psi_epsilon_deg, 50);
+}
+
+TEST(ProjectToLevel, AnIsochoricStateKeepsItsOcrAlongTheNclSlope) {
+  const NclLine ncl{0.8, 0.03};
+  // The detector's slope of an isochoric path is ~0: the NCL's is used.
+  const StateRow state = State("csl", 50.0, 0.62, 30.0, 1e-12);
+  SectionPoint point;
+  ASSERT_TRUE(ProjectToLevel(state, 0.61, ncl, 1.0, &point));
+  const double ocr = ncl.EquivalentPressure(0.62) / 50.0;
+  EXPECT_NEAR(point.p_over_pe, 1.0 / ocr, 1e-12);
+  EXPECT_NEAR(point.lnp_shift, 0.01 / 0.03, 1e-12);
+}
+
+TEST(ProjectToLevel, AStateFartherThanTheLimitIsSkipped) {
+  const NclLine ncl{0.8, 0.03};
+  const StateRow state = State("compression", 100.0, 0.60, 20.0, -0.05);
+  SectionPoint point;
+  EXPECT_FALSE(ProjectToLevel(state, 0.50, ncl, 1.0, &point));  // 2 in ln p
+  EXPECT_TRUE(ProjectToLevel(state, 0.50, ncl, 2.5, &point));
+  EXPECT_FALSE(ProjectToLevel(state, 0.60, NclLine{}, 1.0, &point));  // no NCL
+}
+
+TEST(PathPsiEpsilon, StrainIncrementsGiveTheDirection) {
+  // ψ_ε = 90°: ε_a = t √(2/3), ε_r = −t/√6 (SPEC §2 inverse); ψ_ε = 0°: ε_a = ε_r.
+  std::vector<double> a90, r90, a0, r0;
+  for (int k = 0; k < 10; ++k) {
+    a90.push_back(k * std::sqrt(2.0 / 3.0));
+    r90.push_back(-k / std::sqrt(6.0));
+    a0.push_back(0.01 * k);
+    r0.push_back(0.01 * k);
+  }
+  for (double psi : PathPsiEpsilon(a90, r90, 2)) EXPECT_NEAR(psi, 90.0, 1e-9);
+  for (double psi : PathPsiEpsilon(a0, r0, 1)) EXPECT_NEAR(psi, 0.0, 1e-9);
+}
+
+TEST(PickStretchingDirections, TheFirstCrossingOfEachTargetIsInterpolated) {
+  // ψ_ε rises 0 → 100° over rows 0..10, then falls back to 90°.
+  std::vector<double> psi, p, ln_v, psi_sigma;
+  for (int k = 0; k <= 10; ++k) psi.push_back(10.0 * k);
+  psi.push_back(95.0);
+  psi.push_back(90.0);
+  for (size_t k = 0; k < psi.size(); ++k) {
+    p.push_back(100.0 * std::exp(0.1 * k));
+    ln_v.push_back(0.6 - 0.001 * k);
+    psi_sigma.push_back(2.0 * k);
+  }
+  const std::vector<StretchingPick> picks =
+      PickStretchingDirections(psi, p, ln_v, psi_sigma, {45.0, 95.0, 120.0});
+  ASSERT_EQ(picks.size(), 2u);  // 120° is never reached
+  EXPECT_EQ(picks[0].psi_epsilon_deg, 45.0);
+  EXPECT_NEAR(picks[0].row, 4.5, 1e-12);
+  EXPECT_NEAR(picks[0].p_kpa, 100.0 * std::exp(0.45), 1e-9);  // log-linear in p
+  EXPECT_NEAR(picks[0].ln_1_plus_e, 0.6 - 0.0045, 1e-12);
+  EXPECT_NEAR(picks[0].psi_sigma_deg, 9.0, 1e-12);
+  // 95° is crossed rising (row 9.5) before it is reached falling (row 11).
+  EXPECT_NEAR(picks[1].row, 9.5, 1e-12);
+}
+
+TEST(SectionLevels, LevelsSpanTheMiddleOfTheRange) {
+  const std::vector<double> levels = SectionLevels({0.50, 0.55, 0.62, 0.70}, 3);
+  ASSERT_EQ(levels.size(), 3u);
+  EXPECT_NEAR(levels[0], 0.54, 1e-12);
+  EXPECT_NEAR(levels[1], 0.60, 1e-12);
+  EXPECT_NEAR(levels[2], 0.66, 1e-12);
+  EXPECT_EQ(SectionLevels({0.600, 0.604}, 3).size(), 1u);
+  EXPECT_TRUE(SectionLevels({}, 3).empty());
+}
+
+class ModelOverlayTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = (fs::temp_directory_path() /
+               ("granasym_overlay_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed())))
+                  .string();
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+  void WriteModel(double n, double lambda) {
+    WriteTextFileAtomically(folder_ + "/model_curve.csv",
+                            "psi_sigma_deg,psi_epsilon_deg,ocr,ln_ocr,p_over_pe,q_over_pe\n"
+                            "0,0,1,0,1,0\n30,90,2,0.693,0.5,0.6\n");
+    std::string lines = "# model asymptotic lines\n# columns: ...\n";
+    for (double psi : {0.0, 90.0}) {
+      for (int k = 0; k <= 4; ++k) {
+        const double ln_p = k;
+        const double ln_ocr = psi == 0 ? 0 : std::log(2.0);
+        lines += std::to_string(psi) + "," + std::to_string(ln_p) + "," +
+                 std::to_string(n - lambda * (ln_p + ln_ocr)) + "," + (psi == 0 ? "0" : "30") +
+                 "\n";
+      }
+      lines += "\n\n";
+    }
+    WriteTextFileAtomically(folder_ + "/model_lines.dat", lines);
+  }
+  std::string folder_;
+};
+
+TEST_F(ModelOverlayTest, TheModelsNclComesFromItsIsotropicLine) {
+  WriteModel(0.9, 0.05);
+  const ModelOverlay model = ReadModelOverlay(folder_, "hypoplastic_clay");
+  EXPECT_NEAR(model.ncl.n, 0.9, 1e-6);
+  EXPECT_NEAR(model.ncl.lambda, 0.05, 1e-6);
+  ASSERT_EQ(model.lines.size(), 2u);
+  EXPECT_EQ(model.lines[1].psi_sigma_deg, 30);
+  EXPECT_EQ(model.lines[1].ln_p.size(), 5u);
+}
+
+TEST_F(ModelOverlayTest, TheSectionIsRescaledToTheStudysEquivalentPressure) {
+  WriteModel(0.9, 0.05);
+  const ModelOverlay model = ReadModelOverlay(folder_, "modified_cam_clay");
+  std::vector<double> x, y;
+  ModelSectionAt(model, 0.7, NclLine{0.9, 0.05}, &x, &y);  // the same NCL: unchanged
+  ASSERT_EQ(x.size(), 2u);
+  EXPECT_NEAR(x[1], 0.5, 1e-6);
+  EXPECT_NEAR(y[1], 0.6, 1e-6);
+  // The study's NCL lower by 0.05 at λ* = 0.05: its p_e* is e^-1 of the model's.
+  ModelSectionAt(model, 0.7, NclLine{0.85, 0.05}, &x, &y);
+  EXPECT_NEAR(x[1], 0.5 * std::exp(1.0), 1e-5);
+  EXPECT_NEAR(y[1], 0.6 * std::exp(1.0), 1e-5);
+}
+
+TEST_F(ModelOverlayTest, AMalformedLineNamesTheFileAndLine) {
+  WriteModel(0.9, 0.05);
+  WriteTextFileAtomically(folder_ + "/model_lines.dat", "# header\n0,1,abc,0\n");
+  try {
+    ReadModelOverlay(folder_, "hypoplastic_clay");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("model_lines.dat:2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(WriteFigureData, AFolderWithoutAStateTableIsAnInputError) {
+  const std::string folder = (fs::temp_directory_path() / "granasym_no_study").string();
+  fs::create_directories(folder);
+  EXPECT_THROW(WriteFigureData(folder), InputError);
+  fs::remove_all(folder);
+}
+
+TEST(WriteFigureIndex, OneRowPerFigureWithTabsRemovedFromFields) {
+  const std::string folder = (fs::temp_directory_path() / "granasym_figure_index").string();
+  fs::create_directories(folder);
+  FigureSpec a{"fig09_ncl", "9", "NCL", "a\tcaption\nover lines", "ncl.gp", {}, ""};
+  FigureSpec b{"fig17_asbs_sections", "17", "ASBS", "Not drawn: no NCL.", "asbs_sections.gp", {},
+               "no NCL"};
+  WriteFigureIndex(folder, {a, b});
+  EXPECT_EQ(ReadTextFile(folder + "/figures/index.tsv"),
+            "stem\tfigure\ttitle\tcaption\n"
+            "fig09_ncl\t9\tNCL\ta caption over lines\n"
+            "fig17_asbs_sections\t17\tASBS\tNot drawn: no NCL.\n");
+  fs::remove_all(folder);
+}
+
+}  // namespace
+}  // namespace granasym::study
