@@ -1224,10 +1224,13 @@ ReportSummary WriteReport(const std::string& directory) {
   Document document;
   const std::string programme = Lookup(study.record, "programme", "study");
   document.title = "Study report: " + programme;
+  const std::string replicates = Lookup(study.record, "replicates", "?"),
+                    threads = Lookup(study.record, "threads", "?");
   document.subtitle =
-      Plain(fmt::format("Scale {}: {} replicates of {} spheres, {} thread(s) per case; computed by ",
-                        Lookup(study.record, "scale", "?"), Lookup(study.record, "replicates", "?"),
-                        Lookup(study.record, "count", "?"), Lookup(study.record, "threads", "?"))) +
+      Plain(fmt::format("Scale {}: {} replicate{} of {} spheres, {} thread{} per case; computed by ",
+                        Lookup(study.record, "scale", "?"), replicates,
+                        replicates == "1" ? "" : "s", Lookup(study.record, "count", "?"), threads,
+                        threads == "1" ? "" : "s")) +
       Code(Lookup(study.record, "program_version", "?")) + Plain("; folder ") +
       Code(study.directory) + Plain(".");
   document.sections.push_back(OverviewSection(study, cases, summary.figures,
@@ -1269,7 +1272,7 @@ ReportSummary WriteReport(const std::string& directory) {
 
 std::string ReportSummary::Text() const {
   std::string text = fmt::format(
-      "report: {}\n  (and {}): {} figures ({} without their PNG), {} of 3 models calibrated, "
+      "report: {} (and {})\n  {} figures ({} without their PNG), {} of 3 models calibrated, "
       "{} asymptotic states, {} cases\n",
       html_path, markdown_path, figures, figures_missing, models_calibrated, states, cases);
   if (!absent.empty()) {

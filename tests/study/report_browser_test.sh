@@ -5,7 +5,8 @@
 # Study.paper_tiny_end_to_end), adds fixture figures and calibration results
 # where the study has none (marked as fixtures in their texts), writes the
 # report with `granasym study report` and renders index.html in headless
-# Chromium at a desktop and a phone width. A script injected into a copy of
+# Chromium at a desktop width and at 500 px (about the narrowest window
+# headless Chromium makes). A script injected into a copy of
 # the page records every image that did not load (naturalWidth 0) and every
 # element that reaches past the viewport outside a scrolling container (a
 # layout error); any of them fails the test, naming it. Two broken copies
@@ -101,17 +102,28 @@ window.addEventListener("load", () => {
   };
   const name = (e) => e.tagName.toLowerCase() + (e.id ? "#" + e.id : "") +
       (e.className ? "." + String(e.className).replace(/ /g, ".") : "");
-  let elements = 0;
+  // Only the outermost element past the edge: its descendants follow it.
+  const outside = new Set();
+  let elements = 0, errors = 0;
   for (const e of document.body.querySelectorAll("*")) {
     const r = e.getBoundingClientRect();
     if (r.width === 0 && r.height === 0) continue;
     ++elements;
-    if ((r.right > width + 1 || r.left < -1) && !clips(e)) {
-      lines.push("layout error: " + name(e) + " spans " + Math.round(r.left) + ".." +
-                 Math.round(r.right) + " px, viewport " + width + " px: " +
+    if (clips(e)) continue;
+    // The box past the edge, or text running out of a box that does not scroll.
+    const spills = e.clientWidth > 0 && getComputedStyle(e).overflowX === "visible" &&
+                   e.scrollWidth > e.clientWidth + 1 && r.left + e.scrollWidth > width + 1;
+    if (r.right > width + 1 || r.left < -1 || spills) {
+      outside.add(e);
+      if (outside.has(e.parentElement)) continue;
+      if (++errors > 20) continue;
+      const right = Math.round(Math.max(r.right, r.left + e.scrollWidth));
+      lines.push("layout error: " + name(e) + " spans " + Math.round(r.left) + ".." + right +
+                 " px, viewport " + width + " px: " +
                  (e.textContent || "").replace(/\s+/g, " ").trim().slice(0, 60));
     }
   }
+  if (errors > 20) lines.push("layout error: and " + (errors - 20) + " more elements");
   if (document.documentElement.scrollWidth > width + 1) {
     lines.push("layout error: the page scrolls sideways (" +
                document.documentElement.scrollWidth + " px in " + width + " px)");
@@ -139,7 +151,7 @@ render() {
 # check PAGE: 0 when the page renders cleanly at both widths; prints the findings.
 check() {
   local page="$1" failed=0 width lines
-  for width in 1280 420; do
+  for width in 1280 500; do
     lines=$(render "$page" "$width")
     if ! grep -q '^check: done' <<<"$lines"; then
       echo "  at $width px: the check did not run (see $work/browser-$width.log)"
@@ -186,7 +198,7 @@ echo "a copy whose tables do not scroll:"
 check "$wide/index.html" > "$work/no_scrolling.txt" &&
   { cat "$work/no_scrolling.txt"; echo "FAIL: the check did not notice tables wider than the page"; exit 1; }
 echo "  $(grep -c 'layout error' "$work/no_scrolling.txt") layout errors, e.g.:"
-grep -m 3 'layout error: table' "$work/no_scrolling.txt" ||
-  { echo "FAIL: the check did not name a table"; exit 1; }
+grep -m 3 'layout error: div.scroll' "$work/no_scrolling.txt" ||
+  { echo "FAIL: the check did not name a table's container"; exit 1; }
 
-echo "PASS: $images figures and every table render inside the viewport at 1280 and 420 px; a truncated PNG and unscrolled tables are caught"
+echo "PASS: $images figures and every table render inside the viewport at 1280 and 500 px; a truncated PNG and unscrolled tables are caught"

@@ -208,7 +208,7 @@ TEST(StudyReport, RunTimesCountEachCaseOwnStepsAndTotal) {
   // Provenance: the study record, every key.
   EXPECT_NE(html.find("<td><code>program_version</code></td><td>0.1.0+test</td>"),
             std::string::npos);
-  EXPECT_NE(html.find("Scale tiny: 2 replicates of 400 spheres"), std::string::npos);
+  EXPECT_NE(html.find("Scale tiny: 2 replicates of 400 spheres, 1 thread per case; computed by "), std::string::npos);
 }
 
 TEST(StudyReport, AbsentInputsAreStatedInTheirPlace) {
