@@ -162,8 +162,8 @@ size_t CsvTable::Column(const std::string& name) const {
   for (size_t c = 0; c < columns.size(); ++c) {
     if (columns[c] == name) return c;
   }
-  throw InputError(origin + ": missing column '" + name + "' (columns present: " +
-                   ListColumns(columns) + ")");
+  throw InputError(origin + ": missing column '" + name +
+                   "' (columns present: " + ListColumns(columns) + ")");
 }
 
 std::vector<double> CsvTable::ColumnValues(const std::string& name) const {
@@ -195,15 +195,14 @@ CsvTextTable CsvTextTable::Parse(const std::string& text, const std::string& ori
 }
 
 CsvTextTable CsvTextTable::ReadFile(const std::string& path, Format format) {
-  return Parse(ReadWholeFile(path, format == Format::kCsv ? "CSV file" : "TSV file"), path,
-               format);
+  return Parse(ReadWholeFile(path, format == Format::kCsv ? "CSV file" : "TSV file"), path, format);
 }
 
 size_t CsvTextTable::Column(const std::string& name) const {
   const int c = Find(name);
   if (c < 0) {
-    throw InputError(origin + ": missing column '" + name + "' (columns present: " +
-                     ListColumns(columns) + ")");
+    throw InputError(origin + ": missing column '" + name +
+                     "' (columns present: " + ListColumns(columns) + ")");
   }
   return static_cast<size_t>(c);
 }

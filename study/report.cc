@@ -1,5 +1,7 @@
 #include "study/report.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -11,8 +13,6 @@
 #include <set>
 #include <utility>
 
-#include <fmt/format.h>
-
 #include "common/config.h"
 #include "common/csv_table.h"
 #include "common/error.h"
@@ -21,8 +21,7 @@
 
 namespace granasym::study {
 
-const char* const kReportModels[3] = {"hypoplastic_clay", "modified_cam_clay",
-                                      "hypoplastic_sand"};
+const char* const kReportModels[3] = {"hypoplastic_clay", "modified_cam_clay", "hypoplastic_sand"};
 
 namespace {
 namespace fs = std::filesystem;
@@ -61,14 +60,14 @@ struct Cell {
 struct Block {
   enum class Type { kParagraph, kNote, kTable, kFigure, kDetails, kList };
   Type type = Type::kParagraph;
-  Inline text;                     // paragraph, note, details' summary, figure's alt text
-  std::vector<std::string> header;            // table
-  std::vector<std::vector<Cell>> rows;        // table
-  std::vector<std::string> row_css;           // table: classes of each row (may be empty)
-  std::string image;                          // figure: relative path of the PNG
-  std::string preformatted;                   // details: shown as a code block
-  std::vector<Block> children;                // details: blocks inside
-  std::vector<Inline> items;                  // list
+  Inline text;                          // paragraph, note, details' summary, figure's alt text
+  std::vector<std::string> header;      // table
+  std::vector<std::vector<Cell>> rows;  // table
+  std::vector<std::string> row_css;     // table: classes of each row (may be empty)
+  std::string image;                    // figure: relative path of the PNG
+  std::string preformatted;             // details: shown as a code block
+  std::vector<Block> children;          // details: blocks inside
+  std::vector<Inline> items;            // list
 };
 
 Block Paragraph(Inline text) {
@@ -225,14 +224,15 @@ std::string RenderHtml(const Document& document) {
       "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
       "<title>" +
-      HtmlEscaped(document.title) + "</title>\n<style>" + kStylesheet + "</style>\n</head>\n<body>\n";
+      HtmlEscaped(document.title) + "</title>\n<style>" + kStylesheet +
+      "</style>\n</head>\n<body>\n";
   html += "<h1>" + HtmlEscaped(document.title) + "</h1>\n";
   html += "<p>" + HtmlInline(document.subtitle) + "</p>\n";
   html += "<nav class=\"toc\"><strong>Contents</strong>\n<ol>\n";
   bool open_item = false, nested = false;
   for (const Section& section : document.sections) {
-    const std::string link = "<a href=\"#" + HtmlEscaped(section.id) + "\">" +
-                             HtmlEscaped(section.title) + "</a>";
+    const std::string link =
+        "<a href=\"#" + HtmlEscaped(section.id) + "\">" + HtmlEscaped(section.title) + "</a>";
     if (section.level > 2 && open_item) {
       if (!nested) html += "\n<ol>\n";
       nested = true;
@@ -271,9 +271,9 @@ std::string MarkdownEscaped(const std::string& text) {
     }
     // '_' only emphasises at a word boundary (snake_case names stay readable).
     const bool boundary_underscore =
-        c == '_' && (k == 0 || k + 1 == text.size() ||
-                     !std::isalnum(static_cast<unsigned char>(text[k - 1])) ||
-                     !std::isalnum(static_cast<unsigned char>(text[k + 1])));
+        c == '_' &&
+        (k == 0 || k + 1 == text.size() || !std::isalnum(static_cast<unsigned char>(text[k - 1])) ||
+         !std::isalnum(static_cast<unsigned char>(text[k + 1])));
     if (c == '\\' || c == '*' || c == '[' || c == ']' || c == '<' || c == '>' || c == '`' ||
         c == '|' || c == '#' || c == '&' || boundary_underscore) {
       out += '\\';
@@ -496,11 +496,10 @@ Inline DirectoryHint(const std::string& command, const std::string& directory) {
 
 // A figure stem must be a plain file name inside figures/.
 void CheckStem(const std::string& stem, const CsvTextTable& table, int line) {
-  const bool plain = !stem.empty() && stem[0] != '.' &&
-                     std::all_of(stem.begin(), stem.end(), [](char c) {
-                       return std::isalnum(static_cast<unsigned char>(c)) || c == '_' ||
-                              c == '-' || c == '.';
-                     });
+  const bool plain =
+      !stem.empty() && stem[0] != '.' && std::all_of(stem.begin(), stem.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+      });
   if (!plain) {
     throw InputError(table.origin + ": line " + std::to_string(line) + ": stem '" + stem +
                      "' is not a plain file name (letters, digits, '_', '-', '.'; not starting "
@@ -606,7 +605,8 @@ std::vector<CaseRecord> ReadCases(const std::string& directory) {
       c.wall_seconds = done.GetDouble("wall_seconds", 0.0, Range::NonNegative());
       c.done = done.GetString("key") == c.key;
       c.status = c.done ? done.GetString("termination") : "stale";
-      if (!c.done) c.message = "done.toml is for another key: the inputs changed since; " + c.message;
+      if (!c.done)
+        c.message = "done.toml is for another key: the inputs changed since; " + c.message;
       if (c.done) steps_of[c.id] = c.steps;
     } else if (fs::exists(folder / "result.h5.ckpt") || fs::exists(folder / "running.toml")) {
       c.status = "running";
@@ -626,8 +626,8 @@ std::vector<CaseRecord> ReadCases(const std::string& directory) {
   return cases;
 }
 
-Section OverviewSection(const StudyFolder& study, const std::vector<CaseRecord>& cases,
-                        int figures, int figures_missing, int models) {
+Section OverviewSection(const StudyFolder& study, const std::vector<CaseRecord>& cases, int figures,
+                        int figures_missing, int models) {
   Section section{"overview", "Overview", 2, {}};
   Block table;
   table.type = Block::Type::kTable;
@@ -656,8 +656,8 @@ Section OverviewSection(const StudyFolder& study, const std::vector<CaseRecord>&
     for (const auto& [name, count] : by_state) text += fmt::format(", {} {}", count, name);
     add("asymptotic states", Plain(text));
   }
-  add("figures", Plain(fmt::format("{} in figures/index.tsv, {} without their PNG", figures,
-                                   figures_missing)),
+  add("figures",
+      Plain(fmt::format("{} in figures/index.tsv, {} without their PNG", figures, figures_missing)),
       figures_missing > 0 ? "flagged" : "");
   add("models calibrated", Plain(fmt::format("{} of 3", models)));
   section.blocks.push_back(std::move(table));
@@ -682,8 +682,8 @@ std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string&
   const int figures = states.Find("figures");
   if (figures < 0) return std::nullopt;
   const std::vector<std::string> wanted = {
-      "replicate", "case", "stage", "kind", "status", "psi_epsilon_deg", "p_kpa", "e",
-      "psi_sigma_deg", "q_over_p", "ocr", "flags"};
+      "replicate", "case", "stage",         "kind",     "status", "psi_epsilon_deg",
+      "p_kpa",     "e",    "psi_sigma_deg", "q_over_p", "ocr",    "flags"};
   std::vector<int> columns;
   Block table;
   table.type = Block::Type::kTable;
@@ -771,7 +771,8 @@ std::vector<Section> FigureSections(const StudyFolder& study, int* figures, int*
       }
     }
     std::sort(data.begin(), data.end());
-    for (const std::string& file : data) files = files + Plain("; data: ") + Link(file, UrlPath(file), true);
+    for (const std::string& file : data)
+      files = files + Plain("; data: ") + Link(file, UrlPath(file), true);
     section.blocks.push_back(Paragraph(files + Plain(".")));
     if (std::optional<Block> states = StatesOfFigure(study, FigureNumber(row[figure]))) {
       section.blocks.push_back(std::move(*states));
@@ -825,20 +826,23 @@ Section ModelSection(const StudyFolder& study, const std::string& model, bool* c
                                   lo = Number(row[low]), hi = Number(row[high]);
       const std::string interval =
           lo && hi ? fmt::format("[{:.6g}, {:.6g}]", *lo, *hi) : std::string("—");
-      block.rows.push_back(
-          {Cell{Code(row[name]), ""},
-           Cell{Plain(v ? fmt::format("{:.6g}", *v) : row[value]), "num"},
-           Cell{Plain(s ? fmt::format("{:.3g}", *s) : row[error].empty() ? "—" : row[error]), "num"},
-           Cell{Plain(interval), "num"}, Cell{Plain(row[status]), StatusCss(row[status])}});
+      block.rows.push_back({Cell{Code(row[name]), ""},
+                            Cell{Plain(v ? fmt::format("{:.6g}", *v) : row[value]), "num"},
+                            Cell{Plain(s                    ? fmt::format("{:.3g}", *s)
+                                       : row[error].empty() ? "—"
+                                                            : row[error]),
+                                 "num"},
+                            Cell{Plain(interval), "num"},
+                            Cell{Plain(row[status]), StatusCss(row[status])}});
       ++by_status[row[status]];
     }
     std::string counts;
     for (const auto& [state, count] : by_status) {
       counts += fmt::format("{}{} {}", counts.empty() ? "" : ", ", count, state);
     }
-    section.blocks.push_back(Paragraph(Plain(fmt::format("{} parameters ({}), from ",
-                                                         table.rows.size(), counts)) +
-                                       Link(parameters, UrlPath(parameters), true) + Plain(".")));
+    section.blocks.push_back(
+        Paragraph(Plain(fmt::format("{} parameters ({}), from ", table.rows.size(), counts)) +
+                  Link(parameters, UrlPath(parameters), true) + Plain(".")));
     section.blocks.push_back(std::move(block));
   } else {
     absent->push_back(parameters);
@@ -861,8 +865,7 @@ Section ModelSection(const StudyFolder& study, const std::string& model, bool* c
     if (list.items.empty()) {
       section.blocks.push_back(Paragraph(Plain("No warnings.")));
     } else {
-      section.blocks.push_back(
-          Paragraph(Plain(fmt::format("{} warnings:", list.items.size()))));
+      section.blocks.push_back(Paragraph(Plain(fmt::format("{} warnings:", list.items.size()))));
       section.blocks.push_back(std::move(list));
     }
   } else {
@@ -908,8 +911,8 @@ Section StatesSection(const StudyFolder& study) {
       Plain(fmt::format("{} rows: one per detector-carrying stage of every case, and one per case "
                         "without a result, from ",
                         states.rows.size())) +
-      Link("asymptotic_states.csv", "asymptotic_states.csv", true) +
-      Plain(" (full precision; ") + Code("asymptotic_states.h5") +
+      Link("asymptotic_states.csv", "asymptotic_states.csv", true) + Plain(" (full precision; ") +
+      Code("asymptotic_states.h5") +
       Plain(" with units). OCR and p_e* refer to the NCL named in ncl_reference.")));
   // Counts by kind and status.
   std::map<std::string, std::map<std::string, int>> counts;
@@ -948,8 +951,7 @@ Section StatesSection(const StudyFolder& study) {
     if (text.empty()) continue;
     auto found = std::find(detectors.begin(), detectors.end(), text);
     if (found == detectors.end()) found = detectors.insert(detectors.end(), text);
-    table.rows[r][detector] =
-        Cell{Plain(fmt::format("D{}", found - detectors.begin() + 1)), ""};
+    table.rows[r][detector] = Cell{Plain(fmt::format("D{}", found - detectors.begin() + 1)), ""};
   }
   section.blocks.push_back(
       Paragraph(Plain("Each case links to the scene it ran; D<n> names the detector below.")));
@@ -986,9 +988,11 @@ Section ReplicateSection(const StudyFolder& study) {
   for (size_t c = 0; c < summary.columns.size(); ++c) {
     const std::string& name = summary.columns[c];
     const std::string suffix = "_mean";
-    if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
+    if (name.size() > suffix.size() &&
+        name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
       const std::string base = name.substr(0, name.size() - suffix.size());
-      columns.push_back({base + " (mean ± 95 %)", static_cast<int>(c), summary.Find(base + "_ci95")});
+      columns.push_back(
+          {base + " (mean ± 95 %)", static_cast<int>(c), summary.Find(base + "_ci95")});
     } else if (name.size() > 5 && name.compare(name.size() - 5, 5, "_ci95") == 0 &&
                summary.Find(name.substr(0, name.size() - 5) + "_mean") >= 0) {
       continue;
@@ -1047,25 +1051,25 @@ Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRecord>&
                                   Plain(") in this study folder.")));
   } else {
     section.blocks.push_back(Paragraph(
-        Plain("From each case's ") + Code("done.toml") +
-        Plain(" (written when it ended) and ") + Code("case.toml") +
+        Plain("From each case's ") + Code("done.toml") + Plain(" (written when it ended) and ") +
+        Code("case.toml") +
         Plain(": the key is the SHA-256 of its canonical scene, its parent's key, the program "
               "version and the thread count. Steps: the case's own (its engine steps less its "
               "parent's, which it continues) and the engine total.")));
     Block table;
     table.type = Block::Type::kTable;
-    table.header = {"case", "replicate", "parent", "status", "own steps", "engine steps",
-                    "particles", "particle-steps", "wall s", "particle-steps/s", "key", "message"};
+    table.header = {"case",      "replicate",        "parent",    "status",
+                    "own steps", "engine steps",     "particles", "particle-steps",
+                    "wall s",    "particle-steps/s", "key",       "message"};
     int64_t own_steps = 0;
     double particle_steps = 0, wall_seconds = 0;
     int done = 0;
     for (const CaseRecord& c : cases) {
       const double ps = static_cast<double>(c.own_steps) * static_cast<double>(c.particles);
-      std::vector<Cell> row = {
-          Cell{Link(c.id, UrlPath("cases/" + c.id + "/case.toml")), ""},
-          Cell{Plain(std::to_string(c.replicate)), "num"},
-          Cell{c.parent.empty() ? Plain("sample") : Plain(c.parent), ""},
-          Cell{Plain(c.status), StatusCss(c.status)}};
+      std::vector<Cell> row = {Cell{Link(c.id, UrlPath("cases/" + c.id + "/case.toml")), ""},
+                               Cell{Plain(std::to_string(c.replicate)), "num"},
+                               Cell{c.parent.empty() ? Plain("sample") : Plain(c.parent), ""},
+                               Cell{Plain(c.status), StatusCss(c.status)}};
       if (c.done) {
         ++done;
         own_steps += c.own_steps;
@@ -1134,9 +1138,9 @@ Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRecord>&
            Cell{Code(done.GetString("key", "")), ""},
            Cell{Plain(done.GetString("message", "")), "text"}});
     }
-    section.blocks.push_back(Paragraph(Plain(fmt::format(
-        "{} element tests of the constitutive models (deterministic: not replicated):",
-        models.size()))));
+    section.blocks.push_back(Paragraph(Plain(
+        fmt::format("{} element tests of the constitutive models (deterministic: not replicated):",
+                    models.size()))));
     section.blocks.push_back(std::move(table));
   }
   return section;
@@ -1144,11 +1148,11 @@ Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRecord>&
 
 Section ProvenanceSection(const StudyFolder& study) {
   Section section{"provenance", "Provenance", 2, {}};
-  section.blocks.push_back(Paragraph(
-      Plain("The study record ") + Link("study.toml", "study.toml", true) +
-      Plain(", written by ") + Code("granasym study run") +
-      Plain("; each case's key is in the table of run times, its scene in ") +
-      Code("cases/r<K>/<case>/scene.toml") + Plain(".")));
+  section.blocks.push_back(
+      Paragraph(Plain("The study record ") + Link("study.toml", "study.toml", true) +
+                Plain(", written by ") + Code("granasym study run") +
+                Plain("; each case's key is in the table of run times, its scene in ") +
+                Code("cases/r<K>/<case>/scene.toml") + Plain(".")));
   Block table;
   table.type = Block::Type::kTable;
   table.header = {"key", "value"};
@@ -1227,10 +1231,10 @@ ReportSummary WriteReport(const std::string& directory) {
   const std::string replicates = Lookup(study.record, "replicates", "?"),
                     threads = Lookup(study.record, "threads", "?");
   document.subtitle =
-      Plain(fmt::format("Scale {}: {} replicate{} of {} spheres, {} thread{} per case; computed by ",
-                        Lookup(study.record, "scale", "?"), replicates,
-                        replicates == "1" ? "" : "s", Lookup(study.record, "count", "?"), threads,
-                        threads == "1" ? "" : "s")) +
+      Plain(
+          fmt::format("Scale {}: {} replicate{} of {} spheres, {} thread{} per case; computed by ",
+                      Lookup(study.record, "scale", "?"), replicates, replicates == "1" ? "" : "s",
+                      Lookup(study.record, "count", "?"), threads, threads == "1" ? "" : "s")) +
       Code(Lookup(study.record, "program_version", "?")) + Plain("; folder ") +
       Code(study.directory) + Plain(".");
   document.sections.push_back(OverviewSection(study, cases, summary.figures,

@@ -58,7 +58,8 @@ TEST(CsvTextTable, ErrorsNameTheFileAndTheLine) {
     CsvTextTable::Parse("a,b\n1,\"open\n", "open.csv");
     FAIL() << "an unclosed quote was accepted";
   } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("open.csv: line 2"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("open.csv: line 2"), std::string::npos)
+        << error.what();
   }
   try {
     CsvTextTable::Parse("a,b\n\"x\"y,2\n", "after.csv");

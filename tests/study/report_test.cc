@@ -120,10 +120,9 @@ TEST(StudyReport, EveryFigureOfTheIndexAppearsWithItsImageOrAMissingNote) {
   // The states behind figure 16: the two rows that name it, not the third.
   EXPECT_NE(html.find("2 rows of the state table behind figure 16"), std::string::npos);
   EXPECT_NE(html.find("1 row of the state table behind figure 8"), std::string::npos);
-  EXPECT_EQ(summary.absent,
-            (std::vector<std::string>{"calibration/hypoplastic_sand/",
-                                      "calibration/modified_cam_clay/",
-                                      "figures/fig08_overlap.png"}));
+  EXPECT_EQ(summary.absent, (std::vector<std::string>{"calibration/hypoplastic_sand/",
+                                                      "calibration/modified_cam_clay/",
+                                                      "figures/fig08_overlap.png"}));
 }
 
 TEST(StudyReport, EveryStateRowAppearsInBothFiles) {
@@ -163,8 +162,9 @@ TEST(StudyReport, NoTextOfTheInputsIsTakenAsMarkup) {
   for (const char* raw : {"<b>bold", "<i>markup", "<undetermined>", "<ok>"}) {
     EXPECT_EQ(html.find(raw), std::string::npos) << raw;
   }
-  for (const char* escaped : {"&lt;i&gt;markup&lt;/i&gt;", "p &lt; 100 kPa &amp; &quot;quoted&quot;",
-                              "kappa_star &lt;undetermined&gt;", "12 iterations &lt;ok&gt;"}) {
+  for (const char* escaped :
+       {"&lt;i&gt;markup&lt;/i&gt;", "p &lt; 100 kPa &amp; &quot;quoted&quot;",
+        "kappa_star &lt;undetermined&gt;", "12 iterations &lt;ok&gt;"}) {
     EXPECT_NE(html.find(escaped), std::string::npos) << escaped;
   }
   // Self-contained: no scripts, no stylesheets or images from elsewhere.
@@ -208,7 +208,8 @@ TEST(StudyReport, RunTimesCountEachCaseOwnStepsAndTotal) {
   // Provenance: the study record, every key.
   EXPECT_NE(html.find("<td><code>program_version</code></td><td>0.1.0+test</td>"),
             std::string::npos);
-  EXPECT_NE(html.find("Scale tiny: 2 replicates of 400 spheres, 1 thread per case; computed by "), std::string::npos);
+  EXPECT_NE(html.find("Scale tiny: 2 replicates of 400 spheres, 1 thread per case; computed by "),
+            std::string::npos);
 }
 
 TEST(StudyReport, AbsentInputsAreStatedInTheirPlace) {
@@ -222,8 +223,8 @@ TEST(StudyReport, AbsentInputsAreStatedInTheirPlace) {
   EXPECT_NE(md.find("Figures not drawn: run `granasym study figures " + folder + "`"),
             std::string::npos);
   EXPECT_EQ(Count(html, "Not calibrated: "), 3);
-  for (const char* file : {"asymptotic_states.csv", "asymptotic_states_summary.csv",
-                           "ncl_fit.csv", "path_convergence.csv"}) {
+  for (const char* file : {"asymptotic_states.csv", "asymptotic_states_summary.csv", "ncl_fit.csv",
+                           "path_convergence.csv"}) {
     EXPECT_NE(html.find(std::string("<code>") + file + "</code> is absent"), std::string::npos)
         << file;
   }
@@ -231,10 +232,9 @@ TEST(StudyReport, AbsentInputsAreStatedInTheirPlace) {
   EXPECT_EQ(summary.absent.size(), 8u);
   EXPECT_NE(summary.Text().find("absent: asymptotic_states.csv"), std::string::npos);
   // Every section is in the contents, with the anchor its heading has.
-  for (const char* anchor : {"overview", "figures", "calibration", "asymptotic-states",
-                             "replicate-summary", "ncl-fits", "path-convergence",
-                             "run-times-and-keys", "provenance",
-                             "calibration-hypoplastic_clay"}) {
+  for (const char* anchor :
+       {"overview", "figures", "calibration", "asymptotic-states", "replicate-summary", "ncl-fits",
+        "path-convergence", "run-times-and-keys", "provenance", "calibration-hypoplastic_clay"}) {
     EXPECT_NE(html.find(std::string("<a href=\"#") + anchor + "\">"), std::string::npos) << anchor;
     EXPECT_NE(html.find(std::string(" id=\"") + anchor + "\">"), std::string::npos) << anchor;
     EXPECT_NE(md.find(std::string("](#") + anchor + ")"), std::string::npos) << anchor;
