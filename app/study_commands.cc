@@ -10,6 +10,7 @@
 #include "app/progress.h"
 #include "app/signals.h"
 #include "app/study_figures_command.h"
+#include "app/study_report_command.h"
 #include "common/error.h"
 #include "study/plan.h"
 #include "study/programme.h"
@@ -146,6 +147,7 @@ void RegisterStudyCommands(CLI::App& app) {
     PrintTableSummary(study::WriteStateTable(merge_out));
   });
   RegisterStudyFiguresCommand(study);
+  RegisterStudyReportCommand(study);
 }
 
 }  // namespace granasym

@@ -1,5 +1,6 @@
 #include "common/csv_table.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -18,13 +19,104 @@ std::string Trim(const std::string& text) {
   return text.substr(first, last - first + 1);
 }
 
-std::vector<std::string> SplitFields(const std::string& line) {
+// One record of a table: its fields and the line it starts on.
+struct Record {
   std::vector<std::string> fields;
-  std::stringstream stream(line);
-  std::string field;
-  while (std::getline(stream, field, ',')) fields.push_back(Trim(field));
-  if (!line.empty() && line.back() == ',') fields.push_back("");
-  return fields;
+  int line = 0;
+};
+
+// Splits `text` into records. Blank lines and lines starting with '#' (outside
+// quotes, after leading blanks) are skipped; their text goes to `comments`.
+std::vector<Record> SplitRecords(const std::string& text, const std::string& origin,
+                                 CsvTextTable::Format format, std::vector<std::string>* comments) {
+  const bool csv = format == CsvTextTable::Format::kCsv;
+  const char delimiter = csv ? ',' : '\t';
+  std::vector<Record> records;
+  size_t at = 0;
+  int line = 1;
+  while (at < text.size()) {
+    // A blank or comment line.
+    const size_t end_of_line = std::min(text.find('\n', at), text.size());
+    const std::string trimmed = Trim(text.substr(at, end_of_line - at));
+    if (trimmed.empty() || trimmed[0] == '#') {
+      if (!trimmed.empty() && comments) comments->push_back(Trim(trimmed.substr(1)));
+      at = end_of_line + 1;
+      ++line;
+      continue;
+    }
+    Record record;
+    record.line = line;
+    std::string field;
+    bool quoted = false;  // the current field was quoted (kept as written, not trimmed)
+    auto finish_field = [&] {
+      record.fields.push_back(quoted ? field : Trim(field));
+      field.clear();
+      quoted = false;
+    };
+    while (true) {
+      if (at >= text.size() || text[at] == '\n') {
+        finish_field();
+        if (at < text.size()) ++at;
+        ++line;
+        break;
+      }
+      const char c = text[at];
+      if (c == delimiter) {
+        finish_field();
+        ++at;
+        continue;
+      }
+      if (csv && c == '"' && Trim(field).empty() && !quoted) {
+        const int opened = line;
+        ++at;
+        field.clear();
+        while (true) {
+          if (at >= text.size()) {
+            throw InputError(origin + ": line " + std::to_string(opened) +
+                             ": a quoted field is not closed (a '\"' is missing)");
+          }
+          if (text[at] == '"') {
+            if (at + 1 < text.size() && text[at + 1] == '"') {
+              field += '"';
+              at += 2;
+              continue;
+            }
+            ++at;
+            break;
+          }
+          if (text[at] == '\n') ++line;
+          field += text[at++];
+        }
+        quoted = true;
+        // Only blanks may follow the closing quote before the delimiter.
+        while (at < text.size() && (text[at] == ' ' || text[at] == '\t' || text[at] == '\r')) ++at;
+        if (at < text.size() && text[at] != delimiter && text[at] != '\n') {
+          throw InputError(origin + ": line " + std::to_string(line) +
+                           ": text after the closing quote of a field ('" +
+                           text.substr(at, std::min<size_t>(20, text.size() - at)) + "')");
+        }
+        continue;
+      }
+      field += c;
+      ++at;
+    }
+    records.push_back(std::move(record));
+  }
+  return records;
+}
+
+std::string ListColumns(const std::vector<std::string>& columns) {
+  std::string available;
+  for (const std::string& column : columns) available += (available.empty() ? "" : ", ") + column;
+  return available;
+}
+
+std::string ReadWholeFile(const std::string& path, const char* what) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(std::string("cannot open ") + what + " '" + path + "'");
+  std::stringstream buffer;
+  buffer << file.rdbuf();
+  return buffer.str();
 }
 
 }  // namespace
@@ -32,20 +124,13 @@ std::vector<std::string> SplitFields(const std::string& line) {
 CsvTable CsvTable::Parse(const std::string& text, const std::string& origin) {
   CsvTable table;
   table.origin = origin;
-  std::istringstream stream(text);
-  std::string line;
-  int line_number = 0;
-  bool have_header = false;
-  while (std::getline(stream, line)) {
-    ++line_number;
-    const std::string trimmed = Trim(line);
-    if (trimmed.empty() || trimmed[0] == '#') continue;
-    std::vector<std::string> fields = SplitFields(trimmed);
-    if (!have_header) {
-      table.columns = fields;
-      have_header = true;
-      continue;
-    }
+  const std::vector<Record> records =
+      SplitRecords(text, origin, CsvTextTable::Format::kCsv, nullptr);
+  if (records.empty()) throw InputError(origin + ": no header row (the file is empty)");
+  table.columns = records.front().fields;
+  for (size_t r = 1; r < records.size(); ++r) {
+    const std::vector<std::string>& fields = records[r].fields;
+    const int line_number = records[r].line;
     if (fields.size() != table.columns.size()) {
       throw InputError(origin + ": line " + std::to_string(line_number) + " has " +
                        std::to_string(fields.size()) + " fields, but the header has " +
@@ -66,25 +151,19 @@ CsvTable CsvTable::Parse(const std::string& text, const std::string& origin) {
     table.rows.push_back(row);
     table.line_numbers.push_back(line_number);
   }
-  if (!have_header) throw InputError(origin + ": no header row (the file is empty)");
   return table;
 }
 
 CsvTable CsvTable::ReadFile(const std::string& path) {
-  std::ifstream file(path);
-  if (!file) throw InputError("cannot open CSV file '" + path + "'");
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  return Parse(buffer.str(), path);
+  return Parse(ReadWholeFile(path, "CSV file"), path);
 }
 
 size_t CsvTable::Column(const std::string& name) const {
   for (size_t c = 0; c < columns.size(); ++c) {
     if (columns[c] == name) return c;
   }
-  std::string available;
-  for (const std::string& column : columns) available += (available.empty() ? "" : ", ") + column;
-  throw InputError(origin + ": missing column '" + name + "' (columns present: " + available + ")");
+  throw InputError(origin + ": missing column '" + name +
+                   "' (columns present: " + ListColumns(columns) + ")");
 }
 
 std::vector<double> CsvTable::ColumnValues(const std::string& name) const {
@@ -93,6 +172,46 @@ std::vector<double> CsvTable::ColumnValues(const std::string& name) const {
   values.reserve(rows.size());
   for (const auto& row : rows) values.push_back(row[c]);
   return values;
+}
+
+CsvTextTable CsvTextTable::Parse(const std::string& text, const std::string& origin,
+                                 Format format) {
+  CsvTextTable table;
+  table.origin = origin;
+  std::vector<Record> records = SplitRecords(text, origin, format, &table.comments);
+  if (records.empty()) throw InputError(origin + ": no header row (the file is empty)");
+  table.columns = std::move(records.front().fields);
+  for (size_t r = 1; r < records.size(); ++r) {
+    if (records[r].fields.size() != table.columns.size()) {
+      throw InputError(origin + ": line " + std::to_string(records[r].line) + " has " +
+                       std::to_string(records[r].fields.size()) + " fields, but the header has " +
+                       std::to_string(table.columns.size()) + " columns (" +
+                       ListColumns(table.columns) + ")");
+    }
+    table.rows.push_back(std::move(records[r].fields));
+    table.line_numbers.push_back(records[r].line);
+  }
+  return table;
+}
+
+CsvTextTable CsvTextTable::ReadFile(const std::string& path, Format format) {
+  return Parse(ReadWholeFile(path, format == Format::kCsv ? "CSV file" : "TSV file"), path, format);
+}
+
+size_t CsvTextTable::Column(const std::string& name) const {
+  const int c = Find(name);
+  if (c < 0) {
+    throw InputError(origin + ": missing column '" + name +
+                     "' (columns present: " + ListColumns(columns) + ")");
+  }
+  return static_cast<size_t>(c);
+}
+
+int CsvTextTable::Find(const std::string& name) const {
+  for (size_t c = 0; c < columns.size(); ++c) {
+    if (columns[c] == name) return static_cast<int>(c);
+  }
+  return -1;
 }
 
 void WriteCsv(const std::string& path, const std::vector<std::string>& columns,

@@ -1,9 +1,12 @@
-// Numeric CSV tables with a header row (GSD tables, calibration data).
+// CSV tables with a header row: numeric ones (GSD tables, calibration data)
+// and ones of text fields read by column name (the study's state table and
+// the other tables a study report shows).
 //
 // Lines starting with '#' and blank lines are skipped; the first other line is
-// the header. Every error names the file, the line and the offending text.
-// No Debian 12 package offers a small, maintained C++ CSV reader, and the
-// format needed here (numbers, a header, comments) is a few dozen lines.
+// the header. Fields may be quoted as in RFC 4180 ("a, b", "say ""x""", line
+// breaks inside quotes); unquoted fields are trimmed. Every error names the
+// file, the line and the offending text. No Debian 12 package offers a small,
+// maintained C++ CSV reader, and the format needed here is a few dozen lines.
 #pragma once
 
 #include <string>
@@ -22,6 +25,25 @@ struct CsvTable {
   // Index of a column; InputError listing the available columns if missing.
   size_t Column(const std::string& name) const;
   std::vector<double> ColumnValues(const std::string& name) const;
+};
+
+// A table of text fields: CSV as above, or tab-separated (TSV: fields split at
+// tabs, no quoting, so a '"' is an ordinary character).
+struct CsvTextTable {
+  enum class Format { kCsv, kTsv };
+  std::string origin;                          // file name for messages
+  std::vector<std::string> columns;            // header names
+  std::vector<std::vector<std::string>> rows;  // rows x columns
+  std::vector<int> line_numbers;               // source line where each row starts (1-based)
+  std::vector<std::string> comments;           // '#' lines, without the '#' and leading blanks
+
+  static CsvTextTable ReadFile(const std::string& path, Format format = Format::kCsv);
+  static CsvTextTable Parse(const std::string& text, const std::string& origin,
+                            Format format = Format::kCsv);
+  // Index of a column; InputError listing the available columns if missing.
+  size_t Column(const std::string& name) const;
+  // Index of a column, or -1.
+  int Find(const std::string& name) const;
 };
 
 // Writes a table with a header row; numbers in full precision.

@@ -1,6 +1,11 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages granasym needs, when missing.
 #
+# chromium is the headless browser of the report test
+# (tests/study/report_browser_test.sh): about 113 MB to download and 520 MB
+# installed with its 23 libraries (GTK 3, codecs) on a machine with the
+# build packages; about a minute.
+#
 # slurm-wlm (slurmctld, slurmd, slurm-client) and munge are for the Slurm
 # tests, which start a private single-node cluster (tests/slurm/). Their
 # maintainer scripts would start the system daemons; in a container (no init)
@@ -15,6 +20,7 @@ packages=(
   libcli11-dev libtoml11-dev libfmt-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
+  chromium
 )
 daemon_packages=(slurm-wlm munge)
 installed() {

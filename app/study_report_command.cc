@@ -1,0 +1,23 @@
+#include "app/study_report_command.h"
+
+#include <cstdio>
+#include <string>
+
+#include "study/report.h"
+
+namespace granasym {
+
+void RegisterStudyReportCommand(CLI::App* study) {
+  CLI::App* report = study->add_subcommand(
+      "report",
+      "write DIR/index.html (one self-contained page: figures, parameters, states, run "
+      "times, provenance) and DIR/report.md");
+  static std::string directory;
+  report->add_option("dir", directory, "study folder")->required()->check(CLI::ExistingDirectory);
+  report->callback([] {
+    const study::ReportSummary summary = study::WriteReport(directory);
+    std::printf("%s", summary.Text().c_str());
+  });
+}
+
+}  // namespace granasym

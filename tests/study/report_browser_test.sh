@@ -1,0 +1,204 @@
+#!/usr/bin/env bash
+# The study report in a real browser:
+#   report_browser_test.sh GRANASYM STUDY_DIR WORK_DIR
+# Copies the small files of a finished study (STUDY_DIR: the tiny study of
+# Study.paper_tiny_end_to_end), adds fixture figures and calibration results
+# where the study has none (marked as fixtures in their texts), writes the
+# report with `granasym study report` and renders index.html in headless
+# Chromium at a desktop width and at 500 px (about the narrowest window
+# headless Chromium makes). A script injected into a copy of
+# the page records every image that did not load (naturalWidth 0) and every
+# element that reaches past the viewport outside a scrolling container (a
+# layout error); any of them fails the test, naming it. Two broken copies
+# prove that the check fails: one with a truncated PNG, one with the
+# stylesheet's horizontal scrolling of tables switched off.
+set -euo pipefail
+granasym="$1" study="$2" work="$3"
+
+browser=""
+for candidate in chromium chromium-browser; do
+  if command -v "$candidate" >/dev/null 2>&1; then browser="$candidate"; break; fi
+done
+if [ -z "$browser" ]; then
+  echo "FAIL: chromium is missing: run scripts/install_deps.sh (installs Debian's chromium)"
+  exit 1
+fi
+[ -f "$study/study.toml" ] || { echo "FAIL: $study is not a study folder (no study.toml)"; exit 1; }
+
+rm -rf "$work"
+mkdir -p "$work"
+dir="$work/study"
+mkdir -p "$dir"
+# The records and tables, not the HDF5 results (the report links, never reads them).
+(cd "$study" && find . \( -name '*.toml' -o -name '*.csv' -o -name '*.tsv' -o -name '*.txt' \
+   -o -name '*.png' -o -name '*.pdf' \) -not -path './samples/*' -print0 |
+   xargs -0 cp --parents -t "$dir")
+
+# Fixtures where the study has no figures or calibration of its own.
+fixtures=()
+if [ ! -f "$dir/figures/index.tsv" ]; then
+  fixtures+=(figures)
+  mkdir -p "$dir/figures"
+  # A wide image (wider than any viewport: the stylesheet must scale it) and a square one.
+  gnuplot -e "set terminal pngcairo size 1800,500; set output '$dir/figures/fixture_wide.png';
+              set title 'test fixture'; plot sin(x)"
+  gnuplot -e "set terminal pdfcairo; set output '$dir/figures/fixture_wide.pdf'; plot sin(x)"
+  gnuplot -e "set terminal pngcairo size 400,400; set output '$dir/figures/fixture_square.png';
+              set title 'test fixture'; plot cos(x)"
+  {
+    printf 'stem\tfigure\ttitle\tcaption\n'
+    printf 'fixture_wide\t16\tTest fixture: a wide figure <b>not bold</b>\tA fixture of the browser test (p < 100 kPa & "quotes"); %s\n' \
+      "an_unbreakable_token_$(printf 'x%.0s' {1..300})"
+    printf 'fixture_square\t8\tTest fixture: a square figure\tA fixture of the browser test.\n'
+  } > "$dir/figures/index.tsv"
+fi
+for model in hypoplastic_clay modified_cam_clay hypoplastic_sand; do
+  folder="$dir/calibration/$model"
+  [ -d "$folder" ] && continue
+  fixtures+=("calibration/$model")
+  mkdir -p "$folder"
+  cat > "$folder/parameters.csv" <<'EOF'
+parameter,value,std_error,ci95_low,ci95_high,status
+lambda_star,0.0252,0.0011,0.0230,0.0274,fitted
+n,0.686,0.004,0.678,0.694,fitted
+phi_c_deg,29.9,,,,at_bound
+kappa_star,0.004,0.01,-0.016,0.024,undetermined
+EOF
+  printf 'test fixture: phi_c_deg at its upper bound\ntest fixture: kappa_star is undetermined\n' \
+    > "$folder/warnings.txt"
+  {
+    echo "test fixture: the summary of a fit, with one very long line:"
+    printf 'residual%.0s ' {1..200}
+    echo
+  } > "$folder/summary.txt"
+  printf '# test fixture\n[model]\nkind = "%s"\n' "$model" > "$folder/model.toml"
+done
+[ ${#fixtures[@]} -eq 0 ] || echo "fixtures (the study has none of its own): ${fixtures[*]}"
+
+"$granasym" study report "$dir" | tee "$work/report.txt"
+grep -q "report: $dir/index.html" "$work/report.txt" ||
+  { echo "FAIL: the command did not say where index.html is"; exit 1; }
+[ -s "$dir/report.md" ] || { echo "FAIL: no report.md"; exit 1; }
+if grep -Eq '(src|href)="(https?:)?//' "$dir/index.html"; then
+  echo "FAIL: index.html refers to something outside the study folder"; exit 1
+fi
+
+# The check, injected at the end of a copy of the page (the report itself has
+# no scripts). Lines "check: ..." go into a <pre> once the page has loaded.
+check_script='<script>
+window.addEventListener("load", () => {
+  for (const d of document.querySelectorAll("details")) d.open = true;
+  const lines = [];
+  const images = [...document.images];
+  for (const img of images) {
+    if (!img.complete || img.naturalWidth === 0) lines.push("broken image: " + img.getAttribute("src"));
+  }
+  const width = document.documentElement.clientWidth;
+  const clips = (e) => {
+    for (let a = e.parentElement; a; a = a.parentElement) {
+      if (["auto", "scroll", "hidden", "clip"].includes(getComputedStyle(a).overflowX)) return true;
+    }
+    return false;
+  };
+  const name = (e) => e.tagName.toLowerCase() + (e.id ? "#" + e.id : "") +
+      (e.className ? "." + String(e.className).replace(/ /g, ".") : "");
+  // Only the outermost element past the edge: its descendants follow it.
+  const outside = new Set();
+  let elements = 0, errors = 0;
+  for (const e of document.body.querySelectorAll("*")) {
+    const r = e.getBoundingClientRect();
+    if (r.width === 0 && r.height === 0) continue;
+    ++elements;
+    if (clips(e)) continue;
+    // The box past the edge, or text running out of a box that does not scroll.
+    const spills = e.clientWidth > 0 && getComputedStyle(e).overflowX === "visible" &&
+                   e.scrollWidth > e.clientWidth + 1 && r.left + e.scrollWidth > width + 1;
+    if (r.right > width + 1 || r.left < -1 || spills) {
+      outside.add(e);
+      if (outside.has(e.parentElement)) continue;
+      if (++errors > 20) continue;
+      const right = Math.round(Math.max(r.right, r.left + e.scrollWidth));
+      lines.push("layout error: " + name(e) + " spans " + Math.round(r.left) + ".." + right +
+                 " px, viewport " + width + " px: " +
+                 (e.textContent || "").replace(/\s+/g, " ").trim().slice(0, 60));
+    }
+  }
+  if (errors > 20) lines.push("layout error: and " + (errors - 20) + " more elements");
+  if (document.documentElement.scrollWidth > width + 1) {
+    lines.push("layout error: the page scrolls sideways (" +
+               document.documentElement.scrollWidth + " px in " + width + " px)");
+  }
+  lines.push("done: " + images.length + " images, " + elements + " elements, viewport " + width + " px");
+  const out = document.createElement("pre");
+  out.id = "granasym-check";
+  out.textContent = "\n" + lines.map((l) => "check: " + l).join("\n") + "\n";
+  document.body.appendChild(out);
+});
+</script>'
+
+# render PAGE WIDTH: prints the check lines of PAGE at a window WIDTH px wide.
+render() {
+  local page="$1" width="$2"
+  local checked="${page%.html}.check.html"
+  CHECK_SCRIPT="$check_script" awk '/<\/body>/ { print ENVIRON["CHECK_SCRIPT"] } { print }' \
+    "$page" > "$checked"
+  timeout 120 "$browser" --headless=new --no-sandbox --disable-gpu --disable-dev-shm-usage \
+    --no-first-run --user-data-dir="$work/profile" --window-size="$width,900" \
+    --virtual-time-budget=5000 --dump-dom "file://$checked" \
+    2> "$work/browser-$width.log" | grep '^check: ' || true
+}
+
+# check PAGE: 0 when the page renders cleanly at both widths; prints the findings.
+check() {
+  local page="$1" failed=0 width lines
+  for width in 1280 500; do
+    lines=$(render "$page" "$width")
+    if ! grep -q '^check: done' <<<"$lines"; then
+      echo "  at $width px: the check did not run (see $work/browser-$width.log)"
+      tail -5 "$work/browser-$width.log" | sed 's/^/    /'
+      failed=1
+      continue
+    fi
+    echo "$lines" | sed "s/^check: /  at $width px: /"
+    if grep -Eq '^check: (broken image|layout error)' <<<"$lines"; then failed=1; fi
+  done
+  return $failed
+}
+
+echo "the report:"
+if ! check "$dir/index.html"; then
+  echo "FAIL: the report has a missing image or a layout error (above)"; exit 1
+fi
+images=$(grep -c '<img ' "$dir/index.html" || true)
+indexed=$(($(wc -l < "$dir/figures/index.tsv") - 1))
+[ "$images" -eq "$indexed" ] ||
+  { echo "FAIL: $images images in the page, $indexed figures in figures/index.tsv"; exit 1; }
+grep -q '&lt;b&gt;not bold' "$dir/index.html" || [ ! -f "$dir/figures/fixture_wide.png" ] ||
+  { echo "FAIL: the fixture caption's markup was not escaped"; exit 1; }
+
+# The check must fail on a broken image: a copy whose first figure is truncated.
+broken="$work/broken_image"
+cp -r "$dir" "$broken"
+first_png=$(grep -o 'src="figures/[^"]*\.png"' "$broken/index.html" | head -1 | sed 's/src="//; s/"$//')
+head -c 40 "$dir/$first_png" > "$broken/$first_png"
+echo "a copy with $first_png truncated to 40 bytes:"
+check "$broken/index.html" > "$work/broken_image.txt" &&
+  { cat "$work/broken_image.txt"; echo "FAIL: the check did not notice the broken image"; exit 1; }
+grep 'broken image' "$work/broken_image.txt"
+grep -q "broken image: $first_png" "$work/broken_image.txt" ||
+  { echo "FAIL: the check did not name $first_png"; exit 1; }
+
+# ... and on a layout error: a copy without the horizontal scrolling of tables.
+wide="$work/no_scrolling"
+cp -r "$dir" "$wide"
+sed -i 's/\.scroll{overflow-x:auto;/.scroll{overflow-x:visible;/' "$wide/index.html"
+grep -q 'overflow-x:visible' "$wide/index.html" ||
+  { echo "FAIL: the stylesheet has no .scroll rule to switch off"; exit 1; }
+echo "a copy whose tables do not scroll:"
+check "$wide/index.html" > "$work/no_scrolling.txt" &&
+  { cat "$work/no_scrolling.txt"; echo "FAIL: the check did not notice tables wider than the page"; exit 1; }
+echo "  $(grep -c 'layout error' "$work/no_scrolling.txt") layout errors, e.g.:"
+grep -m 3 'layout error: div.scroll' "$work/no_scrolling.txt" ||
+  { echo "FAIL: the check did not name a table's container"; exit 1; }
+
+echo "PASS: $images figures and every table render inside the viewport at 1280 and 500 px; a truncated PNG and unscrolled tables are caught"

@@ -1,0 +1,277 @@
+#include "study/report.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "common/error.h"
+#include "common/text_file.h"
+
+namespace granasym::study {
+namespace {
+namespace fs = std::filesystem;
+
+void Write(const fs::path& path, const std::string& text) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+}
+
+int Count(const std::string& text, const std::string& what) {
+  int count = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++count;
+  return count;
+}
+
+fs::path EmptyStudy(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "report" / name;
+  fs::remove_all(dir);
+  Write(dir / "study.toml",
+        "# written by granasym study run\nprogramme = \"paper\"\nprogramme_file = \"paper.toml\"\n"
+        "scale = \"tiny\"\nthreads = 1\nreplicates = 2\ncount = 400\nncl = \"ncl\"\n"
+        "program_version = \"0.1.0+test\"\n");
+  return dir;
+}
+
+// A study folder with every input of the report, in the formats of the
+// contracts (study/report.h); texts carry markup that must come out escaped.
+fs::path FullStudy(const std::string& name) {
+  const fs::path dir = EmptyStudy(name);
+  Write(dir / "asymptotic_states.csv",
+        "replicate,kind,status,case,case_name,stage,psi_epsilon_deg,p_kpa,e,ln_1_plus_e,"
+        "psi_sigma_deg,q_over_p,ocr,p_e_star_kpa,ncl_reference,run,figures,flags,detector,message\n"
+        "1,ncl,detected,r1/ncl,ncl,stage_alpha,0,100.123456,0.8,0.5877866649,1.5,0.03,1,100,ncl,"
+        "ncl,\"8, 16\",,compression: a window,all stages completed\n"
+        "1,csl,drifting,r1/nc100_psi90,nc100_psi90,stage_beta,90,20.5,0.77,0.57,29.7,1.21,4.8,"
+        "98.9,ncl,nc{p}_psi{psi},\"16\",rate_affected,isochoric: a window,"
+        "\"still drifting: psi_sigma changed by 1.2 (< 1), say \"\"<b>bold</b>\"\" & more\"\n"
+        "2,none,no_result,r2/oc,oc,,,,,,,,,,,oc,\"Sec. 5.2\",,,not run\n");
+  Write(dir / "asymptotic_states_summary.csv",
+        "case_name,stage,kind,replicates,detected,p_kpa_mean,p_kpa_ci95,psi_sigma_deg_mean,"
+        "psi_sigma_deg_ci95\n"
+        "ncl,stage_alpha,ncl,2,2,100.5,3.25,1.5,\n");
+  Write(dir / "ncl_fit.csv",
+        "replicate,case,points,detected,drifting,N,lambda_star,p_min_kpa,p_max_kpa\n"
+        "1,ncl,5,1,4,0.6860190313,0.02522864244,30.47,597.39\n");
+  Write(dir / "path_convergence.csv",
+        "# paths of one psi_epsilon join where ln(1+e) and psi_sigma agree\n"
+        "replicate,kind,psi_epsilon_deg,case_a,case_b,status,joined_at_p_kpa,ln_1_plus_e,"
+        "psi_sigma_deg,overlap_from_p_kpa,overlap_to_p_kpa\n"
+        "1,compression,30,nc20_psi30,nc5_psi30,joined,119.1,0.56,7.56,20.4,2000.9\n");
+  Write(dir / "cases/r1/ncl/case.toml",
+        "id = \"r1/ncl\"\nname = \"ncl\"\nreplicate = 1\nkey = \"aaaa1111\"\nparent = \"\"\n"
+        "run = \"ncl\"\nfigures = \"8, 16\"\n");
+  Write(dir / "cases/r1/ncl/done.toml",
+        "key = \"aaaa1111\"\ntermination = \"completed\"\nmessage = \"all stages completed\"\n"
+        "steps = 1000\nparticles = 400\nwall_seconds = 2.5\n");
+  Write(dir / "cases/r1/nc100_psi90/case.toml",
+        "id = \"r1/nc100_psi90\"\nname = \"nc100_psi90\"\nreplicate = 1\nkey = \"bbbb2222\"\n"
+        "parent = \"r1/ncl\"\nrun = \"nc{p}_psi{psi}\"\nfigures = \"16\"\n");
+  Write(dir / "cases/r1/nc100_psi90/done.toml",
+        "key = \"bbbb2222\"\ntermination = \"completed\"\nmessage = \"all stages completed\"\n"
+        "steps = 1600\nparticles = 400\nwall_seconds = 1.5\n");
+  Write(dir / "cases/r2/oc/case.toml",
+        "id = \"r2/oc\"\nname = \"oc\"\nreplicate = 2\nkey = \"cccc3333\"\nparent = \"\"\n");
+  Write(dir / "models/fig5_psi45_ocr1/done.toml",
+        "key = \"dddd4444\"\ntermination = \"completed\"\nmessage = \"reached_end\"\nsteps = 0\n"
+        "particles = 0\nwall_seconds = 0.008\n");
+  Write(dir / "figures/index.tsv",
+        "stem\tfigure\ttitle\tcaption\n"
+        "fig16_psi\t16\tψ_σ against ψ_ε\tAll paths; p < 100 kPa & \"quoted\" <i>markup</i>\n"
+        "fig08_overlap\t8\tOverlaps\tNot drawn yet\n");
+  Write(dir / "figures/fig16_psi.png", "not really a PNG: the writer only links it");
+  Write(dir / "figures/fig16_psi.pdf", "%PDF");
+  Write(dir / "figures/fig16_psi.csv", "x,y\n");
+  const fs::path clay = dir / "calibration/hypoplastic_clay";
+  Write(clay / "parameters.csv",
+        "parameter,value,std_error,ci95_low,ci95_high,status\n"
+        "lambda_star,0.0252,0.0011,0.023,0.0274,fitted\n"
+        "phi_c_deg,29.9,,,,at_bound\n"
+        "kappa_star,0.004,0.01,-0.016,0.024,undetermined\n");
+  Write(clay / "warnings.txt", "phi_c_deg at its upper bound\n\nkappa_star <undetermined>\n");
+  Write(clay / "summary.txt", "Ceres: CONVERGENCE after 12 iterations <ok>\n");
+  Write(clay / "model.toml", "[model]\nkind = \"hypoplastic_clay\"\n");
+  return dir;
+}
+
+TEST(StudyReport, HtmlEscapingReplacesEveryMarkupCharacter) {
+  EXPECT_EQ(HtmlEscaped("a<b>&\"c\"'d'"), "a&lt;b&gt;&amp;&quot;c&quot;&#39;d&#39;");
+  EXPECT_EQ(HtmlEscaped("plain ψ_σ"), "plain ψ_σ");
+}
+
+TEST(StudyReport, EveryFigureOfTheIndexAppearsWithItsImageOrAMissingNote) {
+  const fs::path dir = FullStudy("figures");
+  const ReportSummary summary = WriteReport(dir.string());
+  EXPECT_EQ(summary.figures, 2);
+  EXPECT_EQ(summary.figures_missing, 1);
+  const std::string html = ReadTextFile(summary.html_path);
+  const std::string md = ReadTextFile(summary.markdown_path);
+  EXPECT_NE(html.find("Figure 16: ψ_σ against ψ_ε"), std::string::npos);
+  EXPECT_NE(html.find("Figure 8: Overlaps"), std::string::npos);
+  EXPECT_EQ(Count(html, "<img "), 1);
+  EXPECT_NE(html.find("<img src=\"figures/fig16_psi.png\""), std::string::npos);
+  EXPECT_NE(html.find("href=\"figures/fig16_psi.pdf\""), std::string::npos);
+  EXPECT_NE(html.find("href=\"figures/fig16_psi.csv\""), std::string::npos);
+  EXPECT_NE(html.find("<code>figures/fig08_overlap.png</code> is missing"), std::string::npos);
+  EXPECT_NE(md.find("![Figure 16: ψ\\_σ against ψ\\_ε](figures/fig16_psi.png)"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("`figures/fig08_overlap.png` is missing"), std::string::npos);
+  // The states behind figure 16: the two rows that name it, not the third.
+  EXPECT_NE(html.find("2 rows of the state table behind figure 16"), std::string::npos);
+  EXPECT_NE(html.find("1 row of the state table behind figure 8"), std::string::npos);
+  EXPECT_EQ(summary.absent, (std::vector<std::string>{"calibration/hypoplastic_sand/",
+                                                      "calibration/modified_cam_clay/",
+                                                      "figures/fig08_overlap.png"}));
+}
+
+TEST(StudyReport, EveryStateRowAppearsInBothFiles) {
+  const fs::path dir = FullStudy("states");
+  const ReportSummary summary = WriteReport(dir.string());
+  EXPECT_EQ(summary.states, 3);
+  const std::string html = ReadTextFile(summary.html_path);
+  const std::string md = ReadTextFile(summary.markdown_path);
+  for (const char* stage : {"stage_alpha", "stage_beta"}) {
+    EXPECT_NE(html.find(std::string("<td>") + stage + "</td>"), std::string::npos) << stage;
+    EXPECT_NE(md.find(std::string("| ") + stage + " |"), std::string::npos) << stage;
+  }
+  // The row without a result, by its message; every case links to its scene.
+  EXPECT_NE(html.find("<td class=\"status-no_result\">no_result</td>"), std::string::npos);
+  EXPECT_NE(html.find("<a href=\"cases/r2/oc/scene.toml\">r2/oc</a>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"flagged\">rate_affected</td>"), std::string::npos);
+  // Numbers shortened, detectors listed once.
+  EXPECT_NE(html.find("<td class=\"num\">100.1</td>"), std::string::npos);
+  EXPECT_NE(html.find("D2: isochoric: a window"), std::string::npos);
+  // Quoted fields with commas and quotes stay one field.
+  EXPECT_NE(html.find("still drifting: psi_sigma changed by 1.2 (&lt; 1), say "
+                      "&quot;&lt;b&gt;bold&lt;/b&gt;&quot; &amp; more"),
+            std::string::npos);
+  // The replicate summary pairs means with their intervals.
+  EXPECT_NE(html.find("<th>p_kpa (mean ± 95 %)</th>"), std::string::npos);
+  EXPECT_NE(html.find("100.5 ± 3.2"), std::string::npos);
+  EXPECT_NE(html.find("<p>paths of one psi_epsilon join where ln(1+e) and psi_sigma agree</p>"),
+            std::string::npos);
+  EXPECT_NE(html.find("<td class=\"status-joined\">joined</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"num\">0.686</td><td class=\"num\">0.02523</td>"),
+            std::string::npos);
+}
+
+TEST(StudyReport, NoTextOfTheInputsIsTakenAsMarkup) {
+  const fs::path dir = FullStudy("escaping");
+  const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);
+  for (const char* raw : {"<b>bold", "<i>markup", "<undetermined>", "<ok>"}) {
+    EXPECT_EQ(html.find(raw), std::string::npos) << raw;
+  }
+  for (const char* escaped :
+       {"&lt;i&gt;markup&lt;/i&gt;", "p &lt; 100 kPa &amp; &quot;quoted&quot;",
+        "kappa_star &lt;undetermined&gt;", "12 iterations &lt;ok&gt;"}) {
+    EXPECT_NE(html.find(escaped), std::string::npos) << escaped;
+  }
+  // Self-contained: no scripts, no stylesheets or images from elsewhere.
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_EQ(html.find("<link"), std::string::npos);
+  EXPECT_EQ(html.find("http://"), std::string::npos);
+  EXPECT_EQ(html.find("https://"), std::string::npos);
+  EXPECT_EQ(html.find("src=\"/"), std::string::npos);
+  EXPECT_EQ(Count(html, "<style>"), 1);
+}
+
+TEST(StudyReport, CalibrationShowsIntervalsStatusesWarningsAndSummary) {
+  const fs::path dir = FullStudy("calibration");
+  const ReportSummary summary = WriteReport(dir.string());
+  EXPECT_EQ(summary.models_calibrated, 1);
+  const std::string html = ReadTextFile(summary.html_path);
+  EXPECT_NE(html.find("3 parameters (1 at_bound, 1 fitted, 1 undetermined)"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"num\">[0.023, 0.0274]</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"status-at_bound\">at_bound</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"status-undetermined\">undetermined</td>"), std::string::npos);
+  EXPECT_NE(html.find("2 warnings:"), std::string::npos);  // the blank line is not a warning
+  EXPECT_NE(html.find("<li>phi_c_deg at its upper bound</li>"), std::string::npos);
+  EXPECT_NE(html.find("<details><summary>Summary of the fit"), std::string::npos);
+  EXPECT_NE(html.find("href=\"calibration/hypoplastic_clay/model.toml\""), std::string::npos);
+  EXPECT_NE(html.find("<code>calibration/modified_cam_clay/</code> is absent (run "
+                      "<code>granasym study calibrate"),
+            std::string::npos);
+}
+
+TEST(StudyReport, RunTimesCountEachCaseOwnStepsAndTotal) {
+  const fs::path dir = FullStudy("run_times");
+  const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);
+  // nc100_psi90 continues the 1000 steps of ncl: 600 of its own.
+  EXPECT_NE(html.find("<td class=\"num\">600</td><td class=\"num\">1600</td>"), std::string::npos);
+  EXPECT_NE(html.find("2 finished cases: 1600 steps of their own, 6.4e+05 particle-steps, 4.0 s"),
+            std::string::npos);
+  EXPECT_NE(html.find("<tr class=\"total\"><td>total: 2 finished of 3</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"status-not_run\">not_run</td>"), std::string::npos);
+  EXPECT_NE(html.find("<code>bbbb2222</code>"), std::string::npos);
+  EXPECT_NE(html.find("<code>dddd4444</code>"), std::string::npos);
+  // Provenance: the study record, every key.
+  EXPECT_NE(html.find("<td><code>program_version</code></td><td>0.1.0+test</td>"),
+            std::string::npos);
+  EXPECT_NE(html.find("Scale tiny: 2 replicates of 400 spheres, 1 thread per case; computed by "),
+            std::string::npos);
+}
+
+TEST(StudyReport, AbsentInputsAreStatedInTheirPlace) {
+  const fs::path dir = EmptyStudy("absent");
+  const ReportSummary summary = WriteReport((dir / "").string());  // a trailing '/' is fine
+  const std::string html = ReadTextFile(summary.html_path);
+  const std::string md = ReadTextFile(summary.markdown_path);
+  const std::string folder = dir.string();
+  EXPECT_NE(html.find("Figures not drawn: run <code>granasym study figures " + folder + "</code>"),
+            std::string::npos);
+  EXPECT_NE(md.find("Figures not drawn: run `granasym study figures " + folder + "`"),
+            std::string::npos);
+  EXPECT_EQ(Count(html, "Not calibrated: "), 3);
+  for (const char* file : {"asymptotic_states.csv", "asymptotic_states_summary.csv", "ncl_fit.csv",
+                           "path_convergence.csv"}) {
+    EXPECT_NE(html.find(std::string("<code>") + file + "</code> is absent"), std::string::npos)
+        << file;
+  }
+  EXPECT_NE(html.find("No case folders"), std::string::npos);
+  EXPECT_EQ(summary.absent.size(), 8u);
+  EXPECT_NE(summary.Text().find("absent: asymptotic_states.csv"), std::string::npos);
+  // Every section is in the contents, with the anchor its heading has.
+  for (const char* anchor :
+       {"overview", "figures", "calibration", "asymptotic-states", "replicate-summary", "ncl-fits",
+        "path-convergence", "run-times-and-keys", "provenance", "calibration-hypoplastic_clay"}) {
+    EXPECT_NE(html.find(std::string("<a href=\"#") + anchor + "\">"), std::string::npos) << anchor;
+    EXPECT_NE(html.find(std::string(" id=\"") + anchor + "\">"), std::string::npos) << anchor;
+    EXPECT_NE(md.find(std::string("](#") + anchor + ")"), std::string::npos) << anchor;
+  }
+}
+
+TEST(StudyReport, BadInputIsAnErrorNamingTheFile) {
+  const fs::path none = fs::temp_directory_path() / "granasym_tests" / "report" / "not_a_study";
+  fs::remove_all(none);
+  fs::create_directories(none);
+  try {
+    WriteReport(none.string());
+    FAIL() << "a folder without study.toml was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("study.toml: not a study folder"), std::string::npos);
+  }
+  const fs::path dir = FullStudy("bad_parameters");
+  Write(dir / "calibration/hypoplastic_clay/parameters.csv", "parameter,value\nlambda_star,1\n");
+  try {
+    WriteReport(dir.string());
+    FAIL() << "parameters.csv without its columns was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("parameters.csv: missing column 'std_error'"),
+              std::string::npos)
+        << error.what();
+  }
+  const fs::path stem = FullStudy("bad_stem");
+  Write(stem / "figures/index.tsv", "stem\tfigure\ttitle\tcaption\n../secret\t1\tt\tc\n");
+  try {
+    WriteReport(stem.string());
+    FAIL() << "a stem outside figures/ was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("index.tsv: line 2: stem '../secret'"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+}  // namespace
+}  // namespace granasym::study
