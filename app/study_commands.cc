@@ -9,6 +9,7 @@
 #include "app/enum_option.h"
 #include "app/progress.h"
 #include "app/signals.h"
+#include "app/study_calibrate_command.h"
 #include "common/error.h"
 #include "study/plan.h"
 #include "study/programme.h"
@@ -143,6 +144,7 @@ void RegisterStudyCommands(CLI::App& app) {
     std::printf("%d finished cases in %s\n", cases, merge_out.c_str());
     PrintTableSummary(study::WriteStateTable(merge_out));
   });
+  RegisterStudyCalibrateCommand(study);
 }
 
 }  // namespace granasym

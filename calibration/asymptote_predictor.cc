@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -12,6 +13,7 @@
 #include "common/state_measures.h"
 #include "constitutive/element_test.h"
 #include "constitutive/hypoplastic_clay.h"
+#include "constitutive/hypoplastic_sand.h"
 #include "constitutive/modified_cam_clay.h"
 
 namespace granasym::calibration {
@@ -113,14 +115,108 @@ bool Invert(const StressMap& map, const std::vector<Prediction>& grid, double ta
   return true;
 }
 
+// The sand's states along one proportional path, interpolated at `targets`.
+bool SandPath(const HypoplasticSand& model, double psi_epsilon, const std::vector<double>& targets,
+              const PredictorOptions& options, std::vector<StatePrediction>* out,
+              std::string* why) {
+  const double lo = *std::min_element(targets.begin(), targets.end());
+  const double hi = *std::max_element(targets.begin(), targets.end());
+  const double psi_c = std::atan(std::sqrt(2.0) / 3.0 *
+                                 CriticalStateRatio(model.critical_friction_angle()));
+  out->assign(targets.size(), StatePrediction());
+  auto closed_form = [&](double e_of_p(const HypoplasticSand&, double), double psi) {
+    for (size_t k = 0; k < targets.size(); ++k) {
+      const double e = e_of_p(model, targets[k]);
+      (*out)[k].psi_sigma = psi;
+      (*out)[k].ln_volume = std::log1p(e);
+      (*out)[k].ln_ocr = std::log(model.EquivalentPressure(e) / targets[k]);
+    }
+    return true;
+  };
+  if (std::abs(psi_epsilon) < 1e-9) {
+    return closed_form(
+        [](const HypoplasticSand& m, double p) { return m.LimitVoidRatiosAt(p).loosest; }, 0.0);
+  }
+  if (std::abs(psi_epsilon - 0.5 * kPi) < 1e-9) {
+    return closed_form(
+        [](const HypoplasticSand& m, double p) { return m.LimitVoidRatiosAt(p).critical; }, psi_c);
+  }
+  const bool rising = std::cos(psi_epsilon) > 0;  // compression: p rises
+  const double start = rising ? lo / 10.0 : hi * 10.0;
+  const ModelState initial = InitialStateFromOcr(model, start, 0.0, 1.0);
+  LoadingStage stage = LoadingStage::Proportional(psi_epsilon, 1.0, 50.0);
+  stage.stops.push_back({StopKind::kMeanStress, rising ? hi * 1.02 : lo / 1.02});
+  stage.output_points = options.sand_path_points;
+  const ElementTestResult result = ElementTest(model, options.sand_paths).Run(initial, {stage});
+  std::vector<double> ln_p, ln_v, psi;
+  for (const ElementTestRecord& record : result.history) {
+    const AxisymmetricStress s = RecordStress(record);
+    if (!(s.mean() > 0)) continue;
+    const double x = std::log(s.mean());
+    if (!ln_p.empty() && (rising ? x <= ln_p.back() : x >= ln_p.back())) continue;
+    ln_p.push_back(x);
+    ln_v.push_back(std::log1p(record.void_ratio));
+    psi.push_back(s.psi());
+  }
+  for (size_t k = 0; k < targets.size(); ++k) {
+    const double x = std::log(targets[k]);
+    size_t j = 1;
+    while (j < ln_p.size() && (rising ? ln_p[j] < x : ln_p[j] > x)) ++j;
+    if (ln_p.size() < 2 || j >= ln_p.size() ||
+        (rising ? ln_p.front() > x : ln_p.front() < x)) {
+      *why = fmt::format(
+          "the sand model's path at psi_epsilon = {:.4g} deg from p = {:.4g} kPa does not reach "
+          "p = {:.4g} kPa ({})",
+          psi_epsilon / kDegree, start, targets[k], result.summary.Report());
+      return false;
+    }
+    const double t = (x - ln_p[j - 1]) / (ln_p[j] - ln_p[j - 1]);
+    const double v = ln_v[j - 1] + t * (ln_v[j] - ln_v[j - 1]);
+    (*out)[k].psi_sigma = psi[j - 1] + t * (psi[j] - psi[j - 1]);
+    (*out)[k].ln_volume = v;
+    (*out)[k].ln_ocr = std::log(std::max(model.EquivalentPressure(std::expm1(v)), 1e-300) /
+                                targets[k]);
+  }
+  return true;
+}
+
 }  // namespace
 
 AsymptotePredictor::AsymptotePredictor(ModelKind kind, const PredictorOptions& options)
     : kind_(kind), options_(options) {
-  GRANASYM_CHECK(IsCalibrated(kind))
-      << "calibration fits the clay models only, not " << ToString(kind);
+  GRANASYM_CHECK(IsCalibrated(kind)) << "calibration does not fit " << ToString(kind);
   std::string why;
   GRANASYM_CHECK(options_.IsValid(&why)) << why;
+}
+
+bool AsymptotePredictor::PredictAtPressures(const std::vector<double>& parameters,
+                                            const std::vector<double>& psi_epsilons,
+                                            const std::vector<double>& mean_stresses,
+                                            std::vector<StatePrediction>* states,
+                                            std::string* why) const {
+  GRANASYM_CHECK(kind_ == ModelKind::kHypoplasticSand) << "PredictAtPressures: sand model only";
+  GRANASYM_CHECK(psi_epsilons.size() == mean_stresses.size());
+  const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind_, parameters, why);
+  if (!model) return false;
+  const auto& sand = static_cast<const HypoplasticSand&>(*model);
+  states->assign(psi_epsilons.size(), StatePrediction());
+  std::vector<bool> done(psi_epsilons.size(), false);
+  for (size_t k = 0; k < psi_epsilons.size(); ++k) {
+    if (done[k]) continue;
+    std::vector<size_t> members;
+    std::vector<double> targets;
+    for (size_t j = k; j < psi_epsilons.size(); ++j) {
+      if (psi_epsilons[j] == psi_epsilons[k]) {
+        members.push_back(j);
+        targets.push_back(mean_stresses[j]);
+        done[j] = true;
+      }
+    }
+    std::vector<StatePrediction> path;
+    if (!SandPath(sand, psi_epsilons[k], targets, options_, &path, why)) return false;
+    for (size_t m = 0; m < members.size(); ++m) (*states)[members[m]] = path[m];
+  }
+  return true;
 }
 
 bool AsymptotePredictor::Predict(const std::vector<double>& parameters,
@@ -128,6 +224,10 @@ bool AsymptotePredictor::Predict(const std::vector<double>& parameters,
                                  const std::vector<double>& psi_sigmas,
                                  std::vector<Prediction>* by_stretching,
                                  std::vector<Prediction>* by_stress, std::string* why) const {
+  if (kind_ == ModelKind::kHypoplasticSand) {
+    *why = "the sand model has no p-independent asymptotes: use PredictAtPressures";
+    return false;
+  }
   const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind_, parameters, why);
   if (!model) return false;
   by_stretching->assign(psi_epsilons.size(), Prediction());
@@ -181,6 +281,10 @@ bool AsymptotePredictor::Predict(const std::vector<double>& parameters,
 
 bool AsymptotePredictor::Curve(const std::vector<double>& parameters, int points,
                                std::vector<Prediction>* curve, std::string* why) const {
+  if (kind_ == ModelKind::kHypoplasticSand) {
+    *why = "the sand model has no analytic asymptotic state boundary surface";
+    return false;
+  }
   const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind_, parameters, why);
   if (!model) return false;
   curve->assign(static_cast<size_t>(points), Prediction());

@@ -59,6 +59,7 @@
 #include "calibration/dem_state_reader.h"
 #include "calibration/model_parameters.h"
 #include "calibration/nlopt_fitter.h"
+#include "calibration/study_state_reader.h"
 #include "common/config.h"
 #include "common/enum_names.h"
 
@@ -66,10 +67,14 @@ namespace granasym::calibration {
 
 struct DatasetConfig {
   std::string name;
-  std::string path;  // resolved against the calibration file's folder
+  std::string path;                // the first of `paths`
+  std::vector<std::string> paths;  // resolved against the calibration file's folder,
+                                   // globs expanded (dem); one for csv and study
   bool is_dem = false;
+  bool is_study = false;
   CsvReadOptions csv;
   DemReadOptions dem;
+  StudyReadOptions study;
 };
 
 // A user's choice for one parameter; unset fields take the defaults.
@@ -109,6 +114,8 @@ struct CalibrationConfig {
   std::vector<ParameterChoice> parameters;
   std::vector<DatasetConfig> datasets;
   FitMethod method = FitMethod::kCeres;
+  // Fix the parameters the data do not determine and refit (RunCalibration).
+  bool fix_undetermined = true;
   CeresFitter::Options ceres;
   NloptFitter::Options nlopt;
   std::string hdf5_path, summary_path, plot_data_dir;
