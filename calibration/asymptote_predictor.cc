@@ -144,38 +144,49 @@ bool SandPath(const HypoplasticSand& model, double psi_epsilon, const std::vecto
   const bool rising = std::cos(psi_epsilon) > 0;  // compression: p rises
   const double start = rising ? lo / 10.0 : hi * 10.0;
   const ModelState initial = InitialStateFromOcr(model, start, 0.0, 1.0);
-  LoadingStage stage = LoadingStage::Proportional(psi_epsilon, 1.0, 50.0);
-  stage.stops.push_back({StopKind::kMeanStress, rising ? hi * 1.02 : lo / 1.02});
-  stage.output_points = options.sand_path_points;
-  const ElementTestResult result = ElementTest(model, options.sand_paths).Run(initial, {stage});
-  std::vector<double> ln_p, ln_v, psi;
+  // One stage per distinct target, each ending exactly at its p (the stop's
+  // root finding), so that the states are smooth in the parameters (no
+  // interpolation between records under the fit's central differences).
+  std::vector<size_t> order(targets.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return rising ? targets[a] < targets[b] : targets[a] > targets[b];
+  });
+  std::vector<LoadingStage> stages;
+  std::vector<int> stage_of(targets.size(), -1);
+  for (size_t k : order) {
+    if (stages.empty() || targets[k] != stages.back().stops.front().value) {
+      LoadingStage stage = LoadingStage::Proportional(psi_epsilon, 1.0, 50.0);
+      stage.stops.push_back({StopKind::kMeanStress, targets[k]});
+      stage.output_points = 1;
+      stages.push_back(stage);
+    }
+    stage_of[k] = static_cast<int>(stages.size()) - 1;
+  }
+  const ElementTestResult result = ElementTest(model, options.sand_paths).Run(initial, stages);
+  std::vector<const ElementTestRecord*> ends(stages.size(), nullptr);
   for (const ElementTestRecord& record : result.history) {
-    const AxisymmetricStress s = RecordStress(record);
-    if (!(s.mean() > 0)) continue;
-    const double x = std::log(s.mean());
-    if (!ln_p.empty() && (rising ? x <= ln_p.back() : x >= ln_p.back())) continue;
-    ln_p.push_back(x);
-    ln_v.push_back(std::log1p(record.void_ratio));
-    psi.push_back(s.psi());
+    if (record.stage >= 0 && record.stage < static_cast<int>(ends.size())) {
+      ends[record.stage] = &record;
+    }
   }
   for (size_t k = 0; k < targets.size(); ++k) {
-    const double x = std::log(targets[k]);
-    size_t j = 1;
-    while (j < ln_p.size() && (rising ? ln_p[j] < x : ln_p[j] > x)) ++j;
-    if (ln_p.size() < 2 || j >= ln_p.size() ||
-        (rising ? ln_p.front() > x : ln_p.front() < x)) {
+    const int j = stage_of[k];
+    const bool reached = result.summary.success() &&
+                         static_cast<int>(result.summary.stages.size()) > j &&
+                         result.summary.stages[j].stop != "duration" && ends[j] != nullptr;
+    if (!reached) {
       *why = fmt::format(
           "the sand model's path at psi_epsilon = {:.4g} deg from p = {:.4g} kPa does not reach "
           "p = {:.4g} kPa ({})",
           psi_epsilon / kDegree, start, targets[k], result.summary.Report());
       return false;
     }
-    const double t = (x - ln_p[j - 1]) / (ln_p[j] - ln_p[j - 1]);
-    const double v = ln_v[j - 1] + t * (ln_v[j] - ln_v[j - 1]);
-    (*out)[k].psi_sigma = psi[j - 1] + t * (psi[j] - psi[j - 1]);
-    (*out)[k].ln_volume = v;
-    (*out)[k].ln_ocr = std::log(std::max(model.EquivalentPressure(std::expm1(v)), 1e-300) /
-                                targets[k]);
+    const AxisymmetricStress s = RecordStress(*ends[j]);
+    (*out)[k].psi_sigma = s.psi();
+    (*out)[k].ln_volume = std::log1p(ends[j]->void_ratio);
+    (*out)[k].ln_ocr =
+        std::log(std::max(model.EquivalentPressure(ends[j]->void_ratio), 1e-300) / targets[k]);
   }
   return true;
 }

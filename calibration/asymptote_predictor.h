@@ -65,7 +65,7 @@ struct PredictorOptions {
   // Sand: the element tests along the DEM's paths (ERK 5; 1e-9 keeps the
   // central differences of the fit clean) and the records per path.
   ElementTestOptions sand_paths = SandPathOptions();
-  int sand_path_points = 400;
+
   static ElementTestOptions SandPathOptions() {
     ElementTestOptions options;
     options.integrator.relative_tolerance = options.integrator.absolute_tolerance = 1e-9;

@@ -796,7 +796,10 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
     if (dem_csl_ocr.size() != model_csl_ocr.size()) {
       dem_csl_ocr.clear();
       const StartingValues& sv = run.starting_values;
-      if (sv.lambda_star.from_data && sv.n_intercept.from_data && sv.lambda_star.points >= 2) {
+      // A straight NCL fit is the clay models' reference only (the sand's
+      // e_i is curved in ln(1+e)-ln p).
+      if (clay && sv.lambda_star.from_data && sv.n_intercept.from_data &&
+          sv.lambda_star.points >= 2) {
         for (const StateDataset& d : problem.datasets()) {
           for (const AsymptoticStatePoint& point : d.points) {
             if (point.kind != StateKind::kCsl) continue;

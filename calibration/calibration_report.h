@@ -88,7 +88,8 @@ CalibrationRun RunCalibration(const CalibrationConfig& config);
 //                           p/p_e* = 1.01, or states beyond it (p/p_e* > 1 by more
 //                           than twice their uncertainty);
 //   csl_ocr_mismatch        the data's OCR at the critical state (the study
-//                           table's own, else against the data's NCL fit)
+//                           table's own, else, for the clay models, against
+//                           the data's straight NCL fit)
 //                           differs from the model's by more than 25 %;
 //   structural_misfit       per kind, a mean ln(1+e) or ψ_σ residual larger
 //                           than twice the states' mean uncertainty.
