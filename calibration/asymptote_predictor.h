@@ -63,7 +63,7 @@ struct PredictorOptions {
   AsymptoteSearchOptions search;
   double initial_mean_stress = 100.0;
   // Sand: the element tests along the DEM's paths (ERK 5; 1e-9 keeps the
-  // central differences of the fit clean) and the records per path.
+  // central differences of the fit clean).
   ElementTestOptions sand_paths = SandPathOptions();
 
   static ElementTestOptions SandPathOptions() {
