@@ -11,6 +11,9 @@
 #include "app/signals.h"
 #include "app/study_figures_command.h"
 #include "app/study_report_command.h"
+#ifdef GRANASYM_HAVE_CALIBRATION
+#include "app/study_calibrate_command.h"
+#endif
 #include "common/error.h"
 #include "study/plan.h"
 #include "study/programme.h"
@@ -146,6 +149,9 @@ void RegisterStudyCommands(CLI::App& app) {
     std::printf("%d finished cases in %s\n", cases, merge_out.c_str());
     PrintTableSummary(study::WriteStateTable(merge_out));
   });
+#ifdef GRANASYM_HAVE_CALIBRATION
+  RegisterStudyCalibrateCommand(study);
+#endif
   RegisterStudyFiguresCommand(study);
   RegisterStudyReportCommand(study);
 }

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -12,6 +13,7 @@
 #include "common/state_measures.h"
 #include "constitutive/element_test.h"
 #include "constitutive/hypoplastic_clay.h"
+#include "constitutive/hypoplastic_sand.h"
 #include "constitutive/modified_cam_clay.h"
 
 namespace granasym::calibration {
@@ -113,14 +115,119 @@ bool Invert(const StressMap& map, const std::vector<Prediction>& grid, double ta
   return true;
 }
 
+// The sand's states along one proportional path, interpolated at `targets`.
+bool SandPath(const HypoplasticSand& model, double psi_epsilon, const std::vector<double>& targets,
+              const PredictorOptions& options, std::vector<StatePrediction>* out,
+              std::string* why) {
+  const double lo = *std::min_element(targets.begin(), targets.end());
+  const double hi = *std::max_element(targets.begin(), targets.end());
+  const double psi_c = std::atan(std::sqrt(2.0) / 3.0 *
+                                 CriticalStateRatio(model.critical_friction_angle()));
+  out->assign(targets.size(), StatePrediction());
+  auto closed_form = [&](double e_of_p(const HypoplasticSand&, double), double psi) {
+    for (size_t k = 0; k < targets.size(); ++k) {
+      const double e = e_of_p(model, targets[k]);
+      (*out)[k].psi_sigma = psi;
+      (*out)[k].ln_volume = std::log1p(e);
+      (*out)[k].ln_ocr = std::log(model.EquivalentPressure(e) / targets[k]);
+    }
+    return true;
+  };
+  if (std::abs(psi_epsilon) < 1e-9) {
+    return closed_form(
+        [](const HypoplasticSand& m, double p) { return m.LimitVoidRatiosAt(p).loosest; }, 0.0);
+  }
+  if (std::abs(psi_epsilon - 0.5 * kPi) < 1e-9) {
+    return closed_form(
+        [](const HypoplasticSand& m, double p) { return m.LimitVoidRatiosAt(p).critical; }, psi_c);
+  }
+  const bool rising = std::cos(psi_epsilon) > 0;  // compression: p rises
+  const double start = rising ? lo / 10.0 : hi * 10.0;
+  const ModelState initial = InitialStateFromOcr(model, start, 0.0, 1.0);
+  // One stage per distinct target, each ending exactly at its p (the stop's
+  // root finding), so that the states are smooth in the parameters (no
+  // interpolation between records under the fit's central differences).
+  std::vector<size_t> order(targets.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return rising ? targets[a] < targets[b] : targets[a] > targets[b];
+  });
+  std::vector<LoadingStage> stages;
+  std::vector<int> stage_of(targets.size(), -1);
+  for (size_t k : order) {
+    if (stages.empty() || targets[k] != stages.back().stops.front().value) {
+      LoadingStage stage = LoadingStage::Proportional(psi_epsilon, 1.0, 50.0);
+      stage.stops.push_back({StopKind::kMeanStress, targets[k]});
+      stage.output_points = 1;
+      stages.push_back(stage);
+    }
+    stage_of[k] = static_cast<int>(stages.size()) - 1;
+  }
+  const ElementTestResult result = ElementTest(model, options.sand_paths).Run(initial, stages);
+  std::vector<const ElementTestRecord*> ends(stages.size(), nullptr);
+  for (const ElementTestRecord& record : result.history) {
+    if (record.stage >= 0 && record.stage < static_cast<int>(ends.size())) {
+      ends[record.stage] = &record;
+    }
+  }
+  for (size_t k = 0; k < targets.size(); ++k) {
+    const int j = stage_of[k];
+    const bool reached = result.summary.success() &&
+                         static_cast<int>(result.summary.stages.size()) > j &&
+                         result.summary.stages[j].stop != "duration" && ends[j] != nullptr;
+    if (!reached) {
+      *why = fmt::format(
+          "the sand model's path at psi_epsilon = {:.4g} deg from p = {:.4g} kPa does not reach "
+          "p = {:.4g} kPa ({})",
+          psi_epsilon / kDegree, start, targets[k], result.summary.Report());
+      return false;
+    }
+    const AxisymmetricStress s = RecordStress(*ends[j]);
+    (*out)[k].psi_sigma = s.psi();
+    (*out)[k].ln_volume = std::log1p(ends[j]->void_ratio);
+    (*out)[k].ln_ocr =
+        std::log(std::max(model.EquivalentPressure(ends[j]->void_ratio), 1e-300) / targets[k]);
+  }
+  return true;
+}
+
 }  // namespace
 
 AsymptotePredictor::AsymptotePredictor(ModelKind kind, const PredictorOptions& options)
     : kind_(kind), options_(options) {
-  GRANASYM_CHECK(IsCalibrated(kind))
-      << "calibration fits the clay models only, not " << ToString(kind);
+  GRANASYM_CHECK(IsCalibrated(kind)) << "calibration does not fit " << ToString(kind);
   std::string why;
   GRANASYM_CHECK(options_.IsValid(&why)) << why;
+}
+
+bool AsymptotePredictor::PredictAtPressures(const std::vector<double>& parameters,
+                                            const std::vector<double>& psi_epsilons,
+                                            const std::vector<double>& mean_stresses,
+                                            std::vector<StatePrediction>* states,
+                                            std::string* why) const {
+  GRANASYM_CHECK(kind_ == ModelKind::kHypoplasticSand) << "PredictAtPressures: sand model only";
+  GRANASYM_CHECK(psi_epsilons.size() == mean_stresses.size());
+  const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind_, parameters, why);
+  if (!model) return false;
+  const auto& sand = static_cast<const HypoplasticSand&>(*model);
+  states->assign(psi_epsilons.size(), StatePrediction());
+  std::vector<bool> done(psi_epsilons.size(), false);
+  for (size_t k = 0; k < psi_epsilons.size(); ++k) {
+    if (done[k]) continue;
+    std::vector<size_t> members;
+    std::vector<double> targets;
+    for (size_t j = k; j < psi_epsilons.size(); ++j) {
+      if (psi_epsilons[j] == psi_epsilons[k]) {
+        members.push_back(j);
+        targets.push_back(mean_stresses[j]);
+        done[j] = true;
+      }
+    }
+    std::vector<StatePrediction> path;
+    if (!SandPath(sand, psi_epsilons[k], targets, options_, &path, why)) return false;
+    for (size_t m = 0; m < members.size(); ++m) (*states)[members[m]] = path[m];
+  }
+  return true;
 }
 
 bool AsymptotePredictor::Predict(const std::vector<double>& parameters,
@@ -128,6 +235,10 @@ bool AsymptotePredictor::Predict(const std::vector<double>& parameters,
                                  const std::vector<double>& psi_sigmas,
                                  std::vector<Prediction>* by_stretching,
                                  std::vector<Prediction>* by_stress, std::string* why) const {
+  if (kind_ == ModelKind::kHypoplasticSand) {
+    *why = "the sand model has no p-independent asymptotes: use PredictAtPressures";
+    return false;
+  }
   const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind_, parameters, why);
   if (!model) return false;
   by_stretching->assign(psi_epsilons.size(), Prediction());
@@ -181,6 +292,10 @@ bool AsymptotePredictor::Predict(const std::vector<double>& parameters,
 
 bool AsymptotePredictor::Curve(const std::vector<double>& parameters, int points,
                                std::vector<Prediction>* curve, std::string* why) const {
+  if (kind_ == ModelKind::kHypoplasticSand) {
+    *why = "the sand model has no analytic asymptotic state boundary surface";
+    return false;
+  }
   const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind_, parameters, why);
   if (!model) return false;
   curve->assign(static_cast<size_t>(points), Prediction());

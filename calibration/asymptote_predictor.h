@@ -11,6 +11,12 @@
 //   proportional stretching keeps η and moves p and p_c together, so
 //   ε̇_v ∝ λ*(M² − η²), ε̇_s ∝ η[κ* c (M² − η²) + 2(λ* − κ*)], c = 2(1+ν)/(9(1−2ν)),
 //   tan ψ_ε = (3/√2) ε̇_s/ε̇_v and ln OCR = (1 − κ*/λ*) ln(1 + η²/M²).
+// Hypoplastic sand (not homogeneous in p, no analytic ASBS; SPEC §7): the
+// state at the DEM state's own p, along proportional stretching at its ψ_ε
+// from an isotropic state on the limit line e_i far from it (a tenth of the
+// lowest p of that ψ_ε for compression, ten times the highest for
+// extension), interpolated in ln p; closed forms on the axes: e_i(p) at
+// ψ_ε = 0 and the critical state e_c(p), ψ_σ(φ_c) at ψ_ε = 90°.
 // Integrated: proportional stretching from an isotropic normally consolidated
 // state until stationary (IntegrateAsymptote), for each distinct ψ_ε (slow;
 // the reference for the analytic forms).
@@ -56,6 +62,15 @@ struct PredictorOptions {
   // Integrated: the search settings and the isotropic start (kPa).
   AsymptoteSearchOptions search;
   double initial_mean_stress = 100.0;
+  // Sand: the element tests along the DEM's paths (ERK 5; 1e-9 keeps the
+  // central differences of the fit clean).
+  ElementTestOptions sand_paths = SandPathOptions();
+
+  static ElementTestOptions SandPathOptions() {
+    ElementTestOptions options;
+    options.integrator.relative_tolerance = options.integrator.absolute_tolerance = 1e-9;
+    return options;
+  }
   bool IsValid(std::string* why) const;
 };
 
@@ -66,6 +81,13 @@ struct Prediction {
   // The requested ψ_ε lies outside the model's asymptote range: the state of
   // the nearest end is returned (residuals stay continuous and large).
   bool clamped = false;
+};
+
+// A state the model reaches at a given mean stress (sand model).
+struct StatePrediction {
+  double psi_sigma = 0.0;    // rad
+  double ln_volume = 0.0;    // ln(1+e) at the requested p
+  double ln_ocr = 0.0;       // ln(p_e*/p) of the model (its own NCL e_i)
 };
 
 class AsymptotePredictor {
@@ -83,8 +105,16 @@ class AsymptotePredictor {
                const std::vector<double>& psi_sigmas, std::vector<Prediction>* by_stretching,
                std::vector<Prediction>* by_stress, std::string* why) const;
 
+  // Sand model: the state along proportional stretching at each ψ_ε
+  // (rad) when p reaches the paired mean stress (kPa); see the file comment.
+  bool PredictAtPressures(const std::vector<double>& parameters,
+                          const std::vector<double>& psi_epsilons,
+                          const std::vector<double>& mean_stresses,
+                          std::vector<StatePrediction>* states, std::string* why) const;
+
   // The model's asymptotes for `points` stress directions evenly spaced over
-  // the admissible ψ_σ range (analytic forms), for figures.
+  // the admissible ψ_σ range (analytic forms), for figures; false for the
+  // sand model (no analytic ASBS).
   bool Curve(const std::vector<double>& parameters, int points, std::vector<Prediction>* curve,
              std::string* why) const;
 

@@ -1,5 +1,6 @@
-// granasym calibration: fit hypoplastic and Modified Cam clay parameters to
-// asymptotic states (DEM results, CSV) with Ceres and NLopt (issue 4).
+// granasym calibration: fit hypoplastic clay, Modified Cam clay and hypoplastic
+// sand parameters to asymptotic states (study tables, DEM results, CSV) with
+// Ceres and NLopt (issues 4, 9).
 #pragma once
 
 #include "calibration/asymptote_predictor.h"
@@ -14,3 +15,4 @@
 #include "calibration/nlopt_fitter.h"
 #include "calibration/starting_values.h"
 #include "calibration/state_dataset.h"
+#include "calibration/study_state_reader.h"

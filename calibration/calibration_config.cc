@@ -3,6 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <fnmatch.h>
+
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 
@@ -30,15 +33,42 @@ std::vector<std::string> SplitComma(const std::string& text) {
   return parts;
 }
 
+// `pattern` (resolved) with *, ? or [...] in its file name: the matching
+// files, sorted; without wildcards: the path itself.
+std::vector<std::string> ExpandGlob(const ConfigTable& t, const std::string& key,
+                                    const std::string& pattern) {
+  const std::filesystem::path p(pattern);
+  const std::string file = p.filename().string();
+  if (file.find_first_of("*?[") == std::string::npos) return {pattern};
+  if (p.parent_path().string().find_first_of("*?[") != std::string::npos) {
+    t.Fail(key, "= '" + pattern + "': wildcards are valid in the file name only, not in folders");
+  }
+  std::vector<std::string> matches;
+  const std::filesystem::path folder = p.parent_path().empty() ? "." : p.parent_path();
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    if (entry.is_regular_file() &&
+        fnmatch(file.c_str(), entry.path().filename().string().c_str(), 0) == 0) {
+      matches.push_back(entry.path().string());
+    }
+  }
+  std::sort(matches.begin(), matches.end());
+  if (matches.empty()) {
+    t.Fail(key, "= '" + pattern + "' matches no file" +
+                    (error ? " (cannot read the folder '" + folder.string() + "')" : ""));
+  }
+  return matches;
+}
+
 }  // namespace
 
 CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
   CalibrationConfig config;
   config.origin = root.origin();
   const ConfigTable model = root.GetTable("model");
-  // Calibration fits the clay models only.
   config.model = model.GetEnum("kind", ModelKind::kHypoplasticClay,
-                               {ModelKind::kHypoplasticClay, ModelKind::kModifiedCamClay});
+                               {ModelKind::kHypoplasticClay, ModelKind::kModifiedCamClay,
+                                ModelKind::kHypoplasticSand});
   config.predictor.method = model.GetEnum("asymptotes", AsymptoteMethod::kAnalytic);
 
   const ModelParameters defaults = ModelParameters::Defaults(config.model);
@@ -80,14 +110,71 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
     const ConfigTable& t = datasets[k];
     DatasetConfig d;
     d.name = t.GetString("name", fmt::format("dataset{}", k + 1));
-    const bool has_dem = t.Has("dem"), has_csv = t.Has("csv");
-    if (has_dem == has_csv)
-      t.Fail("csv", "give exactly one of dem = \"RUN.h5\" and csv = \"FILE.csv\"");
+    const bool has_dem = t.Has("dem"), has_csv = t.Has("csv"), has_study = t.Has("study");
+    if (int{has_dem} + int{has_csv} + int{has_study} != 1) {
+      t.Fail(has_dem || has_csv || has_study ? "study" : "dem",
+             "give exactly one of study = \"STUDY_DIR\", dem = \"RUN.h5\" (or an array of files "
+             "and globs) and csv = \"FILE.csv\"");
+    }
     d.is_dem = has_dem;
-    d.path = Resolve(config.origin, has_dem ? t.GetString("dem") : t.GetString("csv"));
-    const double weight = t.GetDouble("weight", 1.0, Range::Positive());
+    d.is_study = has_study;
+    if (has_dem) {
+      const std::vector<std::string> given = t.GetStrings("dem");
+      if (given.empty()) t.Fail("dem", "is an empty array: give at least one result file");
+      for (const std::string& entry : given) {
+        for (const std::string& file : ExpandGlob(t, "dem", Resolve(config.origin, entry))) {
+          d.paths.push_back(file);
+        }
+      }
+    } else {
+      d.paths.push_back(Resolve(config.origin, t.GetString(has_csv ? "csv" : "study")));
+    }
+    d.path = d.paths.front();
+    const double weight = t.GetDouble("weight", 1.0, Range::NonNegative());
     const double u_psi = t.GetDouble("psi_sigma_uncertainty_deg", 0.5, Range::Positive());
     const double u_v = t.GetDouble("ln_1_plus_e_uncertainty", 0.002, Range::Positive());
+    if (has_study) {
+      StudyReadOptions& o = d.study;
+      o.weight = weight;
+      o.psi_sigma_uncertainty_deg = u_psi;
+      o.ln_volume_uncertainty = u_v;
+      if (t.Has("kinds")) {
+        o.kinds = t.GetStrings("kinds");
+        for (const std::string& kind : o.kinds) {
+          if (std::find(StudyTableKinds().begin(), StudyTableKinds().end(), kind) ==
+              StudyTableKinds().end()) {
+            t.Fail("kinds", "holds '" + kind + "': expected a list of ncl, csl, compression, "
+                            "extension, triaxial");
+          }
+        }
+        if (o.kinds.empty()) t.Fail("kinds", "is empty: give at least one kind or leave it out");
+      }
+      if (t.Has("statuses")) {
+        o.statuses = t.GetStrings("statuses");
+        for (const std::string& status : o.statuses) {
+          if (std::find(StudyTableStatuses().begin(), StudyTableStatuses().end(), status) ==
+              StudyTableStatuses().end()) {
+            t.Fail("statuses", "holds '" + status + "': expected a list of detected, drifting, "
+                               "not_reached, gas, invalid, no_result");
+          }
+        }
+        if (o.statuses.empty()) t.Fail("statuses", "is empty: give at least one status");
+      }
+      if (t.Has("exclude_flags")) o.exclude_flags = t.GetStrings("exclude_flags");
+      if (t.Has("ncl_references")) o.ncl_references = t.GetStrings("ncl_references");
+      if (t.Has("psi_epsilon_range_deg")) {
+        const std::vector<double> range =
+            t.GetDoubles("psi_epsilon_range_deg", Range::Closed(-180, 180));
+        if (range.size() != 2 || !(range[0] < range[1])) {
+          t.Fail("psi_epsilon_range_deg",
+                 "must be [lo, hi] with -180 <= lo < hi <= 180 (deg)");
+        }
+        o.psi_epsilon_min_deg = range[0];
+        o.psi_epsilon_max_deg = range[1];
+      }
+      o.triaxial_kind_tolerance_deg = t.GetDouble(
+          "triaxial_kind_tolerance_deg", o.triaxial_kind_tolerance_deg, Range::Closed(0, 44));
+    }
     if (has_dem) {
       d.dem.weight = weight;
       d.dem.psi_sigma_uncertainty_deg = u_psi;
@@ -103,7 +190,7 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
                  "is empty: give at least one ln(1+e) value or leave the key out");
         }
       }
-    } else {
+    } else if (has_csv) {
       d.csv.weight = weight;
       d.csv.psi_sigma_uncertainty_deg = u_psi;
       d.csv.ln_volume_uncertainty = u_v;
@@ -121,6 +208,7 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
   if (root.Has("fitter")) {
     const ConfigTable f = root.GetTable("fitter");
     config.method = f.GetEnum("method", config.method);
+    config.fix_undetermined = f.GetBool("fix_undetermined", config.fix_undetermined);
     config.ceres.max_iterations = static_cast<int>(
         f.GetInt("max_iterations", config.ceres.max_iterations, Range::Closed(1, 1e6)));
     config.ceres.uncertainty.scale_by_residual_variance = f.GetBool(

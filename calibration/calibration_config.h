@@ -2,8 +2,8 @@
 // names the file, the key, the bad value and what is valid. Layout:
 //
 //   [model]
-//   kind = "hypoplastic_clay"     # or "modified_cam_clay"
-//   asymptotes = "analytic"       # or "integrated" (slow reference path)
+//   kind = "hypoplastic_clay"     # or "modified_cam_clay" or "hypoplastic_sand"
+//   asymptotes = "analytic"       # or "integrated" (clay models: slow reference path)
 //
 //   [parameters.lambda_star]      # one table per parameter, all optional:
 //   free = true                   #   fitted (default) or fixed at `value`
@@ -11,19 +11,35 @@
 //   lower = 0.001                 #   bounds of the fit; default: model_parameters.cc
 //   upper = 0.5
 //   # names: phi_c_deg, lambda_star, kappa_star, n_intercept, and r
-//   # (hypoplastic_clay) or poisson_ratio (modified_cam_clay)
+//   # (hypoplastic_clay) or poisson_ratio (modified_cam_clay); hypoplastic_sand:
+//   # phi_c_deg, h_s_kpa, n, e_d0, e_c0, e_i0, alpha, beta
 //
-//   [[dataset]]                   # one or more
+//   [[dataset]]                   # one or more; exactly one of study, dem, csv
 //   name = "dem"
-//   dem = "run.h5"                # a granasym DEM result, or csv = "states.csv"
-//   weight = 1.0                  # multiplies the squared residuals
-//   psi_sigma_uncertainty_deg = 0.5
+//   study = "STUDY_DIR"           # a study folder: its asymptotic_states.h5
+//   dem = ["run.h5", "runs/*.h5"] # granasym DEM results: a file or an array of
+//                                 #   files and globs (wildcards in file names)
+//   csv = "states.csv"
+//   weight = 1.0                  # multiplies the squared residuals; 0: read
+//                                 #   and drawn, not fitted
+//   psi_sigma_uncertainty_deg = 0.5   # per state (study: of one replicate)
 //   ln_1_plus_e_uncertainty = 0.002
-//   kind = "auto"                 # csv: auto | ncl | csl | compression | extension | asbs |
-//   unloading ignore_columns = "q_kpa,t_s"  # csv: comma-separated columns to skip ncl_min_p_kpa
-//   = 50.0          # dem: lowest p of NCL rows max_line_points = 12          # dem: most
-//   NCL/unloading rows per stage asbs_ln_1_plus_e = [0.55, 0.58]  # dem, optional: ASBS
-//   cross-section points
+//   # study datasets (study_state_reader.h):
+//   kinds = ["ncl", "csl", "compression", "extension", "triaxial"]  # default all
+//   statuses = ["detected"]       # detector statuses taken (default)
+//   exclude_flags = ["overlap_above_10pct", "gas"]  # default
+//   psi_epsilon_range_deg = [-180, 180]
+//   ncl_references = ["ncl"]      # only states whose OCR refers to these NCL
+//                                 #   cases (default all)
+//   triaxial_kind_tolerance_deg = 2.0  # triaxial states within this of 90 deg: CSL
+//   # csv datasets:
+//   kind = "auto"                 # auto | ncl | csl | compression | extension | asbs |
+//                                 #   unloading
+//   ignore_columns = "q_kpa,t_s"  # comma-separated columns to skip
+//   # dem datasets:
+//   ncl_min_p_kpa = 50.0          # lowest p of NCL rows
+//   max_line_points = 12          # most NCL/unloading rows per stage
+//   asbs_ln_1_plus_e = [0.55, 0.58]  # optional: ASBS cross-section points
 //                                 #   at these ln(1+e) (each finite and > 0),
 //                                 #   one per value and detected asymptote,
 //                                 #   along the stage's asymptotic line
@@ -31,10 +47,11 @@
 //                                 #   with |slope| < 1e-4 (isochoric, e.g.
 //                                 #   psi_epsilon = 90 deg) and points more
 //                                 #   than 1.0 in ln p from the asymptote are
-//                                 #   skipped with a warning
+//                                 #   skipped with a warning (clay models only)
 //
 //   [fitter]
 //   method = "ceres"              # ceres | nlopt | both (then the two are compared)
+//   fix_undetermined = true       # fix parameters the data do not determine, refit
 //   max_iterations = 200          # ceres
 //   scale_by_residual_variance = true
 //   [fitter.nlopt]
@@ -59,6 +76,7 @@
 #include "calibration/dem_state_reader.h"
 #include "calibration/model_parameters.h"
 #include "calibration/nlopt_fitter.h"
+#include "calibration/study_state_reader.h"
 #include "common/config.h"
 #include "common/enum_names.h"
 
@@ -66,10 +84,14 @@ namespace granasym::calibration {
 
 struct DatasetConfig {
   std::string name;
-  std::string path;  // resolved against the calibration file's folder
+  std::string path;                // the first of `paths`
+  std::vector<std::string> paths;  // resolved against the calibration file's folder,
+                                   // globs expanded (dem); one for csv and study
   bool is_dem = false;
+  bool is_study = false;
   CsvReadOptions csv;
   DemReadOptions dem;
+  StudyReadOptions study;
 };
 
 // A user's choice for one parameter; unset fields take the defaults.
@@ -109,6 +131,8 @@ struct CalibrationConfig {
   std::vector<ParameterChoice> parameters;
   std::vector<DatasetConfig> datasets;
   FitMethod method = FitMethod::kCeres;
+  // Fix the parameters the data do not determine and refit (RunCalibration).
+  bool fix_undetermined = true;
   CeresFitter::Options ceres;
   NloptFitter::Options nlopt;
   std::string hdf5_path, summary_path, plot_data_dir;

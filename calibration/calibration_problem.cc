@@ -27,6 +27,12 @@ CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
     datasets_[d].Validate();
     for (const AsymptoticStatePoint& point : datasets_[d].points) {
       int s = -1, a = -1;
+      if (point.kind == StateKind::kAsbs && parameters_.kind() == ModelKind::kHypoplasticSand) {
+        throw InputError(fmt::format(
+            "dataset '{}': {}: ASBS cross-section points need a model with an analytic ASBS "
+            "(hypoplastic_clay or modified_cam_clay), not hypoplastic_sand",
+            datasets_[d].name, point.source));
+      }
       if (point.HasStretching()) {
         for (size_t k = 0; k < psi_epsilons_.size(); ++k) {
           if (psi_epsilons_[k] == point.psi_epsilon) s = static_cast<int>(k);
@@ -35,7 +41,7 @@ CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
           s = static_cast<int>(psi_epsilons_.size());
           psi_epsilons_.push_back(point.psi_epsilon);
         }
-        num_residuals_ += 2;
+        if (point.IsFitted()) num_residuals_ += 2;
       } else if (point.kind == StateKind::kAsbs) {
         if (predictor_options.method == AsymptoteMethod::kIntegrated) {
           throw InputError(
@@ -45,14 +51,16 @@ CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
         }
         a = static_cast<int>(asbs_psi_sigmas_.size());
         asbs_psi_sigmas_.push_back(point.psi_sigma);
-        num_residuals_ += 1;
+        if (point.IsFitted()) num_residuals_ += 1;
       }
       stretching_index_[d].push_back(s);
       stress_index_[d].push_back(a);
     }
   }
   if (num_residuals_ == 0) {
-    throw InputError("calibration: the datasets hold no asymptotic states (only unloading points)");
+    throw InputError(
+        "calibration: the datasets hold no fitted asymptotic states (only unloading points or "
+        "datasets with weight = 0)");
   }
   if (num_residuals_ <= num_free()) {
     throw InputError(fmt::format(
@@ -64,12 +72,15 @@ CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
 }
 
 void CalibrationProblem::CheckIdentifiable() const {
+  // The sand's eight parameters are judged from the Jacobian instead
+  // (DeterminedFit, calibration_report.h).
+  if (!HasLinearNcl(parameters_.kind())) return;
   std::set<double> ln_p_with_line;  // distinct p among points on asymptotic lines
   int non_isotropic = 0;            // points with ψ_ε ≠ 0 or ASBS points
   std::set<double> non_isotropic_directions;
   for (const StateDataset& dataset : datasets_) {
     for (const AsymptoticStatePoint& point : dataset.points) {
-      if (!point.IsAsymptotic()) continue;
+      if (!point.IsFitted()) continue;
       ln_p_with_line.insert(std::round(std::log(point.mean_stress) * 1e6));
       if (point.kind != StateKind::kNcl) {
         ++non_isotropic;
@@ -122,6 +133,7 @@ std::vector<double> CalibrationProblem::FreeStart() const {
 
 bool CalibrationProblem::Evaluate(const std::vector<double>& values,
                                   std::vector<PointResidual>* residuals, std::string* why) const {
+  if (parameters_.kind() == ModelKind::kHypoplasticSand) return EvaluateSand(values, residuals, why);
   std::vector<Prediction> by_stretching, by_stress;
   if (!predictor_.Predict(values, psi_epsilons_, asbs_psi_sigmas_, &by_stretching, &by_stress,
                           why)) {
@@ -157,6 +169,49 @@ bool CalibrationProblem::Evaluate(const std::vector<double>& values,
   return true;
 }
 
+bool CalibrationProblem::EvaluateSand(const std::vector<double>& values,
+                                      std::vector<PointResidual>* residuals,
+                                      std::string* why) const {
+  // Every point at its own p: states along its ψ_ε, unloading points on e_i.
+  std::vector<double> psi_epsilons, mean_stresses;
+  for (const StateDataset& dataset : datasets_) {
+    for (const AsymptoticStatePoint& point : dataset.points) {
+      psi_epsilons.push_back(point.HasStretching() ? point.psi_epsilon : 0.0);
+      mean_stresses.push_back(point.mean_stress);
+    }
+  }
+  std::vector<StatePrediction> states;
+  if (!predictor_.PredictAtPressures(values, psi_epsilons, mean_stresses, &states, why)) {
+    return false;
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  residuals->clear();
+  size_t j = 0;
+  for (size_t d = 0; d < datasets_.size(); ++d) {
+    const StateDataset& dataset = datasets_[d];
+    for (size_t k = 0; k < dataset.points.size(); ++k, ++j) {
+      const AsymptoticStatePoint& point = dataset.points[k];
+      PointResidual r;
+      r.dataset = static_cast<int>(d);
+      r.point = static_cast<int>(k);
+      r.psi_sigma_model = point.HasStretching() ? states[j].psi_sigma : nan;
+      r.ln_volume_model = states[j].ln_volume;
+      r.ln_ocr_model = point.HasStretching() ? states[j].ln_ocr : nan;
+      r.psi_sigma_residual_deg =
+          point.HasStretching() ? (r.psi_sigma_model - point.psi_sigma) / kDegree : nan;
+      r.ln_volume_residual =
+          point.IsAsymptotic() ? r.ln_volume_model - std::log1p(point.void_ratio) : nan;
+      if (!std::isfinite(r.ln_volume_model) ||
+          (point.HasStretching() && !std::isfinite(r.psi_sigma_model))) {
+        *why = fmt::format("non-finite prediction at {}", point.source);
+        return false;
+      }
+      residuals->push_back(r);
+    }
+  }
+  return true;
+}
+
 bool CalibrationProblem::Residuals(const double* free_values, double* residuals,
                                    std::string* why) const {
   ++evaluations_;
@@ -167,7 +222,7 @@ bool CalibrationProblem::Residuals(const double* free_values, double* residuals,
   int j = 0;
   for (const PointResidual& r : raw) {
     const AsymptoticStatePoint& point = datasets_[r.dataset].points[r.point];
-    if (!point.IsAsymptotic()) continue;
+    if (!point.IsFitted()) continue;
     const double w = std::sqrt(point.weight);
     if (point.HasStretching()) {
       residuals[j++] = w * r.psi_sigma_residual_deg * kDegree / point.psi_sigma_uncertainty;
@@ -193,7 +248,7 @@ std::vector<std::string> CalibrationProblem::ResidualLabels() const {
   std::vector<std::string> labels;
   for (const StateDataset& dataset : datasets_) {
     for (const AsymptoticStatePoint& point : dataset.points) {
-      if (!point.IsAsymptotic()) continue;
+      if (!point.IsFitted()) continue;
       if (point.HasStretching())
         labels.push_back(dataset.name + ": " + point.source + ": psi_sigma");
       labels.push_back(dataset.name + ": " + point.source + ": ln_1_plus_e");

@@ -8,7 +8,10 @@
 //     Δln(1+e) with OCR(ψ_σ) of the state boundary surface  / σ_v · √weight
 //
 // The weighted residuals are dimensionless; the raw ones keep their units in
-// the report. Unloading points do not enter the objective.
+// the report. Unloading points and points of weight 0 do not enter the
+// objective (they are evaluated and drawn). The sand model (not homogeneous
+// in p) is compared at each state's own p (AsymptotePredictor::PredictAtPressures):
+// Δψ_σ as above, Δln(1+e) = ln(1+e_model(p)) − ln(1+e).
 #pragma once
 
 #include <string>
@@ -65,6 +68,8 @@ class CalibrationProblem {
 
  private:
   void CheckIdentifiable() const;
+  bool EvaluateSand(const std::vector<double>& values, std::vector<PointResidual>* residuals,
+                    std::string* why) const;
 
   std::vector<StateDataset> datasets_;
   ModelParameters parameters_;

@@ -3,23 +3,80 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <set>
 
 #include "calibration/csv_state_reader.h"
 #include "calibration/dem_state_reader.h"
+#include "calibration/study_state_reader.h"
 #include "common/csv_table.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/state_measures.h"
+#include "constitutive/constitutive_model.h"
 
 namespace granasym::calibration {
 
+namespace {
+
+// Starting values of the sand from the clay-type estimates (SPEC §6.3): at the
+// geometric-mean p_ref of the NCL states, Bauer's e_i = e_i0 exp(−(3p/h_s)^n)
+// has d ln(1+e)/d ln p = −n x e/(1+e), x = (3p/h_s)^n; with n at its start
+// value this gives x, h_s and e_i0 from λ* and the NCL's e at p_ref; e_c0
+// keeps the data's e_c/e_i at the CSL states (else e_c0 = e_i0/1.15), e_d0 =
+// 0.6 e_c0; α, β keep their typical values.
+void SandStart(const StartingValues& start, const std::vector<StateDataset>& datasets,
+               std::vector<ParameterSpec>* specs) {
+  auto set = [specs](int index, double value) {
+    ParameterSpec& spec = (*specs)[index];
+    if (std::isfinite(value)) spec.value = std::min(std::max(value, spec.lower), spec.upper);
+  };
+  if (start.critical_friction_angle_deg.from_data) {
+    set(kSandCriticalFrictionAngle, start.critical_friction_angle_deg.value);
+  }
+  if (!(start.lambda_star.from_data && start.n_intercept.from_data)) return;
+  double sum = 0, csl_ratio = 0;
+  int count = 0, csl = 0;
+  for (const StateDataset& d : datasets) {
+    for (const AsymptoticStatePoint& point : d.points) {
+      if (point.kind == StateKind::kNcl) {
+        sum += std::log(point.mean_stress);
+        ++count;
+      }
+    }
+  }
+  if (count == 0) return;
+  const double lambda = start.lambda_star.value, n_line = start.n_intercept.value;
+  const double p_ref = std::exp(sum / count);
+  const double e_ref = std::expm1(n_line - lambda * std::log(p_ref));
+  const double n = (*specs)[kSandExponent].value;
+  const double x = lambda * (1 + e_ref) / (e_ref * n);
+  set(kSandGranularHardness, 3.0 * p_ref / std::pow(x, 1.0 / n));
+  const double e_i0 = e_ref * std::exp(x);
+  set(kSandLoosestVoidRatio, e_i0);
+  for (const StateDataset& d : datasets) {
+    for (const AsymptoticStatePoint& point : d.points) {
+      if (point.kind != StateKind::kCsl) continue;
+      const double e_i = std::expm1(n_line - lambda * std::log(point.mean_stress));
+      csl_ratio += point.void_ratio / e_i;
+      ++csl;
+    }
+  }
+  const double ratio = csl > 0 ? std::min(csl_ratio / csl, 0.98) : 1.0 / 1.15;
+  set(kSandCriticalVoidRatio, e_i0 * ratio);
+  set(kSandDensestVoidRatio, 0.6 * e_i0 * ratio);
+}
+
+}  // namespace
+
 ModelParameters ChooseParameters(ModelKind kind, const std::vector<ParameterChoice>& choices,
-                                 const StartingValues& start) {
+                                 const StartingValues& start,
+                                 const std::vector<StateDataset>& datasets) {
   ModelParameters parameters = ModelParameters::Defaults(kind);
   std::vector<ParameterSpec>& specs = parameters.mutable_specs();
   auto from_data = [&specs](int index, const Estimate& e) {
@@ -29,10 +86,14 @@ ModelParameters ChooseParameters(ModelKind kind, const std::vector<ParameterChoi
       specs[index].value = e.value;
     }
   };
-  from_data(kCriticalFrictionAngle, start.critical_friction_angle_deg);
-  from_data(kLambdaStar, start.lambda_star);
-  from_data(kKappaStar, start.kappa_star);
-  from_data(kNIntercept, start.n_intercept);
+  if (HasLinearNcl(kind)) {
+    from_data(kCriticalFrictionAngle, start.critical_friction_angle_deg);
+    from_data(kLambdaStar, start.lambda_star);
+    from_data(kKappaStar, start.kappa_star);
+    from_data(kNIntercept, start.n_intercept);
+  } else {
+    SandStart(start, datasets, &specs);
+  }
   for (const ParameterChoice& choice : choices) {
     const int index = parameters.Index(choice.name);
     GRANASYM_CHECK(index >= 0) << choice.name;
@@ -46,19 +107,94 @@ ModelParameters ChooseParameters(ModelKind kind, const std::vector<ParameterChoi
   return parameters;
 }
 
+namespace {
+
+StateDataset ReadDataset(const DatasetConfig& d) {
+  if (d.is_study) return ReadStatesStudy(d.path, d.name, d.study);
+  if (!d.is_dem) return ReadStatesCsv(d.path, d.name, d.csv);
+  StateDataset merged;
+  for (const std::string& path : d.paths) {
+    StateDataset one = ReadStatesDem(path, d.name, d.dem);
+    if (merged.points.empty() && merged.warnings.empty()) {
+      merged = std::move(one);
+      continue;
+    }
+    merged.origin += ", " + one.origin;
+    merged.points.insert(merged.points.end(), one.points.begin(), one.points.end());
+    merged.warnings.insert(merged.warnings.end(), one.warnings.begin(), one.warnings.end());
+  }
+  return merged;
+}
+
+// The free parameter that a fit determines least, if the data do not
+// determine it (see RunCalibration): in the near-null space of the Jacobian
+// first, else the one whose 95 % interval spans most of (and at least) its
+// bound range; index −1 when every free parameter is determined.
+std::pair<int, std::string> LeastDetermined(const CalibrationProblem& problem,
+                                            const FitResult& fit) {
+  std::pair<int, std::string> worst = {-1, ""};
+  double worst_width = 1.0;  // interval width over bound range; ≥ 1 is undetermined
+  if (fit.standard_errors.size() != fit.free_indices.size()) return worst;
+  for (size_t k = 0; k < fit.free_indices.size(); ++k) {
+    const int i = fit.free_indices[k];
+    const ParameterSpec& spec = problem.parameters().specs()[i];
+    if (!std::isfinite(fit.standard_errors[k])) {
+      if (worst_width < std::numeric_limits<double>::infinity()) {
+        worst_width = std::numeric_limits<double>::infinity();
+        worst = {i, fmt::format("in the near-null space of the Jacobian (condition number {:.3g})",
+                                fit.condition_number)};
+      }
+      continue;
+    }
+    const double width = (fit.upper_95[k] - fit.lower_95[k]) / (spec.upper - spec.lower);
+    if (width >= worst_width && fit.lower_95[k] <= spec.lower && fit.upper_95[k] >= spec.upper) {
+      worst_width = width;
+      worst = {i, fmt::format("its 95 % interval [{:.4g}, {:.4g}] spans the whole bound range "
+                              "[{:.4g}, {:.4g}]",
+                              fit.lower_95[k], fit.upper_95[k], spec.lower, spec.upper)};
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+// At most this many parameters are fixed as undetermined.
+constexpr int kMaxUndeterminedRounds = 5;
+
 CalibrationRun RunCalibration(const CalibrationConfig& config) {
   CalibrationRun run;
   run.config = config;
   std::vector<StateDataset> datasets;
-  for (const DatasetConfig& d : config.datasets) {
-    datasets.push_back(d.is_dem ? ReadStatesDem(d.path, d.name, d.dem)
-                                : ReadStatesCsv(d.path, d.name, d.csv));
-  }
+  for (const DatasetConfig& d : config.datasets) datasets.push_back(ReadDataset(d));
   run.starting_values = EstimateStartingValues(datasets);
   ModelParameters parameters =
-      ChooseParameters(config.model, config.parameters, run.starting_values);
-  run.problem = std::make_unique<CalibrationProblem>(std::move(datasets), std::move(parameters),
-                                                     config.predictor);
+      ChooseParameters(config.model, config.parameters, run.starting_values, datasets);
+  std::vector<bool> undetermined(parameters.specs().size(), false);
+  run.problem =
+      std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor);
+  if (config.fix_undetermined) {
+    // One parameter per round: fixing one of a correlated pair often
+    // determines the other.
+    for (int round = 0; round < kMaxUndeterminedRounds; ++round) {
+      const FitResult probe = CeresFitter(config.ceres).Fit(*run.problem);
+      if (!probe.summary.success() || run.problem->num_free() <= 1) break;
+      const std::pair<int, std::string> found = LeastDetermined(*run.problem, probe);
+      if (found.first < 0) break;
+      {
+        const int index = found.first;
+        const std::string& why = found.second;
+        ParameterSpec& spec = parameters.mutable_specs()[index];
+        spec.free = false;
+        undetermined[index] = true;
+        run.undetermined.push_back(fmt::format(
+            "{} fixed at its start value {:.6g}: the data do not determine it ({}; the fit "
+            "had reached {:.6g})",
+            spec.name, spec.value, why, probe.values[index]));
+      }
+      run.problem = std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor);
+    }
+  }
   if (config.method != FitMethod::kNlopt) {
     run.fits.push_back(CeresFitter(config.ceres).Fit(*run.problem));
   }
@@ -76,6 +212,24 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
       }
     }
     run.agreement_in_standard_errors = worst;
+  }
+  const std::vector<ParameterSpec>& specs = run.problem->parameters().specs();
+  const double tolerance = config.ceres.uncertainty.bound_tolerance;
+  for (size_t i = 0; i < specs.size(); ++i) {
+    ParameterStatus status = ParameterStatus::kFitted;
+    if (undetermined[i]) {
+      status = ParameterStatus::kUndetermined;
+    } else if (!specs[i].free) {
+      status = ParameterStatus::kFixed;
+    } else if (!run.fits.empty() && !run.fits.front().values.empty()) {
+      const double v = run.fits.front().values[i];
+      const double band = tolerance * (specs[i].upper - specs[i].lower);
+      if (v - specs[i].lower <= band || specs[i].upper - v <= band) status = ParameterStatus::kAtBound;
+    }
+    run.status.push_back(status);
+  }
+  if (!run.fits.empty() && run.fits.front().summary.success()) {
+    run.findings = CheckAdmissibility(run, run.fits.front(), &run.diagnosis);
   }
   return run;
 }
@@ -188,7 +342,23 @@ std::string SummaryText(const CalibrationRun& run) {
     for (const std::string& w : d.warnings) s += "    WARNING: " + w + "\n";
   }
   s += run.starting_values.Report() + "\n";
+  for (const std::string& u : run.undetermined) s += "UNDETERMINED: " + u + "\n";
   for (const FitResult& fit : run.fits) s += "\n" + FitText(run, fit);
+  if (!run.status.empty()) {
+    s += "\nparameter status:";
+    const std::vector<ParameterSpec>& specs = problem.parameters().specs();
+    for (size_t i = 0; i < specs.size() && i < run.status.size(); ++i) {
+      s += fmt::format(" {} {};", specs[i].name, ToString(run.status[i]));
+    }
+    s += "\n";
+  }
+  if (!run.diagnosis.empty() || !run.findings.empty()) {
+    s += "\nadmissibility and structural misfit (" +
+         (run.fits.empty() ? std::string("-") : run.fits.front().summary.fitter) + "):\n";
+    for (const std::string& line : run.diagnosis) s += "  " + line + "\n";
+    for (const Finding& f : run.findings) s += "  WARNING " + f.Line() + "\n";
+    if (run.findings.empty()) s += "  no warnings\n";
+  }
   if (run.fits.size() == 2) {
     s += fmt::format("\nceres vs nlopt: largest parameter difference {:.3g} standard errors\n",
                      run.agreement_in_standard_errors);
@@ -353,13 +523,16 @@ void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path) {
 void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::string& folder) {
   std::filesystem::create_directories(folder);
   const CalibrationProblem& problem = *run.problem;
-  const double n = fit.values[kNIntercept], lambda = fit.values[kLambdaStar];
+  const ModelKind kind = problem.parameters().kind();
+  std::string why;
+  const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind, fit.values, &why);
+  if (!model) throw RuntimeError("cannot make the fitted model: " + why);
   // Data with the model's values and the ASBS normalisation by the fitted p_e*.
   std::vector<std::vector<double>> columns(11);
   for (const PointResidual& r : fit.residuals) {
     const AsymptoticStatePoint& point = problem.datasets()[r.dataset].points[r.point];
     const double ln_v = std::log1p(point.void_ratio);
-    const double pe = EquivalentPressure(point.void_ratio, n, lambda);
+    const double pe = model->EquivalentPressure(point.void_ratio);
     const double q = 3.0 / std::sqrt(2.0) * std::tan(point.psi_sigma) * point.mean_stress;
     columns[0].push_back(static_cast<double>(point.kind));
     columns[1].push_back(r.dataset);
@@ -378,41 +551,92 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
             "model_psi_sigma_deg", "model_ln_1_plus_e", "p_over_pe", "q_over_pe"},
            columns);
 
-  std::vector<Prediction> curve;
-  std::string why;
-  if (!problem.predictor().Curve(fit.values, 400, &curve, &why)) {
-    throw RuntimeError("cannot evaluate the fitted model's asymptotes: " + why);
-  }
-  std::vector<std::vector<double>> c(6);
-  for (const Prediction& pr : curve) {
-    const double eta = 3.0 * std::tan(pr.psi_sigma) / std::sqrt(2.0);
-    c[0].push_back(pr.psi_sigma / kDegree);
-    c[1].push_back(pr.psi_epsilon / kDegree);
-    c[2].push_back(std::exp(pr.ln_ocr));
-    c[3].push_back(pr.ln_ocr);
-    c[4].push_back(std::exp(-pr.ln_ocr));
-    c[5].push_back(eta * std::exp(-pr.ln_ocr));
-  }
-  WriteCsv(folder + "/model_curve.csv",
-           {"psi_sigma_deg", "psi_epsilon_deg", "ocr", "ln_ocr", "p_over_pe", "q_over_pe"}, c);
-
-  // Model lines in ln(1+e)-ln p, one gnuplot block per distinct ψ_ε of the
-  // data (NCL first), spanning the data's pressure range.
-  double p_min = std::numeric_limits<double>::infinity(), p_max = 0;
+  double p_min = std::numeric_limits<double>::infinity(), p_max = 0, ln_p_sum = 0;
+  int count = 0;
   std::set<double> directions = {0.0};
   for (const StateDataset& d : problem.datasets()) {
     for (const AsymptoticStatePoint& point : d.points) {
       p_min = std::min(p_min, point.mean_stress);
       p_max = std::max(p_max, point.mean_stress);
+      ln_p_sum += std::log(point.mean_stress);
+      ++count;
       if (point.HasStretching()) directions.insert(point.psi_epsilon);
     }
   }
-  std::vector<Prediction> by_stretching, by_stress;
   const std::vector<double> list(directions.begin(), directions.end());
+  auto write_curve = [&folder](const std::vector<Prediction>& curve) {
+    std::vector<std::vector<double>> c(6);
+    for (const Prediction& pr : curve) {
+      const double eta = 3.0 * std::tan(pr.psi_sigma) / std::sqrt(2.0);
+      c[0].push_back(pr.psi_sigma / kDegree);
+      c[1].push_back(pr.psi_epsilon / kDegree);
+      c[2].push_back(std::exp(pr.ln_ocr));
+      c[3].push_back(pr.ln_ocr);
+      c[4].push_back(std::exp(-pr.ln_ocr));
+      c[5].push_back(eta * std::exp(-pr.ln_ocr));
+    }
+    WriteCsv(folder + "/model_curve.csv",
+             {"psi_sigma_deg", "psi_epsilon_deg", "ocr", "ln_ocr", "p_over_pe", "q_over_pe"}, c);
+  };
+  std::ofstream out(folder + "/model_lines.dat");
+  if (kind == ModelKind::kHypoplasticSand) {
+    // States at the data's ψ_ε (and 0°, 90°) at the geometric-mean p.
+    std::set<double> curve_directions = directions;
+    curve_directions.insert(0.5 * kPi);
+    const double p_mid = std::exp(ln_p_sum / std::max(1, count));
+    std::vector<double> psi_list(curve_directions.begin(), curve_directions.end());
+    std::vector<StatePrediction> states;
+    if (!problem.predictor().PredictAtPressures(
+            fit.values, psi_list, std::vector<double>(psi_list.size(), p_mid), &states, &why)) {
+      throw RuntimeError("cannot evaluate the fitted sand model's states: " + why);
+    }
+    std::vector<Prediction> curve;
+    for (size_t k = 0; k < psi_list.size(); ++k) {
+      Prediction pr;
+      pr.psi_epsilon = psi_list[k];
+      pr.psi_sigma = states[k].psi_sigma;
+      pr.ln_ocr = states[k].ln_ocr;
+      curve.push_back(pr);
+    }
+    std::sort(curve.begin(), curve.end(),
+              [](const Prediction& a, const Prediction& b) { return a.psi_sigma < b.psi_sigma; });
+    write_curve(curve);
+    out << fmt::format(
+        "# sand model: states along proportional stretching at each psi_epsilon (integrated, "
+        "not straight lines); model_curve.csv holds them at p = {:.6g} kPa\n# columns "
+        "(comma-separated): psi_epsilon_deg, ln_p, ln_1_plus_e, psi_sigma_deg\n",
+        p_mid);
+    for (double psi : list) {
+      std::vector<double> pressures;
+      for (int i = 0; i <= 20; ++i) {
+        pressures.push_back(
+            std::exp(std::log(p_min / 2) + (std::log(p_max * 2) - std::log(p_min / 2)) * i / 20));
+      }
+      if (!problem.predictor().PredictAtPressures(
+              fit.values, std::vector<double>(pressures.size(), psi), pressures, &states, &why)) {
+        throw RuntimeError("cannot evaluate the fitted sand model's paths: " + why);
+      }
+      for (size_t i = 0; i < pressures.size(); ++i) {
+        out << fmt::format("{:.6g},{:.8g},{:.8g},{:.6g}\n", psi / kDegree, std::log(pressures[i]),
+                           states[i].ln_volume, states[i].psi_sigma / kDegree);
+      }
+      out << "\n\n";
+    }
+    if (!out) throw RuntimeError("cannot write " + folder + "/model_lines.dat");
+    return;
+  }
+  const double n = fit.values[kNIntercept], lambda = fit.values[kLambdaStar];
+  std::vector<Prediction> curve;
+  if (!problem.predictor().Curve(fit.values, 400, &curve, &why)) {
+    throw RuntimeError("cannot evaluate the fitted model's asymptotes: " + why);
+  }
+  write_curve(curve);
+  // Model lines in ln(1+e)-ln p, one gnuplot block per distinct ψ_ε of the
+  // data (NCL first), spanning the data's pressure range.
+  std::vector<Prediction> by_stretching, by_stress;
   if (!problem.predictor().Predict(fit.values, list, {}, &by_stretching, &by_stress, &why)) {
     throw RuntimeError("cannot evaluate the fitted model's asymptotes: " + why);
   }
-  std::ofstream out(folder + "/model_lines.dat");
   out << "# model asymptotic lines ln(1+e) = N - lambda* ln(p OCR(psi_epsilon)); one block per "
          "psi_epsilon\n# columns (comma-separated): psi_epsilon_deg, ln_p, ln_1_plus_e, "
          "psi_sigma_deg\n";
@@ -428,5 +652,294 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
   }
   if (!out) throw RuntimeError("cannot write " + folder + "/model_lines.dat");
 }
+
+namespace {
+
+// The model's ASBS counts as beyond p/p_e* = 1 (OCR < 1) past this fraction:
+// the hypoplastic clay's surface itself bulges by ~1e-3 near the isotropic
+// axis (London clay: OCR 0.9997 at psi_epsilon = 11 deg).
+constexpr double kAsbsTolerance = 0.01;
+
+double MeanOf(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return v.empty() ? std::nan("") : sum / static_cast<double>(v.size());
+}
+
+}  // namespace
+
+std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResult& fit,
+                                        std::vector<std::string>* diagnosis) {
+  std::vector<Finding> findings;
+  const CalibrationProblem& problem = *run.problem;
+  const ModelKind kind = problem.parameters().kind();
+  const std::vector<double>& v = fit.values;
+  std::string why;
+  const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind, v, &why);
+  if (!model) {
+    findings.push_back({"invalid_model", "the fitted parameters do not make a model: " + why});
+    return findings;
+  }
+  const bool clay = HasLinearNcl(kind);
+  // κ* < λ*.
+  if (clay) {
+    if (!(v[kKappaStar] < v[kLambdaStar])) {
+      findings.push_back({"kappa_not_below_lambda",
+                          fmt::format("kappa* = {:.4g} >= lambda* = {:.4g}: unloading would be "
+                                      "as steep as the NCL",
+                                      v[kKappaStar], v[kLambdaStar])});
+    }
+    const StartingValues& sv = run.starting_values;
+    if (sv.kappa_star.from_data && sv.lambda_star.from_data &&
+        !(sv.kappa_star.value < sv.lambda_star.value)) {
+      findings.push_back(
+          {"kappa_not_below_lambda",
+           fmt::format("the data's unloading slope kappa* = {:.4g} is not below their NCL slope "
+                       "lambda* = {:.4g} (no model with kappa* < lambda* fits both)",
+                       sv.kappa_star.value, sv.lambda_star.value)});
+    }
+  }
+  // The model's own ASBS (clay models): OCR >= 1 on compression asymptotes,
+  // closed, inside p/p_e* <= 1.
+  if (clay) {
+    std::vector<Prediction> curve;
+    if (!problem.predictor().Curve(v, 200, &curve, &why)) {
+      findings.push_back({"asbs_outside", "the model's ASBS cross-section is not closed: " + why});
+    } else {
+      double worst_ocr = std::numeric_limits<double>::infinity(), worst_psi = 0;
+      double widest = 0, widest_psi = 0;
+      int missing = 0;
+      for (const Prediction& pr : curve) {
+        if (!std::isfinite(pr.ln_ocr) || !std::isfinite(pr.psi_epsilon)) {
+          ++missing;
+          continue;
+        }
+        if (pr.psi_epsilon >= -1e-9 && pr.psi_epsilon <= 0.5 * kPi + 1e-9 &&
+            pr.ln_ocr < std::log(worst_ocr)) {
+          worst_ocr = std::exp(pr.ln_ocr);
+          worst_psi = pr.psi_epsilon;
+        }
+        if (std::exp(-pr.ln_ocr) > widest) {
+          widest = std::exp(-pr.ln_ocr);
+          widest_psi = pr.psi_sigma;
+        }
+      }
+      if (worst_ocr < 1 - kAsbsTolerance) {
+        findings.push_back({"ocr_below_one",
+                            fmt::format("the model's compression asymptote at psi_epsilon = "
+                                        "{:.3g} deg has OCR = {:.4g} < 1",
+                                        worst_psi / kDegree, worst_ocr)});
+      }
+      if (missing > 0) {
+        findings.push_back({"asbs_outside",
+                            fmt::format("the model's ASBS cross-section is not closed: {} of {} "
+                                        "stress directions have no asymptote",
+                                        missing, curve.size())});
+      }
+      if (widest > 1 + kAsbsTolerance) {
+        findings.push_back({"asbs_outside",
+                            fmt::format("the model's ASBS cross-section reaches p/p_e* = {:.4g} "
+                                        "> 1 (at psi_sigma = {:.3g} deg)",
+                                        widest, widest_psi / kDegree)});
+      }
+    }
+  }
+  // The data against the fitted NCL: ln OCR = ln(p_e*(e)/p), uncertainty in
+  // ln p from that of ln(1+e) through the NCL slope (λ*, or the sand's local slope).
+  int ocr_low = 0, beyond = 0;
+  double ocr_low_worst = 1, beyond_worst = 1;
+  std::vector<double> dem_csl_ocr, model_csl_ocr;
+  for (const PointResidual& r : fit.residuals) {
+    const AsymptoticStatePoint& point = problem.datasets()[r.dataset].points[r.point];
+    if (!point.IsAsymptotic()) continue;
+    const double pe = model->EquivalentPressure(point.void_ratio);
+    const double ocr = pe / point.mean_stress;
+    const double slope = clay ? v[kLambdaStar] : 0.0;
+    double margin = 0;
+    if (clay) {
+      margin = std::exp(-2 * point.ln_volume_uncertainty / slope);
+    } else {
+      // d ln p_e / d ln(1+e) of e_i(p_e) by a difference.
+      const double e2 = std::expm1(std::log1p(point.void_ratio) + point.ln_volume_uncertainty);
+      const double pe2 = model->EquivalentPressure(e2);
+      margin = pe2 > 0 && pe > 0 ? std::min(1.0, std::pow(pe2 / pe, 2.0)) : 1.0;
+    }
+    const bool below = ocr < margin;
+    if (below && (point.kind == StateKind::kNcl || point.kind == StateKind::kCompression)) {
+      ++ocr_low;
+      ocr_low_worst = std::min(ocr_low_worst, ocr);
+    } else if (below) {
+      ++beyond;
+      beyond_worst = std::min(beyond_worst, ocr);
+    }
+    if (point.kind == StateKind::kCsl && std::isfinite(r.ln_ocr_model)) {
+      model_csl_ocr.push_back(r.ln_ocr_model);
+      if (std::isfinite(point.source_ocr)) dem_csl_ocr.push_back(std::log(point.source_ocr));
+    }
+  }
+  if (ocr_low > 0) {
+    findings.push_back({"ocr_below_one",
+                        fmt::format("{} NCL/compression states lie above the fitted NCL by more "
+                                    "than twice their uncertainty (OCR down to {:.4g} < 1)",
+                                    ocr_low, ocr_low_worst)});
+  }
+  if (beyond > 0) {
+    findings.push_back({"asbs_outside",
+                        fmt::format("{} states lie beyond the fitted model's p/p_e* = 1 by more "
+                                    "than twice their uncertainty (p/p_e* up to {:.4g})",
+                                    beyond, 1.0 / beyond_worst)});
+  }
+  // OCR at the critical state: the data's own (study table) or against the
+  // data's NCL fit (starting values), against the model's.
+  if (!model_csl_ocr.empty()) {
+    std::string against = "the study table's own OCR";
+    if (dem_csl_ocr.size() != model_csl_ocr.size()) {
+      dem_csl_ocr.clear();
+      const StartingValues& sv = run.starting_values;
+      // A straight NCL fit is the clay models' reference only (the sand's
+      // e_i is curved in ln(1+e)-ln p).
+      if (clay && sv.lambda_star.from_data && sv.n_intercept.from_data &&
+          sv.lambda_star.points >= 2) {
+        for (const StateDataset& d : problem.datasets()) {
+          for (const AsymptoticStatePoint& point : d.points) {
+            if (point.kind != StateKind::kCsl) continue;
+            dem_csl_ocr.push_back((sv.n_intercept.value - std::log1p(point.void_ratio)) /
+                                      sv.lambda_star.value -
+                                  std::log(point.mean_stress));
+          }
+        }
+        against = "the OCR against the data's own NCL fit";
+      }
+    }
+    if (!dem_csl_ocr.empty()) {
+      const double dem = std::exp(MeanOf(dem_csl_ocr)), fitted = std::exp(MeanOf(model_csl_ocr));
+      diagnosis->push_back(fmt::format("critical state: data OCR {:.3g} ({}), model OCR {:.3g}",
+                                       dem, against, fitted));
+      if (std::abs(std::log(dem / fitted)) > std::log(1.25)) {
+        findings.push_back(
+            {"csl_ocr_mismatch",
+             fmt::format("the data put the CSL at OCR = {:.3g} ({}, mean of {} states), the "
+                         "model at OCR = {:.3g}{}: the model cannot place its CSL and NCL as "
+                         "the data do",
+                         dem, against, dem_csl_ocr.size(), fitted,
+                         kind == ModelKind::kHypoplasticClay ? " (2 for hypoplastic clay)"
+                         : kind == ModelKind::kModifiedCamClay
+                             ? " (2^(1 - kappa*/lambda*) for Modified Cam clay)"
+                             : "")});
+      }
+    }
+  }
+  // Structural misfit per kind.
+  for (StateKind k : {StateKind::kNcl, StateKind::kCsl, StateKind::kCompression,
+                      StateKind::kExtension, StateKind::kAsbs}) {
+    std::vector<double> dv, dpsi, uv, upsi;
+    int positive_v = 0, positive_psi = 0;
+    for (const PointResidual& r : fit.residuals) {
+      const AsymptoticStatePoint& point = problem.datasets()[r.dataset].points[r.point];
+      if (point.kind != k || !point.IsFitted()) continue;
+      if (std::isfinite(r.ln_volume_residual)) {
+        dv.push_back(r.ln_volume_residual);
+        uv.push_back(point.ln_volume_uncertainty);
+        positive_v += r.ln_volume_residual > 0 ? 1 : 0;
+      }
+      if (std::isfinite(r.psi_sigma_residual_deg)) {
+        dpsi.push_back(r.psi_sigma_residual_deg);
+        upsi.push_back(point.psi_sigma_uncertainty / kDegree);
+        positive_psi += r.psi_sigma_residual_deg > 0 ? 1 : 0;
+      }
+    }
+    if (dv.empty()) continue;
+    const double mv = MeanOf(dv), mpsi = MeanOf(dpsi);
+    std::string line = fmt::format(
+        "{}: {} states, mean model - data d_ln(1+e) {:+.4g} ({} of {} positive)", ToString(k),
+        dv.size(), mv, positive_v, dv.size());
+    if (!dpsi.empty()) {
+      line += fmt::format(", d_psi_sigma {:+.3g} deg ({} of {} positive)", mpsi, positive_psi,
+                          dpsi.size());
+    }
+    diagnosis->push_back(line);
+    const bool volume = std::abs(mv) > 2 * MeanOf(uv);
+    const bool stress = !dpsi.empty() && std::abs(mpsi) > 2 * MeanOf(upsi);
+    if (volume || stress) {
+      findings.push_back(
+          {"structural_misfit",
+           fmt::format("{}: the model is systematically {}{}{} (more than twice the states' mean "
+                       "uncertainty)",
+                       ToString(k),
+                       volume ? fmt::format("{} in ln(1+e) by {:.3g}", mv > 0 ? "above" : "below",
+                                            std::abs(mv))
+                              : "",
+                       volume && stress ? " and " : "",
+                       stress ? fmt::format("{} in psi_sigma by {:.3g} deg",
+                                            mpsi > 0 ? "above" : "below", std::abs(mpsi))
+                              : "")});
+    }
+  }
+  return findings;
+}
+
+std::string ParametersCsv(const CalibrationRun& run, const FitResult& fit) {
+  std::string csv = "parameter,value,std_error,ci95_low,ci95_high,status\n";
+  const std::vector<ParameterSpec>& specs = run.problem->parameters().specs();
+  auto number = [](double x) { return std::isfinite(x) ? fmt::format("{:.10g}", x) : std::string(); };
+  for (size_t i = 0; i < specs.size(); ++i) {
+    double se = std::nan(""), lo = std::nan(""), hi = std::nan("");
+    for (size_t k = 0; k < fit.free_indices.size() && k < fit.standard_errors.size(); ++k) {
+      if (fit.free_indices[k] == static_cast<int>(i)) {
+        se = fit.standard_errors[k];
+        lo = fit.lower_95[k];
+        hi = fit.upper_95[k];
+      }
+    }
+    const ParameterStatus status = i < run.status.size() ? run.status[i] : ParameterStatus::kFitted;
+    csv += fmt::format("{},{},{},{},{},{}\n", specs[i].name, number(fit.values[i]), number(se),
+                       number(lo), number(hi), ToString(status));
+  }
+  return csv;
+}
+
+std::string WarningsText(const CalibrationRun& run) {
+  std::string text;
+  auto add = [&text](const std::string& code, std::string message) {
+    for (char& c : message) c = c == '\n' ? ' ' : c;
+    text += code + ": " + message + "\n";
+  };
+  for (const Finding& f : run.findings) add(f.code, f.message);
+  for (const std::string& u : run.undetermined) add("undetermined", u);
+  if (!run.fits.empty()) {
+    for (const std::string& w : run.fits.front().warnings) add("fit", w);
+    if (!run.fits.front().summary.success()) add("fit_failed", run.fits.front().summary.Report());
+  }
+  for (const StateDataset& d : run.problem->datasets()) {
+    for (const std::string& w : d.warnings) add("dataset", d.name + ": " + w);
+  }
+  return text;
+}
+
+std::string ModelToml(const CalibrationRun& run, const FitResult& fit) {
+  const ModelKind kind = run.problem->parameters().kind();
+  double p_min = std::numeric_limits<double>::infinity(), p_max = 0;
+  for (const StateDataset& d : run.problem->datasets()) {
+    for (const AsymptoticStatePoint& point : d.points) {
+      p_min = std::min(p_min, point.mean_stress);
+      p_max = std::max(p_max, point.mean_stress);
+    }
+  }
+  if (!(p_min > 0 && std::isfinite(p_max))) p_min = 100, p_max = 1000;
+  std::string s = fmt::format(
+      "# granasym calibration of {} ({}); fitted by {}\n# Run it: granasym model run "
+      "model.toml --out model_run.h5\n",
+      ToString(kind), run.config.origin, fit.summary.fitter);
+  s += ModelTomlBlock(kind, fit.values);
+  s += fmt::format(
+      "\n# An example element test: normally consolidated at the lowest p of the data, isotropic\n"
+      "# compression to the highest, then isochoric shear towards the critical state.\n"
+      "[initial]\nmean_stress_kpa = {:.6g}\nocr = 1.0\n\n[[stage]]\ntype = \"isotropic\"\n"
+      "target_mean_stress_kpa = {:.6g}\n\n[[stage]]\ntype = \"isochoric\"\naxial_rate = 1.0\n"
+      "duration_s = 0.2\n",
+      p_min, std::max(p_max, 1.5 * p_min));
+  return s;
+}
+
 
 }  // namespace granasym::calibration

@@ -16,6 +16,35 @@
 
 namespace granasym::calibration {
 
+// What became of each parameter.
+enum class ParameterStatus { kFitted, kFixed, kAtBound, kUndetermined };
+
+}  // namespace granasym::calibration
+
+namespace granasym {
+template <>
+struct EnumNames<calibration::ParameterStatus> {
+  using S = calibration::ParameterStatus;
+  static constexpr EnumEntry<S> kEntries[] = {
+      {S::kFitted, "fitted", "fitted within its bounds"},
+      {S::kFixed, "fixed", "fixed by the calibration file (free = false)"},
+      {S::kAtBound, "at_bound", "fitted, but ended at a bound of the fit"},
+      {S::kUndetermined, "undetermined",
+       "the data do not determine it: fixed at its start value and the fit repeated"},
+  };
+};
+}  // namespace granasym
+
+namespace granasym::calibration {
+
+// One admissibility or structural-misfit warning: a stable code for
+// machines (e.g. "csl_ocr_mismatch") and a sentence for people.
+struct Finding {
+  std::string code;
+  std::string message;
+  std::string Line() const { return code + ": " + message; }
+};
+
 struct CalibrationRun {
   CalibrationConfig config;
   StartingValues starting_values;
@@ -23,20 +52,67 @@ struct CalibrationRun {
   std::vector<FitResult> fits;  // one per fitter, in the order run
   // method = both: the largest |θ_ceres − θ_nlopt| / standard error (Ceres).
   double agreement_in_standard_errors = 0.0;
+  // Per parameter (model_parameters.h order), of the first fit.
+  std::vector<ParameterStatus> status;
+  // Parameters fixed because the data do not determine them, each with why.
+  std::vector<std::string> undetermined;
+  // Admissibility checks and the diagnosis of structural misfit (first fit).
+  std::vector<Finding> findings;
+  std::vector<std::string> diagnosis;  // per-kind residual lines (always)
 };
 
 // The parameters for `kind` with the user's choices applied; parameters
 // without a value start from the data where an estimate exists.
+// The sand's start comes from the clay-type estimates and `datasets` (the CSL's e/e_i).
 ModelParameters ChooseParameters(ModelKind kind, const std::vector<ParameterChoice>& choices,
-                                 const StartingValues& starting_values);
+                                 const StartingValues& starting_values,
+                                 const std::vector<StateDataset>& datasets = {});
 
 // Reads the datasets, estimates starting values, builds the problem and runs
 // the fitters. Throws InputError for bad data (naming file/line/column).
+// With fix_undetermined (default), a Ceres fit finds the free parameter the
+// data determine least — in the near-null space of the scaled Jacobian, or
+// with a 95 % interval covering its whole bound range (the widest relative to
+// that range) — fixes it at its start value, says so in `undetermined`, and
+// repeats (at most five parameters) before the configured fitters run.
 CalibrationRun RunCalibration(const CalibrationConfig& config);
+
+// The admissibility checks on a fit (warnings, never errors):
+//   kappa_not_below_lambda  κ* ≥ λ* (clay models; fitted, or the data's own
+//                           unloading slope against its NCL slope);
+//   ocr_below_one           OCR < 0.99 along the model's compression asymptotes
+//                           (0 ≤ ψ_ε ≤ 90°), or NCL/compression states above
+//                           the fitted NCL by more than twice their uncertainty;
+//   asbs_outside            the model's ASBS cross-section not closed (a stress
+//                           direction without an asymptote) or beyond
+//                           p/p_e* = 1.01, or states beyond it (p/p_e* > 1 by more
+//                           than twice their uncertainty);
+//   csl_ocr_mismatch        the data's OCR at the critical state (the study
+//                           table's own, else, for the clay models, against
+//                           the data's straight NCL fit)
+//                           differs from the model's by more than 25 %;
+//   structural_misfit       per kind, a mean ln(1+e) or ψ_σ residual larger
+//                           than twice the states' mean uncertainty.
+// `diagnosis` gets one line per kind with the mean residuals and their signs.
+std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResult& fit,
+                                        std::vector<std::string>* diagnosis);
+
+// parameters.csv: parameter,value,std_error,ci95_low,ci95_high,status.
+std::string ParametersCsv(const CalibrationRun& run, const FitResult& fit);
+// warnings.txt: one "code: message" per line (findings, fit warnings, dataset
+// warnings and undetermined parameters); empty when none.
+std::string WarningsText(const CalibrationRun& run);
+// model.toml: the [model] block of the fit and an example element test
+// (isotropic compression, then isochoric shear) so that `granasym model run`
+// runs it as it stands.
+std::string ModelToml(const CalibrationRun& run, const FitResult& fit);
 
 std::string SummaryText(const CalibrationRun& run);
 void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path);
-// states.csv, model_curve.csv, model_lines.dat in `folder` (created).
+// states.csv, model_curve.csv, model_lines.dat in `folder` (created). The
+// sand model has no analytic ASBS: its model_curve.csv holds the states at
+// the data's ψ_ε (and 0°, 90°) at the geometric-mean p of the data, and its
+// model_lines.dat the integrated paths (not straight lines) at each ψ_ε.
 void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::string& folder);
 
 }  // namespace granasym::calibration

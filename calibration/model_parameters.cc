@@ -8,15 +8,35 @@
 #include "common/error.h"
 #include "common/state_measures.h"
 #include "constitutive/hypoplastic_clay.h"
+#include "constitutive/hypoplastic_sand.h"
 #include "constitutive/modified_cam_clay.h"
 
 namespace granasym::calibration {
 
+int NumParameters(ModelKind kind) {
+  return kind == ModelKind::kHypoplasticSand ? static_cast<int>(kNumSandParameters)
+                                             : static_cast<int>(kNumParameters);
+}
+
 ModelParameters ModelParameters::Defaults(ModelKind kind) {
-  GRANASYM_CHECK(IsCalibrated(kind))
-      << "calibration fits the clay models only, not " << ToString(kind);
+  GRANASYM_CHECK(IsCalibrated(kind)) << "calibration does not fit " << ToString(kind);
   ModelParameters parameters;
   parameters.kind_ = kind;
+  if (kind == ModelKind::kHypoplasticSand) {
+    // Typical values (Herle & Gudehus 1999) and bounds wide enough for DEM
+    // sphere packings (small compressibility: large h_s).
+    parameters.specs_ = {
+        {"phi_c_deg", "deg", "critical state friction angle", 30.0, 5.0, 50.0, true},
+        {"h_s_kpa", "kPa", "granular hardness of Bauer's law", 1e5, 1e2, 1e9, true},
+        {"n", "1", "exponent of Bauer's law", 0.4, 0.05, 0.95, true},
+        {"e_d0", "1", "densest void ratio at p = 0", 0.5, 0.05, 3.0, true},
+        {"e_c0", "1", "critical void ratio at p = 0", 0.8, 0.1, 4.0, true},
+        {"e_i0", "1", "loosest void ratio at p = 0 (isotropic NCL)", 0.95, 0.1, 5.0, true},
+        {"alpha", "1", "pyknotropy exponent of f_d", 0.15, 0.01, 1.0, true},
+        {"beta", "1", "stiffness exponent of f_e", 1.0, 0.05, 5.0, true},
+    };
+    return parameters;
+  }
   // Bounds wide enough for clays and for DEM sphere packings (small λ*).
   parameters.specs_ = {
       {"phi_c_deg", "deg", "critical state friction angle", 25.0, 5.0, 50.0, true},
@@ -83,9 +103,27 @@ void ModelParameters::Validate() const {
 
 std::unique_ptr<ConstitutiveModel> MakeModel(ModelKind kind, const std::vector<double>& values,
                                              std::string* why) {
-  GRANASYM_CHECK(values.size() == kNumParameters) << values.size();
-  GRANASYM_CHECK(IsCalibrated(kind))
-      << "calibration fits the clay models only, not " << ToString(kind);
+  GRANASYM_CHECK(IsCalibrated(kind)) << "calibration does not fit " << ToString(kind);
+  GRANASYM_CHECK(static_cast<int>(values.size()) == NumParameters(kind)) << values.size();
+  if (kind == ModelKind::kHypoplasticSand) {
+    HypoplasticSand::Parameters p;
+    p.critical_friction_angle = values[kSandCriticalFrictionAngle] * kDegree;
+    p.granular_hardness = values[kSandGranularHardness];
+    p.compression_exponent = values[kSandExponent];
+    p.densest_void_ratio0 = values[kSandDensestVoidRatio];
+    p.critical_void_ratio0 = values[kSandCriticalVoidRatio];
+    p.loosest_void_ratio0 = values[kSandLoosestVoidRatio];
+    p.pyknotropy_exponent = values[kSandPyknotropyExponent];
+    p.stiffness_exponent = values[kSandStiffnessExponent];
+    for (double v : values) {
+      if (!std::isfinite(v)) {
+        *why = "a parameter is not finite";
+        return nullptr;
+      }
+    }
+    if (!p.IsValid(why)) return nullptr;
+    return std::make_unique<HypoplasticSand>(p);
+  }
   if (kind == ModelKind::kHypoplasticClay) {
     HypoplasticClay::Parameters p;
     p.critical_friction_angle = values[kCriticalFrictionAngle] * kDegree;
@@ -111,8 +149,45 @@ std::unique_ptr<ConstitutiveModel> MakeModel(ModelKind kind, const std::vector<d
   return std::make_unique<ModifiedCamClay>(p);
 }
 
+std::string ModelTomlBlock(ModelKind kind, const std::vector<double>& values) {
+  GRANASYM_CHECK(static_cast<int>(values.size()) == NumParameters(kind)) << values.size();
+  std::string s = fmt::format("[model]\nkind = \"{}\"\n", ToString(kind));
+  auto line = [&s](const char* key, double value) { s += fmt::format("{} = {:.10g}\n", key, value); };
+  if (kind == ModelKind::kHypoplasticSand) {
+    line("phi_c_deg", values[kSandCriticalFrictionAngle]);
+    line("h_s_kpa", values[kSandGranularHardness]);
+    line("n", values[kSandExponent]);
+    line("e_d0", values[kSandDensestVoidRatio]);
+    line("e_c0", values[kSandCriticalVoidRatio]);
+    line("e_i0", values[kSandLoosestVoidRatio]);
+    line("alpha", values[kSandPyknotropyExponent]);
+    line("beta", values[kSandStiffnessExponent]);
+    return s;
+  }
+  line("phi_c_deg", values[kCriticalFrictionAngle]);
+  line("lambda_star", values[kLambdaStar]);
+  line("kappa_star", values[kKappaStar]);
+  line("n_intercept", values[kNIntercept]);
+  line(kind == ModelKind::kHypoplasticClay ? "r" : "poisson_ratio", values[kShearParameter]);
+  return s;
+}
+
 std::vector<ExportedParameters> ExportOrders(ModelKind kind, const std::vector<double>& values) {
-  GRANASYM_CHECK(values.size() == kNumParameters) << values.size();
+  GRANASYM_CHECK(static_cast<int>(values.size()) == NumParameters(kind)) << values.size();
+  if (kind == ModelKind::kHypoplasticSand) {
+    // The soilmodels.com UMAT / PLAXIS UDSM of sand hypoplasticity reads
+    // φ_c, p_t, h_s, n, e_d0, e_c0, e_i0, α, β (then the intergranular strain).
+    return {{"UMAT / PLAXIS UDSM sand hypoplasticity (von Wolffersdorff), parameters 1-9",
+             {{"phi_c_deg", values[kSandCriticalFrictionAngle]},
+              {"p_t_kpa", 0.0},
+              {"h_s_kpa", values[kSandGranularHardness]},
+              {"n", values[kSandExponent]},
+              {"e_d0", values[kSandDensestVoidRatio]},
+              {"e_c0", values[kSandCriticalVoidRatio]},
+              {"e_i0", values[kSandLoosestVoidRatio]},
+              {"alpha", values[kSandPyknotropyExponent]},
+              {"beta", values[kSandStiffnessExponent]}}}};
+  }
   const double phi = values[kCriticalFrictionAngle];
   const double lambda = values[kLambdaStar], kappa = values[kKappaStar];
   const double n = values[kNIntercept], fifth = values[kShearParameter];

@@ -1,9 +1,10 @@
 // The parameters a calibration can fit, per model, with their units, default
 // bounds and the orders in which Mašín's UMAT and PLAXIS UDSM inputs list them.
 //
-// Both models share the first four: φ_c (deg), λ*, κ*, N (ln(1+e) on the NCL
+// The clay models share the first four: φ_c (deg), λ*, κ*, N (ln(1+e) on the NCL
 // at p_r = 1 kPa); the fifth is r = K/G (hypoplastic clay) or ν (Modified Cam
-// clay, Poisson-ratio elasticity, log-log form: SPEC §6.2).
+// clay, Poisson-ratio elasticity, log-log form: SPEC §6.2). The sand model
+// has its own eight: φ_c, h_s, n, e_d0, e_c0, e_i0, α, β (SPEC §6.3).
 #pragma once
 
 #include <memory>
@@ -15,7 +16,7 @@
 
 namespace granasym::calibration {
 
-// Positions in every parameter vector of this library.
+// Positions in the parameter vectors of the clay models.
 enum ParameterIndex : int {
   kCriticalFrictionAngle = 0,  // φ_c (deg)
   kLambdaStar = 1,             // λ* (1)
@@ -24,6 +25,23 @@ enum ParameterIndex : int {
   kShearParameter = 4,         // r (hypoplastic) or ν (Cam clay) (1)
   kNumParameters = 5,
 };
+
+// Positions in the parameter vector of the von Wolffersdorff sand model
+// (SPEC §6.3; the order of the soilmodels.com UMAT without p_t).
+enum SandParameterIndex : int {
+  kSandCriticalFrictionAngle = 0,  // φ_c (deg)
+  kSandGranularHardness = 1,       // h_s (kPa)
+  kSandExponent = 2,               // n of Bauer's law
+  kSandDensestVoidRatio = 3,       // e_d0
+  kSandCriticalVoidRatio = 4,      // e_c0
+  kSandLoosestVoidRatio = 5,       // e_i0
+  kSandPyknotropyExponent = 6,     // α
+  kSandStiffnessExponent = 7,      // β
+  kNumSandParameters = 8,
+};
+
+// The length of the parameter vector of `kind`.
+int NumParameters(ModelKind kind);
 
 struct ParameterSpec {
   std::string name;   // config and HDF5 key, e.g. "lambda_star"
@@ -59,15 +77,24 @@ class ModelParameters {
 };
 
 // The models calibration fits: the hypoplastic clay and Modified Cam clay
-// (their five parameters share one layout, see ModelParameters).
+// (their five parameters share one layout, ParameterIndex) and the
+// von Wolffersdorff sand (SandParameterIndex).
 inline bool IsCalibrated(ModelKind kind) {
-  return kind == ModelKind::kHypoplasticClay || kind == ModelKind::kModifiedCamClay;
+  return kind == ModelKind::kHypoplasticClay || kind == ModelKind::kModifiedCamClay ||
+         kind == ModelKind::kHypoplasticSand;
 }
+// Whether the model's NCL is the straight line ln(1+e) = N − λ* ln(p/p_r)
+// with asymptotes parallel to it (the clay models), so that λ*, κ*, N exist.
+inline bool HasLinearNcl(ModelKind kind) { return kind != ModelKind::kHypoplasticSand; }
 
 // The constitutive model for a full parameter vector; nullptr with the reason
 // when the combination is invalid (e.g. κ* ≥ λ*, α undefined).
 std::unique_ptr<ConstitutiveModel> MakeModel(ModelKind kind, const std::vector<double>& values,
                                              std::string* why);
+
+// The [model] table of `granasym model run` for a full parameter vector
+// (constitutive/model_config.h), one `key = value` per line after "[model]".
+std::string ModelTomlBlock(ModelKind kind, const std::vector<double>& values);
 
 // Named values in the order of the external programs' inputs (names include units).
 struct ExportedParameters {

@@ -50,7 +50,9 @@ void StateDataset::Validate() const {
         !(std::isfinite(point.psi_epsilon) && std::abs(point.psi_epsilon) <= kPi + 1e-12)) {
       fail("psi_epsilon_deg", point.psi_epsilon / kDegree, "finite, in [-180, 180] deg");
     }
-    if (!(std::isfinite(point.weight) && point.weight > 0)) fail("weight", point.weight, "> 0");
+    if (!(std::isfinite(point.weight) && point.weight >= 0)) {
+      fail("weight", point.weight, ">= 0 (0: drawn, not fitted)");
+    }
     if (!(std::isfinite(point.psi_sigma_uncertainty) && point.psi_sigma_uncertainty > 0)) {
       fail("psi_sigma_uncertainty_deg", point.psi_sigma_uncertainty / kDegree, "> 0");
     }
@@ -74,8 +76,8 @@ bool ValidReaderSettings(double kind_tolerance_deg, double psi_sigma_uncertainty
     *why = fmt::format("ln_1_plus_e_uncertainty = {} must be > 0", ln_volume_uncertainty);
     return false;
   }
-  if (!(weight > 0)) {
-    *why = fmt::format("weight = {} must be > 0", weight);
+  if (!(weight >= 0)) {
+    *why = fmt::format("weight = {} must be >= 0 (0: drawn, not fitted)", weight);
     return false;
   }
   return true;

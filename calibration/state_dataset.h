@@ -8,6 +8,7 @@
 // only; they are not asymptotic states of the models).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -52,13 +53,22 @@ struct AsymptoticStatePoint {
   double void_ratio = 0.0;   // e
   double psi_sigma = 0.0;    // rad
   std::string source;        // e.g. "run.h5:/stages/003 (psi90)" or "lab.csv:12"
-  double weight = 1.0;       // multiplies the squared residuals of this point
+  double weight = 1.0;       // multiplies the squared residuals; 0: drawn, not fitted
   // One standard deviation of the measurement; residuals are divided by it.
   double psi_sigma_uncertainty = 0.0;  // rad, > 0
   double ln_volume_uncertainty = 0.0;  // of ln(1+e), > 0
+  // Replicates averaged into this state (study tables), their 95 % interval
+  // half-widths (NaN below two replicates or when not averaged) and the
+  // source's own OCR against its own NCL (study tables; NaN when not given).
+  int replicates = 1;
+  double psi_sigma_ci95 = std::numeric_limits<double>::quiet_NaN();  // rad
+  double ln_volume_ci95 = std::numeric_limits<double>::quiet_NaN();
+  double source_ocr = std::numeric_limits<double>::quiet_NaN();
 
   // Whether the point enters the objective (unloading points do not).
   bool IsAsymptotic() const { return kind != StateKind::kUnloading; }
+  // Whether its residuals enter the objective (asymptotic, weight > 0).
+  bool IsFitted() const { return IsAsymptotic() && weight > 0; }
   // Whether its ψ_ε is known (all asymptotic kinds except kAsbs).
   bool HasStretching() const { return kind != StateKind::kAsbs && kind != StateKind::kUnloading; }
 };
@@ -72,7 +82,7 @@ struct StateDataset {
   size_t Count(StateKind kind) const;
   // Throws InputError naming the dataset, the point's source and the bad field
   // for NaN/infinite values, p ≤ 0, e ≤ 0, ψ_σ outside (−35.26°, 54.74°),
-  // non-positive weights or uncertainties.
+  // negative weights or non-positive uncertainties.
   void Validate() const;
 };
 

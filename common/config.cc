@@ -197,6 +197,26 @@ std::vector<double> ConfigTable::GetDoubles(const std::string& key, Range range)
   return numbers;
 }
 
+std::vector<std::string> ConfigTable::GetStrings(const std::string& key) const {
+  const void* found = Find(key);
+  if (!found) Fail(key, "is missing: expected a string or an array of strings");
+  const toml::value& value = AsValue(found);
+  if (value.is_string()) return {value.as_string().str};
+  if (!value.is_array()) {
+    Fail(key, "has type " + TypeName(value) + ": expected a string or an array of strings");
+  }
+  std::vector<std::string> strings;
+  for (size_t i = 0; i < value.as_array().size(); ++i) {
+    const toml::value& item = value.as_array()[i];
+    if (!item.is_string()) {
+      Fail(key + "[" + std::to_string(i) + "]",
+           "has type " + TypeName(item) + ": expected a string");
+    }
+    strings.push_back(item.as_string().str);
+  }
+  return strings;
+}
+
 ConfigTable ConfigTable::GetTable(const std::string& key) const {
   const void* found = Find(key);
   if (!found) Fail(key, "is missing: expected a table");

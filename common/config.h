@@ -78,6 +78,8 @@ class ConfigTable {
   template <typename E>
   E GetEnum(const std::string& key, E fallback, const std::vector<E>& allowed) const;
   std::vector<double> GetDoubles(const std::string& key, Range range = Range::Any()) const;
+  // An array of strings; a single string counts as an array of one.
+  std::vector<std::string> GetStrings(const std::string& key) const;
 
   ConfigTable GetTable(const std::string& key) const;
   std::vector<ConfigTable> GetTableArray(const std::string& key) const;

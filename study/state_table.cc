@@ -17,6 +17,7 @@
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
 #include "dem/stage_validity.h"
+#include "study/state_table_names.h"
 
 namespace granasym::study {
 namespace fs = std::filesystem;
@@ -317,37 +318,37 @@ struct NumberColumn {
   double StateRow::*member;
 };
 constexpr NumberColumn kNumberColumns[] = {
-    {"psi_epsilon_deg", "deg", &StateRow::psi_epsilon_deg},
-    {"p_kpa", "kPa", &StateRow::p_kpa},
-    {"e", "1", &StateRow::e},
-    {"ln_1_plus_e", "1", &StateRow::ln_1_plus_e},
-    {"psi_sigma_deg", "deg", &StateRow::psi_sigma_deg},
-    {"q_over_p", "1", &StateRow::q_over_p},
-    {"ocr", "1", &StateRow::ocr},
-    {"p_e_star_kpa", "kPa", &StateRow::p_e_star_kpa},
-    {"inertial_number_dmin", "1", &StateRow::inertial_number_dmin},
-    {"inertial_number_dmax", "1", &StateRow::inertial_number_dmax},
-    {"coordination", "1", &StateRow::coordination},
-    {"mechanical_coordination", "1", &StateRow::mechanical_coordination},
-    {"max_relative_overlap", "1", &StateRow::max_relative_overlap},
-    {"window_strain", "1", &StateRow::window_strain},
-    {"window_lnp", "1", &StateRow::window_lnp},
-    {"psi_change_deg", "deg", &StateRow::psi_change_deg},
-    {"slope_change", "1", &StateRow::slope_change},
-    {"lnp_change", "1", &StateRow::lnp_change},
-    {"dln1pe_dlnp", "1", &StateRow::dln1pe_dlnp},
+    {table::kColumnPsiEpsilon, "deg", &StateRow::psi_epsilon_deg},
+    {table::kColumnMeanStress, "kPa", &StateRow::p_kpa},
+    {table::kColumnVoidRatio, "1", &StateRow::e},
+    {table::kColumnLnVolume, "1", &StateRow::ln_1_plus_e},
+    {table::kColumnPsiSigma, "deg", &StateRow::psi_sigma_deg},
+    {table::kColumnStressRatio, "1", &StateRow::q_over_p},
+    {table::kColumnOcr, "1", &StateRow::ocr},
+    {table::kColumnEquivalentPressure, "kPa", &StateRow::p_e_star_kpa},
+    {table::kColumnInertialNumberDmin, "1", &StateRow::inertial_number_dmin},
+    {table::kColumnInertialNumberDmax, "1", &StateRow::inertial_number_dmax},
+    {table::kColumnCoordination, "1", &StateRow::coordination},
+    {table::kColumnMechanicalCoordination, "1", &StateRow::mechanical_coordination},
+    {table::kColumnMaxRelativeOverlap, "1", &StateRow::max_relative_overlap},
+    {table::kColumnWindowStrain, "1", &StateRow::window_strain},
+    {table::kColumnWindowLnp, "1", &StateRow::window_lnp},
+    {table::kColumnPsiChange, "deg", &StateRow::psi_change_deg},
+    {table::kColumnSlopeChange, "1", &StateRow::slope_change},
+    {table::kColumnLnpChange, "1", &StateRow::lnp_change},
+    {table::kColumnSlope, "1", &StateRow::dln1pe_dlnp},
 };
 struct TextColumn {
   const char* name;
   std::string StateRow::*member;
 };
 constexpr TextColumn kTextColumns[] = {
-    {"kind", &StateRow::kind},       {"status", &StateRow::status},
-    {"case", &StateRow::case_id},    {"case_name", &StateRow::case_name},
-    {"stage", &StateRow::stage},     {"run", &StateRow::run},
-    {"figures", &StateRow::figures}, {"flags", &StateRow::flags},
-    {"detector", &StateRow::detector}, {"message", &StateRow::message},
-    {"ncl_reference", &StateRow::ncl_reference},
+    {table::kColumnKind, &StateRow::kind},       {table::kColumnStatus, &StateRow::status},
+    {table::kColumnCase, &StateRow::case_id},    {table::kColumnCaseName, &StateRow::case_name},
+    {table::kColumnStage, &StateRow::stage},     {table::kColumnRun, &StateRow::run},
+    {table::kColumnFigures, &StateRow::figures}, {table::kColumnFlags, &StateRow::flags},
+    {table::kColumnDetector, &StateRow::detector}, {table::kColumnMessage, &StateRow::message},
+    {table::kColumnNclReference, &StateRow::ncl_reference},
 };
 
 void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
@@ -364,23 +365,23 @@ void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
   }
   WriteTextFileAtomically(directory + "/asymptotic_states.csv", csv);
 
-  Hdf5File file = Hdf5File::CreateAtomic(directory + "/asymptotic_states.h5");
-  file.CreateGroup("/states");
-  file.SetAttribute("/states", "description",
+  Hdf5File file = Hdf5File::CreateAtomic(directory + "/" + table::kFileName);
+  file.CreateGroup(table::kStatesGroup);
+  file.SetAttribute(table::kStatesGroup, "description",
                     "asymptotic states of every case: one row per detector-carrying stage, and "
                     "one per case without a result");
   std::vector<int64_t> replicates;
   for (const StateRow& row : rows) replicates.push_back(row.replicate);
-  file.WriteInts("/states/replicate", replicates);
+  file.WriteInts(std::string(table::kStatesGroup) + "/" + table::kColumnReplicate, replicates);
   for (const NumberColumn& column : kNumberColumns) {
     std::vector<double> values;
     for (const StateRow& row : rows) values.push_back(row.*column.member);
-    file.WriteDoubles(std::string("/states/") + column.name, values, column.units);
+    file.WriteDoubles(std::string(table::kStatesGroup) + "/" + column.name, values, column.units);
   }
   for (const TextColumn& column : kTextColumns) {
     std::vector<std::string> values;
     for (const StateRow& row : rows) values.push_back(row.*column.member);
-    file.WriteStrings(std::string("/states/") + column.name, values);
+    file.WriteStrings(std::string(table::kStatesGroup) + "/" + column.name, values);
   }
   file.CreateGroup("/ncl_fit");
   std::vector<double> n, lambda, pmin, pmax;
@@ -451,7 +452,7 @@ StateRow JoinedRow(const ConvergenceRow& joined, const ConvergenceTolerance& tol
   row.case_name = joined.case_a + "+" + joined.case_b;
   row.case_id = "r" + std::to_string(joined.replicate) + "/" + row.case_name;
   row.replicate = joined.replicate;
-  row.stage = "joined";
+  row.stage = table::kStageJoined;
   row.kind = joined.kind;
   row.status = "detected";
   row.message.clear();
@@ -648,16 +649,16 @@ StateTableSummary WriteStateTable(const std::string& directory,
 }
 
 std::vector<StateRow> ReadStateTable(const std::string& directory) {
-  const Hdf5File file = Hdf5File::OpenRead(directory + "/asymptotic_states.h5");
-  const std::vector<int64_t> replicates = file.ReadInts("/states/replicate");
+  const Hdf5File file = Hdf5File::OpenRead(directory + "/" + table::kFileName);
+  const std::vector<int64_t> replicates = file.ReadInts(std::string(table::kStatesGroup) + "/" + table::kColumnReplicate);
   std::vector<StateRow> rows(replicates.size());
   for (size_t k = 0; k < rows.size(); ++k) rows[k].replicate = static_cast<int>(replicates[k]);
   for (const NumberColumn& column : kNumberColumns) {
-    const std::vector<double> values = file.ReadDoubles(std::string("/states/") + column.name);
+    const std::vector<double> values = file.ReadDoubles(std::string(table::kStatesGroup) + "/" + column.name);
     for (size_t k = 0; k < rows.size() && k < values.size(); ++k) rows[k].*column.member = values[k];
   }
   for (const TextColumn& column : kTextColumns) {
-    const std::vector<std::string> values = file.ReadStrings(std::string("/states/") + column.name);
+    const std::vector<std::string> values = file.ReadStrings(std::string(table::kStatesGroup) + "/" + column.name);
     for (size_t k = 0; k < rows.size() && k < values.size(); ++k) rows[k].*column.member = values[k];
   }
   return rows;

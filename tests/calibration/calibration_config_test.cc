@@ -89,11 +89,19 @@ TEST(CalibrationConfig, RejectsBadFilesNamingTheKey) {
 
 // Calibration fits the clay models only: the sand model is a valid model kind
 // elsewhere but gets the normal "kind" error here, listing the allowed kinds.
-TEST(CalibrationConfig, RejectsTheSandModelKind) {
-  ExpectRejected(Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"hypoplastic_sand\""),
-                 "kind");
-  ExpectRejected(Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"hypoplastic_sand\""),
-                 "modified_cam_clay");
+TEST(CalibrationConfig, ReadsTheSandModelWithItsOwnParameterNames) {
+  const std::string sand =
+      Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"hypoplastic_sand\"");
+  // r belongs to the clay: an unknown key for the sand.
+  ExpectRejected(sand, "parameters.r");
+  const CalibrationConfig c = ReadCalibrationConfig(ConfigTable::ParseString(
+      Replace(sand, "[parameters.r]\nfree = false\nvalue = 0.4",
+              "[parameters.beta]\nfree = false\nvalue = 1.2"),
+      "/d/calib.toml"));
+  EXPECT_EQ(c.model, ModelKind::kHypoplasticSand);
+  ASSERT_EQ(c.parameters.size(), 1u);
+  EXPECT_EQ(c.parameters[0].name, "beta");
+  EXPECT_DOUBLE_EQ(c.parameters[0].value, 1.2);
 }
 
 // Calibration files and the HDF5 record use these spellings.
@@ -138,8 +146,8 @@ TEST(CalibrationConfig, ReadsEveryNameAndListsTheAllowedOnes) {
   ExpectRejected(Replace(kConfig, "csv = \"states.csv\"", "csv = \"states.csv\"\nkind = \"nel\""),
                  "key 'dataset[0].kind' = 'nel' is not valid: expected auto, ncl, csl, "
                  "compression, extension, asbs or unloading");
-  ExpectRejected(Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"hypoplastic_sand\""),
-                 "expected hypoplastic_clay or modified_cam_clay");
+  ExpectRejected(Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"mohr_coulomb\""),
+                 "expected hypoplastic_clay, modified_cam_clay or hypoplastic_sand");
 }
 
 TEST(CalibrationConfig, ReadsAndChecksAsbsValuesOfADemDataset) {

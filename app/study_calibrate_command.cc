@@ -1,0 +1,151 @@
+// `granasym study calibrate DIR [--models hypoplastic_clay,modified_cam_clay,hypoplastic_sand]`:
+// writes a calibration file per model that reads the study's state table,
+// runs it through the calibration library and writes the outputs whose names
+// the figures and the report read (app/study_calibrate_command.h).
+#include "app/study_calibrate_command.h"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "common/config.h"
+#include "common/error.h"
+#include "common/text_file.h"
+#ifdef GRANASYM_HAVE_CALIBRATION
+#include "calibration/calibration_config.h"
+#include "calibration/calibration_report.h"
+#include "calibration/model_parameters.h"
+#endif
+
+namespace granasym {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+#ifdef GRANASYM_HAVE_CALIBRATION
+
+// The generated input: the study's table two folders up, the default
+// selections spelled out so that a user sees (and can edit) them.
+std::string CalibrationToml(const std::string& directory, const std::string& model) {
+  std::string ncl;
+  const std::string study_file = directory + "/study.toml";
+  if (fs::exists(study_file)) ncl = ConfigTable::ParseFile(study_file).GetString("ncl", "");
+  std::string s = fmt::format(
+      "# Written by `granasym study calibrate`; edit and rerun with\n"
+      "#   granasym calibrate calibration.toml\n"
+      "# (calibration/calibration_config.h documents every key).\n"
+      "[model]\nkind = \"{}\"\n\n"
+      "[[dataset]]\nname = \"study\"\nstudy = \"../..\"\n"
+      "kinds = [\"ncl\", \"csl\", \"compression\", \"extension\", \"triaxial\"]\n"
+      "statuses = [\"detected\"]  # add \"drifting\" for more NCL states\n"
+      "exclude_flags = [\"overlap_above_10pct\", \"gas\"]\n",
+      model);
+  if (!ncl.empty()) {
+    s += fmt::format(
+        "# only states whose OCR refers to the study's NCL (other samples, e.g. phi = 0, stay "
+        "out)\nncl_references = [{}]\n",
+        TomlQuoted(ncl));
+  }
+  s += "psi_sigma_uncertainty_deg = 0.5\nln_1_plus_e_uncertainty = 0.002\n\n"
+       "[fitter]\nmethod = \"ceres\"\nfix_undetermined = true\n\n"
+       "[output]\nhdf5 = \"calibration.h5\"\nsummary = \"summary.txt\"\nplot_data = \"plot_data\"\n";
+  return s;
+}
+
+// One model: writes its folder and returns the line to print.
+std::string CalibrateOne(const std::string& directory, ModelKind model) {
+  const std::string name = calibration::ToString(model);
+  const std::string folder = (fs::path(directory) / "calibration" / name).string();
+  fs::create_directories(folder);
+  const std::string config_path = folder + "/calibration.toml";
+  WriteTextFileAtomically(config_path, CalibrationToml(directory, name));
+  const calibration::CalibrationConfig config =
+      calibration::ReadCalibrationConfigFile(config_path);
+  const calibration::CalibrationRun run = calibration::RunCalibration(config);
+  calibration::WriteCalibrationHdf5(run, config.hdf5_path);
+  WriteTextFileAtomically(config.summary_path, calibration::SummaryText(run));
+  const std::string warnings = calibration::WarningsText(run);
+  WriteTextFileAtomically(folder + "/warnings.txt", warnings);
+  if (run.fits.empty() || !run.fits.front().summary.success()) {
+    throw RuntimeError(fmt::format("{}: the fit failed: {} (see {})", name,
+                                   run.fits.empty() ? "no fit" : run.fits.front().summary.Report(),
+                                   config.summary_path));
+  }
+  const calibration::FitResult& fit = run.fits.front();
+  WriteTextFileAtomically(folder + "/parameters.csv", calibration::ParametersCsv(run, fit));
+  WriteTextFileAtomically(folder + "/model.toml", calibration::ModelToml(run, fit));
+  calibration::WritePlotData(run, fit, config.plot_data_dir);
+  int count = 0;
+  for (char c : warnings) count += c == '\n' ? 1 : 0;
+  std::string line = name + ":";
+  const auto& specs = run.problem->parameters().specs();
+  for (size_t i = 0; i < specs.size(); ++i) {
+    line += fmt::format(" {}={:.4g}{}", specs[i].name, fit.values[i],
+                        run.status[i] == calibration::ParameterStatus::kFitted
+                            ? std::string()
+                            : "(" + std::string(calibration::ToString(run.status[i])) + ")");
+  }
+  line += fmt::format("; {} warnings; fit {:.2f} s; {}", count, fit.summary.wall_seconds, folder);
+  return line;
+}
+
+#endif
+
+}  // namespace
+
+void RegisterStudyCalibrateCommand(CLI::App* study) {
+  static std::string directory;
+  static std::vector<std::string> models = {"hypoplastic_clay", "modified_cam_clay",
+                                            "hypoplastic_sand"};
+  CLI::App* calibrate = study->add_subcommand(
+      "calibrate",
+      "fit the constitutive models to the study's asymptotic states; writes "
+      "DIR/calibration/<model>/ (calibration.toml, calibration.h5, summary.txt, parameters.csv, "
+      "warnings.txt, model.toml, plot_data/)");
+  calibrate->add_option("dir", directory, "study folder (with asymptotic_states.h5)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  calibrate
+      ->add_option("--models", models,
+                   "comma-separated: hypoplastic_clay, modified_cam_clay, hypoplastic_sand "
+                   "(default all three)")
+      ->delimiter(',');
+  calibrate->callback([] {
+#ifdef GRANASYM_HAVE_CALIBRATION
+    std::vector<ModelKind> kinds;
+    for (const std::string& m : models) {
+      const auto kind = calibration::FromString<ModelKind>(m);
+      if (!kind || !calibration::IsCalibrated(*kind)) {
+        throw InputError("--models: '" + m +
+                         "' is not valid: expected hypoplastic_clay, modified_cam_clay, "
+                         "hypoplastic_sand (comma-separated)");
+      }
+      kinds.push_back(*kind);
+    }
+    if (!fs::exists(directory + "/asymptotic_states.h5")) {
+      throw InputError(directory +
+                       ": no asymptotic_states.h5 (run `granasym study run` or `granasym study "
+                       "merge` first)");
+    }
+    bool failed = false;
+    for (ModelKind kind : kinds) {
+      try {
+        std::printf("%s\n", CalibrateOne(directory, kind).c_str());
+      } catch (const std::exception& error) {
+        std::printf("%s: FAILED: %s\n", calibration::ToString(kind), error.what());
+        failed = true;
+      }
+      std::fflush(stdout);
+    }
+    if (failed) throw CLI::RuntimeError(3);
+#else
+    throw RuntimeError("this granasym was built without the calibration library");
+#endif
+  });
+}
+
+}  // namespace granasym

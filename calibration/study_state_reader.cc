@@ -1,0 +1,297 @@
+// Reading a study's state table, with selections and replicate means.
+#include "calibration/study_state_reader.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "common/error.h"
+#include "common/hdf5_file.h"
+#include "common/state_measures.h"
+#include "calibration/fit_result.h"
+#include "study/state_table_names.h"
+
+namespace granasym::calibration {
+
+namespace {
+
+namespace names = granasym::study::table;
+
+std::string Join(const std::vector<std::string>& items) {
+  std::string text;
+  for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+  return text;
+}
+
+bool Contains(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+std::vector<std::string> SplitFlags(const std::string& flags) {
+  std::vector<std::string> parts;
+  std::stringstream in(flags);
+  std::string part;
+  while (std::getline(in, part, names::kFlagSeparator)) {
+    if (!part.empty()) parts.push_back(part);
+  }
+  return parts;
+}
+
+// Two-sided 95 % Student t quantile (the table of study/state_table.cc for
+// few replicates; the Cornish–Fisher expansion is accurate from 5 on).
+double StudentT95(int dof) {
+  static const double table[] = {12.706, 4.303, 3.182, 2.776};
+  if (dof < 1) return std::nan("");
+  if (dof <= 4) return table[dof - 1];
+  return StudentQuantile(0.975, dof);
+}
+
+struct Row {
+  int replicate = 1;
+  std::string kind, status, case_name, stage, flags, ncl_reference;
+  double psi_epsilon_deg = 0, p_kpa = 0, e = 0, psi_sigma_deg = 0, ocr = 0;
+};
+
+std::vector<Row> ReadRows(const std::string& path) {
+  const Hdf5File file = Hdf5File::OpenRead(path);
+  const std::string group = names::kStatesGroup;
+  auto column = [&](const char* name) { return group + "/" + name; };
+  for (const char* required :
+       {names::kColumnReplicate, names::kColumnKind, names::kColumnStatus, names::kColumnCaseName,
+        names::kColumnStage, names::kColumnFlags, names::kColumnPsiEpsilon,
+        names::kColumnMeanStress, names::kColumnVoidRatio, names::kColumnPsiSigma}) {
+    if (!file.Exists(column(required))) {
+      throw InputError(fmt::format("{}: not a granasym study state table (no dataset {}; "
+                                   "`granasym study run` writes it)",
+                                   path, column(required)));
+    }
+  }
+  const std::vector<int64_t> replicate = file.ReadInts(column(names::kColumnReplicate));
+  const std::vector<std::string> kind = file.ReadStrings(column(names::kColumnKind));
+  const std::vector<std::string> status = file.ReadStrings(column(names::kColumnStatus));
+  const std::vector<std::string> case_name = file.ReadStrings(column(names::kColumnCaseName));
+  const std::vector<std::string> stage = file.ReadStrings(column(names::kColumnStage));
+  const std::vector<std::string> flags = file.ReadStrings(column(names::kColumnFlags));
+  const std::vector<double> psi_e = file.ReadDoubles(column(names::kColumnPsiEpsilon));
+  const std::vector<double> p = file.ReadDoubles(column(names::kColumnMeanStress));
+  const std::vector<double> e = file.ReadDoubles(column(names::kColumnVoidRatio));
+  const std::vector<double> psi_s = file.ReadDoubles(column(names::kColumnPsiSigma));
+  const bool has_ocr = file.Exists(column(names::kColumnOcr));
+  const std::vector<double> ocr = has_ocr ? file.ReadDoubles(column(names::kColumnOcr))
+                                          : std::vector<double>();
+  const bool has_reference = file.Exists(column(names::kColumnNclReference));
+  const std::vector<std::string> reference =
+      has_reference ? file.ReadStrings(column(names::kColumnNclReference))
+                    : std::vector<std::string>();
+  const size_t n = replicate.size();
+  for (size_t size : {kind.size(), status.size(), case_name.size(), stage.size(), flags.size(),
+                      psi_e.size(), p.size(), e.size(), psi_s.size()}) {
+    if (size != n) {
+      throw InputError(fmt::format("{}: the columns of {} differ in length ({} and {} rows)", path,
+                                   group, n, size));
+    }
+  }
+  std::vector<Row> rows(n);
+  for (size_t k = 0; k < n; ++k) {
+    Row& r = rows[k];
+    r.replicate = static_cast<int>(replicate[k]);
+    r.kind = kind[k];
+    r.status = status[k];
+    r.case_name = case_name[k];
+    r.stage = stage[k];
+    r.flags = flags[k];
+    r.psi_epsilon_deg = psi_e[k];
+    r.p_kpa = p[k];
+    r.e = e[k];
+    r.psi_sigma_deg = psi_s[k];
+    r.ocr = k < ocr.size() ? ocr[k] : std::nan("");
+    r.ncl_reference = k < reference.size() ? reference[k] : "";
+  }
+  return rows;
+}
+
+double Mean(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return sum / static_cast<double>(v.size());
+}
+
+// Standard error of the mean (NaN below two values).
+double StandardError(const std::vector<double>& v) {
+  if (v.size() < 2) return std::nan("");
+  const double m = Mean(v);
+  double ss = 0;
+  for (double x : v) ss += (x - m) * (x - m);
+  return std::sqrt(ss / static_cast<double>(v.size() - 1) / static_cast<double>(v.size()));
+}
+
+}  // namespace
+
+const std::vector<std::string>& StudyTableKinds() {
+  static const std::vector<std::string> kinds = {"ncl", "csl", "compression", "extension",
+                                                 "triaxial"};
+  return kinds;
+}
+
+const std::vector<std::string>& StudyTableStatuses() {
+  static const std::vector<std::string> statuses = {"detected", "drifting", "not_reached",
+                                                    "gas",      "invalid",  "no_result"};
+  return statuses;
+}
+
+bool StudyReadOptions::IsValid(std::string* why) const {
+  for (const std::string& kind : kinds) {
+    if (!Contains(StudyTableKinds(), kind)) {
+      *why = fmt::format("kinds: '{}' is not a kind of the state table: expected {}", kind,
+                         Join(StudyTableKinds()));
+      return false;
+    }
+  }
+  if (kinds.empty()) {
+    *why = "kinds is empty: give at least one of " + Join(StudyTableKinds());
+    return false;
+  }
+  for (const std::string& status : statuses) {
+    if (!Contains(StudyTableStatuses(), status)) {
+      *why = fmt::format("statuses: '{}' is not a status of the state table: expected {}", status,
+                         Join(StudyTableStatuses()));
+      return false;
+    }
+  }
+  if (statuses.empty()) {
+    *why = "statuses is empty: give at least one of " + Join(StudyTableStatuses());
+    return false;
+  }
+  if (!(psi_epsilon_min_deg < psi_epsilon_max_deg && psi_epsilon_min_deg >= -180 &&
+        psi_epsilon_max_deg <= 180)) {
+    *why = fmt::format(
+        "psi_epsilon_range_deg = [{}, {}]: expected [lo, hi] with -180 <= lo < hi <= 180",
+        psi_epsilon_min_deg, psi_epsilon_max_deg);
+    return false;
+  }
+  if (!(triaxial_kind_tolerance_deg >= 0 && triaxial_kind_tolerance_deg < 45)) {
+    *why = fmt::format("triaxial_kind_tolerance_deg = {} must be in [0, 45)",
+                       triaxial_kind_tolerance_deg);
+    return false;
+  }
+  return ValidReaderSettings(kind_tolerance_deg, psi_sigma_uncertainty_deg, ln_volume_uncertainty,
+                             weight, why);
+}
+
+StateDataset ReadStatesStudy(const std::string& directory, const std::string& name,
+                             const StudyReadOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("dataset '" + name + "': " + why);
+  const std::filesystem::path given(directory);
+  const std::string path = std::filesystem::is_directory(given)
+                               ? (given / names::kFileName).string()
+                               : directory;
+  if (!std::filesystem::exists(path)) {
+    throw InputError(fmt::format("dataset '{}': {} does not exist (a study folder holds {} once "
+                                 "`granasym study run` has finished)",
+                                 name, path, names::kFileName));
+  }
+  const std::vector<Row> rows = ReadRows(path);
+
+  // Selection, then groups by (case_name, stage) in the table's order.
+  std::map<std::pair<std::string, std::string>, std::vector<const Row*>> groups;
+  std::vector<std::pair<std::string, std::string>> order;
+  std::map<std::string, int> present;  // "kind status" → rows, for the message
+  for (const Row& row : rows) {
+    ++present[row.kind + " " + row.status];
+    if (!Contains(options.kinds, row.kind) || !Contains(options.statuses, row.status)) continue;
+    if (!(row.psi_epsilon_deg >= options.psi_epsilon_min_deg &&
+          row.psi_epsilon_deg <= options.psi_epsilon_max_deg)) {
+      continue;
+    }
+    bool excluded = false;
+    for (const std::string& flag : SplitFlags(row.flags)) {
+      excluded = excluded || Contains(options.exclude_flags, flag);
+    }
+    if (excluded) continue;
+    if (!options.ncl_references.empty() &&
+        !Contains(options.ncl_references, row.ncl_reference)) {
+      continue;
+    }
+    const auto key = std::make_pair(row.case_name, row.stage);
+    if (!groups.count(key)) order.push_back(key);
+    groups[key].push_back(&row);
+  }
+
+  StateDataset dataset;
+  dataset.name = name;
+  dataset.origin = path;
+  if (order.empty()) {
+    std::string counts;
+    for (const auto& [key, count] : present) counts += fmt::format(" {} {};", count, key);
+    throw InputError(fmt::format(
+        "dataset '{}': {}: no state passes the selections (kinds {}; statuses {}; "
+        "psi_epsilon_range_deg [{}, {}]; exclude_flags {}{}); the table holds:{}",
+        name, path, Join(options.kinds), Join(options.statuses), options.psi_epsilon_min_deg,
+        options.psi_epsilon_max_deg, Join(options.exclude_flags),
+        options.ncl_references.empty() ? "" : "; ncl_references " + Join(options.ncl_references),
+        counts));
+  }
+  const double stated_psi = options.psi_sigma_uncertainty_deg * kDegree;
+  const double stated_v = options.ln_volume_uncertainty;
+  for (const auto& key : order) {
+    const std::vector<const Row*>& members = groups[key];
+    std::vector<double> ln_p, ln_v, psi_s, psi_e, ocr;
+    std::string replicates;
+    for (const Row* row : members) {
+      if (!(row->p_kpa > 0 && row->e > 0 && std::isfinite(row->psi_sigma_deg))) {
+        throw InputError(fmt::format(
+            "dataset '{}': {}: row {}/{} (replicate {}) has p_kpa = {}, e = {}, psi_sigma_deg = "
+            "{}: a selected state needs p > 0, e > 0 and a finite psi_sigma (select other "
+            "statuses or exclude its flags)",
+            name, path, row->case_name, row->stage, row->replicate, row->p_kpa, row->e,
+            row->psi_sigma_deg));
+      }
+      ln_p.push_back(std::log(row->p_kpa));
+      ln_v.push_back(std::log1p(row->e));
+      psi_s.push_back(row->psi_sigma_deg * kDegree);
+      psi_e.push_back(row->psi_epsilon_deg * kDegree);
+      if (std::isfinite(row->ocr) && row->ocr > 0) ocr.push_back(std::log(row->ocr));
+      replicates += (replicates.empty() ? "r" : ",r") + std::to_string(row->replicate);
+    }
+    AsymptoticStatePoint point;
+    const std::string& kind = members.front()->kind;
+    point.psi_epsilon = Mean(psi_e);
+    if (kind == "triaxial") {
+      point.kind = KindFromStretching(point.psi_epsilon, options.triaxial_kind_tolerance_deg * kDegree);
+    } else if (kind == "ncl" || kind == "csl") {
+      point.kind = kind == "ncl" ? StateKind::kNcl : StateKind::kCsl;
+    } else {
+      // compression / extension rows keep their side of 90° even when their
+      // ψ_ε is close to it.
+      point.kind = kind == "compression" ? StateKind::kCompression : StateKind::kExtension;
+    }
+    point.mean_stress = std::exp(Mean(ln_p));
+    point.void_ratio = std::expm1(Mean(ln_v));
+    point.psi_sigma = Mean(psi_s);
+    point.source_ocr = ocr.size() == members.size() ? std::exp(Mean(ocr)) : std::nan("");
+    point.weight = options.weight;
+    point.replicates = static_cast<int>(members.size());
+    const double n = static_cast<double>(members.size());
+    if (members.size() >= 2) {
+      const double se_psi = StandardError(psi_s), se_v = StandardError(ln_v);
+      point.psi_sigma_uncertainty = std::max(se_psi, stated_psi / std::sqrt(n));
+      point.ln_volume_uncertainty = std::max(se_v, stated_v / std::sqrt(n));
+      const double t = StudentT95(static_cast<int>(members.size()) - 1);
+      point.psi_sigma_ci95 = t * se_psi;
+      point.ln_volume_ci95 = t * se_v;
+    } else {
+      point.psi_sigma_uncertainty = stated_psi;
+      point.ln_volume_uncertainty = stated_v;
+    }
+    point.source = fmt::format("{}/{} ({} {})", key.first, key.second, kind, replicates);
+    dataset.points.push_back(point);
+  }
+  return dataset;
+}
+
+}  // namespace granasym::calibration
