@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds, and runs the paper's
 # programme (studies/programmes/paper.toml) at the small scale into
-# out/paper-small/ (the state table: out/paper-small/asymptotic_states.csv).
+# out/paper-small/, calibrates the three models to its asymptotic states,
+# draws the paper's figures and writes the report: out/paper-small/index.html.
 # Running it again computes only what is missing or changed.
 #
 #   ./run.sh                       the paper's programme, small scale
@@ -17,7 +18,11 @@ name="$(basename "$input" .toml)"
 granasym="$root/build/app/granasym"
 if grep -q '^\[study\]' "$input"; then
   scale="${2:-small}"
-  "$granasym" study run "$input" --scale "$scale" --out "$root/out/$name-$scale"
+  out="$root/out/$name-$scale"
+  "$granasym" study run "$input" --scale "$scale" --out "$out"
+  "$granasym" study calibrate "$out"
+  "$granasym" study figures "$out"
+  "$granasym" study report "$out"
 else
   "$granasym" dem run "$input" --out "$root/out/$name.h5"
   "$granasym" export "$root/out/$name.h5" --csv "$root/out/$name.csv"

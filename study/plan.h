@@ -7,6 +7,7 @@
 //   DIR/cases/r<K>/<case>/scene.toml the scene the case runs (forks from its parent's result)
 //   DIR/cases/r<K>/<case>/case.toml  what the case is: key, parent, run, variables
 //   DIR/cases/r<K>/<case>/result.h5  its result (result.h5.ckpt while it runs)
+//   DIR/cases/r<K>/<case>/run.log    the DEM run's report (time step, stage ends, validity)
 //   DIR/cases/r<K>/<case>/done.toml  written last: the key it was computed for, how it ended
 //   DIR/models/<name>/               element tests of the constitutive models
 //   DIR/asymptotic_states.csv/.h5    the state table (study/state_table.h)

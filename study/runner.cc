@@ -8,6 +8,7 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <mutex>
 #include <set>
@@ -383,13 +384,13 @@ CaseOutcome Scheduler::Execute(int k) {
   run.threads = plan_.threads;
   run.restart = resume;
   run.stop_requested = [this](int64_t) { return StopRequested(); };
-  if (options_.log) {
-    run.log = [this, &c](const std::string& line) {
-      std::string text = line;
-      while (!text.empty() && text.back() == '\n') text.pop_back();
-      options_.log(c.id + ": " + text);
-    };
-  }
+  // The run's own report goes to the case's run.log (appended across
+  // resumes); the study's log gets one line when a case starts and ends.
+  std::ofstream run_log(c.directory + "/run.log", std::ios::app);
+  run.log = [&run_log](const std::string& line) {
+    run_log << line << (!line.empty() && line.back() == '\n' ? "" : "\n");
+    run_log.flush();
+  };
   int64_t first_step = -1;
   run.progress = [this, k, &first_step, &c](const dem::RunProgress& progress) {
     if (first_step < 0) first_step = progress.step;
@@ -425,8 +426,9 @@ CaseOutcome Scheduler::Execute(int k) {
   outcome.status = summary.termination == dem::Termination::kCompleted ? CaseStatus::kComputed
                                                                        : CaseStatus::kFailed;
   if (options_.log) {
-    options_.log(fmt::format("{}: {} in {:.1f} s ({})", c.id, ToString(outcome.status),
-                             outcome.wall_seconds, summary.message));
+    options_.log(fmt::format("{}: {} in {:.1f} s ({}){}", c.id, ToString(outcome.status),
+                             outcome.wall_seconds, summary.message,
+                             summary.validity.empty() ? "" : "; " + summary.validity));
   }
   return outcome;
 }

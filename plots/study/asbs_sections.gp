@@ -3,8 +3,8 @@
 # detected, 6 drifting; labels: psi_epsilon) with each calibrated model's
 # section at the same levels (data/fig17_models.tsv, blocks model-major:
 # block m*n_levels + l). Variables: n_levels, level_titles (quoted words), n_models.
-width = 9.0; height = 5.5
-panels_right = 0.64
+width = 10.5; height = 5.5
+panels_right = 0.55
 load scripts."/common.gp"
 dem = data."/fig17_dem.tsv"
 models = data."/fig17_models.tsv"

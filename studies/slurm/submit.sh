@@ -12,7 +12,8 @@
 # studies/programmes/paper.toml and GRANASYM build/app/granasym of this
 # repository (else granasym from PATH), SCALE paper, OUT study-paper-SCALE in
 # the current directory, which must be on a file system every node sees. JOBS
-# and THREADS are passed on to paper.sbatch (see there). Job logs
+# and THREADS are passed on to paper.sbatch (see there), REPORT (1: calibrate,
+# figures and report after the merge; 0: only the state table) to merge.sbatch. Job logs
 # (slurm-granasym-*.out) go to the current directory.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"

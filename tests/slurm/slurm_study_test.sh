@@ -54,7 +54,7 @@ fail() {
 start=$(date +%s.%N)
 submitted="$(cd "$work/jobs" &&
   SHARDS="$shards" SCALE="$scale" OUT="$work/sharded" PROGRAMME="$programme" \
-  GRANASYM="$granasym" "$root/studies/slurm/submit.sh" --cpus-per-task="$threads")" ||
+  GRANASYM="$granasym" REPORT=0 "$root/studies/slurm/submit.sh" --cpus-per-task="$threads")" ||
   fail "studies/slurm/submit.sh failed"
 echo "$submitted"
 shards_job="$(echo "$submitted" | sed -n 's/^shards job \([0-9][0-9]*\):.*/\1/p')"
