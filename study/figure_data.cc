@@ -895,6 +895,34 @@ FigureSpec Sec52(const Context& ctx) {
                   });
 }
 
+// The paper's Fig. 21 is da Cruz et al.'s μ*(I) from plane shear; the study's
+// own counterpart is the critical-state stress ratio against I.
+FigureSpec Fig21(const Context& ctx) {
+  FigureSpec spec = Spec("fig21_friction_inertial", "21",
+                         "Critical-state stress ratio against the inertial number",
+                         "The stress ratio M = q/p of the detected isochoric (ψ_ε = 90°) and "
+                         "drained triaxial asymptotic states, all replicates, against their "
+                         "inertial number for the smallest and the largest diameter: the study's "
+                         "counterpart of the paper's Fig. 21 (da Cruz et al.'s μ*(I), which "
+                         "grows with I beyond about 10^{-2}).",
+                         "friction_inertial.gp");
+  BlockFile file({"inertial_number", "q_over_p"});
+  std::vector<std::vector<double>> dmin, dmax;
+  for (const StateRow& row : ctx.states) {
+    if ((row.kind != "csl" && row.kind != "triaxial") || row.status != "detected") continue;
+    if (!(row.q_over_p > 0)) continue;
+    if (row.inertial_number_dmin > 0) dmin.push_back({row.inertial_number_dmin, row.q_over_p});
+    if (row.inertial_number_dmax > 0) dmax.push_back({row.inertial_number_dmax, row.q_over_p});
+  }
+  if (dmin.empty() && dmax.empty()) {
+    return NotDrawn(spec, "no detected isochoric or triaxial asymptotic state");
+  }
+  file.Add("I(d_{min})", dmin);
+  file.Add("I(d_{max})", dmax);
+  file.Write(ctx.File("fig21_friction_inertial.tsv"));
+  return spec;
+}
+
 FigureSpec Fig22(const Context& ctx) {
   FigureSpec spec = Spec("fig22_inertial_number", "22", "Inertial number against mean stress",
                   "The inertial number I = ‖D‖ d √(2ρ_s/p) (paper Eq. 5) for the smallest and the "
@@ -1169,6 +1197,7 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
   figures.push_back(Fig18(ctx));
   figures.push_back(Fig19(ctx));
   figures.push_back(Fig20(ctx));
+  figures.push_back(Fig21(ctx));
   figures.push_back(Fig22(ctx));
   figures.push_back(Sec52(ctx));
   return figures;

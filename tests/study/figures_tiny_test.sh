@@ -17,7 +17,8 @@ cp -r "$study" "$out"
 stems="fig05_model_paths fig08_overlaps fig09_ncl fig10_csl_nc fig11_csl_oc
        fig12_triaxial_strain fig13_triaxial fig14_compression fig15_extension
        fig16_asymptotic_states fig17_asbs_sections fig18_asbs_level
-       fig19_triaxial_directions fig20_friction fig22_inertial_number sec52_time_step"
+       fig19_triaxial_directions fig20_friction fig21_friction_inertial fig22_inertial_number
+       sec52_time_step"
 
 check_figures() {
   for stem in $stems; do
