@@ -148,15 +148,20 @@ StateDataset ReadStatesDem(const std::string& path, const std::string& name,
     const std::string group = std::string(record::kStages) + "/" + stage;
     const std::string stage_name = file.ReadStringAttribute(group, record::kStageName);
     const std::string where = fmt::format("{}:{} ({})", path, group, stage_name);
-    if (!file.HasAttribute(group, record::kStagePsiEpsilonDeg)) continue;  // not a strain path
+    const bool ran_detector = file.HasAttribute(group, record::kAsymptoteDetected);
+    const bool strain_path = file.HasAttribute(group, record::kStagePsiEpsilonDeg);
+    if (!strain_path && !ran_detector) continue;  // e.g. a rest stage
+    // A stress-controlled stage (drained triaxial) has the ψ_ε of its
+    // asymptote, measured from the strain increments over the window.
     const double psi_epsilon =
-        file.ReadDoubleAttribute(group, record::kStagePsiEpsilonDeg) * kDegree;
+        file.ReadDoubleAttribute(group, strain_path ? record::kStagePsiEpsilonDeg
+                                                    : record::kAsymptotePsiEpsilonDeg) *
+        kDegree;
     AsymptoticStatePoint base;
     base.psi_epsilon = psi_epsilon;
     base.weight = options.weight;
     base.psi_sigma_uncertainty = options.psi_sigma_uncertainty_deg * kDegree;
     base.ln_volume_uncertainty = options.ln_volume_uncertainty;
-    const bool ran_detector = file.HasAttribute(group, record::kAsymptoteDetected);
     if (ran_detector && file.ReadIntAttribute(group, record::kAsymptoteDetected) == 1) {
       AsymptoticStatePoint point = base;
       point.kind = KindFromStretching(psi_epsilon, tolerance);
@@ -181,6 +186,7 @@ StateDataset ReadStatesDem(const std::string& path, const std::string& name,
                           : "unknown"));
       continue;
     }
+    if (!strain_path) continue;
     const StateKind kind = KindFromStretching(psi_epsilon, tolerance);
     if (kind != StateKind::kNcl && kind != StateKind::kUnloading) continue;
     const int64_t first = file.ReadIntAttribute(group, record::kStageFirstRow);
@@ -203,6 +209,19 @@ StateDataset ReadStatesDem(const std::string& path, const std::string& name,
       point.source = fmt::format("{} row {}", where, r);
       dataset.points.push_back(point);
     }
+  }
+  // NCL rows of a file's own loading outweigh its asymptotes quickly; say so.
+  size_t line_rows = 0;
+  for (const AsymptoticStatePoint& point : dataset.points) {
+    line_rows += point.kind == StateKind::kNcl || point.kind == StateKind::kUnloading;
+  }
+  const size_t asymptotes = dataset.points.size() - line_rows;
+  if (asymptotes > 0 && line_rows > 3 * asymptotes) {
+    dataset.warnings.push_back(fmt::format(
+        "{}: {} NCL/unloading rows against {} asymptotic states: the rows dominate the fit "
+        "(lower max_line_points or the dataset's weight, or read a study's state table, "
+        "which holds each state once)",
+        path, line_rows, asymptotes));
   }
   if (dataset.points.empty()) {
     std::string reasons;

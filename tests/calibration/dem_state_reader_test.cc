@@ -78,6 +78,21 @@ std::string WriteDemFile() {
   file.SetAttribute(old_file, "asymptote_psi_sigma_deg", 18.0);
   file.SetAttribute(old_file, "asymptote_p_kpa", 250.0);
   file.SetAttribute(old_file, "asymptote_e", 0.7);
+  // A drained triaxial stage: no psi_epsilon of its own, the asymptote's
+  // measured from the strain increments (a critical state).
+  const std::string triaxial = "/stages/006";
+  file.CreateGroup(triaxial);
+  file.SetAttribute(triaxial, "name", "triaxial");
+  file.SetAttribute(triaxial, "type", "triaxial");
+  file.SetAttribute(triaxial, "first_row", int64_t{41});
+  file.SetAttribute(triaxial, "last_row", int64_t{40});
+  file.SetAttribute(triaxial, "stop_reason", "asymptote");
+  file.SetAttribute(triaxial, "asymptote_detected", int64_t{1});
+  file.SetAttribute(triaxial, "asymptote_psi_epsilon_deg", 90.4);
+  file.SetAttribute(triaxial, "asymptote_psi_sigma_deg", 22.0);
+  file.SetAttribute(triaxial, "asymptote_p_kpa", 280.0);
+  file.SetAttribute(triaxial, "asymptote_e", 0.65);
+  file.SetAttribute(triaxial, "asymptote_dln1pe_dlnp", 0.0);
   file.Commit();
   return path;
 }
@@ -98,22 +113,29 @@ TEST(DemStateReader, TakesNclRowsUnloadingRowsAndDetectedAsymptotes) {
   options.max_line_points = 8;
   const StateDataset d = ReadStatesDem(path, "dem", options);
   EXPECT_EQ(d.Count(StateKind::kNcl), 8u);
-  EXPECT_EQ(d.Count(StateKind::kCsl), 1u);
+  EXPECT_EQ(d.Count(StateKind::kCsl), 2u);  // the 90° path and the drained triaxial
   EXPECT_GE(d.Count(StateKind::kUnloading), 5u);
   for (const AsymptoticStatePoint& point : d.points) {
     if (point.kind == StateKind::kNcl) {
       EXPECT_GE(point.mean_stress, 10.0);
       EXPECT_NEAR(std::log1p(point.void_ratio), 0.8 - 0.05 * std::log(point.mean_stress), 1e-12);
     }
-    if (point.kind == StateKind::kCsl) {
+    if (point.kind == StateKind::kCsl && point.source.find("psi90") != std::string::npos) {
       EXPECT_DOUBLE_EQ(point.mean_stress, 321.0);
       EXPECT_NEAR(point.psi_sigma, 30.5 * kDegree, 1e-15);
       EXPECT_NE(point.source.find("/stages/002 (psi90)"), std::string::npos) << point.source;
+    } else if (point.kind == StateKind::kCsl) {
+      EXPECT_NE(point.source.find("/stages/006 (triaxial)"), std::string::npos) << point.source;
+      EXPECT_DOUBLE_EQ(point.mean_stress, 280.0);
+      EXPECT_NEAR(point.psi_epsilon, 90.4 * kDegree, 1e-15);
     }
   }
-  ASSERT_EQ(d.warnings.size(), 1u);
+  ASSERT_EQ(d.warnings.size(), 2u);
   EXPECT_NE(d.warnings[0].find("psi60"), std::string::npos) << d.warnings[0];
   EXPECT_NE(d.warnings[0].find("no asymptote detected"), std::string::npos);
+  // 8 NCL and 10 unloading rows against 4 asymptotic states.
+  EXPECT_NE(d.warnings[1].find("rows against 4 asymptotic states"), std::string::npos)
+      << d.warnings[1];
   std::filesystem::remove(path);
 }
 
@@ -140,7 +162,7 @@ TEST(DemStateReader, AsbsPointsLieOnTheAsymptoticLineOfEachUsableStage) {
   options.asbs_ln_1_plus_e = {0.55, 0.58, 0.65};
   const StateDataset d = ReadStatesDem(path, "dem", options);
   EXPECT_EQ(d.Count(StateKind::kNcl), 8u);
-  EXPECT_EQ(d.Count(StateKind::kCsl), 1u);
+  EXPECT_EQ(d.Count(StateKind::kCsl), 2u);  // psi90 and the triaxial
   EXPECT_EQ(d.Count(StateKind::kCompression), 2u);  // psi30 and psi45 asymptotes
   ASSERT_EQ(d.Count(StateKind::kAsbs), 2u);
   const double targets[] = {0.55, 0.58};
@@ -171,7 +193,10 @@ TEST(DemStateReader, AsbsPointsLieOnTheAsymptoticLineOfEachUsableStage) {
   EXPECT_TRUE(warned("psi30", "ln(1+e) = 0.65 skipped"));
   EXPECT_TRUE(warned("psi30", "extrapolation limit"));
   EXPECT_TRUE(warned("psi60", "no asymptote detected"));
-  EXPECT_EQ(d.warnings.size(), 4u);
+  EXPECT_TRUE(warned("triaxial", "asymptote_dln1pe_dlnp = 0 is not usable"));
+  // With the ASBS points the line rows no longer outnumber the states 3:1.
+  EXPECT_FALSE(warned("rows against", "asymptotic states"));
+  EXPECT_EQ(d.warnings.size(), 5u);
   std::filesystem::remove(path);
 }
 
