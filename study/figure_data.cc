@@ -20,6 +20,7 @@
 #include "common/time_series.h"
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
+#include "study/study_folder.h"
 
 namespace granasym::study {
 namespace fs = std::filesystem;
@@ -169,19 +170,8 @@ Path ReadPath(const TimeSeries& series, int64_t first, int64_t last, int half_ro
 
 std::vector<CaseData> LoadCases(const std::string& directory, int half_rows) {
   std::vector<CaseData> cases;
-  const fs::path base = fs::path(directory) / "cases";
-  if (!fs::exists(base)) return cases;
-  std::vector<fs::path> folders;
-  for (const auto& replicate : fs::directory_iterator(base)) {
-    if (!replicate.is_directory()) continue;
-    for (const auto& entry : fs::directory_iterator(replicate.path())) {
-      if (entry.is_directory() && fs::exists(entry.path() / "case.toml")) {
-        folders.push_back(entry.path());
-      }
-    }
-  }
-  std::sort(folders.begin(), folders.end());
-  for (const fs::path& folder : folders) {
+  for (const std::string& path : CaseFolders(directory)) {
+    const fs::path folder(path);
     const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
     CaseData c;
     c.directory = folder.string();

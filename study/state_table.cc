@@ -18,6 +18,7 @@
 #include "dem/run_record_names.h"
 #include "dem/stage_validity.h"
 #include "study/state_table_names.h"
+#include "study/study_folder.h"
 
 namespace granasym::study {
 namespace fs = std::filesystem;
@@ -50,19 +51,8 @@ struct CaseFolder {
 
 std::vector<CaseFolder> ListCases(const std::string& directory) {
   std::vector<CaseFolder> cases;
-  const fs::path base = fs::path(directory) / "cases";
-  if (!fs::exists(base)) return cases;
-  std::vector<fs::path> folders;
-  for (const auto& replicate : fs::directory_iterator(base)) {
-    if (!replicate.is_directory()) continue;
-    for (const auto& entry : fs::directory_iterator(replicate.path())) {
-      if (entry.is_directory() && fs::exists(entry.path() / "case.toml")) {
-        folders.push_back(entry.path());
-      }
-    }
-  }
-  std::sort(folders.begin(), folders.end());
-  for (const fs::path& folder : folders) {
+  for (const std::string& path : CaseFolders(directory)) {
+    const fs::path folder(path);
     const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
     CaseFolder c;
     c.directory = folder.string();

@@ -41,6 +41,22 @@ FileLock::~FileLock() {
   if (fd_ >= 0) ::close(fd_);  // releases the lock
 }
 
+std::vector<std::string> CaseFolders(const std::string& directory, bool with_record) {
+  std::vector<std::string> folders;
+  const fs::path base = fs::path(directory) / "cases";
+  if (!fs::exists(base)) return folders;
+  for (const auto& replicate : fs::directory_iterator(base)) {
+    if (!replicate.is_directory()) continue;
+    for (const auto& entry : fs::directory_iterator(replicate.path())) {
+      if (entry.is_directory() && (!with_record || fs::exists(entry.path() / "case.toml"))) {
+        folders.push_back(entry.path().string());
+      }
+    }
+  }
+  std::sort(folders.begin(), folders.end());
+  return folders;
+}
+
 std::optional<DoneRecord> ReadDone(const std::string& directory) {
   const std::string path = directory + "/done.toml";
   if (!fs::exists(path)) return std::nullopt;
@@ -80,17 +96,8 @@ std::string DescribeStudy(const std::string& directory) {
   std::string text = ReadTextFile(directory + "/study.toml");
   std::map<std::string, int> counts;
   std::vector<std::string> lines;
-  const fs::path cases = fs::path(directory) / "cases";
   std::vector<fs::path> folders;
-  if (fs::exists(cases)) {
-    for (const auto& replicate : fs::directory_iterator(cases)) {
-      if (!replicate.is_directory()) continue;
-      for (const auto& entry : fs::directory_iterator(replicate.path())) {
-        if (entry.is_directory()) folders.push_back(entry.path());
-      }
-    }
-  }
-  std::sort(folders.begin(), folders.end());
+  for (const std::string& folder : CaseFolders(directory, false)) folders.emplace_back(folder);
   // Each case's own steps: its engine steps less its parent's.
   std::map<std::string, int64_t> total_steps;
   for (const fs::path& folder : folders) {

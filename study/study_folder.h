@@ -42,6 +42,10 @@ struct DoneRecord {
 std::optional<DoneRecord> ReadDone(const std::string& directory);
 void WriteDone(const std::string& directory, const DoneRecord& done);
 
+// The case folders DIR/cases/r<K>/<case> (those with a case.toml when
+// `with_record`), sorted.
+std::vector<std::string> CaseFolders(const std::string& directory, bool with_record = true);
+
 // Writes `text` to `path` (atomically) unless the file holds it already.
 void WriteIfChanged(const std::string& path, const std::string& text);
 
