@@ -18,6 +18,7 @@
 #include "calibration/calibration_config.h"
 #include "calibration/calibration_report.h"
 #include "calibration/model_parameters.h"
+#include "constitutive/model_config.h"
 #endif
 
 namespace granasym {
@@ -56,6 +57,47 @@ std::string CalibrationToml(const std::string& directory, const std::string& mod
   return s;
 }
 
+// Fig. 5 for a fitted model: element tests along the paths A (ψ_ε = 45°),
+// B (90°) and C (120°) from a normally and an overconsolidated (OCR 4) state
+// at 100 kPa, as the programme's [[model_run]] of the clay model (A stops at
+// 2000 kPa, C at 1 kPa), in FOLDER/paths/psi<ψ>_ocr<k>/ (test.toml,
+// result.h5, result.csv, done.toml).
+// A path that ends at a limit point or fails is left without done.toml and
+// said on standard error; returns the number of finished paths.
+int WriteModelPaths(const std::string& folder, const std::string& model_block) {
+  int finished = 0;
+  for (int psi : {45, 90, 120}) {
+    for (int ocr : {1, 4}) {
+      const std::string dir = fmt::format("{}/paths/psi{}_ocr{}", folder, psi, ocr);
+      fs::create_directories(dir);
+      fs::remove(dir + "/done.toml");
+      const std::string text = model_block + fmt::format(
+          "\n[initial]\nmean_stress_kpa = 100.0\npsi_sigma_deg = 0.0\nocr = {}.0\n\n"
+          "[[stage]]\nname = \"path\"\ntype = \"proportional\"\npsi_epsilon_deg = {}.0\n"
+          "stretching_rate = 1.0\nduration_s = 1.0\noutput_points = 200\n[stage.stop]\n"
+          "asymptote = 1e-7\n{}",
+          ocr, psi,
+          psi < 90 ? "mean_stress_kpa = 2000.0\n" : psi > 90 ? "mean_stress_kpa = 1.0\n" : "");
+      const std::string input = dir + "/test.toml";
+      WriteTextFileAtomically(input, text);
+      try {
+        const ConfigTable root = ConfigTable::ParseString(text, input);
+        const ElementTestResult result =
+            RunElementTestInput(root, input, dir + "/result.h5", dir + "/result.csv");
+        if (!result.summary.success()) {
+          std::fprintf(stderr, "%s: %s\n", input.c_str(), result.summary.Report().c_str());
+          continue;
+        }
+        WriteTextFileAtomically(dir + "/done.toml", "termination = \"completed\"\n");
+        ++finished;
+      } catch (const std::exception& error) {
+        std::fprintf(stderr, "%s: %s\n", input.c_str(), error.what());
+      }
+    }
+  }
+  return finished;
+}
+
 // One model: writes its folder and returns the line to print.
 std::string CalibrateOne(const std::string& directory, ModelKind model) {
   const std::string name = calibration::ToString(model);
@@ -79,6 +121,8 @@ std::string CalibrateOne(const std::string& directory, ModelKind model) {
   WriteTextFileAtomically(folder + "/parameters.csv", calibration::ParametersCsv(run, fit));
   WriteTextFileAtomically(folder + "/model.toml", calibration::ModelToml(run, fit));
   calibration::WritePlotData(run, fit, config.plot_data_dir);
+  const int paths = WriteModelPaths(folder, calibration::ModelTomlBlock(
+                                                run.problem->parameters().kind(), fit.values));
   int count = 0;
   for (char c : warnings) count += c == '\n' ? 1 : 0;
   std::string line = name + ":";
@@ -89,7 +133,8 @@ std::string CalibrateOne(const std::string& directory, ModelKind model) {
                             ? std::string()
                             : "(" + std::string(calibration::ToString(run.status[i])) + ")");
   }
-  line += fmt::format("; {} warnings; fit {:.2f} s; {}", count, fit.summary.wall_seconds, folder);
+  line += fmt::format("; {} warnings; fit {:.2f} s; {} of 6 Fig. 5 paths; {}", count,
+                      fit.summary.wall_seconds, paths, folder);
   return line;
 }
 

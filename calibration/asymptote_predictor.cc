@@ -137,7 +137,11 @@ bool SandPath(const HypoplasticSand& model, double psi_epsilon, const std::vecto
     return closed_form(
         [](const HypoplasticSand& m, double p) { return m.LimitVoidRatiosAt(p).loosest; }, 0.0);
   }
-  if (std::abs(psi_epsilon - 0.5 * kPi) < 1e-9) {
+  // Isochoric, and the drained triaxial states the readers count as critical
+  // (within 2° of 90°, a ψ_ε measured from strain increments): the critical
+  // state at the state's p (a proportional path at 89.5° from a loose start
+  // runs to p = 0 instead).
+  if (std::abs(psi_epsilon - 0.5 * kPi) < 2.0 * kDegree) {
     return closed_form(
         [](const HypoplasticSand& m, double p) { return m.LimitVoidRatiosAt(p).critical; }, psi_c);
   }

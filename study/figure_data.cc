@@ -345,19 +345,14 @@ void Set(FigureSpec* spec, const std::string& name, const std::string& value) {
 
 // ---------------------------------------------------------------- figures
 
-FigureSpec Fig05(const Context& ctx) {
-  FigureSpec spec = Spec("fig05_model_paths", "5", "Asymptotic states of the hypoplastic model for clays",
-                  "Element tests of the hypoplastic model for clays (Mašín 2005; the programme's "
-                  "[[model_run]] parameters) along proportional paths: compression (A, 0° < ψ_ε "
-                  "< 90°), isochoric (B, ψ_ε = 90°) and extension (C, ψ_ε > 90°), each from a "
-                  "normally and an overconsolidated state; paths of one ψ_ε reach one asymptotic "
-                  "ψ_σ and a line parallel to the NCL. Data: DIR/models/<name>/result.csv.",
-                  "model_paths.gp");
+// Element tests along the paths A, B, C: the finished runs in the
+// subfolders of `root` (each with result.csv and done.toml), as one figure.
+FigureSpec ModelPaths(const Context& ctx, FigureSpec spec, const fs::path& root,
+                      const std::string& data_file) {
   BlockFile file({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
-  const fs::path models = fs::path(ctx.directory) / "models";
   std::vector<fs::path> folders;
-  if (fs::exists(models)) {
-    for (const auto& entry : fs::directory_iterator(models)) {
+  if (fs::exists(root)) {
+    for (const auto& entry : fs::directory_iterator(root)) {
       if (fs::exists(entry.path() / "result.csv") && fs::exists(entry.path() / "done.toml")) {
         folders.push_back(entry.path());
       }
@@ -383,10 +378,49 @@ FigureSpec Fig05(const Context& ctx) {
     file.Add(fmt::format("{}: ψ_ε = {}°, OCR {}", path, Short(psi_e), Short(table.rows[0][ocr])),
              rows);
   }
-  if (file.blocks() == 0) return NotDrawn(spec, "no finished model runs in DIR/models");
-  file.Write(ctx.File("fig05_paths.tsv"));
+  if (file.blocks() == 0) {
+    return NotDrawn(spec, "no finished element tests in " +
+                              fs::relative(root, ctx.directory).string());
+  }
+  file.Write(ctx.File(data_file));
   Set(&spec, "n_paths", file.blocks());
+  Set(&spec, "paths_file", data_file);
   return spec;
+}
+
+FigureSpec Fig05(const Context& ctx) {
+  FigureSpec spec = Spec("fig05_model_paths", "5", "Asymptotic states of the hypoplastic model for clays",
+                  "Element tests of the hypoplastic model for clays (Mašín 2005; the programme's "
+                  "[[model_run]] parameters) along proportional paths: compression (A, 0° < ψ_ε "
+                  "< 90°), isochoric (B, ψ_ε = 90°) and extension (C, ψ_ε > 90°), each from a "
+                  "normally and an overconsolidated state; paths of one ψ_ε reach one asymptotic "
+                  "ψ_σ and a line parallel to the NCL. Data: DIR/models/<name>/result.csv.",
+                  "model_paths.gp");
+  return ModelPaths(ctx, spec, fs::path(ctx.directory) / "models", "fig05_paths.tsv");
+}
+
+// Fig. 5 for each calibrated model: its paths A (45°), B (90°), C (120°)
+// from OCR 1 and 4 at 100 kPa, written by `granasym study calibrate`.
+std::vector<FigureSpec> Fig05Calibrated(const Context& ctx) {
+  std::vector<FigureSpec> specs;
+  for (const char* model : {"hypoplastic_clay", "modified_cam_clay", "hypoplastic_sand"}) {
+    const fs::path root = fs::path(ctx.directory) / "calibration" / model / "paths";
+    if (!fs::exists(root)) continue;
+    const std::string title = std::string(model) == "hypoplastic_clay"    ? "hypoplastic clay"
+                              : std::string(model) == "modified_cam_clay" ? "Modified Cam clay"
+                                                                          : "hypoplastic sand";
+    FigureSpec spec = Spec(
+        std::string("fig05_") + model, "5", "Asymptotic states of the calibrated " + title,
+        "Element tests of the " + title + " model with the parameters fitted to this study "
+        "(DIR/calibration/" + model + "/model.toml) along the paths A (ψ_ε = 45°), B (90°) "
+        "and C (120°) from a normally and an overconsolidated (OCR 4) state at 100 kPa; "
+        "A stops at 2000 kPa, C at 1 kPa; a path the model cannot follow (e.g. Cam "
+        "clay softening on the dry side) is absent, its test.toml beside the others. Data: "
+        "DIR/calibration/" + model + "/paths/.",
+        "model_paths.gp");
+    specs.push_back(ModelPaths(ctx, spec, root, std::string("fig05_") + model + ".tsv"));
+  }
+  return specs;
 }
 
 FigureSpec Fig08(const Context& ctx) {
@@ -1159,6 +1193,7 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
 
   std::vector<FigureSpec> figures;
   figures.push_back(Fig05(ctx));
+  for (FigureSpec& spec : Fig05Calibrated(ctx)) figures.push_back(std::move(spec));
   figures.push_back(Fig08(ctx));
   figures.push_back(Fig09(ctx));
   figures.push_back(PathFamily(ctx, "10", "fig10_csl_nc", "Isochoric paths from NC states",

@@ -1,9 +1,10 @@
-# Paper Fig. 5: the hypoplastic model's paths A (compression), B (isochoric)
-# and C (extension) from normally and overconsolidated states
-# (data/fig05_paths.tsv, one block per element test). Variables: n_paths.
+# Paper Fig. 5: a model's paths A (compression), B (isochoric) and C
+# (extension) from normally and overconsolidated states (data/<paths_file>,
+# one block per element test). Variables: n_paths, paths_file.
 width = 10.0; height = 7.5
 load scripts."/common.gp"
-file = data."/fig05_paths.tsv"
+if (!exists("paths_file")) paths_file = "fig05_paths.tsv"
+file = data."/".paths_file
 start_dt(i) = i%2 + 1
 # Panels (a)-(c) in a 2 x 2 grid; the legend fills the fourth cell.
 set multiplot layout 2,2 margins 0.08,0.97,0.07,0.96 spacing 0.1,0.1
