@@ -105,17 +105,30 @@ const void* ConfigTable::Find(const std::string& key) const {
 bool ConfigTable::Has(const std::string& key) const { return Find(key) != nullptr; }
 
 namespace {
-double NumberOf(const ConfigTable& table, const std::string& key, const toml::value& value) {
-  if (value.is_floating()) return value.as_floating();
-  if (value.is_integer()) return static_cast<double>(value.as_integer());
-  table.Fail(key, "has type " + TypeName(value) + ": expected a number");
+// A number of the file; inf and nan (valid TOML) are never valid settings,
+// whatever range the key has.
+double NumberOf(const ConfigTable& table, const std::string& key, const toml::value& value,
+                const Range& range) {
+  double number = 0;
+  if (value.is_floating()) {
+    number = value.as_floating();
+  } else if (value.is_integer()) {
+    number = static_cast<double>(value.as_integer());
+  } else {
+    table.Fail(key, "has type " + TypeName(value) + ": expected a number");
+  }
+  if (!std::isfinite(number)) {
+    table.Fail(key, "= " + FormatNumber(number) + " is not a finite number: expected a finite " +
+                        "number " + range.Describe());
+  }
+  return number;
 }
 }  // namespace
 
 double ConfigTable::GetDouble(const std::string& key, Range range) const {
   const void* found = Find(key);
   if (!found) Fail(key, "is missing: expected a number " + range.Describe());
-  const double value = NumberOf(*this, key, AsValue(found));
+  const double value = NumberOf(*this, key, AsValue(found), range);
   if (!range.Contains(value)) {
     Fail(key, "= " + FormatNumber(value) + " is out of range: must be " + range.Describe());
   }
@@ -188,7 +201,7 @@ std::vector<double> ConfigTable::GetDoubles(const std::string& key, Range range)
   for (size_t i = 0; i < value.as_array().size(); ++i) {
     const toml::value& item = value.as_array()[i];
     const std::string item_key = key + "[" + std::to_string(i) + "]";
-    const double number = NumberOf(*this, item_key, item);
+    const double number = NumberOf(*this, item_key, item, range);
     if (!range.Contains(number)) {
       Fail(item_key, "= " + FormatNumber(number) + " is out of range: must be " + range.Describe());
     }

@@ -41,6 +41,22 @@ TEST(ConfigTable, OutOfRangeNamesFileKeyValueAndRange) {
   EXPECT_NE(message.find("> 0"), std::string::npos) << message;
 }
 
+TEST(ConfigTable, InfinityAndNanAreNeverValidNumbers) {
+  const ConfigTable root = ConfigTable::ParseString(
+      "a = inf\nb = -inf\nc = nan\nlist = [1.0, inf]\n", "scene.toml");
+  for (const char* key : {"a", "b", "c"}) {
+    // Even where any number is valid, and where inf satisfies "> 0".
+    for (const Range range : {Range::Any(), Range::Positive()}) {
+      const std::string message = MessageOf([&] { root.GetDouble(key, range); });
+      EXPECT_NE(message.find(std::string("key '") + key + "'"), std::string::npos) << message;
+      EXPECT_NE(message.find("is not a finite number"), std::string::npos) << message;
+    }
+  }
+  const std::string message = MessageOf([&] { root.GetDoubles("list", Range::Positive()); });
+  EXPECT_NE(message.find("list[1]"), std::string::npos) << message;
+  EXPECT_NE(message.find("is not a finite number"), std::string::npos) << message;
+}
+
 TEST(ConfigTable, UnknownKeyIsReportedWithTheValidOnes) {
   const ConfigTable root = ConfigTable::ParseString("[m]\nyoung = 5\n", "scene.toml");
   root.GetTable("m").GetDouble("modulus", 1.0, Range::Positive());
