@@ -94,8 +94,4 @@ struct FitResult {
 void ComputeUncertainty(const CalibrationProblem& problem, const UncertaintyOptions& options,
                         FitResult* result);
 
-// Two-sided Student-t quantile t_{p, dof} (Cornish-Fisher expansion; exact to
-// about 1e-3 relative for dof ≥ 3).
-double StudentQuantile(double probability, int degrees_of_freedom);
-
 }  // namespace granasym::calibration

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "common/state_measures.h"
+#include "common/statistics.h"
 
 namespace granasym::calibration {
 
@@ -14,42 +15,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-struct LineFit {
-  double slope = kNaN, intercept = kNaN, slope_error = kNaN, intercept_error = kNaN;
-  int points = 0;
-};
-
-// Ordinary least squares y = intercept + slope x with standard errors.
-LineFit FitLine(const std::vector<double>& x, const std::vector<double>& y) {
-  LineFit fit;
-  fit.points = static_cast<int>(x.size());
-  const double n = static_cast<double>(x.size());
-  if (x.size() < 2) return fit;
-  double mx = 0, my = 0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    mx += x[i] / n;
-    my += y[i] / n;
-  }
-  double sxx = 0, sxy = 0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    sxx += (x[i] - mx) * (x[i] - mx);
-    sxy += (x[i] - mx) * (y[i] - my);
-  }
-  if (!(sxx > 0)) return fit;
-  fit.slope = sxy / sxx;
-  fit.intercept = my - fit.slope * mx;
-  if (x.size() > 2) {
-    double ss = 0;
-    for (size_t i = 0; i < x.size(); ++i) {
-      const double r = y[i] - fit.intercept - fit.slope * x[i];
-      ss += r * r;
-    }
-    const double s2 = ss / (n - 2);
-    fit.slope_error = std::sqrt(s2 / sxx);
-    fit.intercept_error = std::sqrt(s2 * (1.0 / n + mx * mx / sxx));
-  }
-  return fit;
-}
 
 double FrictionAngleFromPsiSigma(double psi_sigma) {
   const double m = 3.0 * std::tan(psi_sigma) / std::sqrt(2.0);

@@ -12,6 +12,7 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/state_measures.h"
+#include "common/statistics.h"
 #include "calibration/fit_result.h"
 #include "study/state_table_names.h"
 
@@ -39,15 +40,6 @@ std::vector<std::string> SplitFlags(const std::string& flags) {
     if (!part.empty()) parts.push_back(part);
   }
   return parts;
-}
-
-// Two-sided 95 % Student t quantile (the table of study/state_table.cc for
-// few replicates; the Cornish–Fisher expansion is accurate from 5 on).
-double StudentT95(int dof) {
-  static const double table[] = {12.706, 4.303, 3.182, 2.776};
-  if (dof < 1) return std::nan("");
-  if (dof <= 4) return table[dof - 1];
-  return StudentQuantile(0.975, dof);
 }
 
 struct Row {

@@ -14,6 +14,7 @@
 #include "common/hdf5_file.h"
 #include "common/text_file.h"
 #include "common/time_series.h"
+#include "common/statistics.h"
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
 #include "dem/stage_validity.h"
@@ -163,36 +164,6 @@ StateRow MissingRow(const CaseFolder& c) {
     *v = kNaN;
   }
   return row;
-}
-
-// Least-squares line y = a + b x; false with fewer than 2 distinct x.
-bool FitLine(const std::vector<double>& x, const std::vector<double>& y, double* a, double* b) {
-  const size_t n = x.size();
-  if (n < 2) return false;
-  double mx = 0, my = 0;
-  for (size_t k = 0; k < n; ++k) mx += x[k], my += y[k];
-  mx /= static_cast<double>(n);
-  my /= static_cast<double>(n);
-  double sxx = 0, sxy = 0;
-  for (size_t k = 0; k < n; ++k) {
-    sxx += (x[k] - mx) * (x[k] - mx);
-    sxy += (x[k] - mx) * (y[k] - my);
-  }
-  if (!(sxx > 0)) return false;
-  *b = sxy / sxx;
-  *a = my - *b * mx;
-  return true;
-}
-
-// Two-sided 95 % Student t quantile for `dof` degrees of freedom.
-double StudentT95(int dof) {
-  static const double table[] = {12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306,
-                                 2.262,  2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120,
-                                 2.110,  2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064,
-                                 2.060,  2.056, 2.052, 2.048, 2.045, 2.042};
-  if (dof < 1) return kNaN;
-  if (dof <= 30) return table[dof - 1];
-  return 1.960 + 2.4 / dof;  // within 0.2 % of the exact quantile beyond 30
 }
 
 // A path as monotone samples in x = ln p (the running extreme in the
@@ -571,10 +542,10 @@ StateTableSummary WriteStateTable(const std::string& directory,
       y.push_back(other.ln_1_plus_e);
     }
     fit.points = static_cast<int>(x.size());
-    double a = 0, b = 0;
-    if (FitLine(x, y, &a, &b)) {
-      fit.n = a;
-      fit.lambda = -b;
+    const LineFit line = FitLine(x, y);
+    if (line.valid()) {
+      fit.n = line.intercept;
+      fit.lambda = -line.slope;
       fit.p_min_kpa = std::exp(*std::min_element(x.begin(), x.end()));
       fit.p_max_kpa = std::exp(*std::max_element(x.begin(), x.end()));
     }
