@@ -10,6 +10,7 @@
 #include "calibration/calibration_config.h"
 #include "calibration/calibration_report.h"
 #include "common/error.h"
+#include "common/output_path.h"
 
 namespace granasym {
 
@@ -25,6 +26,17 @@ void RunCalibrate(const CalibrateFlags& flags) {
   if (!flags.out.empty()) config.hdf5_path = flags.out;
   if (!flags.summary.empty()) config.summary_path = flags.summary;
   if (!flags.plot_data.empty()) config.plot_data_dir = flags.plot_data;
+  std::vector<NamedPath> inputs = {{"the calibration file", flags.config}};
+  for (const calibration::DatasetConfig& dataset : config.datasets) {
+    for (const std::string& path : dataset.paths) {
+      inputs.push_back({"the data file of [[dataset]] '" + dataset.name + "'", path});
+    }
+  }
+  CheckOutputs({{"the HDF5 record (--out / [output] hdf5)", config.hdf5_path},
+                {"the summary (--summary / [output] summary)", config.summary_path}},
+               inputs);
+  CheckOutputFolder({"the plot data folder (--plot-data / [output] plot_data)", config.plot_data_dir},
+                    inputs);
   const calibration::CalibrationRun run = calibration::RunCalibration(config);
   const std::string summary = calibration::SummaryText(run);
   calibration::WriteCalibrationHdf5(run, config.hdf5_path);

@@ -9,9 +9,11 @@
 
 #include "app/progress.h"
 #include "app/signals.h"
+#include "app/thread_count.h"
 #include "app/study_commands.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
+#include "common/output_path.h"
 #include "common/time_series.h"
 #include "dem/packing.h"
 #include "dem/scene.h"
@@ -49,6 +51,7 @@ void RegisterDemCommands(CLI::App& app) {
   generate->add_option("--out", packing_out, "packing file to write (N Lx Ly Lz / x y z r, metres)")
       ->required();
   generate->callback([] {
+    CheckOutputs({{"--out", packing_out}}, {{"--gsd", gsd_path}});
     const dem::GrainSizeDistribution gsd = gsd_path.empty()
                                                ? dem::GrainSizeDistribution::Default()
                                                : dem::GrainSizeDistribution::ReadCsv(gsd_path);
@@ -66,8 +69,11 @@ void RegisterDemCommands(CLI::App& app) {
   static dem::RunOptions run_options;
   static bool quiet = false;
   run->add_option("scene", scene_path, "scene file (TOML)")->required()->check(CLI::ExistingFile);
-  run->add_option("--out", run_options.output_path, "result file (HDF5)");
-  run->add_option("--threads", run_options.threads, "OpenMP threads (default: the scene's)")
+  run->add_option("--out", run_options.output_path,
+                  "result file (HDF5; default: run.h5 in the current folder); the checkpoint "
+                  "goes next to it (FILE.ckpt)");
+  run->add_option("--threads", run_options.threads,
+                  "OpenMP threads (default: the scene's; at most the hardware threads)")
       ->check(CLI::Range(1, 1024));
   run->add_flag("--restart", run_options.restart,
                 "continue from the checkpoint written next to --out");
@@ -76,6 +82,10 @@ void RegisterDemCommands(CLI::App& app) {
                 "keep the checkpoint after a completed run");
   run->callback([] {
     const dem::Scene scene = dem::Scene::Load(scene_path);
+    CheckOutputs({{"--out", run_options.output_path},
+                  {"the checkpoint (--out + .ckpt)", run_options.output_path + ".ckpt"}},
+                 scene.InputFiles());
+    if (run_options.threads > 0) run_options.threads = CapThreads(run_options.threads, "--threads");
     Progress::Options progress_options;
     progress_options.plain_interval_s = scene.output.progress_interval_s;
     progress_options.quiet = quiet;
@@ -112,6 +122,7 @@ void RegisterExportCommand(CLI::App& app) {
     if (csv_path.empty() && packing_path.empty()) {
       throw InputError("export: give --csv FILE and/or --packing FILE");
     }
+    CheckOutputs({{"--csv", csv_path}, {"--packing", packing_path}}, {{"the result file", input}});
     const Hdf5File file = Hdf5File::OpenRead(input);
     if (!csv_path.empty()) {
       const std::string group = file.Exists("/series") ? "/series" : "";
@@ -146,8 +157,14 @@ int main(int argc, char** argv) {
 #endif
   try {
     app.parse(argc, argv);
+  } catch (const CLI::Success& done) {
+    return app.exit(done);  // --help
+  } catch (const CLI::RuntimeError& status) {
+    return status.get_exit_code();  // a failed (3) or interrupted (130) run, already reported
   } catch (const CLI::ParseError& error) {
-    return app.exit(error);
+    // Bad flags are bad input: the message, a hint, and status 2.
+    std::fprintf(stderr, "error: %s\nRun with --help for the valid flags.\n", error.what());
+    return 2;
   } catch (const granasym::InputError& error) {
     std::fprintf(stderr, "error: %s\n", error.what());
     return 2;

@@ -12,6 +12,7 @@
 #include "common/config.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
+#include "common/output_path.h"
 #include "constitutive/model_config.h"
 
 namespace granasym {
@@ -25,6 +26,7 @@ std::string DefaultOutput(const std::string& input) {
 void RunTest(const std::string& path, std::string out, const std::string& csv) {
   const ConfigTable root = ConfigTable::ParseFile(path);
   if (out.empty()) out = DefaultOutput(path);
+  CheckOutputs({{"--out", out}, {"--csv", csv}}, {{"the test file", path}});
   const ElementTestResult result = RunElementTestInput(root, path, out, csv);
   std::printf("%s\n", result.summary.Report().c_str());
   for (const StageSummary& stage : result.summary.stages) {
@@ -37,10 +39,11 @@ void RunTest(const std::string& path, std::string out, const std::string& csv) {
 
 void RunAsymptotes(const std::string& path, std::string out) {
   const ConfigTable root = ConfigTable::ParseFile(path);
+  if (out.empty()) out = DefaultOutput(path);
+  CheckOutputs({{"--out", out}}, {{"the model file", path}});
   const std::unique_ptr<ConstitutiveModel> model = ReadModel(root.GetTable("model"));
   const AsymptoteTable table = ComputeAsymptotes(*model, root);
   root.CheckNoUnknownKeys();
-  if (out.empty()) out = DefaultOutput(path);
   Hdf5File file = Hdf5File::CreateAtomic(out);
   WriteAsymptotes(*model, table, "/asymptotes", &file);
   file.Commit();

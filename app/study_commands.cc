@@ -9,12 +9,14 @@
 #include "app/enum_option.h"
 #include "app/progress.h"
 #include "app/signals.h"
+#include "app/thread_count.h"
 #include "app/study_figures_command.h"
 #include "app/study_report_command.h"
 #ifdef GRANASYM_HAVE_CALIBRATION
 #include "app/study_calibrate_command.h"
 #endif
 #include "common/error.h"
+#include "common/output_path.h"
 #include "study/plan.h"
 #include "study/programme.h"
 #include "study/runner.h"
@@ -78,6 +80,14 @@ void RegisterStudyCommands(CLI::App& app) {
     study::RunnerOptions options;
     if (!ParseShard(shard, &options.shard_index, &options.shard_count)) {
       throw InputError("--shard " + shard + ": expected K/N with 1 <= K <= N, e.g. 2/4");
+    }
+    CheckOutputFolder({"--out", out}, {{"the programme", programme_path}});
+    threads = CapThreads(threads, "--threads");
+    if (jobs * threads > HardwareThreads()) {
+      std::fprintf(stderr,
+                   "warning: --jobs %d x --threads %d = %d threads on %d hardware threads: cases "
+                   "will wait for cores\n",
+                   jobs, threads, jobs * threads, HardwareThreads());
     }
     options.jobs = jobs;
     const study::Programme programme = study::Programme::Load(programme_path);

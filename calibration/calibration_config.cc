@@ -81,11 +81,12 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
       choice.name = spec.name;
       choice.free = t.GetBool("free", true);
       choice.has_value = t.Has("value");
-      if (choice.has_value) choice.value = t.GetDouble("value");
+      // Values and bounds lie where the model is defined.
+      if (choice.has_value) choice.value = t.GetDouble("value", spec.domain);
       choice.has_lower = t.Has("lower");
-      if (choice.has_lower) choice.lower = t.GetDouble("lower");
+      if (choice.has_lower) choice.lower = t.GetDouble("lower", spec.domain);
       choice.has_upper = t.Has("upper");
-      if (choice.has_upper) choice.upper = t.GetDouble("upper");
+      if (choice.has_upper) choice.upper = t.GetDouble("upper", spec.domain);
       if (!choice.free && !choice.has_value) {
         t.Fail("value", "a fixed parameter (free = false) needs a value");
       }

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/config.h"
 #include "constitutive/constitutive_model.h"
 
 namespace granasym::calibration {
@@ -51,6 +52,9 @@ struct ParameterSpec {
   double lower = 0.0;  // bounds of the fit (free parameters)
   double upper = 0.0;
   bool free = true;
+  // Where the model is defined: every value, bound and fit stays inside
+  // (an open end excludes its limit, e.g. phi_c in (0, 90) deg).
+  Range domain;
 };
 
 class ModelParameters {

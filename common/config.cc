@@ -25,6 +25,12 @@ std::string FormatNumber(double value) {
   return out.str();
 }
 
+// "a number > 0", or "a number" where any finite number is valid.
+std::string ExpectedNumber(const Range& range) {
+  const std::string bounds = range.Describe();
+  return bounds.empty() ? "a number" : "a number " + bounds;
+}
+
 std::string TypeName(const toml::value& value) {
   std::ostringstream out;
   out << value.type();
@@ -48,7 +54,7 @@ std::string Range::Describe() const {
   }
   if (has_min) return (min_inclusive ? ">= " : "> ") + FormatNumber(min);
   if (has_max) return (max_inclusive ? "<= " : "< ") + FormatNumber(max);
-  return "any number";
+  return "";
 }
 
 ConfigTable::ConfigTable(std::shared_ptr<Document> document, const void* table, std::string prefix)
@@ -118,8 +124,16 @@ double NumberOf(const ConfigTable& table, const std::string& key, const toml::va
     table.Fail(key, "has type " + TypeName(value) + ": expected a number");
   }
   if (!std::isfinite(number)) {
-    table.Fail(key, "= " + FormatNumber(number) + " is not a finite number: expected a finite " +
-                        "number " + range.Describe());
+    table.Fail(key, "= " + FormatNumber(number) + " is not a finite number: expected " +
+                        ExpectedNumber(range));
+  }
+  // No setting of granasym (in its units: mm, kPa, MPa, s, degrees, ratios)
+  // is meaningful beyond these magnitudes; keys with a physical scale have
+  // narrower ranges of their own.
+  if (std::abs(number) > kLargestSetting || (number != 0 && std::abs(number) < kSmallestSetting)) {
+    table.Fail(key, "= " + FormatNumber(number) + " is beyond any meaningful setting (magnitudes " +
+                        FormatNumber(kSmallestSetting) + " to " + FormatNumber(kLargestSetting) +
+                        "): expected " + ExpectedNumber(range));
   }
   return number;
 }
@@ -127,7 +141,7 @@ double NumberOf(const ConfigTable& table, const std::string& key, const toml::va
 
 double ConfigTable::GetDouble(const std::string& key, Range range) const {
   const void* found = Find(key);
-  if (!found) Fail(key, "is missing: expected a number " + range.Describe());
+  if (!found) Fail(key, "is missing: expected " + ExpectedNumber(range));
   const double value = NumberOf(*this, key, AsValue(found), range);
   if (!range.Contains(value)) {
     Fail(key, "= " + FormatNumber(value) + " is out of range: must be " + range.Describe());
@@ -141,8 +155,17 @@ double ConfigTable::GetDouble(const std::string& key, double fallback, Range ran
 
 int64_t ConfigTable::GetInt(const std::string& key, Range range) const {
   const void* found = Find(key);
-  if (!found) Fail(key, "is missing: expected an integer " + range.Describe());
+  if (!found) {
+    Fail(key, "is missing: expected an integer" +
+                  (range.Describe().empty() ? "" : " " + range.Describe()));
+  }
   const toml::value& value = AsValue(found);
+  if (value.is_floating()) {
+    Fail(key, "= " + FormatNumber(value.as_floating()) +
+                  " is written as a floating-point number: expected an integer without a "
+                  "decimal point or exponent (e.g. 1000, not 1e3 or 1000.0)" +
+                  (range.Describe().empty() ? "" : ", " + range.Describe()));
+  }
   if (!value.is_integer()) Fail(key, "has type " + TypeName(value) + ": expected an integer");
   const int64_t number = value.as_integer();
   if (!range.Contains(static_cast<double>(number))) {

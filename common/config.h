@@ -20,6 +20,11 @@ class basic_value;
 
 namespace granasym {
 
+// Magnitudes beyond which no number of a configuration file is a setting
+// (every number read is checked against them, whatever its key's range).
+inline constexpr double kLargestSetting = 1e100;
+inline constexpr double kSmallestSetting = 1e-100;
+
 // An admissible interval for a number, with its own wording for messages.
 struct Range {
   double min = -std::numeric_limits<double>::infinity();
@@ -34,7 +39,7 @@ struct Range {
   static Range Open(double lo, double hi) { return {lo, hi, false, false}; }
   static Range AtLeast(double lo) { return {lo, Range().max, true, true}; }
   bool Contains(double value) const;
-  std::string Describe() const;  // e.g. "> 0", "in [0, 1]"
+  std::string Describe() const;  // e.g. "> 0", "in [0, 1]"; "" for any number
 };
 
 class ConfigTable {

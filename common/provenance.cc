@@ -8,6 +8,7 @@
 #include <cctype>
 #include <cstring>
 #include <fstream>
+#include <thread>
 
 #include "common/error.h"
 #include "program_version.h"  // generated at build time (common/write_program_version.cmake)
@@ -127,5 +128,7 @@ std::string Sha256::HexDigest() const {
   if (EVP_DigestFinal_ex(copy.get(), digest, &size) != 1) Fail("EVP_DigestFinal_ex");
   return Hex(digest, size);
 }
+
+int HardwareThreads() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
 
 }  // namespace granasym

@@ -27,6 +27,9 @@ std::string ProgramVersion();
 // there is none; "unknown" when neither is available.
 std::string HostCpuModel();
 
+// The hardware threads of this machine (at least 1).
+int HardwareThreads();
+
 // SHA-256 of `bytes` as 64 lower-case hexadecimal characters.
 std::string Sha256Hex(std::string_view bytes);
 

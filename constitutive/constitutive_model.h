@@ -70,6 +70,12 @@ class ConstitutiveModel {
 
   // Whether the model is defined at this state (compressive stress, ...).
   virtual bool IsAdmissible(const ModelState& state, std::string* why) const = 0;
+  // Whether a test may start at this state: admissible, and inside the
+  // model's state boundary surface where it has one (clay: OCR >= 1; sand:
+  // e_d <= e <= e_i). A run may drift slightly outside it, never start there.
+  virtual bool IsAdmissibleStart(const ModelState& state, std::string* why) const {
+    return IsAdmissible(state, why);
+  }
 
   // Hvorslev equivalent pressure p_e* (kPa): mean stress on the isotropic NCL at e.
   virtual double EquivalentPressure(double void_ratio) const = 0;

@@ -112,7 +112,7 @@ ModelState CheckedInitialState(const ConstitutiveModel& model, double mean_stres
   }
   ModelState state = model.MakeState(AxisymmetricStressTensor(mean_stress, psi_sigma), void_ratio);
   std::string why;
-  if (!model.IsAdmissible(state, &why)) {
+  if (!model.IsAdmissibleStart(state, &why)) {
     throw InputError(fmt::format(
         "initial state p = {} kPa, psi_sigma = {} deg, e = {} is outside the model's domain: {}",
         mean_stress, psi_sigma / kDegree, void_ratio, why));

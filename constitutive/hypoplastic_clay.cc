@@ -172,8 +172,19 @@ Constants MakeConstants(const HypoplasticClay::Parameters& p, double a, double a
 
 bool HypoplasticClay::IsAdmissible(const ModelState& state, std::string* why) const {
   if (!CheckCompressive(state.stress, parameters_.minimum_mean_stress, why)) return false;
-  if (!(state.void_ratio > -1.0 && std::isfinite(state.void_ratio))) {
-    return Fail(why, fmt::format("void ratio e = {} must be > −1", state.void_ratio));
+  if (!(state.void_ratio > 0 && std::isfinite(state.void_ratio))) {
+    return Fail(why, fmt::format("void ratio e = {:.6g} must be > 0", state.void_ratio));
+  }
+  return true;
+}
+
+bool HypoplasticClay::IsAdmissibleStart(const ModelState& state, std::string* why) const {
+  if (!IsAdmissible(state, why)) return false;
+  const double ocr = EquivalentPressure(state.void_ratio) / MeanStress(state.stress);
+  if (!(ocr >= 1 - 1e-9)) {
+    return Fail(why, fmt::format("OCR = {:.6g} is below 1: the state lies looser than the "
+                                 "normal compression line, outside the state boundary surface",
+                                 ocr));
   }
   return true;
 }

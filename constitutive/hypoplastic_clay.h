@@ -41,6 +41,7 @@ class HypoplasticClay : public ConstitutiveModel {
   bool Jacobian(const ModelState& state, const Vector6& stretching, RateJacobian* jacobian,
                 std::string* why) const override;
   bool IsAdmissible(const ModelState& state, std::string* why) const override;
+  bool IsAdmissibleStart(const ModelState& state, std::string* why) const override;
   double EquivalentPressure(double void_ratio) const override;
   double VoidRatioForOcr(double mean_stress, double ocr) const override;
   ModelState MakeState(const Vector6& stress, double void_ratio) const override;

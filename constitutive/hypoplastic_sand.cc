@@ -210,6 +210,18 @@ bool HypoplasticSand::IsAdmissible(const ModelState& state, std::string* why) co
   return true;
 }
 
+bool HypoplasticSand::IsAdmissibleStart(const ModelState& state, std::string* why) const {
+  if (!IsAdmissible(state, why)) return false;
+  const double p = MeanStress(state.stress);
+  const double loosest = LimitVoidRatiosAt(p).loosest;
+  if (!(state.void_ratio <= loosest * (1 + 1e-12))) {
+    return Fail(why, fmt::format("void ratio e = {:.9g} is above the loosest e_i = {:.9g} at "
+                                 "p = {:.6g} kPa: no sand state is looser",
+                                 state.void_ratio, loosest, p));
+  }
+  return true;
+}
+
 bool HypoplasticSand::EvaluateTerms(const ModelState& state, Terms* terms, std::string* why) const {
   if (!IsAdmissible(state, why)) return false;
   const Constants c = MakeConstants(parameters_, a_, barotropy_denominator_);

@@ -83,6 +83,7 @@ class HypoplasticSand : public ConstitutiveModel {
   // compressive (F is singular where a principal stress vanishes in triaxial
   // compression), and e_d(p) < e (f_d is not real below e_d).
   bool IsAdmissible(const ModelState& state, std::string* why) const override;
+  bool IsAdmissibleStart(const ModelState& state, std::string* why) const override;
   // p_e on the isotropic limit line e_i (file comment); 0 for e ≥ e_i0.
   double EquivalentPressure(double void_ratio) const override;
   // e_i(ocr·p): the void ratio whose p_e is ocr·p.

@@ -16,6 +16,42 @@ namespace granasym {
 
 namespace {
 const Range kFrictionAngleDeg = Range::Open(0.0, 90.0);
+// Ranges of sane parameters and settings (kPa, 1/s, s): compression indices
+// and ln(1+e) intercepts of real soils lie well inside them.
+const Range kIndex = {0.0, 2.0, false, true};        // lambda*, kappa*, lambda, kappa
+const Range kIntercept = {0.0, 10.0, false, true};   // N = ln(1+e) at p_r, e_N
+const Range kVoidRatio = {0.0, 20.0, false, true};   // e_d0, e_c0, e_i0
+const Range kExponent = {0.0, 10.0, false, true};    // alpha, beta
+const Range kStressKpa = {0.0, 1e7, false, true};    // stresses and moduli up to 10 GPa
+const Range kModulusKpa = {0.0, 1e9, false, true};   // h_s, G
+const Range kRate = {0.0, 1e6, false, true};         // stretching rates (1/s)
+const Range kSignedRate = Range::Closed(-1e6, 1e6);  // axial and Voigt rates (1/s)
+const Range kDuration = {0.0, 1e9, false, true};     // stage durations (s)
+
+// The valid values of a stop of an element test.
+Range StopRange(StopKind kind) {
+  switch (kind) {
+    case StopKind::kMeanStress:
+      return kStressKpa;
+    case StopKind::kAxialStrain:
+    case StopKind::kVolumetricStrain:
+    case StopKind::kShearStrain:
+      return Range::Closed(-20.0, 20.0);
+    case StopKind::kStrainPath:
+      return {0.0, 1e3, false, true};
+    case StopKind::kStressRatio:
+      return Range::Closed(-3.0, 3.0);
+    case StopKind::kAsymptote:
+      return Range::Open(0.0, 1e-2);
+  }
+  return Range::Any();
+}
+
+// A failed consistency check of a model's parameters (several keys together).
+[[noreturn]] void FailParameters(const ConfigTable& table, const std::string& why) {
+  throw InputError(fmt::format("{}: [{}]: the parameters are not consistent: {}", table.origin(),
+                               table.KeyName(""), why));
+}
 }
 
 std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
@@ -25,26 +61,26 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
   if (kind == ModelKind::kHypoplasticClay) {
     HypoplasticClay::Parameters p;
     p.critical_friction_angle = table.GetDouble("phi_c_deg", kFrictionAngleDeg) * kDegree;
-    p.lambda_star = table.GetDouble("lambda_star", Range::Positive());
-    p.kappa_star = table.GetDouble("kappa_star", Range::Positive());
+    p.lambda_star = table.GetDouble("lambda_star", kIndex);
+    p.kappa_star = table.GetDouble("kappa_star", kIndex);
     if (!(p.kappa_star < p.lambda_star)) {
       table.Fail("kappa_star", fmt::format("kappa_star = {} must be smaller than lambda_star = {}",
                                            p.kappa_star, p.lambda_star));
     }
-    p.n_intercept = table.GetDouble("n_intercept");
-    p.bulk_shear_ratio = table.GetDouble("r", Range::Positive());
-    p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, Range::Positive());
-    p.minimum_mean_stress = table.GetDouble("minimum_mean_stress_kpa", 1e-9, Range::Positive());
-    if (!p.IsValid(&why)) table.Fail("phi_c_deg", why);
+    p.n_intercept = table.GetDouble("n_intercept", kIntercept);
+    p.bulk_shear_ratio = table.GetDouble("r", {0.0, 100.0, false, true});
+    p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, kStressKpa);
+    p.minimum_mean_stress = table.GetDouble("minimum_mean_stress_kpa", 1e-9, {0.0, 1e3, false, true});
+    if (!p.IsValid(&why)) FailParameters(table, why);
     model = std::make_unique<HypoplasticClay>(p);
   } else if (kind == ModelKind::kHypoplasticSand) {
     HypoplasticSand::Parameters p;
     p.critical_friction_angle = table.GetDouble("phi_c_deg", kFrictionAngleDeg) * kDegree;
-    p.granular_hardness = table.GetDouble("h_s_kpa", Range::Positive());
+    p.granular_hardness = table.GetDouble("h_s_kpa", kModulusKpa);
     p.compression_exponent = table.GetDouble("n", Range::Open(0.0, 1.0));
-    p.densest_void_ratio0 = table.GetDouble("e_d0", Range::Positive());
-    p.critical_void_ratio0 = table.GetDouble("e_c0", Range::Positive());
-    p.loosest_void_ratio0 = table.GetDouble("e_i0", Range::Positive());
+    p.densest_void_ratio0 = table.GetDouble("e_d0", kVoidRatio);
+    p.critical_void_ratio0 = table.GetDouble("e_c0", kVoidRatio);
+    p.loosest_void_ratio0 = table.GetDouble("e_i0", kVoidRatio);
     // Bauer's lines must not cross: e_d < e_c < e_i at every p.
     if (!(p.densest_void_ratio0 < p.critical_void_ratio0)) {
       table.Fail("e_c0", fmt::format("e_c0 = {} must be greater than e_d0 = {}",
@@ -54,11 +90,11 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
       table.Fail("e_i0", fmt::format("e_i0 = {} must be greater than e_c0 = {}",
                                      p.loosest_void_ratio0, p.critical_void_ratio0));
     }
-    p.pyknotropy_exponent = table.GetDouble("alpha", Range::Positive());
-    p.stiffness_exponent = table.GetDouble("beta", Range::Positive());
-    p.minimum_mean_stress = table.GetDouble("minimum_mean_stress_kpa", 1e-9, Range::Positive());
+    p.pyknotropy_exponent = table.GetDouble("alpha", kExponent);
+    p.stiffness_exponent = table.GetDouble("beta", kExponent);
+    p.minimum_mean_stress = table.GetDouble("minimum_mean_stress_kpa", 1e-9, {0.0, 1e3, false, true});
     // What remains is the sign of the f_b denominator, which α sets for given φ_c and e's.
-    if (!p.IsValid(&why)) table.Fail("alpha", why);
+    if (!p.IsValid(&why)) FailParameters(table, why);
     model = std::make_unique<HypoplasticSand>(p);
   } else {
     ModifiedCamClay::Parameters p;
@@ -76,40 +112,41 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
         p.form == ModifiedCamClay::CompressionForm::kLogLog ? "lambda_star" : "lambda";
     const std::string kappa_key =
         p.form == ModifiedCamClay::CompressionForm::kLogLog ? "kappa_star" : "kappa";
-    p.lambda = table.GetDouble(lambda_key, Range::Positive());
-    p.kappa = table.GetDouble(kappa_key, Range::Positive());
+    p.lambda = table.GetDouble(lambda_key, kIndex);
+    p.kappa = table.GetDouble(kappa_key, kIndex);
     if (!(p.kappa < p.lambda)) {
       table.Fail(kappa_key, fmt::format("{} = {} must be smaller than {} = {}", kappa_key, p.kappa,
                                         lambda_key, p.lambda));
     }
     p.n_intercept = table.GetDouble(
-        p.form == ModifiedCamClay::CompressionForm::kLogLog ? "n_intercept" : "e_n");
+        p.form == ModifiedCamClay::CompressionForm::kLogLog ? "n_intercept" : "e_n",
+        p.form == ModifiedCamClay::CompressionForm::kLogLog ? kIntercept : kVoidRatio);
     const bool has_g = table.Has("shear_modulus_kpa");
     if (has_g) {
       p.elasticity = ModifiedCamClay::Elasticity::kConstantShearModulus;
-      p.shear_modulus = table.GetDouble("shear_modulus_kpa", Range::Positive());
+      p.shear_modulus = table.GetDouble("shear_modulus_kpa", kModulusKpa);
     } else {
       p.poisson_ratio = table.GetDouble("poisson_ratio", 0.25, Range::Open(-1.0, 0.5));
     }
-    p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, Range::Positive());
+    p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, kStressKpa);
     p.yield_tolerance = table.GetDouble("yield_tolerance", 1e-9, Range::Open(0.0, 1e-2));
     p.rate_form_band = table.GetDouble("rate_form_band", p.rate_form_band, Range::Open(0.0, 1e-2));
-    if (!p.IsValid(&why)) table.Fail(lambda_key, why);
+    if (!p.IsValid(&why)) FailParameters(table, why);
     model = std::make_unique<ModifiedCamClay>(p);
   }
   return model;
 }
 
 ModelState ReadInitialState(const ConstitutiveModel& model, const ConfigTable& table) {
-  const double p = table.GetDouble("mean_stress_kpa", Range::Positive());
+  const double p = table.GetDouble("mean_stress_kpa", kStressKpa);
   const double psi = table.GetDouble("psi_sigma_deg", 0.0, Range::Open(-35.26, 54.73)) * kDegree;
   const bool has_e = table.Has("void_ratio");
   const bool has_ocr = table.Has("ocr");
   if (has_e == has_ocr) table.Fail("ocr", "give exactly one of void_ratio and ocr");
   try {
     return has_e ? InitialStateFromVoidRatio(model, p, psi,
-                                             table.GetDouble("void_ratio", Range::Open(-1.0, 100)))
-                 : InitialStateFromOcr(model, p, psi, table.GetDouble("ocr", Range::Positive()));
+                                             table.GetDouble("void_ratio", kVoidRatio))
+                 : InitialStateFromOcr(model, p, psi, table.GetDouble("ocr", Range::Closed(1.0, 1e6)));
   } catch (const InputError& error) {
     throw InputError(fmt::format("{}: [{}]: {}", table.origin(), table.KeyName(""), error.what()));
   }
@@ -119,25 +156,25 @@ std::vector<LoadingStage> ReadStages(const ConfigTable& root) {
   std::vector<LoadingStage> stages;
   for (const ConfigTable& table : root.GetTableArray("stage")) {
     const LoadingStageType type = table.GetEnum("type", LoadingStageType::kProportional);
-    const double rate = table.GetDouble("stretching_rate", 1.0, Range::Positive());
-    const double duration = table.GetDouble("duration_s", 1.0, Range::Positive());
+    const double rate = table.GetDouble("stretching_rate", 1.0, kRate);
+    const double duration = table.GetDouble("duration_s", 1.0, kDuration);
     LoadingStage stage;
     if (type == LoadingStageType::kProportional) {
       stage = LoadingStage::Proportional(
           table.GetDouble("psi_epsilon_deg", Range::Closed(-180, 180)) * kDegree, rate, duration);
     } else if (type == LoadingStageType::kConstantRadialStress) {
-      stage = LoadingStage::ConstantRadialStress(table.GetDouble("axial_rate", rate, Range::Any()),
+      stage = LoadingStage::ConstantRadialStress(table.GetDouble("axial_rate", rate, kSignedRate),
                                                  duration);
     } else if (type == LoadingStageType::kIsochoric) {
-      stage = LoadingStage::Isochoric(table.GetDouble("axial_rate", rate, Range::Any()), duration);
+      stage = LoadingStage::Isochoric(table.GetDouble("axial_rate", rate, kSignedRate), duration);
     } else if (type == LoadingStageType::kOedometric) {
-      stage = LoadingStage::Oedometric(table.GetDouble("axial_rate", rate, Range::Any()), duration);
+      stage = LoadingStage::Oedometric(table.GetDouble("axial_rate", rate, kSignedRate), duration);
     } else if (type == LoadingStageType::kIsotropic) {
       stage = LoadingStage::IsotropicToMeanStress(
-          table.GetDouble("target_mean_stress_kpa", Range::Positive()), rate);
+          table.GetDouble("target_mean_stress_kpa", kStressKpa), rate);
       if (table.Has("duration_s")) stage.duration = duration;
     } else {
-      const std::vector<double> values = table.GetDoubles("rate");
+      const std::vector<double> values = table.GetDoubles("rate", kSignedRate);
       if (values.size() != 6) {
         table.Fail("rate",
                    fmt::format("needs 6 values (Voigt 11,22,33,12,13,23), got {}", values.size()));
@@ -166,7 +203,7 @@ std::vector<LoadingStage> ReadStages(const ConfigTable& root) {
         const std::string key =
             std::string(ToString(kind)) + (kind == StopKind::kMeanStress ? "_kpa" : "");
         if (stop.Has(key)) {
-          const Range range = kind == StopKind::kAsymptote ? Range::Open(0.0, 1e-2) : Range::Any();
+          const Range range = StopRange(kind);
           stage.stops.push_back({kind, stop.GetDouble(key, range)});
         }
       }
@@ -294,7 +331,7 @@ AsymptoteTable ComputeAsymptotes(const ConstitutiveModel& model, const ConfigTab
     AsymptoteSearchOptions options;
     options.tolerance = table.GetDouble("tolerance", options.tolerance, Range::Open(0.0, 1e-2));
     options.max_strain_path =
-        table.GetDouble("max_strain_path", options.max_strain_path, Range::Positive());
+        table.GetDouble("max_strain_path", options.max_strain_path, {0.0, 1e3, false, true});
     const ModelState initial = ReadInitialState(model, table.GetTable("initial"));
     for (double psi : table.GetDoubles("psi_epsilon_deg", Range::Closed(-180, 180))) {
       out.integrated.push_back(IntegrateAsymptote(model, initial, psi * kDegree, options));

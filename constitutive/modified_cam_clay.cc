@@ -124,8 +124,8 @@ bool ModifiedCamClay::IsAdmissible(const ModelState& state, std::string* why) co
   if (state.internal.size() != 1 || !(state.internal[0] > 0) || !std::isfinite(state.internal[0])) {
     return Fail(why, "preconsolidation pressure p_c must be one positive number");
   }
-  if (!(state.void_ratio > -1.0 && std::isfinite(state.void_ratio))) {
-    return Fail(why, fmt::format("void ratio e = {} must be > −1", state.void_ratio));
+  if (!(state.void_ratio > 0 && std::isfinite(state.void_ratio))) {
+    return Fail(why, fmt::format("void ratio e = {:.6g} must be > 0", state.void_ratio));
   }
   return true;
 }

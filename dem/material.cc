@@ -94,12 +94,18 @@ bool Material::has_friction() const {
 
 double Material::friction_coefficient() const { return std::tan(friction_angle); }
 
+namespace {
+// From soft rubber-like grains (1 kPa) to diamond (1.2e6 MPa), with a decade
+// to spare on each side: the range of a sane material, not a physical limit.
+const Range kYoungsModulusMpa = Range::Closed(1e-3, 1e7);
+}  // namespace
+
 Material ParseMaterial(const ConfigTable& table) {
   Material material;
   material.contact_law = table.GetEnum("contact_law", material.contact_law);
   const bool linear = material.contact_law == ContactLaw::kLinear;
   material.youngs_modulus =
-      table.GetDouble("youngs_modulus_mpa", material.youngs_modulus * 1e-6, Range::Positive()) *
+      table.GetDouble("youngs_modulus_mpa", material.youngs_modulus * 1e-6, kYoungsModulusMpa) *
       1e6;
   // Each law's own elastic constant; the other law's key is an error rather
   // than silently ignored (ν means different things in the two laws).
@@ -118,7 +124,7 @@ Material ParseMaterial(const ConfigTable& table) {
   }
   if (linear) {
     material.stiffness_ratio =
-        table.GetDouble("stiffness_ratio", material.stiffness_ratio, Range::NonNegative());
+        table.GetDouble("stiffness_ratio", material.stiffness_ratio, Range::Closed(0.0, 10.0));
   } else {
     material.poissons_ratio =
         table.GetDouble("poissons_ratio", material.poissons_ratio, Range::Open(-1.0, 0.5));
@@ -126,8 +132,8 @@ Material ParseMaterial(const ConfigTable& table) {
   material.friction_angle =
       table.GetDouble("friction_angle_rad", material.friction_angle, {0.0, kPi / 2, true, false});
   material.rolling_friction =
-      table.GetDouble("rolling_friction", material.rolling_friction, Range::NonNegative());
-  material.density = table.GetDouble("density_kg_m3", material.density, Range::Positive());
+      table.GetDouble("rolling_friction", material.rolling_friction, Range::Closed(0.0, 10.0));
+  material.density = table.GetDouble("density_kg_m3", material.density, Range::Closed(1.0, 1e5));
   material.local_damping =
       table.GetDouble("local_damping", material.local_damping, {0.0, 1.0, true, false});
   if (material.has_rolling_resistance() && !material.has_friction()) {

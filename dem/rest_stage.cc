@@ -75,21 +75,21 @@ class RestController final : public StageController {
 
 std::shared_ptr<const StageSpec> RestStage::Parse(const ConfigTable& table) {
   auto stage = std::make_shared<RestStage>();
-  stage->mean_stress_kpa = table.GetDouble("mean_stress_kpa", Range::Positive());
+  stage->mean_stress_kpa = table.GetDouble("mean_stress_kpa", kStressKpa);
   stage->max_strain_rate =
-      table.GetDouble("max_strain_rate", stage->max_strain_rate, Range::Positive());
+      table.GetDouble("max_strain_rate", stage->max_strain_rate, kStrainRate);
   if (table.Has("control")) {
     const ConfigTable control = table.GetTable("control");
     stage->control = ControlOptions::Parse(control);
     stage->check_interval =
-        control.GetInt("check_interval", stage->check_interval, Range::AtLeast(1));
+        control.GetInt("check_interval", stage->check_interval, Range::Closed(1, 1e7));
   }
   if (table.Has("stop")) {
     const ConfigTable stop = table.GetTable("stop");
     stage->stress_tolerance =
         stop.GetDouble("stress_tolerance", stage->stress_tolerance, Range::Open(0, 1));
     stage->unbalanced_force =
-        stop.GetDouble("unbalanced_force", stage->unbalanced_force, Range::Positive());
+        stop.GetDouble("unbalanced_force", stage->unbalanced_force, {0.0, 1.0, false, true});
   }
   return stage;
 }
@@ -109,6 +109,10 @@ void RestStage::Canonical(CanonicalText& text, const std::string& prefix) const 
 
 void RestStage::Describe(Hdf5File& file, const std::string& group) const {
   file.SetAttribute(group, record::kStageMeanStressKpa, mean_stress_kpa);
+}
+
+double RestStage::MaxStrainRate() const {
+  return std::sqrt(3.0) * control.max_rate_factor * max_strain_rate;
 }
 
 }  // namespace granasym::dem

@@ -21,6 +21,9 @@ class RestStage final : public StageSpec {
   std::string type() const override { return "rest"; }
   bool StopsByItself() const override { return true; }
   std::unique_ptr<StageController> MakeController() const override;
+  // Three controlled rates of at most max_rate_factor times max_strain_rate.
+  double MaxStrainRate() const override;
+  const char* RateKey() const override { return "max_strain_rate"; }
   void Canonical(CanonicalText& text, const std::string& prefix) const override;
   void Describe(Hdf5File& file, const std::string& group) const override;
 };

@@ -1,8 +1,11 @@
 #include "dem/scene.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "common/canonical_text.h"
@@ -57,7 +60,7 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
     const ConfigTable generate = sample.GetTable("generate");
     GenerationOptions options;
     options.count = static_cast<size_t>(generate.GetInt("count", 150000, Range::Closed(2, 2e9)));
-    options.cell_size = generate.GetDouble("cell_size_mm", 31.0, Range::Positive()) * 1e-3;
+    options.cell_size = generate.GetDouble("cell_size_mm", 31.0, Range::Closed(1e-3, 1e6)) * 1e-3;
     options.seed = static_cast<uint64_t>(generate.GetInt("seed", 1, Range::NonNegative()));
     options.max_attempts = static_cast<int>(
         generate.GetInt("max_attempts", options.max_attempts, Range::Closed(1, 1e9)));
@@ -72,9 +75,10 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
     if (n.Has("time_step_s") && n.Has("time_step_fraction")) {
       n.Fail("time_step_s", "and time_step_fraction are both given: give one of them");
     }
-    if (n.Has("time_step_s")) scene.time_step_s = n.GetDouble("time_step_s", Range::Positive());
+    if (n.Has("time_step_s")) scene.time_step_s = n.GetDouble("time_step_s", Range::Open(0.0, 1.0));
     scene.time_step_fraction =
-        n.GetDouble("time_step_fraction", scene.time_step_fraction, {0.0, 2.0 / kPi, false, true});
+        n.GetDouble("time_step_fraction", scene.time_step_fraction,
+                    Range::Closed(kSmallestTimeStepFraction, 2.0 / kPi));
     scene.skin_fraction =
         n.GetDouble("skin_fraction", scene.skin_fraction, {0.0, 2.0, false, true});
     scene.threads = static_cast<int>(n.GetInt("threads", 1, Range::Closed(1, 1024)));
@@ -84,18 +88,25 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
     const ConfigTable o = root.GetTable("output");
     OutputOptions& output = scene.output;
     output.interval_strain =
-        o.GetDouble("interval_strain", output.interval_strain, Range::Positive());
-    output.interval_steps = o.GetInt("interval_steps", output.interval_steps, Range::NonNegative());
+        o.GetDouble("interval_strain", output.interval_strain, Range::Closed(1e-9, 100.0));
+    output.interval_steps = o.GetInt("interval_steps", output.interval_steps, Range::Closed(0, kMaxStageSteps));
     output.overlap_histogram = o.GetBool("overlap_histogram", output.overlap_histogram);
     output.histogram_bins = static_cast<int>(
         o.GetInt("histogram_bins", output.histogram_bins, Range::Closed(1, 10000)));
-    output.histogram_min = o.GetDouble("histogram_min", output.histogram_min, Range::Positive());
+    // Overlaps relative to the smaller radius: 0 < min < max <= 1.
+    output.histogram_min =
+        o.GetDouble("histogram_min", output.histogram_min, Range::Open(0.0, 1.0));
     output.histogram_max =
-        o.GetDouble("histogram_max", output.histogram_max, Range::Open(output.histogram_min, 1.0));
+        o.GetDouble("histogram_max", output.histogram_max, {0.0, 1.0, false, true});
+    if (!(output.histogram_min < output.histogram_max)) {
+      o.Fail(o.Has("histogram_max") ? "histogram_max" : "histogram_min",
+             fmt::format("must be above histogram_min: histogram_min = {:g}, histogram_max = {:g}",
+                         output.histogram_min, output.histogram_max));
+    }
     output.checkpoint_interval_s =
-        o.GetDouble("checkpoint_interval_s", output.checkpoint_interval_s, Range::Positive());
+        o.GetDouble("checkpoint_interval_s", output.checkpoint_interval_s, Range::Closed(1e-3, 1e9));
     output.progress_interval_s =
-        o.GetDouble("progress_interval_s", output.progress_interval_s, Range::Positive());
+        o.GetDouble("progress_interval_s", output.progress_interval_s, Range::Closed(1e-3, 1e9));
     output.stage_states = o.GetBool("stage_states", output.stage_states);
   }
 
@@ -106,6 +117,14 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
   for (size_t k = 0; k < stages.size(); ++k) scene.stages.push_back(ParseStage(stages[k], k));
   root.CheckNoUnknownKeys();
   return scene;
+}
+
+std::vector<NamedPath> Scene::InputFiles() const {
+  std::vector<NamedPath> files = {{"the scene file", origin}};
+  if (!packing_path.empty()) files.push_back({"the packing file (sample.packing)", packing_path});
+  if (!gsd_path.empty()) files.push_back({"the grain-size table (sample.generate.gsd)", gsd_path});
+  if (parent) files.push_back({"the parent state (sample.state)", parent->path});
+  return files;
 }
 
 std::string Scene::Canonical() const {
@@ -156,6 +175,15 @@ Packing Scene::BuildSample(GenerationReport* report) const {
 double Scene::TimeStep(const Packing& packing) const {
   const ContactDurations durations = ComputeContactDurations(packing.radii, material);
   if (!time_step_s) return time_step_fraction * durations.smallest_reduced_mass;
+  if (*time_step_s < kSmallestTimeStepFraction * durations.smallest_reduced_mass) {
+    throw InputError(fmt::format(
+        "{}: key 'numerics.time_step_s' = {:g} s is below {:g} of the smallest contact duration "
+        "{:.4g} s: such a step resolves nothing more and multiplies the cost; use at least "
+        "{:.4g} s (or time_step_fraction in [{:g}, {:.4g}])",
+        origin, *time_step_s, kSmallestTimeStepFraction, durations.smallest_reduced_mass,
+        kSmallestTimeStepFraction * durations.smallest_reduced_mass, kSmallestTimeStepFraction,
+        2.0 / kPi));
+  }
   if (*time_step_s > durations.critical_time_step) {
     std::ostringstream message;
     message << origin << ": key 'numerics.time_step_s' = " << *time_step_s
@@ -166,6 +194,50 @@ double Scene::TimeStep(const Packing& packing) const {
     throw InputError(message.str());
   }
   return *time_step_s;
+}
+
+void Scene::CheckFeasible(double time_step) const {
+  GRANASYM_CHECK(time_step > 0) << "time step " << time_step;
+  for (size_t k = 0; k < stages.size(); ++k) {
+    const Stage& stage = stages[k];
+    const std::string key = fmt::format("stage[{}].", k);
+    const double rate = stage.spec->MaxStrainRate();
+    const double per_step = rate * time_step;
+    if (!(per_step >= kSmallestStrainPerStep)) {
+      throw InputError(fmt::format(
+          "{}: stage '{}': key '{}{}' = {:g} 1/s with the time step {:.4g} s moves the cell by at "
+          "most {:.3g} per step, below {:g}: the stage would need more than {:.3g} steps per unit "
+          "strain; raise the rate (or the time step)",
+          origin, stage.name, key, stage.spec->RateKey(), rate, time_step, per_step,
+          kSmallestStrainPerStep, 1 / kSmallestStrainPerStep));
+    }
+    // Each stop the stage can reach, with the fewest steps it needs: a strain
+    // component changes by at most sqrt(3) ‖D‖ per unit time.
+    const StopConditions& stop = stage.stop;
+    if (stop.mean_stress_kpa || stop.asymptote || stage.spec->StopsByItself()) continue;
+    double fewest = std::numeric_limits<double>::infinity();
+    std::string by;
+    auto consider = [&](double steps, const std::string& name) {
+      if (steps < fewest) fewest = steps, by = name;
+    };
+    const double component = std::sqrt(3.0) * per_step;
+    if (stop.axial_strain) consider(std::abs(*stop.axial_strain) / component, "axial_strain");
+    if (stop.volumetric_strain) {
+      consider(std::abs(*stop.volumetric_strain) / component, "volumetric_strain");
+    }
+    if (stop.shear_strain) consider(std::abs(*stop.shear_strain) / component, "shear_strain");
+    if (stop.strain_norm) consider(*stop.strain_norm / per_step, "strain_norm");
+    if (stop.time_s) consider(*stop.time_s / time_step, "time_s");
+    if (stop.steps) consider(static_cast<double>(*stop.steps), "steps");
+    if (fewest > static_cast<double>(kMaxStageSteps)) {
+      throw InputError(fmt::format(
+          "{}: stage '{}': key '{}stop.{}' needs at least {:.3g} steps at {}{} = {:g} 1/s and the "
+          "time step {:.4g} s, more than the {:g} a stage may take; raise the rate or lower the "
+          "stop value",
+          origin, stage.name, key, by, fewest, key, stage.spec->RateKey(), rate, time_step,
+          static_cast<double>(kMaxStageSteps)));
+    }
+  }
 }
 
 }  // namespace granasym::dem

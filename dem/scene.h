@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/output_path.h"
 #include "dem/engine.h"
 #include "dem/packing.h"
 #include "dem/stage.h"
@@ -46,6 +47,9 @@ struct Scene {
   std::optional<GenerationOptions> generate;
   std::string gsd_path;  // empty: the default table
   std::optional<ParentState> parent;
+  // The files the scene reads (itself, its packing, GSD table or parent
+  // state), for the check that no output overwrites them.
+  std::vector<NamedPath> InputFiles() const;
   Material material;
   std::optional<double> time_step_s;
   double time_step_fraction = 0.1;  // of the smallest contact duration (reduced mass)
@@ -65,7 +69,19 @@ struct Scene {
   std::string Canonical() const;
   // The time step for a packing; throws InputError naming numerics.time_step_s
   // and the computed limit when it is above the stability limit.
+  // Throws InputError, also below kSmallestTimeStepFraction of the
+  // smallest contact duration.
   double TimeStep(const Packing& packing) const;
+  // What the scene implies at this time step, checked before the first step:
+  // every stage moves the cell by at least kSmallestStrainPerStep per step,
+  // and a stage whose stops all bound its steps from below (strains, time,
+  // steps) needs at most kMaxStageSteps. Throws InputError naming the stage,
+  // its keys, and the estimate.
+  void CheckFeasible(double time_step) const;
 };
+
+// The smallest strain per step a stage may move the cell by (1e12 steps per
+// unit strain; the slowest runs of the studies take about 1e8).
+inline constexpr double kSmallestStrainPerStep = 1e-12;
 
 }  // namespace granasym::dem

@@ -122,6 +122,7 @@ class Simulation {
 void Simulation::MakeEngine(const Engine::State* state) {
   Engine::Options engine_options;
   engine_options.time_step = scene_.TimeStep(initial_);
+  scene_.CheckFeasible(engine_options.time_step);
   engine_options.skin_fraction = scene_.skin_fraction;
   engine_options.threads = threads_;
   engine_.emplace(initial_, scene_.material, engine_options);
@@ -555,6 +556,11 @@ RunSummary Simulation::Finish(RunSummary& summary, Termination termination,
 RunSummary Simulation::Run() {
   Stopwatch wall;
   threads_ = options_.threads > 0 ? options_.threads : scene_.threads;
+  if (threads_ > HardwareThreads()) {
+    Log(fmt::format("warning: {} threads requested on {} hardware threads: using {}", threads_,
+                    HardwareThreads(), HardwareThreads()));
+    threads_ = HardwareThreads();
+  }
   provenance_.program_version = ProgramVersion();
   provenance_.scene_canonical = scene_.Canonical();
   provenance_.scene_sha256 = Sha256Hex(provenance_.scene_canonical);

@@ -28,14 +28,14 @@ bool StepsOrTimeDone(const StopConditions& stop, const StageClock& clock, const 
 
 StopConditions StopConditions::Parse(const ConfigTable& stop) {
   StopConditions s;
-  s.mean_stress_kpa = OptionalDouble(stop, "mean_stress_kpa", Range::Positive());
+  s.mean_stress_kpa = OptionalDouble(stop, "mean_stress_kpa", kStressKpa);
   s.mean_stress_direction = stop.GetEnum("direction", Direction::kAuto);
-  s.axial_strain = OptionalDouble(stop, "axial_strain", Range::Any());
-  s.volumetric_strain = OptionalDouble(stop, "volumetric_strain", Range::Any());
-  s.shear_strain = OptionalDouble(stop, "shear_strain", Range::Any());
-  s.strain_norm = OptionalDouble(stop, "strain_norm", Range::Positive());
-  s.time_s = OptionalDouble(stop, "time_s", Range::Positive());
-  if (stop.Has("steps")) s.steps = stop.GetInt("steps", Range::AtLeast(1));
+  s.axial_strain = OptionalDouble(stop, "axial_strain", kStageStrain);
+  s.volumetric_strain = OptionalDouble(stop, "volumetric_strain", kStageStrain);
+  s.shear_strain = OptionalDouble(stop, "shear_strain", kStageStrain);
+  s.strain_norm = OptionalDouble(stop, "strain_norm", {0.0, 1e3, false, true});
+  s.time_s = OptionalDouble(stop, "time_s", {0.0, 1e6, false, true});
+  if (stop.Has("steps")) s.steps = stop.GetInt("steps", Range::Closed(1, kMaxStageSteps));
   s.asymptote = stop.GetBool("asymptote", false);
   return s;
 }
@@ -68,7 +68,7 @@ ControlOptions ControlOptions::Parse(const ConfigTable& control) {
   ControlOptions c;
   c.gain = control.GetDouble("gain", c.gain, Range::Open(0, 1));
   c.integral_gain = control.GetDouble("integral_gain", c.integral_gain, Range::Closed(0, 1));
-  c.max_rate_factor = control.GetDouble("max_rate_factor", c.max_rate_factor, Range::Positive());
+  c.max_rate_factor = control.GetDouble("max_rate_factor", c.max_rate_factor, {0.0, 1e3, false, true});
   return c;
 }
 

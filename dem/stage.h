@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "common/enum_names.h"
 #include "dem/asymptote_detector.h"
 #include "dem/engine.h"
@@ -49,6 +50,18 @@ struct granasym::EnumNames<granasym::dem::Direction> {
 };
 
 namespace granasym::dem {
+
+// Ranges shared by the keys of the stage types: stresses up to 10 GPa
+// (grains crush long before), strain rates up to 1e6 1/s, stage strains
+// (logarithmic) up to 20, i.e. a change of the cell by a factor e^20.
+inline const Range kStressKpa = {0.0, 1e7, false, true};
+inline const Range kStrainRate = {0.0, 1e6, false, true};
+inline const Range kStageStrain = Range::Closed(-20.0, 20.0);
+// The most steps one stage may take, and the smallest time step as a
+// fraction of the smallest contact duration: below it a run resolves no
+// more and only costs (the scene's feasibility check, dem/scene.h).
+inline constexpr int64_t kMaxStageSteps = 1'000'000'000'000;
+inline constexpr double kSmallestTimeStepFraction = 1e-4;
 
 // Stop conditions shared by all stage types ([stage.stop]); any one ends the stage.
 struct StopConditions {
@@ -139,6 +152,11 @@ class StageSpec {
   // samples across the boundary (an NCL saved at several stresses).
   virtual bool ContinuesPath(const StageSpec& previous) const { return false; }
   virtual std::unique_ptr<StageController> MakeController() const = 0;
+  // An upper bound of the stretching norm ‖D‖ the stage applies (1/s) and the
+  // key that sets it: the scene's feasibility check bounds the steps a stage
+  // needs from below with it.
+  virtual double MaxStrainRate() const = 0;
+  virtual const char* RateKey() const = 0;
   // The type's keys for the canonical scene (`prefix` ends with '.').
   virtual void Canonical(CanonicalText& text, const std::string& prefix) const = 0;
   // Attributes of the stage's record in the result file.

@@ -32,7 +32,7 @@ class StrainPathController final : public StageController {
 std::shared_ptr<const StageSpec> StrainPathStage::Parse(const ConfigTable& table) {
   auto stage = std::make_shared<StrainPathStage>();
   stage->psi_epsilon_deg = table.GetDouble("psi_epsilon_deg", Range::Closed(-180, 180));
-  stage->stretching_rate = table.GetDouble("stretching_rate", Range::Positive());
+  stage->stretching_rate = table.GetDouble("stretching_rate", kStrainRate);
   return stage;
 }
 

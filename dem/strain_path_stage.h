@@ -18,6 +18,8 @@ class StrainPathStage final : public StageSpec {
   // The same ψ_ε and ‖D‖.
   bool ContinuesPath(const StageSpec& previous) const override;
   std::unique_ptr<StageController> MakeController() const override;
+  double MaxStrainRate() const override { return stretching_rate; }
+  const char* RateKey() const override { return "stretching_rate"; }
   void Canonical(CanonicalText& text, const std::string& prefix) const override;
   void Describe(Hdf5File& file, const std::string& group) const override;
 };

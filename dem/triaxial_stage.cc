@@ -58,11 +58,11 @@ class TriaxialController final : public StageController {
 
 std::shared_ptr<const StageSpec> TriaxialStage::Parse(const ConfigTable& table) {
   auto stage = std::make_shared<TriaxialStage>();
-  stage->axial_strain_rate = table.GetDouble("axial_strain_rate", Range::Any());
+  stage->axial_strain_rate = table.GetDouble("axial_strain_rate", Range::Closed(-kStrainRate.max, kStrainRate.max));
   if (stage->axial_strain_rate == 0) {
     table.Fail("axial_strain_rate", "= 0: must be non-zero (1/s, compression positive)");
   }
-  stage->radial_stress_kpa = table.GetDouble("radial_stress_kpa", Range::Positive());
+  stage->radial_stress_kpa = table.GetDouble("radial_stress_kpa", kStressKpa);
   if (table.Has("control")) stage->control = ControlOptions::Parse(table.GetTable("control"));
   return stage;
 }
@@ -80,6 +80,11 @@ void TriaxialStage::Canonical(CanonicalText& text, const std::string& prefix) co
 void TriaxialStage::Describe(Hdf5File& file, const std::string& group) const {
   file.SetAttribute(group, record::kStageAxialStrainRate, axial_strain_rate);
   file.SetAttribute(group, record::kStageRadialStressKpa, radial_stress_kpa);
+}
+
+double TriaxialStage::MaxStrainRate() const {
+  const double radial = control.max_rate_factor * std::abs(axial_strain_rate);
+  return std::sqrt(axial_strain_rate * axial_strain_rate + 2 * radial * radial);
 }
 
 }  // namespace granasym::dem

@@ -16,6 +16,9 @@ class TriaxialStage final : public StageSpec {
   std::string type() const override { return "triaxial"; }
   std::optional<PathKind> path_kind() const override { return PathKind::kStressControlled; }
   std::unique_ptr<StageController> MakeController() const override;
+  // The axial rate and the radial rates up to max_rate_factor times it.
+  double MaxStrainRate() const override;
+  const char* RateKey() const override { return "axial_strain_rate"; }
   void Canonical(CanonicalText& text, const std::string& prefix) const override;
   void Describe(Hdf5File& file, const std::string& group) const override;
 };

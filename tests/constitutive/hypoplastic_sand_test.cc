@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/error.h"
 #include "common/state_measures.h"
 #include "constitutive/asymptotic_states.h"
 #include "constitutive/element_test.h"
@@ -289,11 +290,19 @@ TEST(HypoplasticSand, IsotropicCompressionAtTheLoosestVoidRatioFollowsEi) {
 }
 
 TEST(HypoplasticSand, IsotropicCompressionFromOtherDensitiesApproachesEi) {
-  // Denser (OCR > 1) and looser (OCR < 1) states converge to the e_i line,
-  // not to a line parallel to it: |ln OCR| falls monotonically with p. Measured
-  // from p = 10 to 3e5 kPa: OCR 3 → 1.029, 30 → 1.13, 0.5 → 0.986.
+  // Denser states (OCR > 1) converge to the e_i line, not to a line parallel
+  // to it: |ln OCR| falls monotonically with p. Measured from p = 10 to
+  // 3e5 kPa: OCR 3 → 1.029, 30 → 1.13. No test starts looser than e_i
+  // (OCR < 1): there the model is outside its domain.
   const HypoplasticSand model(HochstettenSand());
-  for (double ocr : {3.0, 30.0, 0.5}) {
+  try {
+    InitialStateFromOcr(model, 10.0, 0.0, 0.5);
+    ADD_FAILURE() << "a start looser than e_i was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("above the loosest e_i"), std::string::npos)
+        << error.what();
+  }
+  for (double ocr : {3.0, 30.0}) {
     const ModelState initial = InitialStateFromOcr(model, 10.0, 0.0, ocr);
     LoadingStage stage = LoadingStage::IsotropicToMeanStress(3e5, 1.0);
     stage.duration = 2.0;

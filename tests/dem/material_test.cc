@@ -125,13 +125,13 @@ TEST(ParseMaterial, RejectsValuesOutOfRangeUnknownLawsAndUnknownKeys) {
   ExpectMentions(ErrorOf("contact_law = 'hertz_mindlin'\npoissons_ratio = 0.5\n"),
                  {"material.poissons_ratio", "0.5", "(-1, 0.5)"});
   ExpectMentions(ErrorOf("rolling_friction = -0.1\n"),
-                 {"material.rolling_friction", "-0.1", ">= 0"});
+                 {"material.rolling_friction", "-0.1", "in [0, 10]"});
   ExpectMentions(ErrorOf("contact_law = 'hertz'\n"),
                  {"material.contact_law", "hertz", "linear or hertz_mindlin"});
   ExpectMentions(ErrorOf("friction_angle = 0.5\n"),
                  {"material.friction_angle", "friction_angle_rad"});
   ExpectMentions(ErrorOf("youngs_modulus_mpa = -1\n"),
-                 {"material.youngs_modulus_mpa", "-1", "> 0"});
+                 {"material.youngs_modulus_mpa", "-1", "in [0.001, 10000000]"});
 }
 
 TEST(ParseMaterial, RejectsRollingResistanceWithoutFriction) {
