@@ -35,8 +35,8 @@ void RunCalibrate(const CalibrateFlags& flags) {
   CheckOutputs({{"the HDF5 record (--out / [output] hdf5)", config.hdf5_path},
                 {"the summary (--summary / [output] summary)", config.summary_path}},
                inputs);
-  CheckOutputFolder({"the plot data folder (--plot-data / [output] plot_data)", config.plot_data_dir},
-                    inputs);
+  CheckOutputFolder(
+      {"the plot data folder (--plot-data / [output] plot_data)", config.plot_data_dir}, inputs);
   const calibration::CalibrationRun run = calibration::RunCalibration(config);
   const std::string summary = calibration::SummaryText(run);
   calibration::WriteCalibrationHdf5(run, config.hdf5_path);

@@ -9,8 +9,8 @@
 
 #include "app/progress.h"
 #include "app/signals.h"
-#include "app/thread_count.h"
 #include "app/study_commands.h"
+#include "app/thread_count.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/output_path.h"

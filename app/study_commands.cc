@@ -9,9 +9,9 @@
 #include "app/enum_option.h"
 #include "app/progress.h"
 #include "app/signals.h"
-#include "app/thread_count.h"
 #include "app/study_figures_command.h"
 #include "app/study_report_command.h"
+#include "app/thread_count.h"
 #ifdef GRANASYM_HAVE_CALIBRATION
 #include "app/study_calibrate_command.h"
 #endif
@@ -20,8 +20,8 @@
 #include "study/plan.h"
 #include "study/programme.h"
 #include "study/runner.h"
-#include "study/study_folder.h"
 #include "study/state_table.h"
+#include "study/study_folder.h"
 
 namespace granasym {
 namespace {
@@ -62,7 +62,8 @@ void RegisterStudyCommands(CLI::App& app) {
   static int threads = 1;
   static std::string shard = "1/1";
   static bool quiet = false;
-  run->add_option("programme", programme_path, "programme file (TOML), e.g. studies/programmes/paper.toml")
+  run->add_option("programme", programme_path,
+                  "programme file (TOML), e.g. studies/programmes/paper.toml")
       ->required()
       ->check(CLI::ExistingFile);
   AddEnumOption(run, "--scale", &scale, "sample size");
@@ -110,11 +111,12 @@ void RegisterStudyCommands(CLI::App& app) {
         if (progress.Due()) progress.Report(state.OneLine());
       };
     }
-    std::printf("study '%s' at scale %s: %zu cases (%zu replicates of %zu), shard %d/%d, "
-                "%d jobs x %d threads, into %s\n",
-                programme.name.c_str(), ToString(scale), plan.cases.size(),
-                plan.samples.size(), programme.cases.size(), options.shard_index,
-                options.shard_count, jobs, threads, out.c_str());
+    std::printf(
+        "study '%s' at scale %s: %zu cases (%zu replicates of %zu), shard %d/%d, "
+        "%d jobs x %d threads, into %s\n",
+        programme.name.c_str(), ToString(scale), plan.cases.size(), plan.samples.size(),
+        programme.cases.size(), options.shard_index, options.shard_count, jobs, threads,
+        out.c_str());
     const study::StudyOutcome outcome = study::RunStudy(plan, options);
     progress.Finish();
     std::printf("%s\n", outcome.OneLine().c_str());
@@ -133,9 +135,10 @@ void RegisterStudyCommands(CLI::App& app) {
     const int unfinished =
         outcome.Count(study::CaseStatus::kFailed) + outcome.Count(study::CaseStatus::kBlocked);
     if (unfinished > 0) {
-      std::printf("%d cases failed or were blocked: see the message column of the state table "
-                  "or `granasym study status %s`\n",
-                  unfinished, out.c_str());
+      std::printf(
+          "%d cases failed or were blocked: see the message column of the state table "
+          "or `granasym study status %s`\n",
+          unfinished, out.c_str());
     }
   });
 

@@ -2,7 +2,6 @@
 #include "calibration/calibration_config.h"
 
 #include <fmt/format.h>
-
 #include <fnmatch.h>
 
 #include <algorithm>
@@ -66,9 +65,9 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
   CalibrationConfig config;
   config.origin = root.origin();
   const ConfigTable model = root.GetTable("model");
-  config.model = model.GetEnum("kind", ModelKind::kHypoplasticClay,
-                               {ModelKind::kHypoplasticClay, ModelKind::kModifiedCamClay,
-                                ModelKind::kHypoplasticSand});
+  config.model = model.GetEnum(
+      "kind", ModelKind::kHypoplasticClay,
+      {ModelKind::kHypoplasticClay, ModelKind::kModifiedCamClay, ModelKind::kHypoplasticSand});
   config.predictor.method = model.GetEnum("asymptotes", AsymptoteMethod::kAnalytic);
 
   const ModelParameters defaults = ModelParameters::Defaults(config.model);
@@ -144,8 +143,9 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
         for (const std::string& kind : o.kinds) {
           if (std::find(StudyTableKinds().begin(), StudyTableKinds().end(), kind) ==
               StudyTableKinds().end()) {
-            t.Fail("kinds", "holds '" + kind + "': expected a list of ncl, csl, compression, "
-                            "extension, triaxial");
+            t.Fail("kinds", "holds '" + kind +
+                                "': expected a list of ncl, csl, compression, "
+                                "extension, triaxial");
           }
         }
         if (o.kinds.empty()) t.Fail("kinds", "is empty: give at least one kind or leave it out");
@@ -155,8 +155,9 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
         for (const std::string& status : o.statuses) {
           if (std::find(StudyTableStatuses().begin(), StudyTableStatuses().end(), status) ==
               StudyTableStatuses().end()) {
-            t.Fail("statuses", "holds '" + status + "': expected a list of detected, drifting, "
-                               "not_reached, gas, invalid, no_result");
+            t.Fail("statuses", "holds '" + status +
+                                   "': expected a list of detected, drifting, "
+                                   "not_reached, gas, invalid, no_result");
           }
         }
         if (o.statuses.empty()) t.Fail("statuses", "is empty: give at least one status");
@@ -167,8 +168,7 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
         const std::vector<double> range =
             t.GetDoubles("psi_epsilon_range_deg", Range::Closed(-180, 180));
         if (range.size() != 2 || !(range[0] < range[1])) {
-          t.Fail("psi_epsilon_range_deg",
-                 "must be [lo, hi] with -180 <= lo < hi <= 180 (deg)");
+          t.Fail("psi_epsilon_range_deg", "must be [lo, hi] with -180 <= lo < hi <= 180 (deg)");
         }
         o.psi_epsilon_min_deg = range[0];
         o.psi_epsilon_max_deg = range[1];

@@ -173,7 +173,9 @@ std::unique_ptr<ConstitutiveModel> MakeModel(ModelKind kind, const std::vector<d
 std::string ModelTomlBlock(ModelKind kind, const std::vector<double>& values) {
   GRANASYM_CHECK(static_cast<int>(values.size()) == NumParameters(kind)) << values.size();
   std::string s = fmt::format("[model]\nkind = \"{}\"\n", ToString(kind));
-  auto line = [&s](const char* key, double value) { s += fmt::format("{} = {:.10g}\n", key, value); };
+  auto line = [&s](const char* key, double value) {
+    s += fmt::format("{} = {:.10g}\n", key, value);
+  };
   if (kind == ModelKind::kHypoplasticSand) {
     line("phi_c_deg", values[kSandCriticalFrictionAngle]);
     line("h_s_kpa", values[kSandGranularHardness]);

@@ -90,6 +90,7 @@ ConfigTable ConfigTable::ParseString(const std::string& text, const std::string&
 }
 
 std::string ConfigTable::KeyName(const std::string& key) const {
+  if (key.empty()) return prefix_;  // the table itself
   return prefix_.empty() ? key : prefix_ + "." + key;
 }
 

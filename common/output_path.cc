@@ -36,8 +36,8 @@ void CheckFolderOf(const NamedPath& output) {
     throw InputError(Quoted(output) + ": '" + folder.string() + "' is not a folder");
   }
   if (::access(folder.c_str(), W_OK | X_OK) != 0) {
-    throw InputError(Quoted(output) + ": the folder '" + folder.string() +
-                     "' cannot be written (" + std::strerror(errno) + ")");
+    throw InputError(Quoted(output) + ": the folder '" + folder.string() + "' cannot be written (" +
+                     std::strerror(errno) + ")");
   }
 }
 

@@ -129,6 +129,8 @@ std::string Sha256::HexDigest() const {
   return Hex(digest, size);
 }
 
-int HardwareThreads() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
+int HardwareThreads() {
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
 
 }  // namespace granasym

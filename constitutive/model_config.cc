@@ -52,7 +52,7 @@ Range StopRange(StopKind kind) {
   throw InputError(fmt::format("{}: [{}]: the parameters are not consistent: {}", table.origin(),
                                table.KeyName(""), why));
 }
-}
+}  // namespace
 
 std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
   const ModelKind kind = table.GetEnum("kind", ModelKind::kHypoplasticClay);
@@ -70,7 +70,8 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
     p.n_intercept = table.GetDouble("n_intercept", kIntercept);
     p.bulk_shear_ratio = table.GetDouble("r", {0.0, 100.0, false, true});
     p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, kStressKpa);
-    p.minimum_mean_stress = table.GetDouble("minimum_mean_stress_kpa", 1e-9, {0.0, 1e3, false, true});
+    p.minimum_mean_stress =
+        table.GetDouble("minimum_mean_stress_kpa", 1e-9, {0.0, 1e3, false, true});
     if (!p.IsValid(&why)) FailParameters(table, why);
     model = std::make_unique<HypoplasticClay>(p);
   } else if (kind == ModelKind::kHypoplasticSand) {
@@ -92,7 +93,8 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
     }
     p.pyknotropy_exponent = table.GetDouble("alpha", kExponent);
     p.stiffness_exponent = table.GetDouble("beta", kExponent);
-    p.minimum_mean_stress = table.GetDouble("minimum_mean_stress_kpa", 1e-9, {0.0, 1e3, false, true});
+    p.minimum_mean_stress =
+        table.GetDouble("minimum_mean_stress_kpa", 1e-9, {0.0, 1e3, false, true});
     // What remains is the sign of the f_b denominator, which α sets for given φ_c and e's.
     if (!p.IsValid(&why)) FailParameters(table, why);
     model = std::make_unique<HypoplasticSand>(p);
@@ -144,9 +146,10 @@ ModelState ReadInitialState(const ConstitutiveModel& model, const ConfigTable& t
   const bool has_ocr = table.Has("ocr");
   if (has_e == has_ocr) table.Fail("ocr", "give exactly one of void_ratio and ocr");
   try {
-    return has_e ? InitialStateFromVoidRatio(model, p, psi,
-                                             table.GetDouble("void_ratio", kVoidRatio))
-                 : InitialStateFromOcr(model, p, psi, table.GetDouble("ocr", Range::Closed(1.0, 1e6)));
+    return has_e
+               ? InitialStateFromVoidRatio(model, p, psi, table.GetDouble("void_ratio", kVoidRatio))
+               : InitialStateFromOcr(model, p, psi,
+                                     table.GetDouble("ocr", Range::Closed(1.0, 1e6)));
   } catch (const InputError& error) {
     throw InputError(fmt::format("{}: [{}]: {}", table.origin(), table.KeyName(""), error.what()));
   }

@@ -92,7 +92,8 @@ AsymptoteCriterion AsymptoteCriterion::Parse(const ConfigTable& a, PathKind kind
   AsymptoteCriterion c = For(kind);
   c.sample_strain = a.GetDouble("sample_strain", c.sample_strain, {0.0, 1.0, false, true});
   c.window_strain = a.GetDouble("window_strain", c.window_strain, {0.0, 100.0, false, true});
-  c.psi_tolerance_deg = a.GetDouble("psi_tolerance_deg", c.psi_tolerance_deg, {0.0, 90.0, false, true});
+  c.psi_tolerance_deg =
+      a.GetDouble("psi_tolerance_deg", c.psi_tolerance_deg, {0.0, 90.0, false, true});
   switch (kind) {
     case PathKind::kIsochoric:
       c.lnp_tolerance = a.GetDouble("lnp_tolerance", c.lnp_tolerance, {0.0, 10.0, false, true});
@@ -100,12 +101,12 @@ AsymptoteCriterion AsymptoteCriterion::Parse(const ConfigTable& a, PathKind kind
     case PathKind::kCompression:
     case PathKind::kExtension:
       c.window_lnp = a.GetDouble("window_lnp", c.window_lnp, {0.0, 20.0, false, true});
-      c.slope_tolerance = a.GetDouble("slope_tolerance", c.slope_tolerance, {0.0, 10.0, false, true});
+      c.slope_tolerance =
+          a.GetDouble("slope_tolerance", c.slope_tolerance, {0.0, 10.0, false, true});
       break;
     case PathKind::kStressControlled:
-      c.psi_epsilon_tolerance_deg =
-          a.GetDouble("psi_epsilon_tolerance_deg", c.psi_epsilon_tolerance_deg,
-                      {0.0, 90.0, false, true});
+      c.psi_epsilon_tolerance_deg = a.GetDouble(
+          "psi_epsilon_tolerance_deg", c.psi_epsilon_tolerance_deg, {0.0, 90.0, false, true});
       c.lnv_tolerance = a.GetDouble("lnv_tolerance", c.lnv_tolerance, {0.0, 1.0, false, true});
       break;
   }

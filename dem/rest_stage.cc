@@ -76,8 +76,7 @@ class RestController final : public StageController {
 std::shared_ptr<const StageSpec> RestStage::Parse(const ConfigTable& table) {
   auto stage = std::make_shared<RestStage>();
   stage->mean_stress_kpa = table.GetDouble("mean_stress_kpa", kStressKpa);
-  stage->max_strain_rate =
-      table.GetDouble("max_strain_rate", stage->max_strain_rate, kStrainRate);
+  stage->max_strain_rate = table.GetDouble("max_strain_rate", stage->max_strain_rate, kStrainRate);
   if (table.Has("control")) {
     const ConfigTable control = table.GetTable("control");
     stage->control = ControlOptions::Parse(control);

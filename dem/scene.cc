@@ -76,9 +76,8 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
       n.Fail("time_step_s", "and time_step_fraction are both given: give one of them");
     }
     if (n.Has("time_step_s")) scene.time_step_s = n.GetDouble("time_step_s", Range::Open(0.0, 1.0));
-    scene.time_step_fraction =
-        n.GetDouble("time_step_fraction", scene.time_step_fraction,
-                    Range::Closed(kSmallestTimeStepFraction, 2.0 / kPi));
+    scene.time_step_fraction = n.GetDouble("time_step_fraction", scene.time_step_fraction,
+                                           Range::Closed(kSmallestTimeStepFraction, 2.0 / kPi));
     scene.skin_fraction =
         n.GetDouble("skin_fraction", scene.skin_fraction, {0.0, 2.0, false, true});
     scene.threads = static_cast<int>(n.GetInt("threads", 1, Range::Closed(1, 1024)));
@@ -89,7 +88,8 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
     OutputOptions& output = scene.output;
     output.interval_strain =
         o.GetDouble("interval_strain", output.interval_strain, Range::Closed(1e-9, 100.0));
-    output.interval_steps = o.GetInt("interval_steps", output.interval_steps, Range::Closed(0, kMaxStageSteps));
+    output.interval_steps =
+        o.GetInt("interval_steps", output.interval_steps, Range::Closed(0, kMaxStageSteps));
     output.overlap_histogram = o.GetBool("overlap_histogram", output.overlap_histogram);
     output.histogram_bins = static_cast<int>(
         o.GetInt("histogram_bins", output.histogram_bins, Range::Closed(1, 10000)));
@@ -103,8 +103,8 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
              fmt::format("must be above histogram_min: histogram_min = {:g}, histogram_max = {:g}",
                          output.histogram_min, output.histogram_max));
     }
-    output.checkpoint_interval_s =
-        o.GetDouble("checkpoint_interval_s", output.checkpoint_interval_s, Range::Closed(1e-3, 1e9));
+    output.checkpoint_interval_s = o.GetDouble(
+        "checkpoint_interval_s", output.checkpoint_interval_s, Range::Closed(1e-3, 1e9));
     output.progress_interval_s =
         o.GetDouble("progress_interval_s", output.progress_interval_s, Range::Closed(1e-3, 1e9));
     output.stage_states = o.GetBool("stage_states", output.stage_states);

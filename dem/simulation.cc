@@ -230,8 +230,7 @@ int64_t Simulation::DetectorFirstRow() const {
          scene_.stages[k].ContinuesDetection(scene_.stages[k - 1])) {
     --k;
   }
-  return k < current && k < records_.size() ? records_[k].first_row
-                                                   : runner_.clock.first_row;
+  return k < current && k < records_.size() ? records_[k].first_row : runner_.clock.first_row;
 }
 
 void Simulation::AddRow() {
@@ -330,10 +329,9 @@ void Simulation::FinishStage(const std::string& reason, bool failed) {
   const bool window = detect && result.window_strain > 0;
   RowState state;
   if (has_rows) {
-    const int64_t state_row =
-        window ? FirstRowAfter(series_, detector_first_row_, record.last_row,
-                               result.window_start_time)
-               : record.last_row;
+    const int64_t state_row = window ? FirstRowAfter(series_, detector_first_row_, record.last_row,
+                                                     result.window_start_time)
+                                     : record.last_row;
     state = RowState::Mean(series_, state_row, record.last_row);
     record.validity = StageValidity::FromRows(series_, record.first_row, record.last_row, state);
   }
@@ -674,7 +672,8 @@ Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_sec
       bool valid = result.detected() && last_row >= clock.first_row;
       if (valid) {
         const RowState state = RowState::Mean(
-            series_, FirstRowAfter(series_, detector_first_row_, last_row, result.window_start_time),
+            series_,
+            FirstRowAfter(series_, detector_first_row_, last_row, result.window_start_time),
             last_row);
         valid = !IsGas(result.mean_stress_kpa, state.mechanical_coordination) &&
                 state.max_relative_overlap <= kValidityLimits.overlap_unreliable;

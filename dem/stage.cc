@@ -68,7 +68,8 @@ ControlOptions ControlOptions::Parse(const ConfigTable& control) {
   ControlOptions c;
   c.gain = control.GetDouble("gain", c.gain, Range::Open(0, 1));
   c.integral_gain = control.GetDouble("integral_gain", c.integral_gain, Range::Closed(0, 1));
-  c.max_rate_factor = control.GetDouble("max_rate_factor", c.max_rate_factor, {0.0, 1e3, false, true});
+  c.max_rate_factor =
+      control.GetDouble("max_rate_factor", c.max_rate_factor, {0.0, 1e3, false, true});
   return c;
 }
 

@@ -58,7 +58,8 @@ class TriaxialController final : public StageController {
 
 std::shared_ptr<const StageSpec> TriaxialStage::Parse(const ConfigTable& table) {
   auto stage = std::make_shared<TriaxialStage>();
-  stage->axial_strain_rate = table.GetDouble("axial_strain_rate", Range::Closed(-kStrainRate.max, kStrainRate.max));
+  stage->axial_strain_rate =
+      table.GetDouble("axial_strain_rate", Range::Closed(-kStrainRate.max, kStrainRate.max));
   if (stage->axial_strain_rate == 0) {
     table.Fail("axial_strain_rate", "= 0: must be non-zero (1/s, compression positive)");
   }

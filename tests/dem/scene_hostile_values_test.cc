@@ -18,9 +18,9 @@ namespace {
 // A scene with one stage of each type; `{KEY}` marks are where a test puts
 // its value (every other mark keeps its valid default).
 struct Key {
-  std::string name;     // dotted name as messages spell it
-  std::string mark;     // placeholder in the template
-  std::string valid;    // the valid value the template holds otherwise
+  std::string name;                // dotted name as messages spell it
+  std::string mark;                // placeholder in the template
+  std::string valid;               // the valid value the template holds otherwise
   std::set<std::string> accepted;  // hostile values that are valid settings
 };
 
@@ -159,7 +159,7 @@ const std::vector<Key>& Keys() {
 
 // The hostile values and how messages spell them.
 const std::vector<std::pair<std::string, std::string>> kValues = {
-    {"nan", "nan"}, {"inf", "inf"}, {"-inf", "-inf"},      {"0", "0"},
+    {"nan", "nan"}, {"inf", "inf"},      {"-inf", "-inf"},     {"0", "0"},
     {"-1", "-1"},   {"1e308", "1e+308"}, {"1e-300", "1e-300"},
 };
 
