@@ -223,9 +223,9 @@ ElementTestOptions ReadElementTestOptions(const ConfigTable& table) {
   options.integrator.kind = table.GetEnum("integrator", options.integrator.kind);
   options.integrator.jacobian = table.GetEnum("jacobian", options.integrator.jacobian);
   options.integrator.relative_tolerance = table.GetDouble(
-      "relative_tolerance", options.integrator.relative_tolerance, Range::Open(0.0, 1.0));
+      "relative_tolerance", options.integrator.relative_tolerance, Range::Closed(1e-14, 0.1));
   options.integrator.absolute_tolerance = table.GetDouble(
-      "absolute_tolerance", options.integrator.absolute_tolerance, Range::Positive());
+      "absolute_tolerance", options.integrator.absolute_tolerance, Range::Closed(1e-14, 1e3));
   options.integrator.arkode_order = static_cast<int>(
       table.GetInt("arkode_order", options.integrator.arkode_order, Range::Closed(2, 8)));
   options.stress_point.method = table.GetEnum("stress_point", options.stress_point.method);

@@ -1,5 +1,7 @@
 #include "dem/neighbor_list.h"
 
+#include <fmt/format.h>
+
 #include <omp.h>
 
 #include <algorithm>
@@ -17,11 +19,11 @@ void NeighborList::Build(const std::vector<Vec4>& s, const std::array<double, 3>
   const double reach = 2.0 * max_radius + skin;
   for (int d = 0; d < 3; ++d) {
     if (!(cell[d] > 2.0 * reach)) {
-      throw RuntimeError("the periodic cell side " + std::to_string(cell[d] * 1e3) +
-                         " mm has become smaller than twice the interaction reach " +
-                         std::to_string(reach * 1e3) +
-                         " mm (largest diameter + skin): the cell is too small for its largest "
-                         "spheres; use more particles");
+      throw RuntimeError(fmt::format(
+          "the periodic cell side {:.6g} mm has become smaller than twice the interaction reach "
+          "{:.6g} mm (largest diameter + skin): the cell is too small for its largest spheres; "
+          "use more particles",
+          cell[d] * 1e3, reach * 1e3));
     }
   }
   // Bins of side >= reach; with fewer than three bins along an axis one bin

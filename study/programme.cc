@@ -1,5 +1,7 @@
 #include "study/programme.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -92,7 +94,7 @@ double DoubleAt(const std::string& origin, const std::string& key, const Table& 
     Fail(origin, key, "must be a number, not a " + TypeName(*value));
   }
   if (!std::isfinite(v) || v <= 0) {
-    Fail(origin, key, "= " + std::to_string(v) + " must be a finite number > 0");
+    Fail(origin, key, fmt::format("= {:g} must be a finite number > 0", v));
   }
   return v;
 }
