@@ -91,6 +91,11 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
     output.interval_steps =
         o.GetInt("interval_steps", output.interval_steps, Range::Closed(0, kMaxStageSteps));
     output.overlap_histogram = o.GetBool("overlap_histogram", output.overlap_histogram);
+    if (!output.overlap_histogram) {
+      for (const char* key : {"histogram_bins", "histogram_min", "histogram_max"}) {
+        if (o.Has(key)) o.Fail(key, "applies only with overlap_histogram = true");
+      }
+    }
     output.histogram_bins = static_cast<int>(
         o.GetInt("histogram_bins", output.histogram_bins, Range::Closed(1, 10000)));
     // Overlaps relative to the smaller radius: 0 < min < max <= 1.

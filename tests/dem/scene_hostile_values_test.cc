@@ -303,3 +303,56 @@ TEST(SceneFeasibility, ATimeStepFarBelowTheContactDurationIsRejected) {
 
 }  // namespace
 }  // namespace granasym::dem
+
+namespace granasym::dem {
+namespace {
+
+// Keys that a stage type, contact law or setting does not use are errors,
+// not silently ignored.
+TEST(SceneInapplicableKeys, AreRejectedNamingTheKey) {
+  const std::string sample = "[sample.generate]\ncount = 100\n";
+  const std::string ncl =
+      "[[stage]]\npsi_epsilon_deg = 0.0\nstretching_rate = 167.0\n[stage.stop]\n"
+      "mean_stress_kpa = 100.0\n";
+  struct Case {
+    std::string text, key;
+  };
+  const std::vector<Case> cases = {
+      {sample + ncl + "[stage.control]\ngain = 0.5\n", "stage[0].control"},
+      {sample + "[[stage]]\ntype = \"rest\"\nmean_stress_kpa = 100.0\n[stage.asymptote]\n"
+                "window_strain = 0.5\n",
+       "asymptote"},
+      {sample + "[[stage]]\npsi_epsilon_deg = 0.0\nstretching_rate = 167.0\n"
+                "axial_strain_rate = 1.0\n[stage.stop]\nmean_stress_kpa = 100.0\n",
+       "stage[0].axial_strain_rate"},
+      {sample + "[[stage]]\ntype = \"triaxial\"\naxial_strain_rate = 1.0\nradial_stress_kpa = "
+                "100.0\nmax_strain_rate = 5.0\n[stage.stop]\naxial_strain = 0.1\n",
+       "stage[0].max_strain_rate"},
+      {sample + "[material]\npoissons_ratio = 0.2\n" + ncl, "material.poissons_ratio"},
+      {sample + "[material]\ncontact_law = \"hertz_mindlin\"\nstiffness_ratio = 0.3\n" + ncl,
+       "material.stiffness_ratio"},
+      {sample + "[numerics]\ntime_step_s = 1e-7\ntime_step_fraction = 0.1\n" + ncl,
+       "numerics.time_step_s"},
+      {"[sample]\nstage = \"ncl\"\n[sample.generate]\ncount = 100\n" + ncl, "sample.stage"},
+      {sample + "[output]\noverlap_histogram = false\nhistogram_bins = 10\n" + ncl,
+       "output.histogram_bins"},
+      {sample + ncl + "[stage.stop.extra]\nx = 1\n", "stage[0].stop.extra"},
+      {sample + "[[stage]]\npsi_epsilon_deg = 90.0\nstretching_rate = 167.0\n"
+                "[stage.asymptote]\nwindow_lnp = 1.0\n[stage.stop]\nasymptote = true\n",
+       "stage[0].asymptote.window_lnp"},
+  };
+  for (const Case& c : cases) {
+    std::string message;
+    try {
+      Scene::Parse(c.text, "inapplicable.toml", "");
+    } catch (const InputError& error) {
+      message = error.what();
+    }
+    EXPECT_NE(message.find(c.key), std::string::npos)
+        << "expected an error naming " << c.key << ", got '" << message << "' for:\n"
+        << c.text;
+  }
+}
+
+}  // namespace
+}  // namespace granasym::dem
