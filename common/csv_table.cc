@@ -1,7 +1,6 @@
 #include "common/csv_table.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -161,9 +160,10 @@ CsvTable CsvTable::Parse(const std::string& text, const std::string& origin) {
     for (size_t c = 0; c < fields.size(); ++c) {
       const char* begin = fields[c].c_str();
       char* end = nullptr;
-      errno = 0;
+      // An overflow reads as inf; an underflow as its rounded value, so that
+      // what WriteCsv writes (17 digits, subnormal numbers too) reads back.
       const double value = std::strtod(begin, &end);
-      if (fields[c].empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
+      if (fields[c].empty() || *end != '\0' || !std::isfinite(value)) {
         throw InputError(origin + ": line " + std::to_string(line_number) + ", column '" +
                          table.columns[c] + "': '" + fields[c] + "' is not a finite number");
       }

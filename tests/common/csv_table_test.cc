@@ -86,6 +86,8 @@ TEST(CsvTable, NumbersMayBeQuotedButTextIsRejected) {
   EXPECT_EQ(table.line_numbers, (std::vector<int>{3, 4}));
   EXPECT_THROW(CsvTable::Parse("a\nabc\n", "t.csv"), InputError);
   EXPECT_THROW(CsvTable::Parse("a,b\n1\n", "t.csv"), InputError);
+  // What WriteCsv writes reads back, a subnormal number included.
+  EXPECT_EQ(CsvTable::Parse("a\n1e-310\n", "t.csv").rows[0][0], 1e-310);
 }
 
 // One rule for every table: each case breaks it once; the message names the
