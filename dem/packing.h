@@ -22,11 +22,12 @@
 //  - coordinates anywhere within kMaxCellImages cell sides of the cell are
 //    wrapped periodically into [0, L), as the engine does; farther ones are
 //    rejected (wrapping them would lose most of their digits);
-//  - no two spheres closer than the overlap failure limit of the run
-//    (kValidityLimits.overlap_failure, dem/stage_validity.h: a relative overlap
-//    (r_i + r_j − |x_ij|)/(r_i + r_j) of 25 %; coincident centres included),
-//    found with a cell list in O(N); smaller overlaps are accepted, since the
-//    compressed packings that runs export legitimately overlap.
+//  - no two spheres overlapping by the run's failure limit or more
+//    (kValidityLimits.overlap_failure, dem/stage_validity.h: a relative
+//    overlap (r_i + r_j − |x_ij|)/(r_i + r_j) of 25 %, minimum image;
+//    coincident centres are 100 %), found with a cell list in O(N); smaller
+//    overlaps are accepted, since the compressed packings that runs export
+//    legitimately overlap (2 % and 10 % only flag a run's states).
 #pragma once
 
 #include <array>
