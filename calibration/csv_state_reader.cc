@@ -32,65 +32,109 @@ const std::vector<Quantity>& Quantities() {
   return quantities;
 }
 
+// |ln(1 + e) − ln_1_plus_e| allowed where a file gives both (rounding of a
+// 17-digit file is ~1e-16; a file written with 6 digits stays within 1e-6).
+constexpr double kVolumeMeasureTolerance = 1e-6;
+
 const std::vector<std::string>& PlainColumns() {
   static const std::vector<std::string> plain = {
       "e", "ln_1_plus_e", "weight", "psi_sigma_uncertainty_deg", "ln_1_plus_e_uncertainty"};
   return plain;
 }
 
+bool Ignored(const CsvReadOptions& options, const std::string& column) {
+  return std::find(options.ignore_columns.begin(), options.ignore_columns.end(), column) !=
+         options.ignore_columns.end();
+}
+
+// Index of a column that is read (not listed in ignore_columns).
+std::optional<size_t> FindPlain(const CsvTable& table, const CsvReadOptions& options,
+                                const std::string& name) {
+  const int c = table.Find(name);
+  if (c < 0 || Ignored(options, name)) return std::nullopt;
+  return static_cast<size_t>(c);
+}
+
 // Index and factor of the column giving `prefix` in any known unit.
 std::optional<std::pair<size_t, double>> FindQuantity(const CsvTable& table,
+                                                      const CsvReadOptions& options,
                                                       const std::string& prefix) {
   for (const Quantity& quantity : Quantities()) {
     if (prefix != quantity.prefix) continue;
     for (const auto& unit : quantity.units) {
-      const std::string name = prefix + unit.first;
-      for (size_t c = 0; c < table.columns.size(); ++c) {
-        if (table.columns[c] == name) return std::make_pair(c, unit.second);
+      if (const auto c = FindPlain(table, options, prefix + unit.first)) {
+        return std::make_pair(*c, unit.second);
       }
     }
   }
   return std::nullopt;
 }
 
-std::optional<size_t> FindPlain(const CsvTable& table, const std::string& name) {
-  for (size_t c = 0; c < table.columns.size(); ++c) {
-    if (table.columns[c] == name) return c;
+// Every documented column name.
+std::vector<std::string> KnownColumns() {
+  std::vector<std::string> known;
+  for (const Quantity& quantity : Quantities()) {
+    for (const auto& unit : quantity.units)
+      known.push_back(quantity.prefix + std::string(unit.first));
   }
-  return std::nullopt;
+  known.insert(known.end(), PlainColumns().begin(), PlainColumns().end());
+  return known;
+}
+
+// Columns that give one quantity in different units or measures: at most one
+// of each group may be read (ln_1_plus_e next to e is checked row by row).
+const std::vector<std::pair<const char*, std::vector<std::string>>>& AlternativeColumns() {
+  static const std::vector<std::pair<const char*, std::vector<std::string>>> groups = {
+      {"the mean stress", {"p_kpa", "p_mpa", "p_pa"}},
+      {"the stress direction", {"psi_sigma_deg", "psi_sigma_rad", "q_kpa"}},
+      {"the stretching direction", {"psi_epsilon_deg", "psi_epsilon_rad"}},
+  };
+  return groups;
 }
 
 void CheckColumns(const CsvTable& table, const CsvReadOptions& options) {
+  // A known quantity in unknown units first: the message can say which units exist.
   for (const std::string& column : table.columns) {
-    if (std::find(options.ignore_columns.begin(), options.ignore_columns.end(), column) !=
-        options.ignore_columns.end()) {
-      continue;
-    }
+    if (Ignored(options, column)) continue;
     if (std::find(PlainColumns().begin(), PlainColumns().end(), column) != PlainColumns().end()) {
       continue;
     }
-    bool known = false;
     for (const Quantity& quantity : Quantities()) {
       const std::string prefix = quantity.prefix;
       if (column.compare(0, prefix.size(), prefix) != 0) continue;
       const std::string suffix = column.substr(prefix.size());
-      if (suffix == "uncertainty_deg") continue;  // psi_sigma_uncertainty_deg, handled above
+      bool known = false;
       std::string valid;
       for (const auto& unit : quantity.units) {
         if (suffix == unit.first) known = true;
         valid += (valid.empty() ? "" : ", ") + prefix + unit.first;
       }
       if (!known) {
-        throw InputError(fmt::format("{}: column '{}': unknown units '{}' (valid: {})",
-                                     table.origin, column, suffix, valid));
+        throw InputError(fmt::format("{}: line {}: column '{}': unknown units '{}' (valid: {})",
+                                     table.origin, table.header_line, column, suffix, valid));
       }
     }
-    if (!known) {
-      throw InputError(fmt::format(
-          "{}: unknown column '{}' (documented columns: p_kpa|p_mpa|p_pa, e|ln_1_plus_e, "
-          "psi_sigma_deg|psi_sigma_rad|q_kpa, psi_epsilon_deg|psi_epsilon_rad, weight, "
-          "psi_sigma_uncertainty_deg, ln_1_plus_e_uncertainty; list others in ignore_columns)",
-          table.origin, column));
+  }
+  std::vector<std::string> allowed = KnownColumns();
+  allowed.insert(allowed.end(), options.ignore_columns.begin(), options.ignore_columns.end());
+  try {
+    table.RequireOnlyColumns(allowed);
+  } catch (const InputError& error) {
+    throw InputError(std::string(error.what()) + "; list other columns in ignore_columns");
+  }
+  for (const auto& [what, names] : AlternativeColumns()) {
+    std::optional<size_t> first;
+    for (const std::string& name : names) {
+      const auto c = FindPlain(table, options, name);
+      if (!c) continue;
+      if (first) {
+        throw InputError(fmt::format(
+            "{}: line {}: columns '{}' (column {}) and '{}' (column {}) both give {}: give one "
+            "of them (or list the other in ignore_columns)",
+            table.origin, table.header_line, table.columns[*first], *first + 1, name, *c + 1,
+            what));
+      }
+      first = c;
     }
   }
 }
@@ -124,23 +168,23 @@ StateDataset ParseStatesCsv(const std::string& text, const std::string& origin,
   const bool automatic = options.kind == "auto";
   if (!automatic) FromString(options.kind, &forced);
 
-  const auto p = FindQuantity(table, "p_");
+  const auto p = FindQuantity(table, options, "p_");
   if (!p) Missing(table, "mean stress (p_kpa, p_mpa or p_pa)");
-  const auto e = FindPlain(table, "e");
-  const auto ln_v = FindPlain(table, "ln_1_plus_e");
+  const auto e = FindPlain(table, options, "e");
+  const auto ln_v = FindPlain(table, options, "ln_1_plus_e");
   if (!e && !ln_v) Missing(table, "void ratio (e or ln_1_plus_e)");
-  const auto psi_s = FindQuantity(table, "psi_sigma_");
-  const auto q = FindQuantity(table, "q_");
+  const auto psi_s = FindQuantity(table, options, "psi_sigma_");
+  const auto q = FindQuantity(table, options, "q_");
   if (!psi_s && !q) Missing(table, "stress direction (psi_sigma_deg, psi_sigma_rad or q_kpa)");
-  const auto psi_e = FindQuantity(table, "psi_epsilon_");
+  const auto psi_e = FindQuantity(table, options, "psi_epsilon_");
   if (!psi_e && (automatic || forced != StateKind::kAsbs)) {
     Missing(table,
             "stretching direction (psi_epsilon_deg or psi_epsilon_rad; only kind = \"asbs\" "
             "datasets may omit it)");
   }
-  const auto weight = FindPlain(table, "weight");
-  const auto u_psi = FindPlain(table, "psi_sigma_uncertainty_deg");
-  const auto u_v = FindPlain(table, "ln_1_plus_e_uncertainty");
+  const auto weight = FindPlain(table, options, "weight");
+  const auto u_psi = FindPlain(table, options, "psi_sigma_uncertainty_deg");
+  const auto u_v = FindPlain(table, options, "ln_1_plus_e_uncertainty");
 
   StateDataset dataset;
   dataset.name = name;
@@ -154,6 +198,13 @@ StateDataset ParseStatesCsv(const std::string& text, const std::string& origin,
     point.source = fmt::format("{}:{}", origin, table.line_numbers[r]);
     point.mean_stress = row[p->first] * p->second;
     point.void_ratio = e ? row[*e] : std::exp(row[*ln_v]) - 1.0;
+    // Both measures of the volume (WriteStatesCsv writes both): they must agree.
+    if (e && ln_v && !(std::abs(std::log1p(row[*e]) - row[*ln_v]) <= kVolumeMeasureTolerance)) {
+      throw InputError(fmt::format(
+          "{}: columns 'e' = {} and 'ln_1_plus_e' = {} disagree (ln(1 + e) = {:.7g}, tolerance {}): "
+          "give one of them",
+          point.source, row[*e], row[*ln_v], std::log1p(row[*e]), kVolumeMeasureTolerance));
+    }
     point.psi_sigma = psi_s ? row[psi_s->first] * psi_s->second
                             : std::atan2(std::sqrt(2.0) * row[q->first], 3.0 * point.mean_stress);
     point.psi_epsilon =

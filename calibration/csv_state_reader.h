@@ -10,7 +10,13 @@
 //
 // A column named like a known quantity with other units (e.g. p_psi) is an
 // "unknown units" error; any other unknown column is an error unless listed in
-// `ignore_columns`.
+// `ignore_columns` (CsvTable::RequireOnlyColumns, the rule of every numeric
+// table; common/csv_table.h has the others: no duplicate names, equal field
+// counts, finite numbers). Each quantity comes from one column: two of one
+// group (p_kpa and p_mpa; psi_sigma_deg, psi_sigma_rad and q_kpa; the two
+// psi_epsilon units) are an error naming both, unless all but one are in
+// `ignore_columns`. e and ln_1_plus_e may both be given (WriteStatesCsv writes
+// both) when they agree in every row to 1e-6.
 #pragma once
 
 #include <string>

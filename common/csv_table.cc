@@ -1,7 +1,6 @@
 #include "common/csv_table.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -111,6 +110,24 @@ std::string ListColumns(const std::vector<std::string>& columns) {
   return available;
 }
 
+// The header's names: none empty, none twice.
+void CheckHeader(const std::vector<std::string>& columns, int line, const std::string& origin) {
+  for (size_t c = 0; c < columns.size(); ++c) {
+    if (columns[c].empty()) {
+      throw InputError(origin + ": line " + std::to_string(line) + ": header column " +
+                       std::to_string(c + 1) + " has no name (header: " + ListColumns(columns) +
+                       "); every column needs a name");
+    }
+    for (size_t earlier = 0; earlier < c; ++earlier) {
+      if (columns[earlier] == columns[c]) {
+        throw InputError(origin + ": line " + std::to_string(line) + ": column '" + columns[c] +
+                         "' appears twice in the header (columns " + std::to_string(earlier + 1) +
+                         " and " + std::to_string(c + 1) + "); every column name must be unique");
+      }
+    }
+  }
+}
+
 std::string ReadWholeFile(const std::string& path, const char* what) {
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(std::string("cannot open ") + what + " '" + path + "'");
@@ -128,21 +145,25 @@ CsvTable CsvTable::Parse(const std::string& text, const std::string& origin) {
       SplitRecords(text, origin, CsvTextTable::Format::kCsv, nullptr);
   if (records.empty()) throw InputError(origin + ": no header row (the file is empty)");
   table.columns = records.front().fields;
+  table.header_line = records.front().line;
+  CheckHeader(table.columns, table.header_line, origin);
   for (size_t r = 1; r < records.size(); ++r) {
     const std::vector<std::string>& fields = records[r].fields;
     const int line_number = records[r].line;
     if (fields.size() != table.columns.size()) {
       throw InputError(origin + ": line " + std::to_string(line_number) + " has " +
                        std::to_string(fields.size()) + " fields, but the header has " +
-                       std::to_string(table.columns.size()) + " columns");
+                       std::to_string(table.columns.size()) + " columns (" +
+                       ListColumns(table.columns) + ")");
     }
     std::vector<double> row;
     for (size_t c = 0; c < fields.size(); ++c) {
       const char* begin = fields[c].c_str();
       char* end = nullptr;
-      errno = 0;
+      // An overflow reads as inf; an underflow as its rounded value, so that
+      // what WriteCsv writes (17 digits, subnormal numbers too) reads back.
       const double value = std::strtod(begin, &end);
-      if (fields[c].empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value)) {
+      if (fields[c].empty() || *end != '\0' || !std::isfinite(value)) {
         throw InputError(origin + ": line " + std::to_string(line_number) + ", column '" +
                          table.columns[c] + "': '" + fields[c] + "' is not a finite number");
       }
@@ -159,11 +180,29 @@ CsvTable CsvTable::ReadFile(const std::string& path) {
 }
 
 size_t CsvTable::Column(const std::string& name) const {
-  for (size_t c = 0; c < columns.size(); ++c) {
-    if (columns[c] == name) return c;
+  const int c = Find(name);
+  if (c < 0) {
+    throw InputError(origin + ": missing column '" + name +
+                     "' (columns present: " + ListColumns(columns) + ")");
   }
-  throw InputError(origin + ": missing column '" + name +
-                   "' (columns present: " + ListColumns(columns) + ")");
+  return static_cast<size_t>(c);
+}
+
+int CsvTable::Find(const std::string& name) const {
+  for (size_t c = 0; c < columns.size(); ++c) {
+    if (columns[c] == name) return static_cast<int>(c);
+  }
+  return -1;
+}
+
+void CsvTable::RequireOnlyColumns(const std::vector<std::string>& known) const {
+  for (size_t c = 0; c < columns.size(); ++c) {
+    if (std::find(known.begin(), known.end(), columns[c]) == known.end()) {
+      throw InputError(origin + ": line " + std::to_string(header_line) + ": unknown column '" +
+                       columns[c] + "' (column " + std::to_string(c + 1) +
+                       "; known columns: " + ListColumns(known) + ")");
+    }
+  }
 }
 
 std::vector<double> CsvTable::ColumnValues(const std::string& name) const {
@@ -181,6 +220,8 @@ CsvTextTable CsvTextTable::Parse(const std::string& text, const std::string& ori
   std::vector<Record> records = SplitRecords(text, origin, format, &table.comments);
   if (records.empty()) throw InputError(origin + ": no header row (the file is empty)");
   table.columns = std::move(records.front().fields);
+  table.header_line = records.front().line;
+  CheckHeader(table.columns, table.header_line, origin);
   for (size_t r = 1; r < records.size(); ++r) {
     if (records[r].fields.size() != table.columns.size()) {
       throw InputError(origin + ": line " + std::to_string(records[r].line) + " has " +

@@ -4,9 +4,20 @@
 //
 // Lines starting with '#' and blank lines are skipped; the first other line is
 // the header. Fields may be quoted as in RFC 4180 ("a, b", "say ""x""", line
-// breaks inside quotes); unquoted fields are trimmed. Every error names the
-// file, the line and the offending text. No Debian 12 package offers a small,
-// maintained C++ CSV reader, and the format needed here is a few dozen lines.
+// breaks inside quotes); unquoted fields are trimmed. No Debian 12 package
+// offers a small, maintained C++ CSV reader, and the format needed here is a
+// few dozen lines.
+//
+// One rule for every table, each break an InputError naming the file and the
+// line:
+//  - a header name may not be empty or appear twice (the message gives both
+//    column positions, 1-based);
+//  - every row has as many fields as the header;
+//  - in a numeric table every field is a finite number (the message names the
+//    line, the column and the text);
+//  - numeric readers reject the columns they do not know (RequireOnlyColumns,
+//    which lists the known ones) rather than ignore them: a misspelt column is
+//    an error, never a silently unused one.
 #pragma once
 
 #include <string>
@@ -19,12 +30,18 @@ struct CsvTable {
   std::vector<std::string> columns;       // header names
   std::vector<std::vector<double>> rows;  // rows x columns
   std::vector<int> line_numbers;          // source line of each row (1-based)
+  int header_line = 0;                    // source line of the header (1-based)
 
   static CsvTable ReadFile(const std::string& path);
   static CsvTable Parse(const std::string& text, const std::string& origin);
   // Index of a column; InputError listing the available columns if missing.
   size_t Column(const std::string& name) const;
+  // Index of a column, or -1.
+  int Find(const std::string& name) const;
   std::vector<double> ColumnValues(const std::string& name) const;
+  // InputError naming the first column that is not in `known` (its name and
+  // position) and listing the known ones.
+  void RequireOnlyColumns(const std::vector<std::string>& known) const;
 };
 
 // A table of text fields: CSV as above, or tab-separated (TSV: fields split at
@@ -35,6 +52,7 @@ struct CsvTextTable {
   std::vector<std::string> columns;            // header names
   std::vector<std::vector<std::string>> rows;  // rows x columns
   std::vector<int> line_numbers;               // source line where each row starts (1-based)
+  int header_line = 0;                         // source line of the header (1-based)
   std::vector<std::string> comments;           // '#' lines, without the '#' and leading blanks
 
   static CsvTextTable ReadFile(const std::string& path, Format format = Format::kCsv);

@@ -762,7 +762,11 @@ RunSummary RunScene(const Scene& scene, const RunOptions& options) {
 
 Packing ReadResultPacking(const std::string& result_path, const std::string& group) {
   const Hdf5File file = Hdf5File::OpenRead(result_path);
-  return ReadPacking(file, group);
+  // As a text packing: what is exported must be readable (restarts read
+  // their sample through ReadSample, unchecked, so they never break here).
+  Packing packing = ReadPacking(file, group);
+  packing.Validate(result_path + ":" + group);
+  return packing;
 }
 
 }  // namespace granasym::dem

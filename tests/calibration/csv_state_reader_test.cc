@@ -120,6 +120,75 @@ TEST(CsvStateReader, RoundTripsThroughWriteStatesCsv) {
   std::filesystem::remove(path);
 }
 
+// The column rules of the reader, one case each: the message names the file,
+// the line, the columns and the values at fault.
+TEST(CsvStateReader, ColumnRuleBreaksNameFileLineAndColumns) {
+  struct Case {
+    const char* name;
+    std::string text;
+    std::vector<std::string> mentions;
+  };
+  const std::string h = "p_kpa,e,psi_sigma_deg,psi_epsilon_deg";
+  const std::vector<Case> cases = {
+      {"two_mean_stress_units",
+       "p_kpa,e,psi_sigma_deg,psi_epsilon_deg,p_mpa\n100,0.8,0,0,0.1\n",
+       {"line 1", "'p_kpa' (column 1)", "'p_mpa' (column 5)", "mean stress", "give one"}},
+      {"three_mean_stress_units",
+       "p_pa,p_mpa,p_kpa,e,psi_sigma_deg,psi_epsilon_deg\n1,1,1,1,0,0\n",
+       {"line 1", "'p_kpa' (column 3)", "'p_mpa' (column 2)"}},
+      {"angle_in_degrees_and_radians",
+       "# lab\np_kpa,e,psi_sigma_deg,psi_sigma_rad,psi_epsilon_deg\n100,0.8,0,0,0\n",
+       {"line 2", "'psi_sigma_deg' (column 3)", "'psi_sigma_rad' (column 4)", "stress direction"}},
+      {"direction_and_deviator",
+       h + ",q_kpa\n100,0.8,0,0,0\n",
+       {"line 1", "'psi_sigma_deg'", "'q_kpa'", "stress direction"}},
+      {"stretching_in_two_units",
+       h + ",psi_epsilon_rad\n100,0.8,0,0,0\n",
+       {"line 1", "'psi_epsilon_deg'", "'psi_epsilon_rad'", "stretching direction"}},
+      {"void_ratio_measures_disagree",
+       "p_kpa,e,ln_1_plus_e,psi_sigma_deg,psi_epsilon_deg\n100,0.8,0.587787,0,0\n100,0.8,0.7,0,0\n",
+       {"lab.csv:3", "'e' = 0.8", "'ln_1_plus_e' = 0.7", "disagree"}},
+      {"duplicate_column", h + ",e\n100,0.8,0,0,0.8\n", {"line 1", "'e'", "columns 2 and 5"}},
+      {"unknown_column",
+       h + ",time_s\n100,0.8,0,0,3\n",
+       {"line 1", "unknown column 'time_s'", "column 5", "known columns: p_kpa", "ignore_columns"}},
+      {"unknown_units",
+       "p_psi,e,psi_sigma_deg,psi_epsilon_deg\n14,0.8,0,0\n",
+       {"line 1", "'p_psi'", "unknown units 'psi'", "p_kpa, p_mpa, p_pa"}},
+      {"row_with_an_extra_field", h + "\n100,0.8,0,0\n100,0.8,0,0,5\n", {"line 3", "5 fields"}},
+      {"text_in_a_number", h + "\n100,0.8,zero,0\n", {"line 2", "'psi_sigma_deg'", "'zero'"}},
+      {"infinite_value", h + "\n100,inf,0,0\n", {"line 2", "'e'", "'inf'"}},
+  };
+  for (const Case& c : cases) {
+    const std::string message = ErrorOf(c.text);
+    ASSERT_NE(message, "") << c.name << ": accepted";
+    EXPECT_NE(message.find("lab.csv"), std::string::npos) << c.name << ": " << message;
+    for (const std::string& mention : c.mentions) {
+      EXPECT_NE(message.find(mention), std::string::npos)
+          << c.name << ": no '" << mention << "' in: " << message;
+    }
+  }
+}
+
+TEST(CsvStateReader, AnIgnoredColumnIsNeverReadEvenWhenItIsKnown) {
+  CsvReadOptions options;
+  options.ignore_columns = {"p_mpa", "q_kpa"};
+  const StateDataset d =
+      ParseStatesCsv("p_mpa,p_kpa,e,psi_sigma_deg,psi_epsilon_deg,q_kpa\n0.5,100,0.8,0,0,7\n",
+                     "x.csv", "x", options);
+  ASSERT_EQ(d.points.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.points[0].mean_stress, 100.0);
+  EXPECT_DOUBLE_EQ(d.points[0].psi_sigma, 0.0);
+}
+
+TEST(CsvStateReader, ConsistentVoidRatioAndItsLogarithmMayBothBeGiven) {
+  const StateDataset d =
+      ParseStatesCsv("p_kpa,e,ln_1_plus_e,psi_sigma_deg,psi_epsilon_deg\n100,0.8,0.587787,0,0\n",
+                     "x.csv", "x", {});
+  ASSERT_EQ(d.points.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.points[0].void_ratio, 0.8);
+}
+
 TEST(StateDataset, KindsFollowTheStretchingDirection) {
   const double t = 0.5 * kDegree;
   EXPECT_EQ(KindFromStretching(0.2 * kDegree, t), StateKind::kNcl);

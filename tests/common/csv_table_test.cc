@@ -86,6 +86,93 @@ TEST(CsvTable, NumbersMayBeQuotedButTextIsRejected) {
   EXPECT_EQ(table.line_numbers, (std::vector<int>{3, 4}));
   EXPECT_THROW(CsvTable::Parse("a\nabc\n", "t.csv"), InputError);
   EXPECT_THROW(CsvTable::Parse("a,b\n1\n", "t.csv"), InputError);
+  // What WriteCsv writes reads back, a subnormal number included.
+  EXPECT_EQ(CsvTable::Parse("a\n1e-310\n", "t.csv").rows[0][0], 1e-310);
+}
+
+// One rule for every table: each case breaks it once; the message names the
+// file, the line (and the column where one is at fault) and the value.
+struct CsvRuleCase {
+  const char* name;
+  const char* text;
+  std::vector<std::string> mentions;
+  bool numeric_only = false;  // a text table accepts it (text fields)
+};
+
+const std::vector<CsvRuleCase>& CsvRuleCases() {
+  static const std::vector<CsvRuleCase> cases = {
+      {"duplicate_column", "a,b,a\n1,2,3\n", {"line 1", "'a'", "columns 1 and 3", "unique"}},
+      {"duplicate_column_after_comments", "# note\n\nx, y ,y\n1,2,3\n",
+       {"line 3", "'y'", "columns 2 and 3"}},
+      {"unnamed_column", "a,,b\n1,2,3\n", {"line 1", "column 2 has no name"}},
+      {"row_with_an_extra_field", "a,b\n1,2\n1,2,3\n", {"line 3", "3 fields", "2 columns"}},
+      {"row_with_a_missing_field", "a,b\n1,2\n\n4\n", {"line 4", "1 fields", "2 columns"}},
+      {"nan", "a,b\n1,nan\n", {"line 2", "column 'b'", "'nan'", "finite"}, true},
+      {"inf", "a,b\n1,2\n-inf,2\n", {"line 3", "column 'a'", "'-inf'"}, true},
+      {"overflow", "a,b\n1,1e400\n", {"line 2", "column 'b'", "'1e400'"}, true},
+      {"text", "a,b\n1,abc\n", {"line 2", "column 'b'", "'abc'"}, true},
+      {"trailing_text", "a,b\n1.5x,2\n", {"line 2", "column 'a'", "'1.5x'"}, true},
+      {"empty_field", "a,b\n1,\n", {"line 2", "column 'b'", "''"}, true},
+      {"empty_file", "", {"no header row", "empty"}},
+      {"comments_only", "# only a comment\n\n", {"no header row"}},
+  };
+  return cases;
+}
+
+TEST(CsvTable, EveryBreakOfTheCommonRuleNamesFileLineAndValue) {
+  for (const CsvRuleCase& c : CsvRuleCases()) {
+    const std::string origin = std::string("rule_") + c.name + ".csv";
+    try {
+      CsvTable::Parse(c.text, origin);
+      ADD_FAILURE() << c.name << ": accepted";
+    } catch (const InputError& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find(origin), std::string::npos) << c.name << ": " << message;
+      for (const std::string& mention : c.mentions) {
+        EXPECT_NE(message.find(mention), std::string::npos)
+            << c.name << ": no '" << mention << "' in: " << message;
+      }
+    }
+  }
+}
+
+TEST(CsvTextTable, FollowsTheSameRuleForHeadersAndFieldCounts) {
+  for (const CsvRuleCase& c : CsvRuleCases()) {
+    const std::string origin = std::string("rule_") + c.name + ".csv";
+    if (c.numeric_only) {
+      EXPECT_NO_THROW(CsvTextTable::Parse(c.text, origin)) << c.name;
+      continue;
+    }
+    try {
+      CsvTextTable::Parse(c.text, origin);
+      ADD_FAILURE() << c.name << ": accepted";
+    } catch (const InputError& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find(origin), std::string::npos) << c.name << ": " << message;
+      for (const std::string& mention : c.mentions) {
+        EXPECT_NE(message.find(mention), std::string::npos)
+            << c.name << ": no '" << mention << "' in: " << message;
+      }
+    }
+  }
+}
+
+TEST(CsvTable, RequireOnlyColumnsNamesTheUnknownColumnAndListsTheKnownOnes) {
+  const CsvTable table = CsvTable::Parse("# gsd\nd_mm,passing,comment\n1,0,7\n", "gsd.csv");
+  EXPECT_EQ(table.header_line, 2);
+  EXPECT_NO_THROW(table.RequireOnlyColumns({"comment", "passing", "d_mm", "other"}));
+  try {
+    table.RequireOnlyColumns({"d_mm", "passing"});
+    FAIL() << "an unknown column was accepted";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("gsd.csv: line 2: unknown column 'comment' (column 3; known columns: "
+                           "d_mm, passing)"),
+              std::string::npos)
+        << message;
+  }
+  EXPECT_EQ(table.Find("passing"), 1);
+  EXPECT_EQ(table.Find("Passing"), -1);
 }
 
 }  // namespace

@@ -252,5 +252,34 @@ TEST(RunRecord, TheEngineStateRoundTripsThroughAFile) {
   EXPECT_FALSE(records[0].end_state);  // the last stage's end is the final state
 }
 
+// A final state that a text packing could not hold is refused on export
+// (naming the file, the group and the spheres); the sample of a restart is
+// read without these checks.
+TEST(RunRecord, ResultPackingsAreCheckedLikeTextPackings) {
+  Packing packing;
+  packing.cell = {0.01, 0.01, 0.01};
+  packing.positions = {{0.002, 0.002, 0.002}, {0.0034, 0.002, 0.002}};
+  packing.radii = {0.001, 0.001};
+  const std::string path = TempPath("overlapping_state.h5");
+  {
+    Hdf5File out = Hdf5File::CreateAtomic(path);
+    WritePacking(out, "/final_state", packing);
+    WritePacking(out, "/sample", packing);
+    out.Commit();
+  }
+  try {
+    ReadResultPacking(path, "/final_state");
+    FAIL() << "a 30 % overlap was exported";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(path + ":/final_state: spheres 1 and 2: spheres overlap by 30 %"),
+              std::string::npos)
+        << message;
+  }
+  Packing sample;
+  ReadSample(Hdf5File::OpenRead(path), &sample, nullptr);
+  EXPECT_EQ(sample.positions, packing.positions);
+}
+
 }  // namespace
 }  // namespace granasym::dem

@@ -85,7 +85,7 @@ TEST(Scene, NonMonotonicGsdIsRejectedNamingTheRow) {
   std::ofstream(gsd) << "diameter_mm,percent_passing_by_mass\n0.2,0\n0.4,50\n0.6,40\n1.0,100\n";
   const std::string text =
       Replace(kValid, "cell_size_mm = 5.8", "cell_size_mm = 5.8\ngsd = '" + gsd + "'");
-  ExpectMentions(ErrorOf(text), {"bad_gsd.csv", "row 3", "non-decreasing"});
+  ExpectMentions(ErrorOf(text), {"bad_gsd.csv", "line 4", "non-decreasing"});
 }
 
 TEST(Scene, StageWithoutStopConditionIsRejected) {
