@@ -23,7 +23,8 @@ struct Packing {
 
   // Reads the text format; errors name the file, the line and the value.
   static Packing ReadText(const std::string& path);
-  // Writes the text format with 17 significant digits (temporary file + rename).
+  // Writes the text format with 17 significant digits (WriteTextFileAtomically:
+  // FileError when it cannot, the file under `path` left as it was).
   void WriteText(const std::string& path) const;
 };
 
