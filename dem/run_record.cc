@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
 #include <type_traits>
 
@@ -12,6 +13,24 @@
 #include "dem/run_record_names.h"
 
 namespace granasym::dem {
+
+namespace {
+constexpr bool SameText(const char* a, const char* b) {
+  while (*a != '\0' && *a == *b) ++a, ++b;
+  return *a == *b;
+}
+template <size_t k>
+constexpr bool TerminationIs(Termination value, const char* name) {
+  return EnumNames<Termination>::kEntries[k].value == value &&
+         SameText(EnumNames<Termination>::kEntries[k].name, name);
+}
+}  // namespace
+// The spellings readers outside dem/ use (run_record_names.h).
+static_assert(TerminationIs<0>(Termination::kNotRun, record::kTerminationNotRun) &&
+              TerminationIs<1>(Termination::kCompleted, record::kTerminationCompleted) &&
+              TerminationIs<2>(Termination::kInterrupted, record::kTerminationInterrupted) &&
+              TerminationIs<3>(Termination::kFailed, record::kTerminationFailed));
+
 namespace {
 
 std::string Join(const std::string& group, const char* name) { return group + "/" + name; }
@@ -695,6 +714,107 @@ Provenance ReadProvenance(const Hdf5File& file) {
   p.threads = file.ReadIntAttribute(g, kThreads);
   p.cpu_model = file.ReadStringAttribute(g, kCpuModel);
   return p;
+}
+
+namespace {
+
+std::string StringAttributeOr(const Hdf5File& file, const std::string& object, const char* name,
+                              const std::string& fallback) {
+  return file.HasAttribute(object, name) ? file.ReadStringAttribute(object, name) : fallback;
+}
+
+}  // namespace
+
+std::string PartialResultNote(const Hdf5File& file) {
+  const RunSummary summary = ReadSummary(file);
+  const std::string scene =
+      StringAttributeOr(file, record::kScene, record::kSceneOrigin, "SCENE.toml");
+  switch (summary.termination) {
+    case Termination::kCompleted:
+      return "";
+    case Termination::kInterrupted:
+      return fmt::format(
+          "'{}' is a partial result: the run was interrupted or is still running ({}); its "
+          "series and stages end at its last checkpoint. Continue it with `granasym dem run {} "
+          "--out {} --restart`{}",
+          file.path(), summary.message, scene, file.path(),
+          std::filesystem::exists(file.path() + ".ckpt") ? "" : " (its checkpoint is missing)");
+    case Termination::kFailed:
+      return fmt::format(
+          "'{}' is the result of a failed run ({}): the series ends where the run failed and "
+          "the stage it failed in is marked failed",
+          file.path(), summary.message);
+    case Termination::kNotRun:
+      break;
+  }
+  return fmt::format("'{}' is not a result: the run has not started", file.path());
+}
+
+std::string DescribeResult(const Hdf5File& file) {
+  using namespace record;
+  const RunSummary summary = ReadSummary(file);
+  std::string text;
+  const auto line = [&text](const std::string& key, const std::string& value) {
+    text += key + ": " + value + "\n";
+  };
+  line("file", file.path());
+  if (file.Exists(kProvenance)) {
+    const Provenance p = ReadProvenance(file);
+    line("program_version", p.program_version);
+    line("scene", StringAttributeOr(file, kScene, kSceneOrigin, "?"));
+    line("scene_sha256", p.scene_sha256);
+    std::string start = p.start_kind;
+    if (!p.parent_file.empty()) {
+      start += " from '" + p.parent_file + "'" +
+               (p.parent_stage.empty() ? " (final state)" : " stage '" + p.parent_stage + "'");
+    }
+    line("start", start);
+    line("cpu", p.cpu_model);
+  } else {
+    line("scene", StringAttributeOr(file, kScene, kSceneOrigin, "?"));
+  }
+  line("termination", std::string(ToString(summary.termination)));
+  line("message", summary.message);
+  line("final",
+       summary.termination == Termination::kCompleted ? "yes" : "no: " + PartialResultNote(file));
+  const std::string checkpoint = file.path() + ".ckpt";
+  line("checkpoint", std::filesystem::exists(checkpoint) ? checkpoint : "none");
+  line("particles", std::to_string(summary.particles));
+  line("steps", std::to_string(summary.steps));
+  line("rows", std::to_string(summary.rows));
+  line("stages_completed", std::to_string(summary.stages_completed));
+  line("simulated_time_s", fmt::format("{:.6g}", summary.simulated_time));
+  line("time_step_s", fmt::format("{:.6g}", summary.time_step));
+  line("wall_s", fmt::format("{:.1f}", summary.wall_seconds));
+  line("threads", std::to_string(summary.threads));
+  line("validity", summary.validity.empty() ? "no flags" : summary.validity);
+  if (file.Exists(kStages)) {
+    // The records' attributes only: their end states are not read.
+    for (const std::string& name : file.List(kStages)) {
+      const std::string group = std::string(kStages) + "/" + name;
+      std::string stage = fmt::format(
+          "'{}' ({}), rows {}..{}{}, stop: {}", file.ReadStringAttribute(group, kStageName),
+          file.ReadStringAttribute(group, kStageType), file.ReadIntAttribute(group, kStageFirstRow),
+          file.ReadIntAttribute(group, kStageLastRow),
+          file.HasAttribute(group, kStageFailed) && file.ReadIntAttribute(group, kStageFailed) != 0
+              ? ", failed"
+              : "",
+          file.ReadStringAttribute(group, kStageStopReason));
+      if (file.HasAttribute(group, kAsymptoteStatus)) {
+        stage +=
+            fmt::format("; asymptote: {} {}", file.ReadStringAttribute(group, kAsymptotePathKind),
+                        file.ReadStringAttribute(group, kAsymptoteStatus));
+      } else if (file.HasAttribute(group, kAsymptoteDetected)) {
+        stage += file.ReadIntAttribute(group, kAsymptoteDetected) != 0
+                     ? "; asymptote: detected"
+                     : "; asymptote: not detected";
+      }
+      const std::string flags = StringAttributeOr(file, group, kValidityFlags, "");
+      if (!flags.empty()) stage += "; validity: " + flags;
+      line("stage " + name, stage);
+    }
+  }
+  return text;
 }
 
 }  // namespace granasym::dem
