@@ -238,12 +238,14 @@ void CheckEngineState(const Hdf5File& file, const std::string& group, const Engi
                         list.offsets.front(), list.offsets.back(), pairs, neighbors));
   }
   for (size_t i = 0; i < n; ++i) {
-    const int64_t begin = list.offsets[i], end = list.offsets[i + 1];
-    if (end < begin) {
+    if (list.offsets[i + 1] < list.offsets[i]) {
       Invalid(file, offsets,
-              fmt::format("decreases from {} to {} at particle {} (offsets never decrease)", begin,
-                          end, i));
+              fmt::format("decreases from {} to {} at particle {} (offsets never decrease)",
+                          list.offsets[i], list.offsets[i + 1], i));
     }
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const int64_t begin = list.offsets[i], end = list.offsets[i + 1];
     int64_t previous = static_cast<int64_t>(i);
     for (int64_t k = begin; k < end; ++k) {
       const int64_t j = list.neighbors[static_cast<size_t>(k)];
