@@ -100,10 +100,12 @@ inline void RewriteIntAttribute(const std::string& path, const std::string& obje
   PrepareHdf5();
   const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   if (file < 0) throw std::runtime_error("cannot open " + path + " for writing");
-  const hid_t attribute =
-      H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+  // Through the object: H5Aopen_by_name cannot write an attribute in dense storage.
+  const hid_t target = H5Oopen(file, object.c_str(), H5P_DEFAULT);
+  const hid_t attribute = H5Aopen(target, name.c_str(), H5P_DEFAULT);
   const herr_t status = H5Awrite(attribute, H5T_NATIVE_INT64, &value);
   H5Aclose(attribute);
+  H5Oclose(target);
   if (H5Fclose(file) < 0 || status < 0) throw std::runtime_error("cannot rewrite " + name);
 }
 
