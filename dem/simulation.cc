@@ -814,6 +814,8 @@ Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_sec
       partial.termination = Termination::kInterrupted;
       partial.message = "run in progress (partial results at the last checkpoint)";
       partial.steps = engine_->step();
+      partial.simulated_time = engine_->time();
+      partial.rows = static_cast<int64_t>(series_.rows());
       partial.stages_completed = static_cast<int64_t>(records_.size());
       WriteResults(partial);
       since_checkpoint = Stopwatch();
