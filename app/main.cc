@@ -121,8 +121,9 @@ void RegisterExportCommand(CLI::App& app) {
     const Hdf5File file = Hdf5File::OpenRead(input);
     if (info) std::printf("%s", dem::DescribeResult(file).c_str());
     // A partial result sits under the final name while a run goes on and
-    // after it was interrupted: say so (the export goes ahead).
-    if (file.Exists("/summary")) {
+    // after it was interrupted: say so (the export goes ahead; --info says
+    // it in its line "final").
+    if ((!csv_path.empty() || !packing_path.empty()) && file.Exists("/summary")) {
       const std::string note = dem::PartialResultNote(file);
       if (!note.empty()) std::fprintf(stderr, "warning: %s\n", note.c_str());
     }

@@ -237,9 +237,10 @@ Hdf5File Hdf5File::CreateAtomic(const std::string& path) {
   if (id < 0) {
     const std::string reason = LastReason().Text();
     std::remove(temporary.c_str());
-    throw FileError("cannot create the HDF5 file '" + temporary + "' for '" + path + "' (" +
-                    (reason.empty() ? "H5Fcreate failed" : reason) +
-                    "): check that the folder exists and is writable");
+    throw FileError("cannot write '" + path + "': H5Fcreate of '" + temporary + "' failed (" +
+                    (reason.empty() ? "HDF5 gives no reason" : reason) +
+                    "): check that the folder exists, is writable and has space; '" + path +
+                    "' is not replaced");
   }
   return Hdf5File(id, path, temporary);
 }

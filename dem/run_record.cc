@@ -736,7 +736,7 @@ std::string PartialResultNote(const Hdf5File& file) {
       return "";
     case Termination::kInterrupted:
       return fmt::format(
-          "'{}' is a partial result: the run was interrupted or is still running ({}); its "
+          "'{}' is a partial result (the run was interrupted or is still running: {}); its "
           "series and stages end at its last checkpoint. Continue it with `granasym dem run {} "
           "--out {} --restart`{}",
           file.path(), summary.message, scene, file.path(),
