@@ -395,8 +395,10 @@ bool Hdf5File::Exists(const std::string& name) const {
     const size_t slash = name.find('/', position);
     const std::string prefix = name.substr(0, slash);
     const htri_t exists = H5Lexists(id_, prefix.c_str(), H5P_DEFAULT);
-    if (exists < 0) FailRead("H5Lexists", path_, Object(prefix));
-    if (exists == 0) return false;
+    // It also fails below a dataset ("/a/b" of a dataset "/a"): no such
+    // object, unless a checksum failed on the way.
+    if (exists < 0 && LastReason().checksum) FailRead("H5Lexists", path_, Object(prefix));
+    if (exists <= 0) return false;
     if (slash == std::string::npos) return true;
     position = slash + 1;
   }

@@ -49,6 +49,7 @@ TEST(Hdf5File, RoundTripsDatasetsStringsAndAttributes) {
   EXPECT_DOUBLE_EQ(file.ReadDoubleAttribute("series/p", "scale"), 0.5);
   EXPECT_TRUE(file.Exists("series/p"));
   EXPECT_FALSE(file.Exists("nothing/here"));
+  EXPECT_FALSE(file.Exists("series/p/below_a_dataset"));
   EXPECT_EQ(file.List("series"), (std::vector<std::string>{"p"}));
   std::remove(path.c_str());
 }
