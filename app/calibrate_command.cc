@@ -4,13 +4,13 @@
 #include "app/calibrate_command.h"
 
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 #include "calibration/calibration_config.h"
 #include "calibration/calibration_report.h"
 #include "common/error.h"
 #include "common/output_path.h"
+#include "common/text_file.h"
 
 namespace granasym {
 
@@ -40,15 +40,7 @@ void RunCalibrate(const CalibrateFlags& flags) {
   const calibration::CalibrationRun run = calibration::RunCalibration(config);
   const std::string summary = calibration::SummaryText(run);
   calibration::WriteCalibrationHdf5(run, config.hdf5_path);
-  {
-    const std::string temporary = config.summary_path + ".tmp";
-    std::ofstream out(temporary);
-    out << summary;
-    out.close();
-    if (!out || std::rename(temporary.c_str(), config.summary_path.c_str()) != 0) {
-      throw RuntimeError("cannot write the summary '" + config.summary_path + "'");
-    }
-  }
+  WriteTextFileAtomically(config.summary_path, summary);
   bool success = !run.fits.empty();
   for (const calibration::FitResult& fit : run.fits) success = success && fit.summary.success();
   if (success) calibration::WritePlotData(run, run.fits.front(), config.plot_data_dir);

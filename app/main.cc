@@ -16,6 +16,7 @@
 #include "common/output_path.h"
 #include "common/time_series.h"
 #include "dem/packing.h"
+#include "dem/run_record.h"
 #include "dem/scene.h"
 #include "dem/simulation.h"
 
@@ -112,18 +113,31 @@ void RegisterDemCommands(CLI::App& app) {
 
 void RegisterExportCommand(CLI::App& app) {
   CLI::App* exporter = app.add_subcommand(
-      "export", "export a result file: time series as CSV, final packing as text");
+      "export",
+      "export a result file: time series as CSV, final packing as text, or what it holds");
   static std::string input, csv_path, packing_path;
+  static bool info = false;
   exporter->add_option("result", input, "result file (HDF5)")->required()->check(CLI::ExistingFile);
   exporter->add_option("--csv", csv_path, "write the time series as CSV with a header row");
   exporter->add_option("--packing", packing_path,
                        "write the final particle state as a plain-text packing");
+  exporter->add_flag("--info", info,
+                     "print what the result holds, one line per item: scene, termination, "
+                     "whether it is final, stages with their stop reasons and asymptotes");
   exporter->callback([] {
-    if (csv_path.empty() && packing_path.empty()) {
-      throw InputError("export: give --csv FILE and/or --packing FILE");
+    if (csv_path.empty() && packing_path.empty() && !info) {
+      throw InputError("export: give --csv FILE, --packing FILE and/or --info");
     }
     CheckOutputs({{"--csv", csv_path}, {"--packing", packing_path}}, {{"the result file", input}});
     const Hdf5File file = Hdf5File::OpenRead(input);
+    if (info) std::printf("%s", dem::DescribeResult(file).c_str());
+    // A partial result sits under the final name while a run goes on and
+    // after it was interrupted: say so (the export goes ahead; --info says
+    // it in its line "final").
+    if ((!csv_path.empty() || !packing_path.empty()) && file.Exists("/summary")) {
+      const std::string note = dem::PartialResultNote(file);
+      if (!note.empty()) std::fprintf(stderr, "warning: %s\n", note.c_str());
+    }
     if (!csv_path.empty()) {
       const std::string group = file.Exists("/series") ? "/series" : "";
       if (group.empty()) throw InputError(input + ": no /series group to export");

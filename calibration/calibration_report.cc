@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <memory>
 #include <set>
+#include <sstream>
 
 #include "calibration/csv_state_reader.h"
 #include "calibration/dem_state_reader.h"
@@ -18,6 +18,7 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/state_measures.h"
+#include "common/text_file.h"
 #include "constitutive/constitutive_model.h"
 
 namespace granasym::calibration {
@@ -578,7 +579,7 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
     WriteCsv(folder + "/model_curve.csv",
              {"psi_sigma_deg", "psi_epsilon_deg", "ocr", "ln_ocr", "p_over_pe", "q_over_pe"}, c);
   };
-  std::ofstream out(folder + "/model_lines.dat");
+  std::ostringstream out;  // model_lines.dat
   if (kind == ModelKind::kHypoplasticSand) {
     // States at the data's ψ_ε (and 0°, 90°) at the geometric-mean p.
     std::set<double> curve_directions = directions;
@@ -622,7 +623,7 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
       }
       out << "\n\n";
     }
-    if (!out) throw RuntimeError("cannot write " + folder + "/model_lines.dat");
+    WriteTextFileAtomically(folder + "/model_lines.dat", out.str());
     return;
   }
   const double n = fit.values[kNIntercept], lambda = fit.values[kLambdaStar];
@@ -650,7 +651,7 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
     }
     out << "\n\n";
   }
-  if (!out) throw RuntimeError("cannot write " + folder + "/model_lines.dat");
+  WriteTextFileAtomically(folder + "/model_lines.dat", out.str());
 }
 
 namespace {

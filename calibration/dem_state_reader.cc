@@ -136,18 +136,44 @@ StateDataset ReadStatesDem(const std::string& path, const std::string& name,
       throw InputError(fmt::format("{}: not a granasym DEM result file (no {})", path, required));
     }
   }
+  StateDataset dataset;
+  dataset.name = name;
+  dataset.origin = path;
+  // An interrupted run (or one still running) writes partial results under
+  // the final name: its stages so far, not the run's states.
+  const std::string summary = record::kSummary;
+  if (file.HasAttribute(summary, record::kTermination)) {
+    const std::string termination = file.ReadStringAttribute(summary, record::kTermination);
+    const std::string message = file.HasAttribute(summary, record::kMessage)
+                                    ? file.ReadStringAttribute(summary, record::kMessage)
+                                    : "";
+    if (termination == record::kTerminationInterrupted ||
+        termination == record::kTerminationNotRun) {
+      throw InputError(fmt::format(
+          "{}: a partial result, not calibration data: the run's termination is '{}' ({}); "
+          "finish the run (`granasym dem run SCENE --out {} --restart`) and calibrate on its "
+          "final result (`granasym export {} --info` tells)",
+          path, termination, message, path, path));
+    }
+    if (termination == record::kTerminationFailed) {
+      dataset.warnings.push_back(fmt::format(
+          "{}: the run failed ({}): only the stages completed before are used", path, message));
+    }
+  }
   const std::vector<double> p = file.ReadDoubles(p_column);
   const std::vector<double> e = file.ReadDoubles(e_column);
   const std::vector<double> psi_sigma = file.ReadDoubles(psi_column);
 
-  StateDataset dataset;
-  dataset.name = name;
-  dataset.origin = path;
   const double tolerance = options.kind_tolerance_deg * kDegree;
   for (const std::string& stage : file.List(record::kStages)) {
     const std::string group = std::string(record::kStages) + "/" + stage;
     const std::string stage_name = file.ReadStringAttribute(group, record::kStageName);
     const std::string where = fmt::format("{}:{} ({})", path, group, stage_name);
+    if (file.HasAttribute(group, record::kStageFailed) &&
+        file.ReadIntAttribute(group, record::kStageFailed) != 0) {
+      dataset.warnings.push_back(where + ": the run failed in this stage; stage skipped");
+      continue;
+    }
     const bool ran_detector = file.HasAttribute(group, record::kAsymptoteDetected);
     const bool strain_path = file.HasAttribute(group, record::kStagePsiEpsilonDeg);
     if (!strain_path && !ran_detector) continue;  // e.g. a rest stage

@@ -51,7 +51,9 @@ struct DemReadOptions {
 };
 
 // Throws InputError naming the file for files that are not granasym results
-// (no /stages, no /series/p_kpa) or that yield no states.
+// (no /stages, no /series/p_kpa), for partial results (termination
+// interrupted: a run stopped or still running) or that yield no states. The
+// stage a run failed in is skipped with a warning.
 StateDataset ReadStatesDem(const std::string& path, const std::string& name,
                            const DemReadOptions& options);
 

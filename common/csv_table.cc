@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/text_file.h"
 
 namespace granasym {
 namespace {
@@ -258,23 +259,20 @@ int CsvTextTable::Find(const std::string& name) const {
 void WriteCsv(const std::string& path, const std::vector<std::string>& columns,
               const std::vector<std::vector<double>>& column_values) {
   GRANASYM_CHECK(columns.size() == column_values.size());
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary);
-    if (!out) throw RuntimeError("cannot write CSV file '" + temporary + "'");
-    out.precision(17);
-    for (size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
+  const size_t rows = column_values.empty() ? 0 : column_values[0].size();
+  for (const std::vector<double>& values : column_values) {
+    GRANASYM_CHECK(values.size() == rows)
+        << path << ": columns of " << values.size() << " and " << rows << " rows";
+  }
+  std::ostringstream out;
+  out.precision(17);
+  for (size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
+  out << "\n";
+  for (size_t r = 0; r < rows; ++r) {
+    for (size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << column_values[c][r];
     out << "\n";
-    const size_t rows = column_values.empty() ? 0 : column_values[0].size();
-    for (size_t r = 0; r < rows; ++r) {
-      for (size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << column_values[c][r];
-      out << "\n";
-    }
-    if (!out) throw RuntimeError("error while writing CSV file '" + temporary + "'");
   }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    throw RuntimeError("cannot rename '" + temporary + "' to '" + path + "'");
-  }
+  WriteTextFileAtomically(path, out.str());
 }
 
 }  // namespace granasym

@@ -64,7 +64,8 @@ struct CsvTextTable {
   int Find(const std::string& name) const;
 };
 
-// Writes a table with a header row; numbers in full precision.
+// Writes a table with a header row; numbers in full precision
+// (WriteTextFileAtomically: FileError when it cannot).
 void WriteCsv(const std::string& path, const std::vector<std::string>& columns,
               const std::vector<std::vector<double>>& column_values);
 

@@ -1,7 +1,9 @@
 // Errors, in three kinds that callers treat differently:
 //  - InputError: bad user input (scene files, tables, CSV data, flags);
-//  - RuntimeError: a numerical failure or a failed library/file-system call,
-//    which a run loop reports as a failed run with its results so far;
+//  - RuntimeError: a numerical failure or a failed library call, which a run
+//    loop reports as a failed run with its results so far; its FileError: a
+//    file that cannot be written (a full disk, a size limit), which ends the
+//    command (status 1) with what was kept;
 //  - InvariantError: a programming error (a violated invariant, thrown by
 //    GRANASYM_CHECK), which no run loop swallows.
 #pragma once
@@ -23,6 +25,17 @@ class InputError : public std::runtime_error {
 class RuntimeError : public std::runtime_error {
  public:
   explicit RuntimeError(const std::string& message) : std::runtime_error(message) {}
+};
+
+// A file that cannot be created, written or renamed into place (no space left,
+// a file-size limit, no permission). The message names the file and the
+// system's reason; the writer has removed its temporary file and left the file
+// under the final name as it was. Not a failure of the run: a run loop does
+// not turn it into a failed run (nothing could record one), it ends the
+// command and says what was kept.
+class FileError : public RuntimeError {
+ public:
+  explicit FileError(const std::string& message) : RuntimeError(message) {}
 };
 
 // A violated invariant: a bug in granasym, never a property of the input.

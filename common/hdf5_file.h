@@ -4,6 +4,27 @@
 // HighFive is not packaged in Debian 12 and the official C++ bindings throw
 // opaque exceptions, so this thin layer wraps the C API, checks every return
 // code and names the failing call, the file and the object in its message.
+//
+// Integrity. Files are written in the HDF5 1.10 format (readable by HDF5 1.10
+// and later), whose metadata carry checksums: the superblock, every object
+// header with its attributes (numbers inline, strings by reference), the
+// group structure and the chunk indexes. Every numeric dataset is chunked
+// (chunks of at most 1 MiB) with HDF5's Fletcher32 filter, so a flipped bit
+// in its data fails the read: InputError "FILE: dataset NAME fails its
+// checksum (the file is corrupt)". Not covered: variable-length strings
+// (WriteString, WriteStrings and string attributes live in HDF5's global
+// heap, which has no checksum in any format version). They are short
+// metadata: the scene text, names, messages and enumerations; readers that
+// depend on them parse them (enumerations against their names) or compare
+// them (the scene's hash), and empty datasets have no data to check.
+//
+// Failed writes. A write that fails (no space left, a file-size limit)
+// throws FileError naming the final file and the system's reason; the
+// temporary file is removed and a file already under the final name is left
+// as it was. HDF5 1.10 keeps the ID of a file whose H5Fclose failed after
+// freeing it and closes it again in its exit handler (a segfault at exit,
+// HDF5 issue 2257, CVE-2020-10812, fixed in 1.14.0); this layer closes every
+// file itself and switches that handler off (H5dont_atexit).
 #pragma once
 
 #include <cstdint>
@@ -16,9 +37,10 @@ class Hdf5File {
  public:
   // Creates `path` for writing. Data go to `path + ".tmp"` until Commit()
   // renames it, so an interrupted write never leaves a truncated file under the
-  // final name. Without Commit() the temporary file is removed.
+  // final name. Without Commit() the temporary file is removed. InputError
+  // when `path` exists and is not a regular file (a folder, a device).
   static Hdf5File CreateAtomic(const std::string& path);
-  // Opens an existing file read-only.
+  // Opens an existing file read-only (InputError when it cannot be opened).
   static Hdf5File OpenRead(const std::string& path);
 
   Hdf5File(Hdf5File&& other) noexcept;
@@ -27,13 +49,15 @@ class Hdf5File {
   Hdf5File& operator=(const Hdf5File&) = delete;
   ~Hdf5File();
 
-  // Closes the file and renames the temporary file to the final name.
+  // Flushes and closes the file and renames the temporary file to the final
+  // name (FileError when any of it fails; the temporary file is removed).
   void Commit();
 
   const std::string& path() const { return path_; }
 
-  // Writing. Intermediate groups are created as needed. `units` becomes the
-  // dataset's "units" attribute when non-empty ("1" for dimensionless).
+  // Writing (FileError when the file system refuses). Intermediate groups are
+  // created as needed. `units` becomes the dataset's "units" attribute when
+  // non-empty ("1" for dimensionless).
   void WriteDoubles(const std::string& name, const std::vector<double>& values,
                     const std::string& units = "");
   // Row-major matrix of rows x cols doubles.
@@ -52,7 +76,8 @@ class Hdf5File {
     SetAttribute(object, name, std::string(value));
   }
 
-  // Reading.
+  // Reading. A checksum that does not match is an InputError naming the file
+  // and the object; other failures are RuntimeErrors naming the call.
   bool Exists(const std::string& name) const;
   std::vector<std::string> List(const std::string& group) const;
   std::vector<double> ReadDoubles(const std::string& name) const;

@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -19,20 +20,35 @@ std::string ReadTextFile(const std::string& path) {
 }
 
 void WriteTextFileAtomically(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".tmp";
-  std::FILE* out = std::fopen(temporary.c_str(), "wb");
+  std::error_code ignored;
+  const std::filesystem::file_status status = std::filesystem::status(path, ignored);
+  if (std::filesystem::is_directory(status)) {
+    throw FileError("cannot write '" + path + "': it is a folder");
+  }
+  const bool in_place =
+      std::filesystem::exists(status) && !std::filesystem::is_regular_file(status);
+  const std::string target = in_place ? path : path + ".tmp";
+  const std::string unchanged =
+      in_place ? "" : "; '" + path + "' is not replaced (the partial '" + target + "' is removed)";
+  std::FILE* out = std::fopen(target.c_str(), "wb");
   if (!out) {
-    throw RuntimeError("cannot write '" + temporary + "': " + std::strerror(errno));
+    throw FileError("cannot write '" + path + "': " + std::strerror(errno) +
+                    (in_place ? "" : " (creating '" + target + "')"));
   }
-  const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size();
-  const bool closed = std::fclose(out) == 0;
-  if (!written || !closed) {
-    std::remove(temporary.c_str());
-    throw RuntimeError("cannot write '" + temporary + "' (disk full?)");
+  // The first error's reason: a full disk shows in fwrite, or only when the
+  // buffer is flushed, or when the file is closed.
+  int error = std::fwrite(text.data(), 1, text.size(), out) == text.size() ? 0 : errno;
+  if (std::fflush(out) != 0 && error == 0) error = errno;
+  if (std::fclose(out) != 0 && error == 0) error = errno;
+  if (error != 0) {
+    if (!in_place) std::remove(target.c_str());
+    throw FileError("cannot write '" + path + "': " + std::strerror(error) + unchanged);
   }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    throw RuntimeError("cannot rename '" + temporary + "' to '" + path + "': " +
-                       std::strerror(errno));
+  if (!in_place && std::rename(target.c_str(), path.c_str()) != 0) {
+    error = errno;
+    std::remove(target.c_str());
+    throw FileError("cannot rename '" + target + "' to '" + path + "': " + std::strerror(error) +
+                    unchanged);
   }
 }
 

@@ -63,8 +63,18 @@ TimeSeries TimeSeries::Read(const Hdf5File& file, const std::string& group) {
     columns.push_back(column);
   }
   TimeSeries series(columns);
+  // Every column holds one value per row: a shorter one would be read past its end.
+  const int64_t rows = file.HasAttribute(group, "rows") ? file.ReadIntAttribute(group, "rows") : -1;
   for (size_t c = 0; c < columns.size(); ++c) {
-    series.values_[c] = file.ReadDoubles(group + "/" + columns[c].name);
+    const std::string path = group + "/" + columns[c].name;
+    series.values_[c] = file.ReadDoubles(path);
+    const size_t expected = rows >= 0 ? static_cast<size_t>(rows) : series.values_[0].size();
+    if (series.values_[c].size() != expected) {
+      throw InputError(file.path() + ": dataset " + path + " has " +
+                       std::to_string(series.values_[c].size()) + " rows, the series " +
+                       std::to_string(expected) +
+                       " (the file is corrupt, or not written by granasym)");
+    }
   }
   return series;
 }

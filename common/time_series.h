@@ -31,7 +31,7 @@ class TimeSeries {
   // Writes every column below `group` (e.g. "/series").
   void Write(Hdf5File& file, const std::string& group) const;
   // Reads the columns written by Write, in the order given by the file's
-  // "columns" attribute.
+  // "columns" attribute (InputError when a column's length is not the rows').
   static TimeSeries Read(const Hdf5File& file, const std::string& group);
   void WriteCsv(const std::string& path) const;
 

@@ -15,6 +15,7 @@
 #include "common/state_measures.h"
 #include "common/stopwatch.h"
 #include "dem/stage_validity.h"
+#include "common/text_file.h"
 
 namespace granasym::dem {
 
@@ -345,20 +346,17 @@ void Packing::Validate(const std::string& origin) const {
 
 void Packing::WriteText(const std::string& path) const {
   Validate(path + " (to be written)");
-  const std::string temporary = path + ".tmp";
-  {
-    std::FILE* out = std::fopen(temporary.c_str(), "w");
-    if (!out) throw RuntimeError("cannot write packing file '" + temporary + "'");
-    std::fprintf(out, "%zu %.17g %.17g %.17g\n", size(), cell[0], cell[1], cell[2]);
-    for (size_t i = 0; i < size(); ++i) {
-      std::fprintf(out, "%.17g %.17g %.17g %.17g\n", positions[i][0], positions[i][1],
-                   positions[i][2], radii[i]);
-    }
-    if (std::fclose(out) != 0) throw RuntimeError("error while writing '" + temporary + "'");
+  std::string text;
+  text.reserve(80 * (size() + 1));
+  char line[160];
+  std::snprintf(line, sizeof(line), "%zu %.17g %.17g %.17g\n", size(), cell[0], cell[1], cell[2]);
+  text += line;
+  for (size_t i = 0; i < size(); ++i) {
+    std::snprintf(line, sizeof(line), "%.17g %.17g %.17g %.17g\n", positions[i][0], positions[i][1],
+                  positions[i][2], radii[i]);
+    text += line;
   }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    throw RuntimeError("cannot rename '" + temporary + "' to '" + path + "'");
-  }
+  WriteTextFileAtomically(path, text);
 }
 
 bool GenerationOptions::IsValid(std::string* why) const {

@@ -50,8 +50,9 @@ struct Packing {
 
   // Reads the text format; errors name the file, the line and the value.
   static Packing ReadText(const std::string& path);
-  // Writes the text format with 17 significant digits (temporary file +
-  // rename), after Validate(path): it never writes what ReadText refuses.
+  // Writes the text format with 17 significant digits, after Validate(path):
+  // it never writes what ReadText refuses (WriteTextFileAtomically: FileError
+  // when it cannot, the file under `path` left as it was).
   void WriteText(const std::string& path) const;
   // Checks the rules of the text format above on the packing in memory;
   // InputError naming `origin` and the sphere (1-based index) otherwise.

@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <limits>
 #include <type_traits>
 
 #include "common/error.h"
@@ -10,6 +13,24 @@
 #include "dem/run_record_names.h"
 
 namespace granasym::dem {
+
+namespace {
+constexpr bool SameText(const char* a, const char* b) {
+  while (*a != '\0' && *a == *b) ++a, ++b;
+  return *a == *b;
+}
+template <size_t k>
+constexpr bool TerminationIs(Termination value, const char* name) {
+  return EnumNames<Termination>::kEntries[k].value == value &&
+         SameText(EnumNames<Termination>::kEntries[k].name, name);
+}
+}  // namespace
+// The spellings readers outside dem/ use (run_record_names.h).
+static_assert(TerminationIs<0>(Termination::kNotRun, record::kTerminationNotRun) &&
+              TerminationIs<1>(Termination::kCompleted, record::kTerminationCompleted) &&
+              TerminationIs<2>(Termination::kInterrupted, record::kTerminationInterrupted) &&
+              TerminationIs<3>(Termination::kFailed, record::kTerminationFailed));
+
 namespace {
 
 std::string Join(const std::string& group, const char* name) { return group + "/" + name; }
@@ -122,6 +143,152 @@ std::vector<std::pair<const char*, double*>> AsymptoteDoubles(AsymptoteRecord& a
   };
 }
 
+bool Finite(const Vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+bool Finite(const Vec4& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
+}
+
+// A dataset whose values break the invariants of what it stores.
+[[noreturn]] void Invalid(const Hdf5File& file, const std::string& dataset,
+                          const std::string& what) {
+  throw InputError(
+      fmt::format("{}: dataset {} {} (the file is corrupt, or not written by granasym)",
+                  file.path(), dataset, what));
+}
+
+// Rows of the form (x, y, z, w): finite, w > 0 (radii) or w >= 0 (inverse
+// masses and inertias: 0 holds a sphere fixed).
+void CheckRows(const Hdf5File& file, const std::string& dataset, const std::vector<Vec4>& rows,
+               bool positive_w, const char* w_name) {
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const Vec4& v = rows[k];
+    if (!Finite(v) || (positive_w ? !(v.w > 0) : !(v.w >= 0))) {
+      Invalid(file, dataset,
+              fmt::format("row {} = ({:g}, {:g}, {:g}, {:g}) is not finite with {} {} 0", k, v.x,
+                          v.y, v.z, v.w, w_name, positive_w ? ">" : ">="));
+    }
+  }
+}
+
+void CheckCell(const Hdf5File& file, const std::string& dataset,
+               const std::array<double, 3>& cell) {
+  for (double side : cell) {
+    if (!(std::isfinite(side) && side > 0)) {
+      Invalid(file, dataset,
+              fmt::format("holds the cell sides {:g}, {:g}, {:g}: each must be finite and > 0",
+                          cell[0], cell[1], cell[2]));
+    }
+  }
+}
+
+// The invariants of an engine state, checked before an engine uses it (a bad
+// offset or id would index out of bounds). The checksums catch a flipped bit;
+// these catch a file whose checksums match data that cannot be a state.
+void CheckEngineState(const Hdf5File& file, const std::string& group, const Engine::State& state) {
+  using namespace record;
+  const size_t n = state.position.size();
+  const std::string p = Join(group, kStatePosition), v = Join(group, kStateVelocity),
+                    w = Join(group, kStateSpin), id = Join(group, kStateId);
+  if (state.velocity.size() != n)
+    Invalid(file, v,
+            fmt::format("has {} rows for {} particles (rows of {})", state.velocity.size(), n, p));
+  if (state.spin.size() != n)
+    Invalid(file, w,
+            fmt::format("has {} rows for {} particles (rows of {})", state.spin.size(), n, p));
+  if (state.id.size() != n)
+    Invalid(file, id,
+            fmt::format("has {} ids for {} particles (rows of {})", state.id.size(), n, p));
+  CheckRows(file, p, state.position, true, "radius");
+  CheckRows(file, v, state.velocity, false, "inverse mass");
+  CheckRows(file, w, state.spin, false, "inverse moment of inertia");
+  std::vector<char> seen(n, 0);
+  for (size_t k = 0; k < n; ++k) {
+    const int64_t i = state.id[k];
+    if (i < 0 || i >= static_cast<int64_t>(n) || seen[static_cast<size_t>(i)]) {
+      Invalid(file, id,
+              fmt::format("is not a permutation of 0..{}: entry {} = {} is {}", n - 1, k, i,
+                          i < 0 || i >= static_cast<int64_t>(n) ? "out of range" : "repeated"));
+    }
+    seen[static_cast<size_t>(i)] = 1;
+  }
+  CheckCell(file, Join(group, kStateCell), state.cell);
+  for (double g : state.gradient) {
+    if (!std::isfinite(g)) Invalid(file, Join(group, kStateGradient), "is not finite");
+  }
+  if (!std::isfinite(state.time) || state.step < 0 ||
+      !(std::isfinite(state.max_displacement) && state.max_displacement >= 0)) {
+    Invalid(file, group,
+            fmt::format("has time {:g}, step {}, max_displacement {:g} (finite, >= 0)", state.time,
+                        state.step, state.max_displacement));
+  }
+  const NeighborList::State& list = state.neighbors;
+  const std::string l = Join(group, kListGroup);
+  const std::string offsets = Join(l, kListOffsets), neighbors = Join(l, kListNeighbors);
+  const int64_t pairs = static_cast<int64_t>(list.neighbors.size());
+  if (list.offsets.size() != n + 1) {
+    Invalid(file, offsets,
+            fmt::format("has {} entries for {} particles (expected {})", list.offsets.size(), n,
+                        n + 1));
+  }
+  if (list.offsets.front() != 0 || list.offsets.back() != pairs) {
+    Invalid(file, offsets,
+            fmt::format("runs from {} to {}, expected from 0 to the {} entries of {}",
+                        list.offsets.front(), list.offsets.back(), pairs, neighbors));
+  }
+  for (size_t i = 0; i < n; ++i) {
+    if (list.offsets[i + 1] < list.offsets[i]) {
+      Invalid(file, offsets,
+              fmt::format("decreases from {} to {} at particle {} (offsets never decrease)",
+                          list.offsets[i], list.offsets[i + 1], i));
+    }
+  }
+  for (size_t i = 0; i < n; ++i) {
+    const int64_t begin = list.offsets[i], end = list.offsets[i + 1];
+    int64_t previous = static_cast<int64_t>(i);
+    for (int64_t k = begin; k < end; ++k) {
+      const int64_t j = list.neighbors[static_cast<size_t>(k)];
+      if (j <= previous || j >= static_cast<int64_t>(n)) {
+        Invalid(file, neighbors,
+                fmt::format("entry {} = {} (a neighbour of particle {}): the neighbours of i are "
+                            "ascending, > i and < {}",
+                            k, j, i, n));
+      }
+      previous = j;
+    }
+  }
+  for (const auto& [name, history] :
+       {std::pair{kListShear, &list.shear}, std::pair{kListRolling, &list.rolling}}) {
+    const std::string dataset = Join(l, name);
+    if (!history->empty() && static_cast<int64_t>(history->size()) != pairs) {
+      Invalid(file, dataset,
+              fmt::format("has {} rows for the {} entries of {} (or none)", history->size(), pairs,
+                          neighbors));
+    }
+    for (size_t k = 0; k < history->size(); ++k) {
+      if (!Finite((*history)[k])) Invalid(file, dataset, fmt::format("row {} is not finite", k));
+    }
+  }
+  const std::string build_positions = Join(l, kListBuildPositions);
+  if (list.build_positions.size() != n) {
+    Invalid(file, build_positions,
+            fmt::format("has {} rows for {} particles", list.build_positions.size(), n));
+  }
+  for (size_t k = 0; k < n; ++k) {
+    if (!Finite(list.build_positions[k])) {
+      Invalid(file, build_positions, fmt::format("row {} is not finite", k));
+    }
+  }
+  CheckCell(file, Join(l, kListBuildCell), list.build_cell);
+  if (!(std::isfinite(list.skin) && list.skin > 0) ||
+      !(std::isfinite(list.max_radius) && list.max_radius > 0) || list.builds < 0) {
+    Invalid(file, l,
+            fmt::format("has skin {:g}, max_radius {:g} (finite, > 0) and builds {} (>= 0)",
+                        list.skin, list.max_radius, list.builds));
+  }
+}
+
 }  // namespace
 
 std::string RunSummary::OneLine() const {
@@ -160,9 +327,19 @@ Packing ReadPacking(const Hdf5File& file, const std::string& group) {
     throw InputError(fmt::format("{}: {} holds {}×{} positions for {} radii", file.path(), group,
                                  rows, cols, packing.radii.size()));
   }
+  CheckCell(file, Join(group, record::kCell), packing.cell);
   packing.positions.resize(rows);
   for (size_t i = 0; i < rows; ++i) {
     packing.positions[i] = {positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]};
+    const double radius = packing.radii[i];
+    if (!(std::isfinite(positions[3 * i]) && std::isfinite(positions[3 * i + 1]) &&
+          std::isfinite(positions[3 * i + 2]))) {
+      Invalid(file, Join(group, record::kPositions), fmt::format("row {} is not finite", i));
+    }
+    if (!(std::isfinite(radius) && radius > 0)) {
+      Invalid(file, Join(group, record::kRadii),
+              fmt::format("entry {} = {:g} is not a radius (finite, > 0)", i, radius));
+    }
   }
   return packing;
 }
@@ -231,17 +408,17 @@ Engine::State ReadEngineState(const Hdf5File& file, const std::string& group, in
   state.max_displacement = file.ReadDoubleAttribute(group, record::kStateMaxDisplacement);
   state.forces_current = file.ReadIntAttribute(group, record::kStateForcesCurrent) != 0;
   if (threads) *threads = static_cast<int>(file.ReadIntAttribute(group, record::kStateThreads));
-  const size_t n = state.position.size();
-  if (state.velocity.size() != n || state.spin.size() != n || state.id.size() != n) {
-    throw InputError(fmt::format(
-        "{}: engine state in '{}' has {} positions, {} velocities, {} "
-        "spins and {} ids",
-        file.path(), group, n, state.velocity.size(), state.spin.size(), state.id.size()));
-  }
   NeighborList::State& list = state.neighbors;
   const std::string l = Join(group, record::kListGroup);
   list.offsets = file.ReadInts(Join(l, record::kListOffsets));
   const std::vector<int64_t> neighbors = file.ReadInts(Join(l, record::kListNeighbors));
+  for (size_t k = 0; k < neighbors.size(); ++k) {
+    // Stored as 64-bit, held as 32-bit indices.
+    if (neighbors[k] < 0 || neighbors[k] > std::numeric_limits<int32_t>::max()) {
+      Invalid(file, Join(l, record::kListNeighbors),
+              fmt::format("entry {} = {} is not a particle index", k, neighbors[k]));
+    }
+  }
   list.neighbors.assign(neighbors.begin(), neighbors.end());
   list.shear = ReadRows<Vec3>(file, Join(l, record::kListShear));
   list.rolling = ReadRows<Vec3>(file, Join(l, record::kListRolling));
@@ -250,14 +427,7 @@ Engine::State ReadEngineState(const Hdf5File& file, const std::string& group, in
   list.skin = file.ReadDoubleAttribute(l, record::kListSkin);
   list.max_radius = file.ReadDoubleAttribute(l, record::kListMaxRadius);
   list.builds = file.ReadIntAttribute(l, record::kListBuilds);
-  if (list.offsets.size() != n + 1 ||
-      list.offsets.back() != static_cast<int64_t>(neighbors.size()) ||
-      (!list.shear.empty() && list.shear.size() != neighbors.size()) ||
-      (!list.rolling.empty() && list.rolling.size() != neighbors.size()) ||
-      list.build_positions.size() != n) {
-    throw InputError(fmt::format("{}: the neighbour list in '{}' does not match its {} particles",
-                                 file.path(), group, n));
-  }
+  CheckEngineState(file, group, state);
   return state;
 }
 
@@ -546,6 +716,107 @@ Provenance ReadProvenance(const Hdf5File& file) {
   p.threads = file.ReadIntAttribute(g, kThreads);
   p.cpu_model = file.ReadStringAttribute(g, kCpuModel);
   return p;
+}
+
+namespace {
+
+std::string StringAttributeOr(const Hdf5File& file, const std::string& object, const char* name,
+                              const std::string& fallback) {
+  return file.HasAttribute(object, name) ? file.ReadStringAttribute(object, name) : fallback;
+}
+
+}  // namespace
+
+std::string PartialResultNote(const Hdf5File& file) {
+  const RunSummary summary = ReadSummary(file);
+  const std::string scene =
+      StringAttributeOr(file, record::kScene, record::kSceneOrigin, "SCENE.toml");
+  switch (summary.termination) {
+    case Termination::kCompleted:
+      return "";
+    case Termination::kInterrupted:
+      return fmt::format(
+          "'{}' is a partial result (the run was interrupted or is still running: {}); its "
+          "series and stages end at its last checkpoint. Continue it with `granasym dem run {} "
+          "--out {} --restart`{}",
+          file.path(), summary.message, scene, file.path(),
+          std::filesystem::exists(file.path() + ".ckpt") ? "" : " (its checkpoint is missing)");
+    case Termination::kFailed:
+      return fmt::format(
+          "'{}' is the result of a failed run ({}): the series ends where the run failed and "
+          "the stage it failed in is marked failed",
+          file.path(), summary.message);
+    case Termination::kNotRun:
+      break;
+  }
+  return fmt::format("'{}' is not a result: the run has not started", file.path());
+}
+
+std::string DescribeResult(const Hdf5File& file) {
+  using namespace record;
+  const RunSummary summary = ReadSummary(file);
+  std::string text;
+  const auto line = [&text](const std::string& key, const std::string& value) {
+    text += key + ": " + value + "\n";
+  };
+  line("file", file.path());
+  if (file.Exists(kProvenance)) {
+    const Provenance p = ReadProvenance(file);
+    line("program_version", p.program_version);
+    line("scene", StringAttributeOr(file, kScene, kSceneOrigin, "?"));
+    line("scene_sha256", p.scene_sha256);
+    std::string start = p.start_kind;
+    if (!p.parent_file.empty()) {
+      start += " from '" + p.parent_file + "'" +
+               (p.parent_stage.empty() ? " (final state)" : " stage '" + p.parent_stage + "'");
+    }
+    line("start", start);
+    line("cpu", p.cpu_model);
+  } else {
+    line("scene", StringAttributeOr(file, kScene, kSceneOrigin, "?"));
+  }
+  line("termination", std::string(ToString(summary.termination)));
+  line("message", summary.message);
+  line("final",
+       summary.termination == Termination::kCompleted ? "yes" : "no: " + PartialResultNote(file));
+  const std::string checkpoint = file.path() + ".ckpt";
+  line("checkpoint", std::filesystem::exists(checkpoint) ? checkpoint : "none");
+  line("particles", std::to_string(summary.particles));
+  line("steps", std::to_string(summary.steps));
+  line("rows", std::to_string(summary.rows));
+  line("stages_completed", std::to_string(summary.stages_completed));
+  line("simulated_time_s", fmt::format("{:.6g}", summary.simulated_time));
+  line("time_step_s", fmt::format("{:.6g}", summary.time_step));
+  line("wall_s", fmt::format("{:.1f}", summary.wall_seconds));
+  line("threads", std::to_string(summary.threads));
+  line("validity", summary.validity.empty() ? "no flags" : summary.validity);
+  if (file.Exists(kStages)) {
+    // The records' attributes only: their end states are not read.
+    for (const std::string& name : file.List(kStages)) {
+      const std::string group = std::string(kStages) + "/" + name;
+      std::string stage = fmt::format(
+          "'{}' ({}), rows {}..{}{}, stop: {}", file.ReadStringAttribute(group, kStageName),
+          file.ReadStringAttribute(group, kStageType), file.ReadIntAttribute(group, kStageFirstRow),
+          file.ReadIntAttribute(group, kStageLastRow),
+          file.HasAttribute(group, kStageFailed) && file.ReadIntAttribute(group, kStageFailed) != 0
+              ? ", failed"
+              : "",
+          file.ReadStringAttribute(group, kStageStopReason));
+      if (file.HasAttribute(group, kAsymptoteStatus)) {
+        stage +=
+            fmt::format("; asymptote: {} {}", file.ReadStringAttribute(group, kAsymptotePathKind),
+                        file.ReadStringAttribute(group, kAsymptoteStatus));
+      } else if (file.HasAttribute(group, kAsymptoteDetected)) {
+        stage += file.ReadIntAttribute(group, kAsymptoteDetected) != 0
+                     ? "; asymptote: detected"
+                     : "; asymptote: not detected";
+      }
+      const std::string flags = StringAttributeOr(file, group, kValidityFlags, "");
+      if (!flags.empty()) stage += "; validity: " + flags;
+      line("stage " + name, stage);
+    }
+  }
+  return text;
 }
 
 }  // namespace granasym::dem

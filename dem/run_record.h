@@ -169,4 +169,15 @@ RunnerRecord ReadRunner(const Hdf5File& file);
 void WriteProvenance(Hdf5File& file, const Provenance& provenance);
 Provenance ReadProvenance(const Hdf5File& file);
 
+// A result file in one line per item (`granasym export --info`): the program
+// version, the scene and its origin, the start, the termination and its
+// message, whether it is final, the checkpoint beside it, the counters, the
+// validity flags and each stage with its rows, stop reason and asymptote.
+std::string DescribeResult(const Hdf5File& file);
+// "" for the result of a completed run; else one sentence: the file is not a
+// final result (an interrupted run, or one still running, writes its partial
+// results under the final name), with the termination, the message and how to
+// continue it.
+std::string PartialResultNote(const Hdf5File& file);
+
 }  // namespace granasym::dem

@@ -109,6 +109,11 @@ inline constexpr char kStageMeanStressKpa[] = "mean_stress_kpa";
 
 // Attributes of /summary.
 inline constexpr char kTermination[] = "termination";
+// Its values (dem::Termination's names; readers outside dem/ compare with these).
+inline constexpr char kTerminationNotRun[] = "not_run";
+inline constexpr char kTerminationCompleted[] = "completed";
+inline constexpr char kTerminationInterrupted[] = "interrupted";
+inline constexpr char kTerminationFailed[] = "failed";
 inline constexpr char kMessage[] = "message";
 inline constexpr char kReport[] = "report";
 inline constexpr char kValidity[] = "validity";  // the stages' validity flags, one line

@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 
 #include "common/error.h"
 #include "common/hdf5_file.h"
@@ -83,7 +84,11 @@ class Simulation {
   RunSummary Finish(RunSummary& summary, Termination termination, const std::string& message,
                     double loop_seconds, int64_t first_step, const Stopwatch& wall);
   void WriteResults(const RunSummary& summary) const;
-  void WriteCheckpoint() const;
+  void WriteCheckpoint();
+  void CheckCheckpoint(const std::string& path) const;
+  // A file that could not be written (a full disk): the run cannot record a
+  // failure either; rethrows with what was kept.
+  [[noreturn]] void FailWriting(const FileError& error) const;
   void ReportProgress();
   void Log(const std::string& line) const {
     if (options_.log) options_.log(line);
@@ -111,6 +116,8 @@ class Simulation {
   int64_t detector_first_row_ = 0;
   int64_t DetectorFirstRow() const;
   std::vector<StageRecord> records_;
+  int64_t checkpoint_step_ = -1;    // the step of the checkpoint on disk; -1: none
+  bool checkpoint_at_end_ = false;  // it holds the end of the last stage
   // Progress reporting only; not part of the state.
   double last_p_kpa_ = 0, last_psi_deg_ = 0;
   Stopwatch stage_clock_, since_progress_;
@@ -458,7 +465,7 @@ void Simulation::WriteResults(const RunSummary& summary) const {
   file.Commit();
 }
 
-void Simulation::WriteCheckpoint() const {
+void Simulation::WriteCheckpoint() {
   Hdf5File file = Hdf5File::CreateAtomic(options_.output_path + ".ckpt");
   file.WriteString(record::kScene, scene_.text);
   WriteProvenance(file, provenance_);
@@ -472,6 +479,23 @@ void Simulation::WriteCheckpoint() const {
   series_.Write(file, record::kSeries);
   WriteHistograms(file, histogram_edges_, histogram_rows_);
   file.Commit();
+  checkpoint_step_ = engine_->step();
+  checkpoint_at_end_ = done();
+}
+
+void Simulation::FailWriting(const FileError& error) const {
+  const std::string checkpoint = options_.output_path + ".ckpt";
+  if (checkpoint_step_ < 0) {
+    throw FileError(std::string(error.what()) +
+                    "; no checkpoint had been written (the run was shorter than "
+                    "output.checkpoint_interval_s): make space and run it again");
+  }
+  throw FileError(fmt::format(
+      "{}; nothing computed up to step {} is lost: the checkpoint '{}' of that step is kept{} "
+      "(make space, then continue with `granasym dem run {} --out {} --restart`)",
+      error.what(), checkpoint_step_, checkpoint,
+      checkpoint_at_end_ ? ", the run's end: a restart only writes the results" : "", scene_.origin,
+      options_.output_path));
 }
 
 void Simulation::LoadCheckpoint() {
@@ -501,20 +525,74 @@ void Simulation::LoadCheckpoint() {
                     "result will not be bit-identical to an uninterrupted run",
                     threads, threads_));
   }
-  MakeEngine(&state);
   runner_ = ReadRunner(file);
   records_ = ReadStageRecords(file);
+  series_ = TimeSeries::Read(file, record::kSeries);
+  histogram_rows_ = ReadHistogramRows(file);
+  CheckCheckpoint(path);
+  MakeEngine(&state);
+  checkpoint_step_ = state.step;
+  checkpoint_at_end_ = done();
   if (!done()) {
     detector_ = AsymptoteDetector(stage().asymptote);
     detector_.set_samples(runner_.detector_samples);
     detector_first_row_ = DetectorFirstRow();
     if (runner_.stage_started) {
       controller_ = stage().spec->MakeController();
-      controller_->RestoreState(runner_.controller_state);
+      try {
+        controller_->RestoreState(runner_.controller_state);
+      } catch (const std::out_of_range&) {
+        throw InputError(fmt::format(
+            "{}: dataset {}/controller_state holds {} values, too few for stage '{}' (the file "
+            "is corrupt, or not written by granasym)",
+            path, record::kRunner, runner_.controller_state.size(), stage().name));
+      }
     }
   }
-  series_ = TimeSeries::Read(file, record::kSeries);
-  histogram_rows_ = ReadHistogramRows(file);
+}
+
+// The runner's record against the scene and the series, before anything
+// indexes with it (ReadEngineState checks the engine state).
+void Simulation::CheckCheckpoint(const std::string& path) const {
+  const auto invalid = [&path](const std::string& what) {
+    throw InputError(path + ": " + what + " (the file is corrupt, or not written by granasym)");
+  };
+  const int64_t stages = static_cast<int64_t>(scene_.stages.size());
+  const int64_t rows = static_cast<int64_t>(series_.rows());
+  if (runner_.stage < 0 || runner_.stage > stages) {
+    invalid(fmt::format("{} attribute stage = {} is not a stage of the scene's {}", record::kRunner,
+                        runner_.stage, stages));
+  }
+  if (static_cast<int64_t>(records_.size()) != runner_.stage) {
+    invalid(fmt::format("{} holds {} stage records for the {} stages done ({} attribute stage)",
+                        record::kStages, records_.size(), runner_.stage, record::kRunner));
+  }
+  for (size_t k = 0; k < records_.size(); ++k) {
+    const StageRecord& r = records_[k];
+    if (r.first_row < 0 || r.first_row > rows || r.last_row < r.first_row - 1 ||
+        r.last_row >= rows) {
+      invalid(fmt::format("{} spans rows {}..{} of a series of {}", StageGroup(k), r.first_row,
+                          r.last_row, rows));
+    }
+  }
+  if (runner_.clock.first_row < 0 || runner_.clock.first_row > rows) {
+    invalid(fmt::format("{} attribute stage_first_row = {} lies beyond the series' {} rows",
+                        record::kRunner, runner_.clock.first_row, rows));
+  }
+  std::vector<std::string> expected, stored;
+  for (const TimeSeries::Column& column : SeriesColumns()) expected.push_back(column.name);
+  for (const TimeSeries::Column& column : series_.columns()) stored.push_back(column.name);
+  if (stored != expected) {
+    invalid(
+        fmt::format("{} holds {} columns, this granasym writes {}: a checkpoint of another "
+                    "version cannot be continued",
+                    record::kSeries, stored.size(), expected.size()));
+  }
+  const size_t bins = scene_.output.overlap_histogram ? scene_.output.histogram_bins : 0;
+  if (histogram_rows_.size() != bins * series_.rows()) {
+    invalid(fmt::format("{}/counts holds {} counts for {} rows of {} bins",
+                        record::kSeriesHistogram, histogram_rows_.size(), series_.rows(), bins));
+  }
 }
 
 RunSummary Simulation::Finish(RunSummary& summary, Termination termination,
@@ -531,7 +609,11 @@ RunSummary Simulation::Finish(RunSummary& summary, Termination termination,
   summary.neighbor_builds = engine_->neighbors().builds();
   summary.rows = static_cast<int64_t>(series_.rows());
   summary.stages_completed = static_cast<int64_t>(records_.size());
-  if (termination != Termination::kCompleted) WriteCheckpoint();
+  try {
+    if (termination != Termination::kCompleted) WriteCheckpoint();
+  } catch (const FileError& error) {
+    FailWriting(error);
+  }
   // The stage the run failed in keeps a record of what it reached (in the
   // result file; the checkpoint holds the state before it).
   if (termination == Termination::kFailed && !done() && runner_.stage_started) {
@@ -544,7 +626,19 @@ RunSummary Simulation::Finish(RunSummary& summary, Termination termination,
                                     r.name, r.validity.FlagNames());
   }
   if (!summary.validity.empty()) Log("validity: " + summary.validity);
-  WriteResults(summary);
+  try {
+    WriteResults(summary);
+  } catch (const FileError& error) {
+    // A completed run keeps its end in a checkpoint when there is space for
+    // one (a restart then only writes the results); else the last one stays.
+    if (termination == Termination::kCompleted) {
+      try {
+        WriteCheckpoint();
+      } catch (const FileError&) {
+      }
+    }
+    FailWriting(error);
+  }
   if (termination == Termination::kCompleted && !options_.keep_checkpoint) {
     std::filesystem::remove(options_.output_path + ".ckpt");
   }
@@ -600,6 +694,8 @@ RunSummary Simulation::Run() {
     const Outcome outcome = Loop(summary, loop_seconds);
     termination = outcome.termination;
     message = outcome.message;
+  } catch (const FileError& error) {
+    FailWriting(error);  // a periodic checkpoint or partial result could not be written
   } catch (const RuntimeError& error) {
     // Keep what was computed: results and a checkpoint of the last state.
     termination = Termination::kFailed;
@@ -723,6 +819,8 @@ Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_sec
       partial.termination = Termination::kInterrupted;
       partial.message = "run in progress (partial results at the last checkpoint)";
       partial.steps = engine_->step();
+      partial.simulated_time = engine_->time();
+      partial.rows = static_cast<int64_t>(series_.rows());
       partial.stages_completed = static_cast<int64_t>(records_.size());
       WriteResults(partial);
       since_checkpoint = Stopwatch();

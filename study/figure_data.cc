@@ -184,7 +184,8 @@ std::vector<CaseData> LoadCases(const std::string& directory, int half_rows) {
     if (fs::exists(folder / "done.toml")) {
       const ConfigTable done = ConfigTable::ParseFile((folder / "done.toml").string());
       c.finished = done.GetString("key") == record.GetString("key") &&
-                   fs::exists(folder / "result.h5");
+                   fs::exists(folder / "result.h5") &&
+                   ResultMismatch((folder / "result.h5").string(), *ReadDone(c.directory)).empty();
     }
     if (c.finished) {
       const Hdf5File file = Hdf5File::OpenRead((folder / "result.h5").string());

@@ -351,10 +351,16 @@ CaseOutcome Scheduler::Execute(int k) {
   }
   if (const std::optional<DoneRecord> done = ReadDone(c.directory);
       done && done->key == c.key && fs::exists(c.result_path())) {
-    outcome.status =
-        done->termination == dem::Termination::kCompleted ? CaseStatus::kCached : CaseStatus::kFailed;
-    outcome.message = done->message;
-    return outcome;
+    const std::string mismatch = ResultMismatch(c.result_path(), *done);
+    if (mismatch.empty()) {
+      outcome.status = done->termination == dem::Termination::kCompleted ? CaseStatus::kCached
+                                                                         : CaseStatus::kFailed;
+      outcome.message = done->message;
+      return outcome;
+    }
+    // Not the result done.toml records: the case runs again.
+    if (options_.log) options_.log(c.id + ": " + mismatch + "; computing it again");
+    fs::remove(c.directory + "/done.toml");
   }
   // A parent computed by another shard is read from the shared folder.
   if (c.parent >= 0) {

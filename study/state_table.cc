@@ -70,6 +70,15 @@ std::vector<CaseFolder> ListCases(const std::string& directory) {
       c.termination = done.GetString("termination");
       c.message = done.GetString("message", "");
       c.finished = done.GetString("key") == c.key && fs::exists(folder / "result.h5");
+      if (c.finished) {
+        // A partial result under the final name is not the case's result.
+        const std::string mismatch =
+            ResultMismatch((folder / "result.h5").string(), *ReadDone(c.directory));
+        if (!mismatch.empty()) {
+          c.finished = false;
+          c.message = mismatch;
+        }
+      }
     }
     if (!c.finished && c.message.empty()) {
       c.message = fs::exists(folder / "result.h5.ckpt") ? "interrupted: resumes on the next run"

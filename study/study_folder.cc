@@ -16,6 +16,7 @@
 
 #include "common/config.h"
 #include "common/error.h"
+#include "common/hdf5_file.h"
 #include "common/text_file.h"
 
 namespace granasym::study {
@@ -69,6 +70,19 @@ std::optional<DoneRecord> ReadDone(const std::string& directory) {
   done.particles = table.GetInt("particles", 0, Range::NonNegative());
   done.wall_seconds = table.GetDouble("wall_seconds", 0.0, Range::NonNegative());
   return done;
+}
+
+std::string ResultMismatch(const std::string& result_path, const DoneRecord& done) {
+  try {
+    const Hdf5File file = Hdf5File::OpenRead(result_path);
+    const dem::RunSummary summary = dem::ReadSummary(file);
+    if (summary.termination == done.termination) return "";
+    return fmt::format("{} holds a run that ended '{}' ({}), not the '{}' of done.toml",
+                       result_path, ToString(summary.termination), summary.message,
+                       ToString(done.termination));
+  } catch (const InputError& error) {
+    return error.what();
+  }
 }
 
 void WriteDone(const std::string& directory, const DoneRecord& done) {

@@ -41,6 +41,10 @@ struct DoneRecord {
 };
 std::optional<DoneRecord> ReadDone(const std::string& directory);
 void WriteDone(const std::string& directory, const DoneRecord& done);
+// "" when the DEM result `result_path` ended as `done` records; else why not:
+// a partial result under the final name (a run interrupted after done.toml
+// was written by another), or a result that cannot be read.
+std::string ResultMismatch(const std::string& result_path, const DoneRecord& done);
 
 // The case folders DIR/cases/r<K>/<case> (those with a case.toml when
 // `with_record`), sorted.

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <limits>
 
 #include "common/error.h"
 #include "common/hdf5_file.h"
@@ -279,6 +281,137 @@ TEST(RunRecord, ResultPackingsAreCheckedLikeTextPackings) {
   Packing sample;
   ReadSample(Hdf5File::OpenRead(path), &sample, nullptr);
   EXPECT_EQ(sample.positions, packing.positions);
+}
+
+// A state whose checksums match but whose data cannot be a state is refused
+// on reading, naming the file and the dataset: written through Hdf5File.
+TEST(RunRecord, AStateThatBreaksItsInvariantsIsRefusedNamingTheDataset) {
+  RunToFile(SampleToml(300, 3.9, 5) + kOutput + kStageA, "record_invariants");
+  const Engine::State good =
+      ReadEngineState(Hdf5File::OpenRead(TempPath("record_invariants.h5")), "/final_state/engine");
+  ASSERT_GT(good.neighbors.neighbors.size(), 10u);
+  ASSERT_FALSE(good.neighbors.shear.empty());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // The first i with two neighbours (to unsort them).
+  size_t two = 0;
+  while (good.neighbors.offsets[two + 1] - good.neighbors.offsets[two] < 2) ++two;
+  const struct {
+    const char* expected;
+    std::function<void(Engine::State&)> change;
+  } cases[] = {
+      {"dataset /state/list/offsets decreases from",
+       [](Engine::State& s) { s.neighbors.offsets[20] = s.neighbors.offsets[21] + 3; }},
+      {"dataset /state/list/offsets runs from 1 to",
+       [](Engine::State& s) { s.neighbors.offsets[0] = 1; }},
+      {"dataset /state/list/offsets has 300 entries for 300 particles",
+       [](Engine::State& s) { s.neighbors.offsets.pop_back(); }},
+      {"dataset /state/list/neighbors entry",
+       [two](Engine::State& s) {
+         std::swap(s.neighbors.neighbors[s.neighbors.offsets[two]],
+                   s.neighbors.neighbors[s.neighbors.offsets[two] + 1]);
+       }},
+      {"dataset /state/list/neighbors entry 0 = 300",
+       [](Engine::State& s) { s.neighbors.neighbors[0] = 300; }},
+      {"dataset /state/list/shear has", [](Engine::State& s) { s.neighbors.shear.pop_back(); }},
+      {"dataset /state/list/shear row 2 is not finite",
+       [nan](Engine::State& s) { s.neighbors.shear[2].y = nan; }},
+      {"dataset /state/id is not a permutation of 0..299: entry 3 = 300 is out of range",
+       [](Engine::State& s) { s.id[3] = 300; }},
+      {"dataset /state/id is not a permutation of 0..299: entry 4 = ",
+       [](Engine::State& s) { s.id[4] = s.id[0]; }},
+      {"dataset /state/position row 5", [nan](Engine::State& s) { s.position[5].x = nan; }},
+      {"dataset /state/position row 6", [](Engine::State& s) { s.position[6].w = 0; }},
+      {"dataset /state/velocity row 7", [](Engine::State& s) { s.velocity[7].w = -1; }},
+      {"dataset /state/velocity has 299 rows for 300 particles",
+       [](Engine::State& s) { s.velocity.pop_back(); }},
+      {"dataset /state/spin row 8",
+       [](Engine::State& s) { s.spin[8].z = std::numeric_limits<double>::infinity(); }},
+      {"dataset /state/cell holds the cell sides", [](Engine::State& s) { s.cell[1] = -1; }},
+      {"dataset /state/list/build_positions has 299 rows",
+       [](Engine::State& s) { s.neighbors.build_positions.pop_back(); }},
+  };
+  const std::string path = TempPath("record_invalid.h5");
+  for (const auto& c : cases) {
+    Engine::State bad = good;
+    c.change(bad);
+    {
+      Hdf5File out = Hdf5File::CreateAtomic(path);
+      WriteEngineState(out, "/state", bad, 1);
+      out.Commit();
+    }
+    try {
+      ReadEngineState(Hdf5File::OpenRead(path), "/state");
+      ADD_FAILURE() << "accepted: " << c.expected;
+    } catch (const InputError& error) {
+      const std::string message = error.what();
+      EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+      EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+    }
+  }
+}
+
+TEST(RunRecord, APackingWithoutPositiveRadiiIsRefused) {
+  Packing packing;
+  packing.cell = {1e-3, 1e-3, 1e-3};
+  packing.positions = {{1e-4, 1e-4, 1e-4}, {5e-4, 5e-4, 5e-4}};
+  packing.radii = {1e-4, 0.0};
+  const std::string path = TempPath("record_packing.h5");
+  {
+    Hdf5File out = Hdf5File::CreateAtomic(path);
+    WritePacking(out, "/p", packing);
+    out.Commit();
+  }
+  try {
+    ReadPacking(Hdf5File::OpenRead(path), "/p");
+    ADD_FAILURE() << "a zero radius was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("dataset /p/radii entry 1 = 0 is not a radius"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+// What `granasym export --info` prints, and the note on partial results.
+TEST(RunRecord, TheDescriptionOfAResultSaysWhetherItIsFinal) {
+  const std::string text = SampleToml(300, 3.9, 6) + kOutput + kStageA + kStageB;
+  RunOptions options;
+  options.output_path = TempPath("record_describe.h5");
+  options.stop_requested = [](int64_t step) { return step >= 300; };
+  ASSERT_EQ(RunScene(Scene::Parse(text, "describe.toml", ""), options).termination,
+            Termination::kInterrupted);
+  {
+    const Hdf5File file = Hdf5File::OpenRead(options.output_path);
+    const std::string note = PartialResultNote(file);
+    EXPECT_NE(note.find("is a partial result"), std::string::npos) << note;
+    EXPECT_NE(note.find("--restart"), std::string::npos) << note;
+    const std::string info = DescribeResult(file);
+    EXPECT_NE(info.find("\ntermination: interrupted\n"), std::string::npos) << info;
+    EXPECT_NE(info.find("\nfinal: no: "), std::string::npos) << info;
+    EXPECT_NE(info.find("\ncheckpoint: " + options.output_path + ".ckpt\n"), std::string::npos)
+        << info;
+    EXPECT_NE(info.find("\nscene: describe.toml\n"), std::string::npos) << info;
+  }
+  options.stop_requested = nullptr;
+  options.restart = true;
+  ASSERT_EQ(RunScene(Scene::Parse(text, "describe.toml", ""), options).termination,
+            Termination::kCompleted);
+  const Hdf5File file = Hdf5File::OpenRead(options.output_path);
+  EXPECT_EQ(PartialResultNote(file), "");
+  const std::string info = DescribeResult(file);
+  EXPECT_NE(info.find("\nfinal: yes\n"), std::string::npos) << info;
+  EXPECT_NE(info.find("\ncheckpoint: none\n"), std::string::npos) << info;
+  EXPECT_NE(info.find("\nstage 000: 'ncl' (strain_path), rows 0.."), std::string::npos) << info;
+  EXPECT_NE(info.find("\nstage 001: 'triaxial' (triaxial), rows "), std::string::npos) << info;
+  EXPECT_NE(info.find("stop: strain target reached"), std::string::npos) << info;
+  // One item per line, each "key: value".
+  size_t start = 0;
+  while (start < info.size()) {
+    const size_t end = info.find('\n', start);
+    ASSERT_NE(end, std::string::npos);
+    EXPECT_NE(info.substr(start, end - start).find(": "), std::string::npos)
+        << info.substr(start, end - start);
+    start = end + 1;
+  }
 }
 
 }  // namespace

@@ -2,7 +2,6 @@
 // of exactly the changed cases and their descendants, shards merged into
 // the same bytes as one run, and resuming an interrupted study.
 #include "study/runner.h"
-#include "study/study_folder.h"
 
 #include <gtest/gtest.h>
 
@@ -15,9 +14,12 @@
 #include "common/hdf5_file.h"
 #include "common/text_file.h"
 #include "common/time_series.h"
+#include "dem/scene.h"
+#include "dem/simulation.h"
 #include "study/plan.h"
 #include "study/programme.h"
 #include "study/state_table.h"
+#include "study/study_folder.h"
 
 namespace granasym::study {
 namespace {
@@ -195,6 +197,39 @@ TEST(StudyRunner, ReplicatesHaveTheirOwnSamplesAndTheirStatesAreSummarised) {
   EXPECT_EQ(table.rfind("case_name,stage,kind,replicates,detected,p_kpa_mean,p_kpa_ci95", 0), 0u)
       << table.substr(0, 200);
   EXPECT_NE(table.find("\nnc50_psi90,stage1,csl,2,"), std::string::npos) << table;
+}
+
+// A result whose run did not end as done.toml records (a partial result
+// under the final name) is no cache: the case runs again, to the same bytes.
+TEST(StudyRunner, APartialResultUnderTheFinalNameIsComputedAgain) {
+  const std::string dir = Dir("partial");
+  ASSERT_EQ(RunProgramme(kProgramme, dir).Count(CaseStatus::kComputed), 5);
+  const std::map<std::string, std::string> first = Series(dir);
+  // An interrupted run's result (of any scene: its termination is what counts).
+  dem::RunOptions options;
+  options.output_path = dir + "/partial.h5";
+  options.stop_requested = [](int64_t step) { return step >= 100; };
+  const dem::Scene scene = dem::Scene::Parse(
+      "[sample.generate]\ncount = 100\ncell_size_mm = 2.7\n[numerics]\ntime_step_s = 1.2e-7\n"
+      "[[stage]]\nname = 'a'\npsi_epsilon_deg = 0.0\nstretching_rate = 167.0\n"
+      "[stage.stop]\nmean_stress_kpa = 50.0\n",
+      "partial.toml", "");
+  ASSERT_EQ(dem::RunScene(scene, options).termination, dem::Termination::kInterrupted);
+  fs::copy_file(options.output_path, dir + "/cases/r1/after60/result.h5",
+                fs::copy_options::overwrite_existing);
+  // The state table does not read it: a row says why the case has no result.
+  WriteStateTable(dir);
+  bool named = false;
+  for (const StateRow& row : ReadStateTable(dir)) {
+    named =
+        named || (row.case_name == "after60" &&
+                  row.message.find("holds a run that ended 'interrupted'") != std::string::npos);
+  }
+  EXPECT_TRUE(named) << ReadTextFile(dir + "/asymptotic_states.csv");
+  const std::map<std::string, CaseStatus> second = Statuses(RunProgramme(kProgramme, dir));
+  EXPECT_EQ(second.at("r1/after60"), CaseStatus::kComputed);
+  EXPECT_EQ(second.at("r1/nc50_psi60"), CaseStatus::kCached);
+  EXPECT_EQ(Series(dir), first);
 }
 
 TEST(StudyRunner, AnErrorInOneCaseStopsTheStudyAndNamesTheCase) {
