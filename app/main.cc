@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -156,6 +157,10 @@ void RegisterExportCommand(CLI::App& app) {
 }  // namespace granasym
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) is a full disk to granasym: the write fails
+  // with EFBIG and is reported (status 1), instead of the kernel killing the
+  // process with SIGXFSZ and leaving its temporary files.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{
       "granasym: asymptotic behaviour of granular materials (DEM, constitutive models, "
       "calibration)"};
