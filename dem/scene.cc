@@ -108,10 +108,10 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
              fmt::format("must be above histogram_min: histogram_min = {:g}, histogram_max = {:g}",
                          output.histogram_min, output.histogram_max));
     }
-    output.checkpoint_interval_s = o.GetDouble(
-        "checkpoint_interval_s", output.checkpoint_interval_s, Range::Closed(1e-3, 1e9));
+    output.checkpoint_interval_s =
+        o.GetDouble("checkpoint_interval_s", output.checkpoint_interval_s, {0.0, 1e9, false, true});
     output.progress_interval_s =
-        o.GetDouble("progress_interval_s", output.progress_interval_s, Range::Closed(1e-3, 1e9));
+        o.GetDouble("progress_interval_s", output.progress_interval_s, {0.0, 1e9, false, true});
     output.stage_states = o.GetBool("stage_states", output.stage_states);
   }
 
