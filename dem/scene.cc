@@ -174,7 +174,14 @@ Packing Scene::BuildSample(GenerationReport* report) const {
   if (!packing_path.empty()) return Packing::ReadText(packing_path);
   const GrainSizeDistribution gsd = gsd_path.empty() ? GrainSizeDistribution::Default()
                                                      : GrainSizeDistribution::ReadCsv(gsd_path);
-  return GeneratePacking(gsd, *generate, report);
+  try {
+    return GeneratePacking(gsd, *generate, report);
+  } catch (const InputError& error) {
+    // What the generator refuses comes from [sample.generate]: say where.
+    throw InputError(fmt::format("{}: [sample.generate] (count = {}, cell_size_mm = {:g}): {}",
+                                 origin, generate->count, generate->cell_size * 1e3,
+                                 error.what()));
+  }
 }
 
 double Scene::TimeStep(const Packing& packing) const {
