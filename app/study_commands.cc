@@ -3,7 +3,6 @@
 #include <cstdio>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "app/enum_option.h"
@@ -17,6 +16,8 @@
 #endif
 #include "common/error.h"
 #include "common/output_path.h"
+#include "dem/packing.h"
+#include "study/parallelism.h"
 #include "study/plan.h"
 #include "study/programme.h"
 #include "study/runner.h"
@@ -58,8 +59,7 @@ void RegisterStudyCommands(CLI::App& app) {
   CLI::App* run = study->add_subcommand("run", "run a programme (TOML) into a study folder");
   static std::string programme_path, out = "study";
   static study::Scale scale = study::Scale::kSmall;
-  static int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  static int threads = 1;
+  static int jobs = 0, threads = 0;  // 0: chosen (study/parallelism.h)
   static std::string shard = "1/1";
   static bool quiet = false;
   run->add_option("programme", programme_path,
@@ -68,10 +68,13 @@ void RegisterStudyCommands(CLI::App& app) {
       ->check(CLI::ExistingFile);
   AddEnumOption(run, "--scale", &scale, "sample size");
   run->add_option("--out", out, "study folder (created; a second run reuses its results)");
-  run->add_option("--jobs", jobs, "cases run at once")->check(CLI::Range(1, 1024));
+  run->add_option("--jobs", jobs,
+                  "cases run at once (default: one single-thread case per hardware thread, "
+                  "as many as the memory holds at the scale's sample size)")
+      ->check(CLI::Range(1, 1024));
   run->add_option("--threads", threads,
-                  "OpenMP threads per case (part of each case's key: results are "
-                  "bit-identical for a fixed count)")
+                  "OpenMP threads per case (default: chosen with --jobs; part of each case's "
+                  "key: results are bit-identical for a fixed count)")
       ->check(CLI::Range(1, 1024));
   run->add_option("--shard", shard,
                   "run slice K of N (1-based) into a folder shared by all shards; merge with "
@@ -83,7 +86,12 @@ void RegisterStudyCommands(CLI::App& app) {
       throw InputError("--shard " + shard + ": expected K/N with 1 <= K <= N, e.g. 2/4");
     }
     CheckOutputFolder({"--out", out}, {{"the programme", programme_path}});
-    threads = CapThreads(threads, "--threads");
+    if (threads > 0) threads = CapThreads(threads, "--threads");
+    const study::Programme programme = study::Programme::Load(programme_path);
+    const study::Parallelism parallelism = study::ChooseParallelism(
+        HardwareThreads(), dem::PhysicalMemoryBytes(), programme.At(scale).count, jobs, threads);
+    jobs = parallelism.jobs;
+    threads = parallelism.threads;
     if (jobs * threads > HardwareThreads()) {
       std::fprintf(stderr,
                    "warning: --jobs %d x --threads %d = %d threads on %d hardware threads: cases "
@@ -91,7 +99,6 @@ void RegisterStudyCommands(CLI::App& app) {
                    jobs, threads, jobs * threads, HardwareThreads());
     }
     options.jobs = jobs;
-    const study::Programme programme = study::Programme::Load(programme_path);
     const study::Plan plan = study::Plan::Make(programme, scale, threads, out);
     Progress::Options progress_options;
     progress_options.quiet = quiet;
@@ -113,10 +120,10 @@ void RegisterStudyCommands(CLI::App& app) {
     }
     std::printf(
         "study '%s' at scale %s: %zu cases (%zu replicates of %zu), shard %d/%d, "
-        "%d jobs x %d threads, into %s\n",
+        "%d jobs x %d threads (%s), into %s\n",
         programme.name.c_str(), ToString(scale), plan.cases.size(), plan.samples.size(),
         programme.cases.size(), options.shard_index, options.shard_count, jobs, threads,
-        out.c_str());
+        parallelism.reason.c_str(), out.c_str());
     const study::StudyOutcome outcome = study::RunStudy(plan, options);
     progress.Finish();
     std::printf("%s\n", outcome.OneLine().c_str());
