@@ -93,7 +93,7 @@ std::shared_ptr<const StageSpec> RestStage::Parse(const ConfigTable& table) {
   return stage;
 }
 
-std::unique_ptr<StageController> RestStage::MakeController() const {
+std::unique_ptr<StageController> RestStage::MakeController(const StageContext&) const {
   return std::make_unique<RestController>(*this);
 }
 

@@ -20,7 +20,7 @@ class RestStage final : public StageSpec {
   static std::shared_ptr<const StageSpec> Parse(const ConfigTable& table);
   std::string type() const override { return "rest"; }
   bool StopsByItself() const override { return true; }
-  std::unique_ptr<StageController> MakeController() const override;
+  std::unique_ptr<StageController> MakeController(const StageContext&) const override;
   // Three controlled rates of at most max_rate_factor times max_strain_rate.
   double MaxStrainRate() const override;
   const char* RateKey() const override { return "max_strain_rate"; }

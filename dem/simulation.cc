@@ -115,6 +115,8 @@ class Simulation {
   // the first stage of a chain that continues one path (Stage::ContinuesDetection).
   int64_t detector_first_row_ = 0;
   int64_t DetectorFirstRow() const;
+  // The sample's diameters and the solid density, for the stage controllers.
+  StageContext Context() const;
   std::vector<StageRecord> records_;
   int64_t checkpoint_step_ = -1;    // the step of the checkpoint on disk; -1: none
   bool checkpoint_at_end_ = false;  // it holds the end of the last stage
@@ -125,6 +127,30 @@ class Simulation {
   int64_t eta_stage_ = -1;
   double eta_p0_ = 0;
 };
+
+StageContext Simulation::Context() const {
+  StageContext context;
+  context.density = scene_.material.density;
+  if (initial_.radii.empty()) return context;
+  std::vector<std::pair<double, double>> by_size;  // (radius, mass ∝ r³)
+  double total = 0;
+  for (double r : initial_.radii) {
+    by_size.push_back({r, r * r * r});
+    total += r * r * r;
+  }
+  std::sort(by_size.begin(), by_size.end());
+  context.min_diameter = 2 * by_size.front().first;
+  context.max_diameter = 2 * by_size.back().first;
+  double passing = 0;
+  for (const auto& [r, mass] : by_size) {
+    passing += mass;
+    if (passing >= 0.5 * total) {
+      context.median_diameter = 2 * r;
+      break;
+    }
+  }
+  return context;
+}
 
 void Simulation::MakeEngine(const Engine::State* state) {
   Engine::Options engine_options;
@@ -226,7 +252,7 @@ void Simulation::StartStage() {
   detector_ = AsymptoteDetector(stage().asymptote);
   detector_.set_samples(std::move(carried));
   detector_first_row_ = DetectorFirstRow();
-  controller_ = stage().spec->MakeController();
+  controller_ = stage().spec->MakeController(Context());
   engine_->SetVelocityGradient(controller_->Start());
 }
 
@@ -538,7 +564,7 @@ void Simulation::LoadCheckpoint() {
     detector_.set_samples(runner_.detector_samples);
     detector_first_row_ = DetectorFirstRow();
     if (runner_.stage_started) {
-      controller_ = stage().spec->MakeController();
+      controller_ = stage().spec->MakeController(Context());
       try {
         controller_->RestoreState(runner_.controller_state);
       } catch (const std::out_of_range&) {

@@ -138,6 +138,13 @@ class StageController {
   virtual void RestoreState(const std::vector<double>& state) {}
 };
 
+// What a stage's controller may need of the run besides its keys.
+struct StageContext {
+  double min_diameter = 0, median_diameter = 0,
+         max_diameter = 0;  // of the sample (m); d_50 by mass
+  double density = 0;       // solid density (kg/m³)
+};
+
 // The parsed keys of one stage type.
 class StageSpec {
  public:
@@ -151,7 +158,7 @@ class StageSpec {
   // same proportional straining), so that the asymptote detector keeps its
   // samples across the boundary (an NCL saved at several stresses).
   virtual bool ContinuesPath(const StageSpec& previous) const { return false; }
-  virtual std::unique_ptr<StageController> MakeController() const = 0;
+  virtual std::unique_ptr<StageController> MakeController(const StageContext& context) const = 0;
   // An upper bound of the stretching norm ‖D‖ the stage applies (1/s) and the
   // key that sets it: the scene's feasibility check bounds the steps a stage
   // needs from below with it.

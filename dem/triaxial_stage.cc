@@ -68,7 +68,7 @@ std::shared_ptr<const StageSpec> TriaxialStage::Parse(const ConfigTable& table) 
   return stage;
 }
 
-std::unique_ptr<StageController> TriaxialStage::MakeController() const {
+std::unique_ptr<StageController> TriaxialStage::MakeController(const StageContext&) const {
   return std::make_unique<TriaxialController>(*this);
 }
 

@@ -15,7 +15,7 @@ class TriaxialStage final : public StageSpec {
   static std::shared_ptr<const StageSpec> Parse(const ConfigTable& table);
   std::string type() const override { return "triaxial"; }
   std::optional<PathKind> path_kind() const override { return PathKind::kStressControlled; }
-  std::unique_ptr<StageController> MakeController() const override;
+  std::unique_ptr<StageController> MakeController(const StageContext&) const override;
   // The axial rate and the radial rates up to max_rate_factor times it.
   double MaxStrainRate() const override;
   const char* RateKey() const override { return "axial_strain_rate"; }
