@@ -16,6 +16,19 @@ double InertialAt(const RowMeasures& row, double diameter) {
                : std::numeric_limits<double>::infinity();
 }
 
+// The stiffness number κ of the contact law at mean stress p: the inverse of
+// the typical overlap relative to the diameter (Agnolin & Roux 2007): linear
+// law κ = k_n/(d p) = E/(2p) (k_n = E d/2 for equal spheres); Hertz–Mindlin
+// κ = (E*/p)^(2/3), E* = E/(2(1 − ν²)).
+double StiffnessNumber(const RowMeasures& row) {
+  const double p = row.stress.mean();
+  if (!(p > 0)) return std::numeric_limits<double>::infinity();
+  const Material& m = row.engine.material();
+  if (m.contact_law == ContactLaw::kLinear) return m.youngs_modulus / (2 * p);
+  const double effective = m.youngs_modulus / (2 * (1 - m.poissons_ratio * m.poissons_ratio));
+  return std::pow(effective / p, 2.0 / 3.0);
+}
+
 }  // namespace
 
 RowMeasures::RowMeasures(const Engine& engine, int64_t stage,
@@ -100,6 +113,9 @@ const std::vector<OutputColumn>& OutputColumns() {
        [](R r) { return InertialAt(r, r.min_diameter); }},
       {record::kColumnInertialNumberDmax, "1", "same for the largest diameter",
        [](R r) { return InertialAt(r, r.max_diameter); }},
+      {"stiffness_number", "1",
+       "kappa: E/(2p) for the linear law, (E*/p)^(2/3) for Hertz-Mindlin (1/relative overlap)",
+       [](R r) { return StiffnessNumber(r); }},
       {"kinetic_energy_j", "J", "kinetic energy of the fluctuating motion",
        [](R r) { return KineticEnergy(r.engine); }},
       {"unbalanced_force", "1", "mean net force / mean contact force",

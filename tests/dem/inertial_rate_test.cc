@@ -47,6 +47,9 @@ TEST(InertialRate, HoldsTheInertialNumberOfTheLargestDiameterOnceInContact) {
   }
   EXPECT_GT(checked, 3);
   EXPECT_GE(p.back(), 100.0);
+  // Every row reports the stiffness number: the linear law's E/(2p), E = 500 MPa.
+  const std::vector<double>& kappa = series.Values("stiffness_number");
+  EXPECT_NEAR(kappa.back(), 500e6 / (2 * p.back() * 1e3), 1e-9 * kappa.back());
 }
 
 TEST(InertialRate, TheCapBoundsTheRateAndTheInertialNumberFallsBelowItsTarget) {
