@@ -11,33 +11,9 @@ set -uo pipefail
 granasym="$1" tamper="$2" work="$3"
 rm -rf "$work"
 mkdir -p "$work"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/test_lib.sh"
 
-cat >"$work/scene.toml" <<'TOML'
-[sample.generate]
-count = 300
-cell_size_mm = 3.9
-seed = 8
-[numerics]
-time_step_s = 1.2e-7
-[output]
-interval_strain = 0.004
-checkpoint_interval_s = 1e-6
-[[stage]]
-name = "ncl"
-psi_epsilon_deg = 0.0
-stretching_rate = 167.0
-[stage.stop]
-mean_stress_kpa = 150.0
-[[stage]]
-name = "triaxial"
-type = "triaxial"
-axial_strain_rate = 136.355
-radial_stress_kpa = 150.0
-[stage.stop]
-axial_strain = 0.02
-TOML
+two_stage_scene "$work/scene.toml" 0.02 1e-6
 "$granasym" dem run "$work/scene.toml" --out "$work/run.h5" --threads 1 --quiet --keep-checkpoint \
   >/dev/null || { echo "FAIL: the run failed"; exit 1; }
 "$granasym" export "$work/run.h5" --csv "$work/run.csv" >/dev/null

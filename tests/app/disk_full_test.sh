@@ -21,8 +21,7 @@ full="$work/full"  # every output goes here
 if mountpoint -q "$full" 2>/dev/null; then umount "$full"; fi
 rm -rf "$work"
 mkdir -p "$full" "$work/good"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/test_lib.sh"
 
 if [ "$mode" != rlimit ] && mount -t tmpfs -o size=16m tmpfs "$full" 2>/dev/null; then
   mode=tmpfs
@@ -86,29 +85,7 @@ check() {
 }
 
 # The inputs, on a disk with space.
-cat >"$work/scene.toml" <<'EOF'
-[sample.generate]
-count = 300
-cell_size_mm = 3.9
-seed = 8
-[numerics]
-time_step_s = 1.2e-7
-[output]
-interval_strain = 0.004
-[[stage]]
-name = "ncl"
-psi_epsilon_deg = 0.0
-stretching_rate = 167.0
-[stage.stop]
-mean_stress_kpa = 150.0
-[[stage]]
-name = "triaxial"
-type = "triaxial"
-axial_strain_rate = 136.355
-radial_stress_kpa = 150.0
-[stage.stop]
-axial_strain = 0.02
-EOF
+two_stage_scene "$work/scene.toml" 0.02
 # The same with a checkpoint every 256 steps.
 sed 's/^interval_strain = 0.004$/interval_strain = 0.004\ncheckpoint_interval_s = 1e-6/' \
   "$work/scene.toml" >"$work/scene_checkpoints.toml"

@@ -10,35 +10,11 @@ set -uo pipefail
 granasym="$1" work="$2"
 rm -rf "$work"
 mkdir -p "$work"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/test_lib.sh"
 
 # A run long enough to be stopped in (about 2 s), with a checkpoint and a
 # partial result every 256 steps.
-cat >"$work/scene.toml" <<'TOML'
-[sample.generate]
-count = 300
-cell_size_mm = 3.9
-seed = 8
-[numerics]
-time_step_s = 1.2e-7
-[output]
-interval_strain = 0.004
-checkpoint_interval_s = 1e-6
-[[stage]]
-name = "ncl"
-psi_epsilon_deg = 0.0
-stretching_rate = 167.0
-[stage.stop]
-mean_stress_kpa = 150.0
-[[stage]]
-name = "triaxial"
-type = "triaxial"
-axial_strain_rate = 136.355
-radial_stress_kpa = 150.0
-[stage.stop]
-axial_strain = 0.3
-TOML
+two_stage_scene "$work/scene.toml" 0.3 1e-6
 
 # Starts the run into $1 and sends $2 once its first partial result exists.
 stop_run() {
