@@ -93,8 +93,9 @@ double DoubleAt(const std::string& origin, const std::string& key, const Table& 
   } else {
     Fail(origin, key, "must be a number, not a " + TypeName(*value));
   }
-  if (!std::isfinite(v) || v <= 0) {
-    Fail(origin, key, fmt::format("= {:g} must be a finite number > 0", v));
+  // The only number read here is a cell side in mm: the scene's range.
+  if (!std::isfinite(v) || v < 1e-3 || v > 1e6) {
+    Fail(origin, key, fmt::format("= {:g} is out of range: must be in [0.001, 1e+06] (mm)", v));
   }
   return v;
 }
