@@ -87,7 +87,7 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
     const ConfigTable o = root.GetTable("output");
     OutputOptions& output = scene.output;
     output.interval_strain =
-        o.GetDouble("interval_strain", output.interval_strain, Range::Closed(1e-9, 100.0));
+        o.GetDouble("interval_strain", output.interval_strain, Range::Closed(1e-9, 1e9));
     output.interval_steps =
         o.GetInt("interval_steps", output.interval_steps, Range::Closed(0, kMaxStageSteps));
     output.overlap_histogram = o.GetBool("overlap_histogram", output.overlap_histogram);
