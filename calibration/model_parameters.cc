@@ -9,6 +9,7 @@
 #include "common/state_measures.h"
 #include "constitutive/hypoplastic_clay.h"
 #include "constitutive/hypoplastic_sand.h"
+#include "constitutive/model_config.h"
 #include "constitutive/modified_cam_clay.h"
 
 namespace granasym::calibration {
@@ -17,25 +18,6 @@ int NumParameters(ModelKind kind) {
   return kind == ModelKind::kHypoplasticSand ? static_cast<int>(kNumSandParameters)
                                              : static_cast<int>(kNumParameters);
 }
-
-namespace {
-// The domains of the parameters, as the model files read them
-// (constitutive/model_config.cc): the models' own conditions, and sane
-// magnitudes where a model has no limit.
-Range ParameterDomain(const std::string& name) {
-  if (name == "phi_c_deg") return Range::Open(0.0, 90.0);
-  if (name == "lambda_star" || name == "kappa_star") return {0.0, 2.0, false, true};
-  if (name == "n_intercept") return {0.0, 10.0, false, true};
-  if (name == "r") return {0.0, 100.0, false, true};
-  if (name == "poisson_ratio") return {-1.0, 0.5, false, false};
-  if (name == "h_s_kpa") return {0.0, 1e9, false, true};
-  if (name == "n") return Range::Open(0.0, 1.0);
-  if (name == "e_d0" || name == "e_c0" || name == "e_i0") return {0.0, 20.0, false, true};
-  if (name == "alpha" || name == "beta") return {0.0, 10.0, false, true};
-  GRANASYM_CHECK(false) << "no domain for parameter " << name;
-  return Range::Any();
-}
-}  // namespace
 
 ModelParameters ModelParameters::Defaults(ModelKind kind) {
   GRANASYM_CHECK(IsCalibrated(kind)) << "calibration does not fit " << ToString(kind);
@@ -54,7 +36,7 @@ ModelParameters ModelParameters::Defaults(ModelKind kind) {
         {"alpha", "1", "pyknotropy exponent of f_d", 0.15, 0.01, 1.0, true},
         {"beta", "1", "stiffness exponent of f_e", 1.0, 0.05, 5.0, true},
     };
-    for (ParameterSpec& spec : parameters.specs_) spec.domain = ParameterDomain(spec.name);
+    for (ParameterSpec& spec : parameters.specs_) spec.domain = ParameterRange(spec.name);
     return parameters;
   }
   // Bounds wide enough for clays and for DEM sphere packings (small λ*).
@@ -71,7 +53,7 @@ ModelParameters ModelParameters::Defaults(ModelKind kind) {
     parameters.specs_.push_back(
         {"poisson_ratio", "1", "Poisson ratio of the elastic law", 0.25, 0.0, 0.49, true});
   }
-  for (ParameterSpec& spec : parameters.specs_) spec.domain = ParameterDomain(spec.name);
+  for (ParameterSpec& spec : parameters.specs_) spec.domain = ParameterRange(spec.name);
   return parameters;
 }
 

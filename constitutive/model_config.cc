@@ -15,15 +15,9 @@
 namespace granasym {
 
 namespace {
-const Range kFrictionAngleDeg = Range::Open(0.0, 90.0);
-// Ranges of sane parameters and settings (kPa, 1/s, s): compression indices
-// and ln(1+e) intercepts of real soils lie well inside them.
-const Range kIndex = {0.0, 2.0, false, true};        // lambda*, kappa*, lambda, kappa
-const Range kIntercept = {0.0, 10.0, false, true};   // N = ln(1+e) at p_r, e_N
-const Range kVoidRatio = {0.0, 20.0, false, true};   // e_d0, e_c0, e_i0
-const Range kExponent = {0.0, 10.0, false, true};    // alpha, beta
+// Ranges of sane settings (kPa, 1/s, s); the parameters' own are ParameterRange.
+const Range kVoidRatio = {0.0, 20.0, false, true};   // e of a state
 const Range kStressKpa = {0.0, 1e7, false, true};    // stresses and moduli up to 10 GPa
-const Range kModulusKpa = {0.0, 1e9, false, true};   // h_s, G
 const Range kRate = {0.0, 1e6, false, true};         // stretching rates (1/s)
 const Range kSignedRate = Range::Closed(-1e6, 1e6);  // axial and Voigt rates (1/s)
 const Range kDuration = {0.0, 1e9, false, true};     // stage durations (s)
@@ -54,21 +48,41 @@ Range StopRange(StopKind kind) {
 }
 }  // namespace
 
+Range ParameterRange(const std::string& key) {
+  if (key == "phi_c_deg") return Range::Open(0.0, 90.0);
+  if (key == "lambda_star" || key == "kappa_star" || key == "lambda" || key == "kappa") {
+    return {0.0, 2.0, false, true};
+  }
+  if (key == "n_intercept") return {0.0, 10.0, false, true};  // ln(1+e) at p_r
+  if (key == "e_n" || key == "e_d0" || key == "e_c0" || key == "e_i0") return kVoidRatio;
+  if (key == "r") return {0.0, 100.0, false, true};
+  if (key == "poisson_ratio") return Range::Open(-1.0, 0.5);
+  if (key == "h_s_kpa" || key == "shear_modulus_kpa") return {0.0, 1e9, false, true};
+  if (key == "n") return Range::Open(0.0, 1.0);
+  if (key == "alpha" || key == "beta") return {0.0, 10.0, false, true};
+  GRANASYM_CHECK(false) << "no range for model parameter " << key;
+  return Range::Any();
+}
+
 std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
+  // A parameter with its range.
+  auto parameter = [&table](const std::string& key) {
+    return table.GetDouble(key, ParameterRange(key));
+  };
   const ModelKind kind = table.GetEnum("kind", ModelKind::kHypoplasticClay);
   std::unique_ptr<ConstitutiveModel> model;
   std::string why;
   if (kind == ModelKind::kHypoplasticClay) {
     HypoplasticClay::Parameters p;
-    p.critical_friction_angle = table.GetDouble("phi_c_deg", kFrictionAngleDeg) * kDegree;
-    p.lambda_star = table.GetDouble("lambda_star", kIndex);
-    p.kappa_star = table.GetDouble("kappa_star", kIndex);
+    p.critical_friction_angle = parameter("phi_c_deg") * kDegree;
+    p.lambda_star = parameter("lambda_star");
+    p.kappa_star = parameter("kappa_star");
     if (!(p.kappa_star < p.lambda_star)) {
       table.Fail("kappa_star", fmt::format("kappa_star = {} must be smaller than lambda_star = {}",
                                            p.kappa_star, p.lambda_star));
     }
-    p.n_intercept = table.GetDouble("n_intercept", kIntercept);
-    p.bulk_shear_ratio = table.GetDouble("r", {0.0, 100.0, false, true});
+    p.n_intercept = parameter("n_intercept");
+    p.bulk_shear_ratio = parameter("r");
     p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, kStressKpa);
     p.minimum_mean_stress =
         table.GetDouble("minimum_mean_stress_kpa", 1e-9, {0.0, 1e3, false, true});
@@ -76,12 +90,12 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
     model = std::make_unique<HypoplasticClay>(p);
   } else if (kind == ModelKind::kHypoplasticSand) {
     HypoplasticSand::Parameters p;
-    p.critical_friction_angle = table.GetDouble("phi_c_deg", kFrictionAngleDeg) * kDegree;
-    p.granular_hardness = table.GetDouble("h_s_kpa", kModulusKpa);
-    p.compression_exponent = table.GetDouble("n", Range::Open(0.0, 1.0));
-    p.densest_void_ratio0 = table.GetDouble("e_d0", kVoidRatio);
-    p.critical_void_ratio0 = table.GetDouble("e_c0", kVoidRatio);
-    p.loosest_void_ratio0 = table.GetDouble("e_i0", kVoidRatio);
+    p.critical_friction_angle = parameter("phi_c_deg") * kDegree;
+    p.granular_hardness = parameter("h_s_kpa");
+    p.compression_exponent = parameter("n");
+    p.densest_void_ratio0 = parameter("e_d0");
+    p.critical_void_ratio0 = parameter("e_c0");
+    p.loosest_void_ratio0 = parameter("e_i0");
     // Bauer's lines must not cross: e_d < e_c < e_i at every p.
     if (!(p.densest_void_ratio0 < p.critical_void_ratio0)) {
       table.Fail("e_c0", fmt::format("e_c0 = {} must be greater than e_d0 = {}",
@@ -91,8 +105,8 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
       table.Fail("e_i0", fmt::format("e_i0 = {} must be greater than e_c0 = {}",
                                      p.loosest_void_ratio0, p.critical_void_ratio0));
     }
-    p.pyknotropy_exponent = table.GetDouble("alpha", kExponent);
-    p.stiffness_exponent = table.GetDouble("beta", kExponent);
+    p.pyknotropy_exponent = parameter("alpha");
+    p.stiffness_exponent = parameter("beta");
     p.minimum_mean_stress =
         table.GetDouble("minimum_mean_stress_kpa", 1e-9, {0.0, 1e3, false, true});
     // What remains is the sign of the f_b denominator, which α sets for given φ_c and e's.
@@ -107,28 +121,26 @@ std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
       table.Fail("critical_state_ratio",
                  "give exactly one of critical_state_ratio (M) and phi_c_deg");
     }
-    p.critical_state_ratio =
-        has_m ? table.GetDouble("critical_state_ratio", Range::Open(0.0, 3.0))
-              : CriticalStateRatio(table.GetDouble("phi_c_deg", kFrictionAngleDeg) * kDegree);
+    p.critical_state_ratio = has_m ? table.GetDouble("critical_state_ratio", Range::Open(0.0, 3.0))
+                                   : CriticalStateRatio(parameter("phi_c_deg") * kDegree);
     const std::string lambda_key =
         p.form == ModifiedCamClay::CompressionForm::kLogLog ? "lambda_star" : "lambda";
     const std::string kappa_key =
         p.form == ModifiedCamClay::CompressionForm::kLogLog ? "kappa_star" : "kappa";
-    p.lambda = table.GetDouble(lambda_key, kIndex);
-    p.kappa = table.GetDouble(kappa_key, kIndex);
+    p.lambda = parameter(lambda_key);
+    p.kappa = parameter(kappa_key);
     if (!(p.kappa < p.lambda)) {
       table.Fail(kappa_key, fmt::format("{} = {} must be smaller than {} = {}", kappa_key, p.kappa,
                                         lambda_key, p.lambda));
     }
-    p.n_intercept = table.GetDouble(
-        p.form == ModifiedCamClay::CompressionForm::kLogLog ? "n_intercept" : "e_n",
-        p.form == ModifiedCamClay::CompressionForm::kLogLog ? kIntercept : kVoidRatio);
+    p.n_intercept =
+        parameter(p.form == ModifiedCamClay::CompressionForm::kLogLog ? "n_intercept" : "e_n");
     const bool has_g = table.Has("shear_modulus_kpa");
     if (has_g) {
       p.elasticity = ModifiedCamClay::Elasticity::kConstantShearModulus;
-      p.shear_modulus = table.GetDouble("shear_modulus_kpa", kModulusKpa);
+      p.shear_modulus = parameter("shear_modulus_kpa");
     } else {
-      p.poisson_ratio = table.GetDouble("poisson_ratio", 0.25, Range::Open(-1.0, 0.5));
+      p.poisson_ratio = table.GetDouble("poisson_ratio", 0.25, ParameterRange("poisson_ratio"));
     }
     p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, kStressKpa);
     p.yield_tolerance = table.GetDouble("yield_tolerance", 1e-9, Range::Open(0.0, 1e-2));
