@@ -42,6 +42,13 @@ struct Range {
   std::string Describe() const;  // e.g. "> 0", "in [0, 1]"; "" for any number
 };
 
+// Ranges shared by the DEM's scenes and the models' test files: stresses up
+// to 10 GPa (grains crush long before), strain rates up to 1e6 1/s, and
+// logarithmic strains of a stage up to 20 (the cell changes by e^20).
+inline const Range kStressKpa = {0.0, 1e7, false, true};
+inline const Range kStrainRate = {0.0, 1e6, false, true};
+inline const Range kStageStrain = Range::Closed(-20.0, 20.0);
+
 class ConfigTable {
  public:
   // Parses a TOML file; a syntax error becomes an InputError naming the line.

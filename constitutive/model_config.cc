@@ -16,11 +16,9 @@ namespace granasym {
 
 namespace {
 // Ranges of sane settings (kPa, 1/s, s); the parameters' own are ParameterRange.
-const Range kVoidRatio = {0.0, 20.0, false, true};   // e of a state
-const Range kStressKpa = {0.0, 1e7, false, true};    // stresses and moduli up to 10 GPa
-const Range kRate = {0.0, 1e6, false, true};         // stretching rates (1/s)
-const Range kSignedRate = Range::Closed(-1e6, 1e6);  // axial and Voigt rates (1/s)
-const Range kDuration = {0.0, 1e9, false, true};     // stage durations (s)
+const Range kVoidRatio = {0.0, 20.0, false, true};                           // e of a state
+const Range kSignedRate = Range::Closed(-kStrainRate.max, kStrainRate.max);  // axial, Voigt
+const Range kDuration = {0.0, 1e9, false, true};                             // stage durations (s)
 
 // The valid values of a stop of an element test.
 Range StopRange(StopKind kind) {
@@ -30,7 +28,7 @@ Range StopRange(StopKind kind) {
     case StopKind::kAxialStrain:
     case StopKind::kVolumetricStrain:
     case StopKind::kShearStrain:
-      return Range::Closed(-20.0, 20.0);
+      return kStageStrain;
     case StopKind::kStrainPath:
       return {0.0, 1e3, false, true};
     case StopKind::kStressRatio:
@@ -171,7 +169,7 @@ std::vector<LoadingStage> ReadStages(const ConfigTable& root) {
   std::vector<LoadingStage> stages;
   for (const ConfigTable& table : root.GetTableArray("stage")) {
     const LoadingStageType type = table.GetEnum("type", LoadingStageType::kProportional);
-    const double rate = table.GetDouble("stretching_rate", 1.0, kRate);
+    const double rate = table.GetDouble("stretching_rate", 1.0, kStrainRate);
     const double duration = table.GetDouble("duration_s", 1.0, kDuration);
     LoadingStage stage;
     if (type == LoadingStageType::kProportional) {

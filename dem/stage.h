@@ -51,12 +51,8 @@ struct granasym::EnumNames<granasym::dem::Direction> {
 
 namespace granasym::dem {
 
-// Ranges shared by the keys of the stage types: stresses up to 10 GPa
-// (grains crush long before), strain rates up to 1e6 1/s, stage strains
-// (logarithmic) up to 20, i.e. a change of the cell by a factor e^20.
-inline const Range kStressKpa = {0.0, 1e7, false, true};
-inline const Range kStrainRate = {0.0, 1e6, false, true};
-inline const Range kStageStrain = Range::Closed(-20.0, 20.0);
+// The stage types read stresses, rates and strains with the shared ranges
+// of common/config.h (kStressKpa, kStrainRate, kStageStrain).
 // The most steps one stage may take, and the smallest time step as a
 // fraction of the smallest contact duration: below it a run resolves no
 // more and only costs (the scene's feasibility check, dem/scene.h).
