@@ -692,10 +692,9 @@ RunSummary Simulation::Run() {
     Setup();
     if (generated_) Log(generation_.Table());
   }
-  const auto [smallest, largest] =
-      std::minmax_element(initial_.radii.begin(), initial_.radii.end());
-  min_diameter_ = 2 * *smallest;
-  max_diameter_ = 2 * *largest;
+  const StageContext sizes = Context();
+  min_diameter_ = sizes.min_diameter;
+  max_diameter_ = sizes.max_diameter;
   if (scene_.output.overlap_histogram) {
     histogram_edges_ = LogarithmicEdges(scene_.output.histogram_min, scene_.output.histogram_max,
                                         scene_.output.histogram_bins);
