@@ -12,13 +12,6 @@
 namespace granasym {
 namespace {
 
-std::string Trim(const std::string& text) {
-  const size_t first = text.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return "";
-  const size_t last = text.find_last_not_of(" \t\r");
-  return text.substr(first, last - first + 1);
-}
-
 // One record of a table: its fields and the line it starts on.
 struct Record {
   std::vector<std::string> fields;
@@ -37,9 +30,9 @@ std::vector<Record> SplitRecords(const std::string& text, const std::string& ori
   while (at < text.size()) {
     // A blank or comment line.
     const size_t end_of_line = std::min(text.find('\n', at), text.size());
-    const std::string trimmed = Trim(text.substr(at, end_of_line - at));
+    const std::string trimmed = Trimmed(text.substr(at, end_of_line - at));
     if (trimmed.empty() || trimmed[0] == '#') {
-      if (!trimmed.empty() && comments) comments->push_back(Trim(trimmed.substr(1)));
+      if (!trimmed.empty() && comments) comments->push_back(Trimmed(trimmed.substr(1)));
       at = end_of_line + 1;
       ++line;
       continue;
@@ -49,7 +42,7 @@ std::vector<Record> SplitRecords(const std::string& text, const std::string& ori
     std::string field;
     bool quoted = false;  // the current field was quoted (kept as written, not trimmed)
     auto finish_field = [&] {
-      record.fields.push_back(quoted ? field : Trim(field));
+      record.fields.push_back(quoted ? field : Trimmed(field));
       field.clear();
       quoted = false;
     };
@@ -66,7 +59,7 @@ std::vector<Record> SplitRecords(const std::string& text, const std::string& ori
         ++at;
         continue;
       }
-      if (csv && c == '"' && Trim(field).empty() && !quoted) {
+      if (csv && c == '"' && Trimmed(field).empty() && !quoted) {
         const int opened = line;
         ++at;
         field.clear();

@@ -52,6 +52,13 @@ void WriteTextFileAtomically(const std::string& path, const std::string& text) {
   }
 }
 
+std::string Trimmed(const std::string& text) {
+  const size_t first = text.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return "";
+  const size_t last = text.find_last_not_of(" \t\r");
+  return text.substr(first, last - first + 1);
+}
+
 std::string TomlQuoted(const std::string& text) {
   std::string out = "\"";
   for (char c : text) {

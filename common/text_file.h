@@ -19,4 +19,7 @@ void WriteTextFileAtomically(const std::string& path, const std::string& text);
 // breaks escaped (for the small TOML records a program writes).
 std::string TomlQuoted(const std::string& text);
 
+// `text` without leading and trailing blanks (spaces, tabs, carriage returns).
+std::string Trimmed(const std::string& text);
+
 }  // namespace granasym

@@ -84,18 +84,12 @@ std::string Quoted(const std::string& s) {
   return out + "'";
 }
 
-std::string Trim(const std::string& s) {
-  const size_t a = s.find_first_not_of(" \t");
-  if (a == std::string::npos) return "";
-  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
-}
-
 std::vector<std::string> SplitList(const std::string& text) {
   std::vector<std::string> items;
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
-    if (!Trim(item).empty()) items.push_back(Trim(item));
+    if (!Trimmed(item).empty()) items.push_back(Trimmed(item));
   }
   return items;
 }
@@ -1097,7 +1091,7 @@ ModelOverlay ReadModelOverlay(const std::string& folder, const std::string& name
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
-    if (Trim(line).empty() || Trim(line)[0] == '#') continue;
+    if (Trimmed(line).empty() || Trimmed(line)[0] == '#') continue;
     double v[4];
     std::istringstream fields(line);
     std::string field;
@@ -1109,7 +1103,7 @@ ModelOverlay ReadModelOverlay(const std::string& folder, const std::string& name
       try {
         size_t used = 0;
         v[k] = std::stod(field, &used);
-        if (Trim(field.substr(used)) != "") throw std::invalid_argument(field);
+        if (Trimmed(field.substr(used)) != "") throw std::invalid_argument(field);
       } catch (const std::exception&) {
         throw InputError(fmt::format("{}:{}: '{}' is not a number", path, number, field));
       }
