@@ -177,6 +177,7 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
   const int32_t* owner = neighbors_.owners().data();
   Vec3* shear = kUseFriction ? neighbors_.shear().data() : nullptr;
   Vec3* rolling = kRolling ? neighbors_.rolling().data() : nullptr;
+  uint8_t* loaded = kUseFriction ? loaded_.data() : nullptr;
   const Vec4* position = position_.data();
   const Vec4* velocity = velocity_.data();
   const Vec4* spin = spin_.data();
@@ -227,19 +228,17 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         batch.rj[count] = pj.w;
         count += touching;
         if constexpr (kUseFriction && !kReevaluate) {
-          // A broken contact forgets its shear force; testing first keeps the
-          // many never-touching pairs from dirtying cache lines.
-          // Bitwise, not short-circuit: the branch is then taken only at a
-          // separation (rare, well predicted), never on the coin toss of
-          // `touching` itself.
-          const Vec3& stored = shear[p];
-          const bool loaded = (stored.x != 0.0) | (stored.y != 0.0) | (stored.z != 0.0);
-          if (loaded & !touching) shear[p] = Vec3{};
-          if constexpr (kRolling) {
-            const Vec3& moment = rolling[p];
-            const bool rolled = (moment.x != 0.0) | (moment.y != 0.0) | (moment.z != 0.0);
-            if (rolled & !touching) rolling[p] = Vec3{};
+          // A broken contact forgets its shear force (and rolling moment).
+          // The one-byte flag of a pair that may hold a history, not the
+          // 24-byte history itself, is what the many never-touching pairs
+          // read. Bitwise, not short-circuit: the branch is then taken only
+          // at a separation (rare, well predicted), never on the coin toss
+          // of `touching` itself.
+          if (loaded[p] & !touching) {
+            shear[p] = Vec3{};
+            if constexpr (kRolling) rolling[p] = Vec3{};
           }
+          loaded[p] = touching;
         }
       }
       if constexpr (kReevaluate) {
@@ -428,6 +427,7 @@ void Engine::ComputeForces(Request request) {
       s.z -= std::floor(s.z);
     }
     neighbors_.Build(position_, cell_, skin_, options_.threads);
+    DeriveLoadedFlags();
     max_displacement_ = 0.0;
   }
   // A second evaluation at unchanged positions must not slide the contacts
@@ -530,6 +530,21 @@ void Engine::Restore(State state) {
   max_displacement_ = state.max_displacement;
   forces_current_ = state.forces_current;
   neighbors_.Restore(std::move(state.neighbors));
+  DeriveLoadedFlags();
+}
+
+void Engine::DeriveLoadedFlags() {
+  // A pair may hold a history when its shear force or rolling moment is not
+  // zero; the pair loop keeps the flag from then on (set while touching).
+  const size_t pairs = neighbors_.pair_count();
+  loaded_.assign(friction_ ? pairs : 0, 0);
+  if (!friction_) return;
+  const std::vector<Vec3>& shear = neighbors_.shear();
+  const std::vector<Vec3>& rolling = neighbors_.rolling();
+  auto nonzero = [](const Vec3& v) { return v.x != 0.0 || v.y != 0.0 || v.z != 0.0; };
+  for (size_t p = 0; p < pairs; ++p) {
+    loaded_[p] = nonzero(shear[p]) || (!rolling.empty() && nonzero(rolling[p]));
+  }
 }
 
 }  // namespace granasym::dem

@@ -145,6 +145,8 @@ class Engine {
   void ComputeForcesImpl(const PairLaw& law);
   template <unsigned kFlags>
   void IntegrateImpl();
+  // Recomputes loaded_ from the list's history (after a build or a restore).
+  void DeriveLoadedFlags();
 
   Material material_;
   Options options_;
@@ -175,6 +177,10 @@ class Engine {
   };
   std::vector<ContactBlock> blocks_;
   NeighborList neighbors_;
+  // Per listed pair (with friction): 1 when the pair may hold a shear force
+  // or rolling moment, i.e. it touched at its last evaluation or carried a
+  // history into the list; derived state, not saved.
+  std::vector<uint8_t> loaded_;
   Sums sums_;
 };
 
