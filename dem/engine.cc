@@ -13,7 +13,9 @@ namespace {
 
 // What a force kernel also does besides the forces (friction is a separate
 // template parameter, see ComputeForcesWith).
-enum ForceFlag : unsigned { kStress = 1, kStiffness = 2, kFrozen = 4 };
+// kAdvance: the kick and drift of each particle follow in the same pass, as
+// soon as its net force is complete (Engine::Step).
+enum ForceFlag : unsigned { kStress = 1, kStiffness = 2, kFrozen = 4, kAdvance = 8 };
 // What the integrator does besides the translations.
 enum IntegrateFlag : unsigned { kRotation = 1, kDamping = 2 };
 
@@ -43,6 +45,23 @@ inline void Kick(const Vec4& load, double dt, double chi, Vec4* velocity) {
   v.x += dt * ax;
   v.y += dt * ay;
   v.z += dt * az;
+}
+
+// Leapfrog update of particle i with its net force and torque: kick of the
+// velocity (and spin), drift of the scaled position by Δt H⁻¹ v; returns |v|².
+// The one update of both the separate (Integrate) and fused (Step) paths.
+template <bool kRotation, bool kDamping>
+inline double AdvanceParticle(const Vec4& force, const Vec4& torque, double dt, double chi,
+                              const std::array<double, 3>& inverse_cell, Vec4* velocity, Vec4* spin,
+                              Vec4* position) {
+  Vec4& v = *velocity;
+  Kick<kDamping>(force, dt, chi, &v);
+  Vec4& s = *position;
+  s.x += dt * v.x * inverse_cell[0];
+  s.y += dt * v.y * inverse_cell[1];
+  s.z += dt * v.z * inverse_cell[2];
+  if constexpr (kRotation) Kick<kDamping>(torque, dt, chi, spin);
+  return v.x * v.x + v.y * v.y + v.z * v.z;
 }
 
 }  // namespace
@@ -140,6 +159,7 @@ Engine::Engine(const Packing& packing, const Material& material, const Options& 
   thread_force_.assign(extra, std::vector<Vec4>(n));
   thread_torque_.assign(friction_ ? extra : 0, std::vector<Vec4>(n));
   thread_sums_.assign(options.threads, Sums{});
+  thread_max2_.assign(options.threads, 0.0);
   blocks_.resize(options.threads);
 }
 
@@ -168,6 +188,7 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
   constexpr bool kSumStress = (kFlags & kStress) != 0;
   constexpr bool kSumStiffness = (kFlags & kStiffness) != 0;
   constexpr bool kReevaluate = (kFlags & kFrozen) != 0;
+  constexpr bool kAdvanceToo = (kFlags & kAdvance) != 0;
   const int64_t n = static_cast<int64_t>(position_.size());
   const int threads = options_.threads;
   const double lx = cell_[0], ly = cell_[1], lz = cell_[2];
@@ -178,9 +199,27 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
   Vec3* shear = kUseFriction ? neighbors_.shear().data() : nullptr;
   Vec3* rolling = kRolling ? neighbors_.rolling().data() : nullptr;
   uint8_t* loaded = kUseFriction ? loaded_.data() : nullptr;
-  const Vec4* position = position_.data();
-  const Vec4* velocity = velocity_.data();
-  const Vec4* spin = spin_.data();
+  // With kAdvanceToo the kernel also writes these (a particle once its
+  // force is complete, which no later pair reads: see below).
+  Vec4* position = position_.data();
+  Vec4* velocity = velocity_.data();
+  Vec4* spin = spin_.data();
+  const double dt = options_.time_step;
+  const double chi = material_.local_damping;
+  const bool damping = damping_;
+  const std::array<double, 3> inverse_cell = {1.0 / lx, 1.0 / ly, 1.0 / lz};
+  // Advances particles [from, to) with the net forces in force_/torque_.
+  auto advance = [&](int64_t from, int64_t to, double& max2) {
+    for (int64_t i = from; i < to; ++i) {
+      const double v2 =
+          damping
+              ? AdvanceParticle<kUseFriction, true>(force_[i], torque_[i], dt, chi, inverse_cell,
+                                                    &velocity[i], &spin[i], &position[i])
+              : AdvanceParticle<kUseFriction, false>(force_[i], torque_[i], dt, chi, inverse_cell,
+                                                     &velocity[i], &spin[i], &position[i]);
+      max2 = std::max(max2, v2);
+    }
+  };
 
 #pragma omp parallel num_threads(threads)
   {
@@ -194,6 +233,14 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     std::fill(force + zero_from, force + n, Vec4{});
     if constexpr (kUseFriction) std::fill(torque + zero_from, torque + n, Vec4{});
     Sums local;
+    double max2 = 0.0;  // largest |v|² of the particles this thread advanced
+    // On one thread a particle's force is complete once the pairs of every
+    // owner up to it are done (its pairs (m < i, i) come before (i, j > i)),
+    // and no later pair reads it: it is advanced right there, while its data
+    // are in cache. With more threads a particle may still receive forces
+    // from another thread, so it is advanced after the barrier.
+    const bool advance_inline = kAdvanceToo && threads == 1;
+    int64_t advanced = 0;
 
     // Three passes over blocks of the pair list. (1) Find the touching pairs
     // without a data-dependent branch (compaction by index increment): the
@@ -335,19 +382,48 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
           const double weight =
               law.NormalStiffness(batch.ri[k], batch.rj[k], std::sqrt(distance2)) / distance2;
           const double xx = branch.x * branch.x, yy = branch.y * branch.y, zz = branch.z * branch.z;
-          local.stiffness[0] += weight * xx * xx;
-          local.stiffness[1] += weight * yy * yy;
-          local.stiffness[2] += weight * zz * zz;
-          local.stiffness[3] += weight * xx * yy;
-          local.stiffness[4] += weight * xx * zz;
-          local.stiffness[5] += weight * yy * zz;
+          // Explicit fused multiply-adds: left to contraction, the kernels
+          // compiled for different flags did not all round these the same.
+          local.stiffness[0] = std::fma(weight * xx, xx, local.stiffness[0]);
+          local.stiffness[1] = std::fma(weight * yy, yy, local.stiffness[1]);
+          local.stiffness[2] = std::fma(weight * zz, zz, local.stiffness[2]);
+          local.stiffness[3] = std::fma(weight * xx, yy, local.stiffness[3]);
+          local.stiffness[4] = std::fma(weight * xx, zz, local.stiffness[4]);
+          local.stiffness[5] = std::fma(weight * yy, zz, local.stiffness[5]);
         }
       }
+      if (advance_inline) {
+        const int64_t complete = p1 < pair_end ? owner[p1] : n;
+        advance(advanced, complete, max2);
+        advanced = complete;
+      }
     }
+    if (advance_inline) advance(advanced, n, max2);
     thread_sums_[t] = local;
 #pragma omp barrier
+    if (kAdvanceToo && threads > 1) {
+      // Each thread adds the other threads' contributions to its own
+      // particles (in the same order as below) and advances them.
+      for (int64_t i = begin; i < end; ++i) {
+        for (int u = 1; u <= t; ++u) {
+          if (i < n * u / threads) continue;
+          const Vec4& f = thread_force_[u - 1][i];
+          force_[i].x += f.x;
+          force_[i].y += f.y;
+          force_[i].z += f.z;
+          if constexpr (kUseFriction) {
+            const Vec4& m = thread_torque_[u - 1][i];
+            torque_[i].x += m.x;
+            torque_[i].y += m.y;
+            torque_[i].z += m.z;
+          }
+        }
+      }
+      advance(begin, end, max2);
+    }
+    thread_max2_[t] = max2;
     // Add the other threads' contributions in a fixed order.
-    if (threads > 1) {
+    if (!kAdvanceToo && threads > 1) {
 #pragma omp for schedule(static)
       for (int64_t i = 0; i < n; ++i) {
         for (int u = 1; u < threads; ++u) {
@@ -383,36 +459,35 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     }
     sums_ = total;
   }
+  if constexpr (kAdvanceToo) {
+    double max2 = 0.0;
+    for (double m : thread_max2_) max2 = std::max(max2, m);
+    FinishAdvance(max2);
+  }
 }
 
-template <class PairLaw>
-void Engine::ComputeForcesWith(const PairLaw& law, unsigned flags) {
-  // The reachable kernels only: a re-evaluation at unchanged positions is
-  // needed only with a shear history, and a law with rolling resistance is
-  // only chosen with friction.
+template <class PairLaw, unsigned... kFlags>
+void Engine::RunKernel(const PairLaw& law, bool friction, unsigned flags,
+                       std::integer_sequence<unsigned, kFlags...>) {
   using Kernel = void (Engine::*)(const PairLaw&);
-  static constexpr Kernel kWithFriction[8] = {
-      &Engine::ComputeForcesImpl<PairLaw, true, 0>, &Engine::ComputeForcesImpl<PairLaw, true, 1>,
-      &Engine::ComputeForcesImpl<PairLaw, true, 2>, &Engine::ComputeForcesImpl<PairLaw, true, 3>,
-      &Engine::ComputeForcesImpl<PairLaw, true, 4>, &Engine::ComputeForcesImpl<PairLaw, true, 5>,
-      &Engine::ComputeForcesImpl<PairLaw, true, 6>, &Engine::ComputeForcesImpl<PairLaw, true, 7>};
-  if (friction_) {
+  static constexpr Kernel kWithFriction[] = {&Engine::ComputeForcesImpl<PairLaw, true, kFlags>...};
+  if (friction) {
     (this->*kWithFriction[flags])(law);
     return;
   }
+  // Without friction there is no shear history to freeze, and a law with
+  // rolling resistance is only chosen with friction.
   if constexpr (PairLaw::kRollingHistory) {
     GRANASYM_CHECK(false) << "rolling resistance without friction";
   } else {
-    static constexpr Kernel kWithoutFriction[4] = {&Engine::ComputeForcesImpl<PairLaw, false, 0>,
-                                                   &Engine::ComputeForcesImpl<PairLaw, false, 1>,
-                                                   &Engine::ComputeForcesImpl<PairLaw, false, 2>,
-                                                   &Engine::ComputeForcesImpl<PairLaw, false, 3>};
-    GRANASYM_CHECK(flags < 4);
+    static constexpr Kernel kWithoutFriction[] = {
+        &Engine::ComputeForcesImpl<PairLaw, false, (kFlags & ~kFrozen)>...};
+    GRANASYM_CHECK((flags & kFrozen) == 0);
     (this->*kWithoutFriction[flags])(law);
   }
 }
 
-void Engine::ComputeForces(Request request) {
+void Engine::PrepareList() {
   // The integrator accumulates a cheap upper bound of the displacements,
   // Σ Δt max_i |v_i|; only when that bound calls for a rebuild is the exact
   // displacement measured (one pass), and the list rebuilt if it must be.
@@ -430,13 +505,23 @@ void Engine::ComputeForces(Request request) {
     DeriveLoadedFlags();
     max_displacement_ = 0.0;
   }
+}
+
+void Engine::Evaluate(Request request, bool advance) {
+  PrepareList();
   // A second evaluation at unchanged positions must not slide the contacts
   // again: it reuses the shear forces (and rolling moments) of the first.
   const unsigned flags = (request.stress ? kStress : 0u) | (request.stiffness ? kStiffness : 0u) |
-                         (forces_current_ && friction_ ? kFrozen : 0u);
-  std::visit([&](const auto& law) { ComputeForcesWith(law, flags); }, law_);
-  forces_current_ = true;
+                         (forces_current_ && friction_ ? kFrozen : 0u) | (advance ? kAdvance : 0u);
+  std::visit(
+      [&](const auto& law) {
+        RunKernel(law, friction_, flags, std::make_integer_sequence<unsigned, 16>{});
+      },
+      law_);
+  forces_current_ = !advance;
 }
+
+void Engine::ComputeForces(Request request) { Evaluate(request, false); }
 
 template <unsigned kFlags>
 void Engine::IntegrateImpl() {
@@ -445,20 +530,20 @@ void Engine::IntegrateImpl() {
   const int64_t n = static_cast<int64_t>(position_.size());
   const double dt = options_.time_step;
   const double chi = material_.local_damping;
-  const double ix = 1.0 / cell_[0], iy = 1.0 / cell_[1], iz = 1.0 / cell_[2];
+  const std::array<double, 3> inverse_cell = {1.0 / cell_[0], 1.0 / cell_[1], 1.0 / cell_[2]};
   double max2 = 0.0;
 #pragma omp parallel for num_threads(options_.threads) schedule(static) reduction(max : max2)
   for (int64_t i = 0; i < n; ++i) {
-    Vec4& v = velocity_[i];
-    Kick<kUseDamping>(force_[i], dt, chi, &v);
-    Vec4& s = position_[i];
-    s.x += dt * v.x * ix;
-    s.y += dt * v.y * iy;
-    s.z += dt * v.z * iz;
-    max2 = std::max(max2, v.x * v.x + v.y * v.y + v.z * v.z);
-    if constexpr (kUseFriction) Kick<kUseDamping>(torque_[i], dt, chi, &spin_[i]);
+    max2 = std::max(max2, AdvanceParticle<kUseFriction, kUseDamping>(force_[i], torque_[i], dt, chi,
+                                                                     inverse_cell, &velocity_[i],
+                                                                     &spin_[i], &position_[i]));
   }
-  max_displacement_ += dt * std::sqrt(max2);  // bound: Σ Δt max_i |v_i|
+  FinishAdvance(max2);
+}
+
+void Engine::FinishAdvance(double max_speed2) {
+  const double dt = options_.time_step;
+  max_displacement_ += dt * std::sqrt(max_speed2);  // bound: Σ Δt max_i |v_i|
   forces_current_ = false;
   // dH/dt = D H integrated exactly over the step for the constant diagonal D
   // (the forward-Euler H += Δt D H would change the volume of an isochoric
@@ -476,10 +561,7 @@ void Engine::Integrate() {
   (this->*kKernels[flags])();
 }
 
-void Engine::Step(Request request) {
-  ComputeForces(request);
-  Integrate();
-}
+void Engine::Step(Request request) { Evaluate(request, true); }
 
 void Engine::Step() { Step(Request{}); }
 

@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -80,7 +81,10 @@ class Engine {
   void ComputeForces(Request request);
   // Advances velocities, positions and the cell by one step.
   void Integrate();
-  // ComputeForces + Integrate.
+  // ComputeForces + Integrate, bit-identical to calling the two, in one pass
+  // over the particles: each is advanced as soon as its net force is complete.
+  // The sums requested are those of the forces before the step; forces()
+  // likewise.
   void Step(Request request);
   void Step();
 
@@ -139,12 +143,21 @@ class Engine {
                            RollingResistance<LinearCundallStrack>, RollingResistance<HertzMindlin>>;
   static Law MakeLaw(const Material& material, double time_step);
 
-  template <class PairLaw>
-  void ComputeForcesWith(const PairLaw& law, unsigned flags);
+  // Rebuilds the neighbour list when the displacements call for it.
+  void PrepareList();
+  // Forces (and with `advance` the step's kick and drift in the same pass).
+  void Evaluate(Request request, bool advance);
+  // Calls the kernel instantiated for (friction, flags); kFlags lists every flag set.
+  template <class PairLaw, unsigned... kFlags>
+  void RunKernel(const PairLaw& law, bool friction, unsigned flags,
+                 std::integer_sequence<unsigned, kFlags...>);
   template <class PairLaw, bool kUseFriction, unsigned kFlags>
   void ComputeForcesImpl(const PairLaw& law);
   template <unsigned kFlags>
   void IntegrateImpl();
+  // The end of a step once every particle has moved: the displacement
+  // bound (from the largest |v|²), the cell, time and step count.
+  void FinishAdvance(double max_speed2);
   // Recomputes loaded_ from the list's history (after a build or a restore).
   void DeriveLoadedFlags();
 
@@ -168,6 +181,7 @@ class Engine {
   // Forces and torques of threads 1..T−1 (thread 0 writes force_/torque_).
   std::vector<std::vector<Vec4>> thread_force_, thread_torque_;
   std::vector<Sums> thread_sums_;
+  std::vector<double> thread_max2_;  // per thread: the largest |v|² it advanced
   // Per-thread scratch of the pair loop: a block of touching pairs.
   struct ContactBlock {
     static constexpr int kSize = ContactBatch::kSize;

@@ -755,79 +755,92 @@ Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_sec
     const bool need_stress =
         output_due || sample_due || strain_stop || controller_->NeedsStress(stage_steps) ||
         current.stop.mean_stress_kpa.has_value() || std::isnan(clock.start_p_kpa);
-    engine_->ComputeForces({need_stress, controller_->NeedsStiffness()});
-    double p = std::numeric_limits<double>::quiet_NaN();
-    if (need_stress) {
-      p = MeanStressKpa(engine_->sums());
-      if (!std::isfinite(p)) {
-        loop_seconds += step_clock.Seconds();
-        return Outcome{Termination::kFailed,
-                       fmt::format("non-finite stress at step {}: the motion became unstable (time "
-                                   "step {:.3g} s too large for the contact stiffness?)",
-                                   engine_->step(), dt)};
-      }
-      if (std::isnan(clock.start_p_kpa)) clock.start_p_kpa = p;
-      if (const auto gradient = controller_->Control(engine_->sums(), dt)) {
-        engine_->SetVelocityGradient(*gradient);
-      }
-    }
-    std::optional<std::string> reason;
-    if (sample_due) {
-      const AxisymmetricStress stress = AxisymmetricFromTensor(engine_->sums().stress);
-      const double p_kpa = stress.mean() / kKiloPascal;
-      const auto& cell = engine_->cell();
-      const auto& reference = initial_.cell;
-      detector_.Add({clock.strain_norm, stress.psi(),
-                     p_kpa > 0 ? std::log(p_kpa) : std::numeric_limits<double>::quiet_NaN(),
-                     std::log1p(engine_->void_ratio()), -std::log(cell[0] / reference[0]),
-                     -0.5 * (std::log(cell[1] / reference[1]) + std::log(cell[2] / reference[2])),
-                     engine_->time()});
-      clock.next_sample_strain += current.asymptote.sample_strain;
-    }
-    if (need_stress) reason = MeanStressStop(current.stop, clock, p);
-    if (!reason && sample_due && current.stop.asymptote) {
-      const AsymptoteDetector::Result result = detector_.Evaluate();
-      // A gas, or a state with overlaps beyond the reliable, is no asymptote:
-      // the stage goes on (a compression path leaves a loose start behind).
-      const int64_t last_row = static_cast<int64_t>(series_.rows()) - 1;
-      bool valid = result.detected() && last_row >= clock.first_row;
-      if (valid) {
-        const RowState state = RowState::Mean(
-            series_,
-            FirstRowAfter(series_, detector_first_row_, last_row, result.window_start_time),
-            last_row);
-        valid = !IsGas(result.mean_stress_kpa, state.mechanical_coordination) &&
-                state.max_relative_overlap <= kValidityLimits.overlap_unreliable;
-      }
-      if (valid) {
-        reason = fmt::format(
-            "asymptotic state detected ({}: p {:.4g} kPa, psi_sigma {:.3f} deg over {:.3g} of "
-            "strain and {:.3g} of ln p)",
-            ToString(current.asymptote.kind), result.mean_stress_kpa, result.psi_sigma / kDegree,
-            result.window_strain, result.window_lnp);
-      }
-    }
-    if (!reason && need_stress) reason = controller_->CheckStop(*engine_, stage_steps);
-    if (!reason && strain_stop) reason = StrainOrDurationReason(current.stop, clock, *engine_);
-    if (output_due || reason) {
-      AddRow();
-      if (const std::optional<std::string> failure = CheckRowGuards(reason.has_value())) {
-        loop_seconds += step_clock.Seconds();
-        return Outcome{Termination::kFailed, *failure};
-      }
-    }
-    if (reason) {
-      // The stage ends at the state that met its condition (its last row);
-      // the next stage starts from the same state: the engine re-evaluates
-      // its forces there without advancing the shear history.
-      FinishStage(*reason);
-    } else {
-      engine_->Integrate();
+    // The strain of the step just taken, on the stage's clocks.
+    auto count_step = [&] {
       const auto& g = engine_->velocity_gradient();
       const double increment = dt * std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
       clock.strain_norm += increment;
       runner_.strain_since_output += increment;
       ++runner_.steps_since_output;
+    };
+    if (!need_stress) {
+      // Nothing is measured, controlled, stopped or written at this step:
+      // forces, kick and drift in one pass (Engine::Step, bit-identical to
+      // ComputeForces + Integrate).
+      engine_->Step({});
+      count_step();
+    } else {
+      engine_->ComputeForces({need_stress, controller_->NeedsStiffness()});
+      double p = std::numeric_limits<double>::quiet_NaN();
+      if (need_stress) {
+        p = MeanStressKpa(engine_->sums());
+        if (!std::isfinite(p)) {
+          loop_seconds += step_clock.Seconds();
+          return Outcome{
+              Termination::kFailed,
+              fmt::format("non-finite stress at step {}: the motion became unstable (time "
+                          "step {:.3g} s too large for the contact stiffness?)",
+                          engine_->step(), dt)};
+        }
+        if (std::isnan(clock.start_p_kpa)) clock.start_p_kpa = p;
+        if (const auto gradient = controller_->Control(engine_->sums(), dt)) {
+          engine_->SetVelocityGradient(*gradient);
+        }
+      }
+      std::optional<std::string> reason;
+      if (sample_due) {
+        const AxisymmetricStress stress = AxisymmetricFromTensor(engine_->sums().stress);
+        const double p_kpa = stress.mean() / kKiloPascal;
+        const auto& cell = engine_->cell();
+        const auto& reference = initial_.cell;
+        detector_.Add({clock.strain_norm, stress.psi(),
+                       p_kpa > 0 ? std::log(p_kpa) : std::numeric_limits<double>::quiet_NaN(),
+                       std::log1p(engine_->void_ratio()), -std::log(cell[0] / reference[0]),
+                       -0.5 * (std::log(cell[1] / reference[1]) + std::log(cell[2] / reference[2])),
+                       engine_->time()});
+        clock.next_sample_strain += current.asymptote.sample_strain;
+      }
+      if (need_stress) reason = MeanStressStop(current.stop, clock, p);
+      if (!reason && sample_due && current.stop.asymptote) {
+        const AsymptoteDetector::Result result = detector_.Evaluate();
+        // A gas, or a state with overlaps beyond the reliable, is no asymptote:
+        // the stage goes on (a compression path leaves a loose start behind).
+        const int64_t last_row = static_cast<int64_t>(series_.rows()) - 1;
+        bool valid = result.detected() && last_row >= clock.first_row;
+        if (valid) {
+          const RowState state = RowState::Mean(
+              series_,
+              FirstRowAfter(series_, detector_first_row_, last_row, result.window_start_time),
+              last_row);
+          valid = !IsGas(result.mean_stress_kpa, state.mechanical_coordination) &&
+                  state.max_relative_overlap <= kValidityLimits.overlap_unreliable;
+        }
+        if (valid) {
+          reason = fmt::format(
+              "asymptotic state detected ({}: p {:.4g} kPa, psi_sigma {:.3f} deg over {:.3g} of "
+              "strain and {:.3g} of ln p)",
+              ToString(current.asymptote.kind), result.mean_stress_kpa, result.psi_sigma / kDegree,
+              result.window_strain, result.window_lnp);
+        }
+      }
+      if (!reason && need_stress) reason = controller_->CheckStop(*engine_, stage_steps);
+      if (!reason && strain_stop) reason = StrainOrDurationReason(current.stop, clock, *engine_);
+      if (output_due || reason) {
+        AddRow();
+        if (const std::optional<std::string> failure = CheckRowGuards(reason.has_value())) {
+          loop_seconds += step_clock.Seconds();
+          return Outcome{Termination::kFailed, *failure};
+        }
+      }
+      if (reason) {
+        // The stage ends at the state that met its condition (its last row);
+        // the next stage starts from the same state: the engine re-evaluates
+        // its forces there without advancing the shear history.
+        FinishStage(*reason);
+      } else {
+        engine_->Integrate();
+        count_step();
+      }
     }
     loop_seconds += step_clock.Seconds();
 

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iomanip>
 
 #include "dem/contact_statistics.h"
+#include "dem/grain_size_distribution.h"
 #include "dem/packing.h"
 #include "two_spheres.h"
 
@@ -141,6 +143,71 @@ TEST(Engine, AffineStretchingOfAContactFreeGasProducesNoForce) {
     EXPECT_DOUBLE_EQ(engine.scaled_positions()[i].x, before[i].x);
   }
   EXPECT_NEAR(engine.cell()[0], 0.01 * std::exp(50.0 * 1e-7 * 1000), 1e-15);
+}
+
+// Engine::Step advances each particle inside the force pass; it must give
+// exactly what ComputeForces + Integrate give, for every kernel variant it
+// can select (friction or not, rolling resistance, damping or not, stress
+// sums), on one thread (advanced inline) and on several (after the barrier).
+// The four doubles of a particle record, for exact comparison.
+std::array<double, 4> Bits(const Vec4& v) { return {v.x, v.y, v.z, v.w}; }
+
+TEST(Engine, TheFusedStepIsBitIdenticalToForcesThenIntegration) {
+  GenerationOptions generation;
+  generation.count = 600;
+  generation.cell_size = 31e-3 * std::cbrt(600.0 / 150000.0);
+  generation.seed = 5;
+  const Packing packing = GeneratePacking(GrainSizeDistribution::Default(), generation);
+  struct Variant {
+    const char* name;
+    double friction_angle, local_damping, rolling;
+    ContactLaw law;
+  };
+  const Variant variants[] = {{"frictionless, undamped", 0.0, 0.0, 0.0, ContactLaw::kLinear},
+                              {"frictional, damped", 0.5, 0.5, 0.0, ContactLaw::kLinear},
+                              {"Hertz, rolling resistance", 0.5, 0.3, 0.1,
+                               ContactLaw::kHertzMindlin}};
+  for (const Variant& variant : variants) {
+    for (int threads : {1, 2, 3}) {
+      SCOPED_TRACE(std::string(variant.name) + ", " + std::to_string(threads) + " threads");
+      Material material = Elastic(variant.friction_angle);
+      material.local_damping = variant.local_damping;
+      material.rolling_friction = variant.rolling;
+      material.contact_law = variant.law;
+      Engine fused(packing, material, StepOptions(1.2e-7, threads));
+      Engine separate(packing, material, StepOptions(1.2e-7, threads));
+      for (Engine* engine : {&fused, &separate}) engine->SetVelocityGradient({-500, -500, -500});
+      int64_t contacts = 0;
+      for (int step = 0; step < 3000; ++step) {
+        const Engine::Request request{step % 7 == 0, step % 11 == 0};
+        fused.Step(request);
+        separate.ComputeForces(request);
+        separate.Integrate();
+        if (request.stress) {
+          ASSERT_EQ(fused.sums().stress, separate.sums().stress) << "step " << step;
+          contacts = fused.sums().contacts;
+        }
+        if (request.stiffness) {
+          for (int k = 0; k < 6; ++k)
+            ASSERT_EQ(fused.sums().stiffness[k], separate.sums().stiffness[k])
+                << "step " << step << " k " << k << std::setprecision(17) << " "
+                << fused.sums().stiffness[k] - separate.sums().stiffness[k];
+        }
+      }
+      EXPECT_GT(contacts, 600);  // compressed into a contact network (Z > 2)
+      EXPECT_EQ(fused.neighbors().builds(), separate.neighbors().builds());
+      EXPECT_GT(fused.neighbors().builds(), 1);
+      EXPECT_EQ(fused.cell(), separate.cell());
+      EXPECT_EQ(fused.time(), separate.time());
+      EXPECT_EQ(fused.step(), separate.step());
+      for (size_t i = 0; i < fused.size(); ++i) {
+        ASSERT_EQ(Bits(fused.scaled_positions()[i]), Bits(separate.scaled_positions()[i])) << i;
+        ASSERT_EQ(Bits(fused.velocities()[i]), Bits(separate.velocities()[i])) << i;
+        ASSERT_EQ(Bits(fused.spins()[i]), Bits(separate.spins()[i])) << i;
+        ASSERT_EQ(Bits(fused.forces()[i]), Bits(separate.forces()[i])) << i;
+      }
+    }
+  }
 }
 
 }  // namespace
