@@ -218,10 +218,12 @@ void CheckEngineState(const Hdf5File& file, const std::string& group, const Engi
     if (!std::isfinite(g)) Invalid(file, Join(group, kStateGradient), "is not finite");
   }
   if (!std::isfinite(state.time) || state.step < 0 ||
-      !(std::isfinite(state.max_displacement) && state.max_displacement >= 0)) {
+      !(std::isfinite(state.max_displacement) && state.max_displacement >= 0) ||
+      !(std::isfinite(state.time_step) && state.time_step >= 0)) {
     Invalid(file, group,
-            fmt::format("has time {:g}, step {}, max_displacement {:g} (finite, >= 0)", state.time,
-                        state.step, state.max_displacement));
+            fmt::format("has time {:g}, step {}, max_displacement {:g}, time_step {:g} (finite, "
+                        ">= 0)",
+                        state.time, state.step, state.max_displacement, state.time_step));
   }
   const NeighborList::State& list = state.neighbors;
   const std::string l = Join(group, kListGroup);
@@ -375,6 +377,7 @@ void WriteEngineState(Hdf5File& file, const std::string& group, const Engine::St
   file.WriteDoubles(Join(group, record::kStateGradient), ToVector(state.gradient), "1/s");
   file.SetAttribute(group, record::kStateTime, state.time);
   file.SetAttribute(group, record::kStateStep, state.step);
+  file.SetAttribute(group, record::kStateTimeStep, state.time_step);
   file.SetAttribute(group, record::kStateMaxDisplacement, state.max_displacement);
   file.SetAttribute(group, record::kStateForcesCurrent, int64_t{state.forces_current});
   file.SetAttribute(group, record::kStateThreads, static_cast<int64_t>(threads));
@@ -405,6 +408,10 @@ Engine::State ReadEngineState(const Hdf5File& file, const std::string& group, in
   state.gradient = ReadArray3(file, Join(group, record::kStateGradient));
   state.time = file.ReadDoubleAttribute(group, record::kStateTime);
   state.step = file.ReadIntAttribute(group, record::kStateStep);
+  // States written before Δt was stored have none: 0 keeps the engine's.
+  if (file.HasAttribute(group, record::kStateTimeStep)) {
+    state.time_step = file.ReadDoubleAttribute(group, record::kStateTimeStep);
+  }
   state.max_displacement = file.ReadDoubleAttribute(group, record::kStateMaxDisplacement);
   state.forces_current = file.ReadIntAttribute(group, record::kStateForcesCurrent) != 0;
   if (threads) *threads = static_cast<int>(file.ReadIntAttribute(group, record::kStateThreads));

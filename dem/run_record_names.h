@@ -159,6 +159,7 @@ inline constexpr char kStateCell[] = "cell";
 inline constexpr char kStateGradient[] = "gradient";
 inline constexpr char kStateTime[] = "time";
 inline constexpr char kStateStep[] = "step";
+inline constexpr char kStateTimeStep[] = "time_step";  // Δt of the next step (s)
 inline constexpr char kStateMaxDisplacement[] = "max_displacement";
 inline constexpr char kStateForcesCurrent[] = "forces_current";
 inline constexpr char kStateThreads[] = "threads";

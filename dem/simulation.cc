@@ -50,6 +50,7 @@ std::string HashEngineState(const Engine::State& state) {
   hash.Update(state.gradient.data(), sizeof(state.gradient));
   hash.Update(&state.time, sizeof(state.time));
   hash.Update(&state.step, sizeof(state.step));
+  hash.Update(&state.time_step, sizeof(state.time_step));
   HashVector(hash, state.neighbors.offsets);
   HashVector(hash, state.neighbors.neighbors);
   HashVector(hash, state.neighbors.shear);
