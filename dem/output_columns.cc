@@ -19,13 +19,14 @@ double InertialAt(const RowMeasures& row, double diameter) {
 // The stiffness number κ of the contact law at mean stress p: the inverse of
 // the typical overlap relative to the diameter (Agnolin & Roux 2007): linear
 // law κ = k_n/(d p) = E/(2p) (k_n = E d/2 for equal spheres); Hertz–Mindlin
-// κ = (E*/p)^(2/3), E* = E/(2(1 − ν²)).
+// κ = (E*/p)^(2/3), E* = E/(2(1 − ν²)); E is the contact modulus, i.e. with
+// the material's stiffness scaling applied.
 double StiffnessNumber(const RowMeasures& row) {
   const double p = row.stress.mean();
   if (!(p > 0)) return std::numeric_limits<double>::infinity();
   const Material& m = row.engine.material();
-  if (m.contact_law == ContactLaw::kLinear) return m.youngs_modulus / (2 * p);
-  const double effective = m.youngs_modulus / (2 * (1 - m.poissons_ratio * m.poissons_ratio));
+  if (m.contact_law == ContactLaw::kLinear) return m.contact_modulus() / (2 * p);
+  const double effective = m.contact_modulus() / (2 * (1 - m.poissons_ratio * m.poissons_ratio));
   return std::pow(effective / p, 2.0 / 3.0);
 }
 
