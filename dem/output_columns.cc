@@ -58,6 +58,12 @@ const std::vector<OutputColumn>& OutputColumns() {
       {record::kColumnTime, "s", "simulated time", [](R r) { return r.engine.time(); }},
       {record::kColumnStep, "1", "time step index",
        [](R r) { return static_cast<double>(r.engine.step()); }},
+      {record::kColumnTimeStep, "s", "time step Delta t of the step from this row's state",
+       [](R r) { return r.engine.time_step(); }},
+      {record::kColumnContactDurationMin, "s",
+       "shortest undamped duration pi sqrt(m_12/k_n) of the touching pairs at their overlap "
+       "(inf: no contact)",
+       [](R r) { return r.engine.SmallestContactDuration(); }},
       {record::kColumnStage, "1", "stage index (0-based)",
        [](R r) { return static_cast<double>(r.stage); }},
       {"cell_x_m", "m", "cell side along axis 1 (vertical)",

@@ -294,14 +294,21 @@ void CheckEngineState(const Hdf5File& file, const std::string& group, const Engi
 }  // namespace
 
 std::string RunSummary::OneLine() const {
+  const std::string steps_taken =
+      min_time_step == max_time_step
+          ? fmt::format("time step {:.4g} s", time_step)
+          : fmt::format("time step {:.4g} .. {:.4g} s", min_time_step, max_time_step);
   return fmt::format(
              "{}: {} steps, {} particles, {:.4g} s simulated, {:.1f} s wall ({:.1f} s "
              "loop), {:.3g} particle-steps/s ({:.3f} us per particle-step), {} threads, "
-             "{} list builds, {} rows: {}",
+             "{} list builds, {} rows, {}{}: {}",
              ToString(termination), steps, particles, simulated_time, wall_seconds, loop_seconds,
              particle_steps_per_second,
              particle_steps_per_second > 0 ? 1e6 / particle_steps_per_second : 0.0, threads,
-             neighbor_builds, rows, message) +
+             neighbor_builds, rows, steps_taken,
+             stiffness_scaling != 1 ? fmt::format(", stiffness scaled by {:g}", stiffness_scaling)
+                                    : "",
+             message) +
          (validity.empty() ? "" : "; validity: " + validity);
 }
 
@@ -590,6 +597,10 @@ void WriteSummary(Hdf5File& file, const RunSummary& summary, const ContactDurati
   file.SetAttribute(s, kRows, summary.rows);
   file.SetAttribute(s, kStagesCompleted, summary.stages_completed);
   file.SetAttribute(s, kTimeStep, summary.time_step);
+  file.SetAttribute(s, kTimeStepMin, summary.min_time_step);
+  file.SetAttribute(s, kTimeStepMax, summary.max_time_step);
+  file.SetAttribute(s, kTimeStepRule, summary.time_step_rule);
+  file.SetAttribute(s, kStiffnessScaling, summary.stiffness_scaling);
   file.SetAttribute(s, kContactDurationMinReduced, durations.smallest_reduced_mass);
   file.SetAttribute(s, kContactDurationMaxReduced, durations.largest_reduced_mass);
   file.SetAttribute(s, kContactDurationMinSingle, durations.smallest_single_mass);
@@ -627,6 +638,16 @@ RunSummary ReadSummary(const Hdf5File& file) {
   summary.rows = file.ReadIntAttribute(s, kRows);
   summary.stages_completed = file.ReadIntAttribute(s, kStagesCompleted);
   summary.time_step = file.ReadDoubleAttribute(s, kTimeStep);
+  // Results of earlier versions: one fixed step, unscaled stiffness.
+  summary.min_time_step = summary.max_time_step = summary.time_step;
+  if (file.HasAttribute(s, kTimeStepMin)) {
+    summary.min_time_step = file.ReadDoubleAttribute(s, kTimeStepMin);
+    summary.max_time_step = file.ReadDoubleAttribute(s, kTimeStepMax);
+    summary.time_step_rule = file.ReadStringAttribute(s, kTimeStepRule);
+  }
+  if (file.HasAttribute(s, kStiffnessScaling)) {
+    summary.stiffness_scaling = file.ReadDoubleAttribute(s, kStiffnessScaling);
+  }
   return summary;
 }
 
@@ -794,6 +815,12 @@ std::string DescribeResult(const Hdf5File& file) {
   line("stages_completed", std::to_string(summary.stages_completed));
   line("simulated_time_s", fmt::format("{:.6g}", summary.simulated_time));
   line("time_step_s", fmt::format("{:.6g}", summary.time_step));
+  if (summary.min_time_step != summary.max_time_step) {
+    line("time_step_range_s",
+         fmt::format("{:.6g} .. {:.6g}", summary.min_time_step, summary.max_time_step));
+  }
+  line("time_step_rule", summary.time_step_rule);
+  line("stiffness_scaling", fmt::format("{:g}", summary.stiffness_scaling));
   line("wall_s", fmt::format("{:.1f}", summary.wall_seconds));
   line("threads", std::to_string(summary.threads));
   line("validity", summary.validity.empty() ? "no flags" : summary.validity);
