@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "common/error.h"
@@ -561,6 +562,50 @@ void Engine::Integrate() {
   (this->*kKernels[flags])();
 }
 
+void Engine::SetTimeStep(double time_step) {
+  GRANASYM_CHECK(time_step > 0 && std::isfinite(time_step)) << "time step " << time_step;
+  options_.time_step = time_step;
+  law_ = MakeLaw(material_, time_step);
+}
+
+double Engine::SmallestContactDuration() const {
+  GRANASYM_CHECK(forces_current_)
+      << "SmallestContactDuration needs the neighbour list of the current positions: call it "
+         "after ComputeForces";
+  // The shortest duration is that of the largest k_n (1/m_i + 1/m_j): one
+  // pass over the listed pairs, a max reduction (exact, so independent of
+  // the thread count).
+  const int64_t n = static_cast<int64_t>(position_.size());
+  const double lx = cell_[0], ly = cell_[1], lz = cell_[2];
+  const int64_t* offsets = neighbors_.offsets().data();
+  const int32_t* neighbor = neighbors_.neighbors().data();
+  const Vec4* position = position_.data();
+  const Vec4* velocity = velocity_.data();
+  const int threads = options_.threads;
+  const double largest = std::visit(
+      [&](const auto& law) {
+        double stiffest = 0.0;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : stiffest)
+        for (int64_t i = 0; i < n; ++i) {
+          const Vec4 pi = position[i];
+          for (int64_t p = offsets[i]; p < offsets[i + 1]; ++p) {
+            const Vec4 pj = position[neighbor[p]];
+            const double bx = lx * MinimumImage(pj.x - pi.x);
+            const double by = ly * MinimumImage(pj.y - pi.y);
+            const double bz = lz * MinimumImage(pj.z - pi.z);
+            const double distance2 = bx * bx + by * by + bz * bz;
+            const double reach = pi.w + pj.w;
+            if (!(distance2 < reach * reach)) continue;
+            const double stiffness = law.NormalStiffness(pi.w, pj.w, std::sqrt(distance2));
+            stiffest = std::max(stiffest, stiffness * (velocity[i].w + velocity[neighbor[p]].w));
+          }
+        }
+        return stiffest;
+      },
+      law_);
+  return largest > 0 ? kPi / std::sqrt(largest) : std::numeric_limits<double>::infinity();
+}
+
 void Engine::Step(Request request) { Evaluate(request, true); }
 
 void Engine::Step() { Step(Request{}); }
@@ -591,6 +636,7 @@ Engine::State Engine::Save() const {
   state.gradient = gradient_;
   state.time = time_;
   state.step = step_;
+  state.time_step = options_.time_step;
   state.max_displacement = max_displacement_;
   state.forces_current = forces_current_;
   state.neighbors = neighbors_.Save();
@@ -609,6 +655,7 @@ void Engine::Restore(State state) {
   gradient_ = state.gradient;
   time_ = state.time;
   step_ = state.step;
+  if (state.time_step > 0) SetTimeStep(state.time_step);
   max_displacement_ = state.max_displacement;
   forces_current_ = state.forces_current;
   neighbors_.Restore(std::move(state.neighbors));

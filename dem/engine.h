@@ -81,6 +81,22 @@ class Engine {
   void ComputeForces(Request request);
   // Advances velocities, positions and the cell by one step.
   void Integrate();
+  // Sets Δt (s, > 0) of the next Integrate() and of the contact law (whose
+  // shear increment k_t Δt v_t is the tangential displacement of the step
+  // just integrated). Call it between ComputeForces() and Integrate(), as the
+  // run loop does: the step then moves by the new Δt and the next evaluation
+  // increments the shear by the same displacement. Rebuilds the law; the
+  // particle data, the list and the shear history are unchanged.
+  void SetTimeStep(double time_step);
+  // The shortest undamped duration π sqrt(m_12/k_n) of the pairs touching at
+  // the current positions, with k_n = dF_n/du_N the law's tangent stiffness
+  // at the pair's overlap (NormalStiffness) and m_12 = 1/(1/m_i + 1/m_j) from
+  // the particles' inverse masses (s); +infinity when no pair touches (or
+  // none has a stiffness, e.g. two held spheres). For the linear law the
+  // durations do not depend on the overlap; for Hertz–Mindlin they shrink as
+  // u_N^(-1/4). Needs the neighbour list of the current positions: call it
+  // after ComputeForces() (before Integrate()).
+  double SmallestContactDuration() const;
   // ComputeForces + Integrate, bit-identical to calling the two, in one pass
   // over the particles: each is advanced as soon as its net force is complete.
   // The sums requested are those of the forces before the step; forces()
@@ -130,6 +146,9 @@ class Engine {
     std::array<double, 3> cell{}, gradient{};
     double time = 0;
     int64_t step = 0;
+    // Δt of the next step (s); 0 (a state saved before Δt was stored) keeps
+    // the engine's own on Restore.
+    double time_step = 0;
     double max_displacement = 0;
     bool forces_current = false;
     NeighborList::State neighbors;

@@ -45,8 +45,9 @@ class HertzMindlin : public IncrementalShearLaw<HertzMindlin> {
       if (!(friction_coefficient >= 0)) return *why = "friction_coefficient must be >= 0", false;
       return true;
     }
+    // E is the material's contact modulus (its stiffness scaling applied).
     static Params FromMaterial(const Material& material) {
-      return {material.youngs_modulus, material.poissons_ratio, material.friction_coefficient()};
+      return {material.contact_modulus(), material.poissons_ratio, material.friction_coefficient()};
     }
     // E* (Pa).
     double effective_modulus() const {

@@ -30,8 +30,10 @@ class LinearCundallStrack : public IncrementalShearLaw<LinearCundallStrack> {
       if (!(friction_coefficient >= 0)) return *why = "friction_coefficient must be >= 0", false;
       return true;
     }
+    // E is the material's contact modulus (its stiffness scaling applied).
     static Params FromMaterial(const Material& material) {
-      return {material.youngs_modulus, material.stiffness_ratio, material.friction_coefficient()};
+      return {material.contact_modulus(), material.stiffness_ratio,
+              material.friction_coefficient()};
     }
   };
   // Compatibility names of the shared interface types.

@@ -48,6 +48,7 @@ ContactDurations Durations(const std::vector<double>& radii, const Material& mat
     factor = std::max(factor, k_r * inverse_inertia / (k_n * inverse_mass));
   }
   d.critical_time_step = 2.0 / std::sqrt(k_n * inverse_mass * factor);
+  d.stability_fraction = 2.0 / (kPi * std::sqrt(factor));
   d.description = Law::DurationDescription() +
                   "; durations of two equal spheres (smallest, largest) with m_12 = m/2 "
                   "(reduced) and m_12 = m (single); stability limit of the two smallest spheres";
@@ -81,6 +82,9 @@ bool Material::IsValid(std::string* why) const {
            false;
   }
   if (!(density > 0)) return *why = "density must be > 0", false;
+  if (!(stiffness_scaling > 0 && stiffness_scaling <= 1)) {
+    return *why = "stiffness_scaling must be in (0, 1]", false;
+  }
   if (!(local_damping >= 0 && local_damping < 1)) {
     return *why = "local_damping must be in [0, 1)", false;
   }
@@ -136,6 +140,8 @@ Material ParseMaterial(const ConfigTable& table) {
   material.density = table.GetDouble("density_kg_m3", material.density, Range::Closed(1.0, 1e5));
   material.local_damping =
       table.GetDouble("local_damping", material.local_damping, {0.0, 1.0, true, false});
+  material.stiffness_scaling =
+      table.GetDouble("stiffness_scaling", material.stiffness_scaling, {0.0, 1.0, false, true});
   if (material.has_rolling_resistance() && !material.has_friction()) {
     table.Fail("rolling_friction",
                "= " + Number(material.rolling_friction) +
@@ -161,6 +167,7 @@ void Material::Canonical(CanonicalText& text, const std::string& prefix) const {
   text.Add(prefix + "rolling_friction", rolling_friction);
   text.Add(prefix + "density_kg_m3", density);
   text.Add(prefix + "local_damping", local_damping);
+  text.Add(prefix + "stiffness_scaling", stiffness_scaling);
 }
 
 ContactDurations ComputeContactDurations(const std::vector<double>& radii,

@@ -50,6 +50,16 @@ struct Material {
   double rolling_friction = 0.0;
   double density = 2650.0;     // ρ_s (kg/m³)
   double local_damping = 0.5;  // χ in [0, 1)
+  // Stiffness scaling s in (0, 1]: the contact laws use the modulus s·E
+  // (contact_modulus()). Softer contacts last longer (t_c ∝ 1/sqrt(E) for the
+  // linear law), so an adaptive time step grows by 1/sqrt(s) and the steps per
+  // unit strain at a given inertial number fall by sqrt(s) (SPEC §8.2); the
+  // stiffness number κ falls with it (by s for the linear law, s^(2/3) for
+  // Hertz–Mindlin), so its effect on a result must be measured.
+  double stiffness_scaling = 1.0;
+
+  // The Young's modulus the contact laws use: s·E (Pa).
+  double contact_modulus() const { return stiffness_scaling * youngs_modulus; }
 
   // Names the offending field in `why`.
   bool IsValid(std::string* why) const;
@@ -66,10 +76,10 @@ struct Material {
 // Reads a [material] table. Keys and units: contact_law ("linear" or
 // "hertz_mindlin", default "linear"), youngs_modulus_mpa, stiffness_ratio
 // (linear only), poissons_ratio (hertz_mindlin only), friction_angle_rad,
-// rolling_friction, density_kg_m3, local_damping; each defaults to Material's
-// value. A key of the other law, a value out of range, an unknown key or
-// rolling resistance without friction is an InputError naming the key, the
-// value and what is valid.
+// rolling_friction, density_kg_m3, local_damping, stiffness_scaling; each
+// defaults to Material's value. A key of the other law, a value out of range,
+// an unknown key or rolling resistance without friction is an InputError
+// naming the key, the value and what is valid.
 Material ParseMaterial(const ConfigTable& table);
 
 // Contact durations and the leapfrog stability limit of the material's law
@@ -90,6 +100,12 @@ struct ContactDurations {
   // 3.5 = 1 + r²m/I) and, with rolling resistance, k_r (1/I_i + 1/I_j) /
   // (k_n (1/m_i + 1/m_j)). k_n is the law's StabilityStiffness (s).
   double critical_time_step = 0;
+  // The largest stable Δt as a fraction of a pair's undamped duration at the
+  // same tangent stiffness, critical / (π sqrt(m_12/k_n)) = 2/(π sqrt(factor))
+  // with the factor above (two smallest spheres): independent of k_n, so for
+  // Hertz–Mindlin it holds at every overlap. The bound of an adaptive time
+  // step's fraction (dem/adaptive_time_step.h).
+  double stability_fraction = 0;
   std::string description;
 };
 ContactDurations ComputeContactDurations(const std::vector<double>& radii,

@@ -19,13 +19,14 @@ double InertialAt(const RowMeasures& row, double diameter) {
 // The stiffness number κ of the contact law at mean stress p: the inverse of
 // the typical overlap relative to the diameter (Agnolin & Roux 2007): linear
 // law κ = k_n/(d p) = E/(2p) (k_n = E d/2 for equal spheres); Hertz–Mindlin
-// κ = (E*/p)^(2/3), E* = E/(2(1 − ν²)).
+// κ = (E*/p)^(2/3), E* = E/(2(1 − ν²)); E is the contact modulus, i.e. with
+// the material's stiffness scaling applied.
 double StiffnessNumber(const RowMeasures& row) {
   const double p = row.stress.mean();
   if (!(p > 0)) return std::numeric_limits<double>::infinity();
   const Material& m = row.engine.material();
-  if (m.contact_law == ContactLaw::kLinear) return m.youngs_modulus / (2 * p);
-  const double effective = m.youngs_modulus / (2 * (1 - m.poissons_ratio * m.poissons_ratio));
+  if (m.contact_law == ContactLaw::kLinear) return m.contact_modulus() / (2 * p);
+  const double effective = m.contact_modulus() / (2 * (1 - m.poissons_ratio * m.poissons_ratio));
   return std::pow(effective / p, 2.0 / 3.0);
 }
 
@@ -57,6 +58,12 @@ const std::vector<OutputColumn>& OutputColumns() {
       {record::kColumnTime, "s", "simulated time", [](R r) { return r.engine.time(); }},
       {record::kColumnStep, "1", "time step index",
        [](R r) { return static_cast<double>(r.engine.step()); }},
+      {record::kColumnTimeStep, "s", "time step Delta t of the step from this row's state",
+       [](R r) { return r.engine.time_step(); }},
+      {record::kColumnContactDurationMin, "s",
+       "shortest undamped duration pi sqrt(m_12/k_n) of the touching pairs at their overlap "
+       "(inf: no contact)",
+       [](R r) { return r.engine.SmallestContactDuration(); }},
       {record::kColumnStage, "1", "stage index (0-based)",
        [](R r) { return static_cast<double>(r.stage); }},
       {"cell_x_m", "m", "cell side along axis 1 (vertical)",

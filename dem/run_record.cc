@@ -218,10 +218,12 @@ void CheckEngineState(const Hdf5File& file, const std::string& group, const Engi
     if (!std::isfinite(g)) Invalid(file, Join(group, kStateGradient), "is not finite");
   }
   if (!std::isfinite(state.time) || state.step < 0 ||
-      !(std::isfinite(state.max_displacement) && state.max_displacement >= 0)) {
+      !(std::isfinite(state.max_displacement) && state.max_displacement >= 0) ||
+      !(std::isfinite(state.time_step) && state.time_step >= 0)) {
     Invalid(file, group,
-            fmt::format("has time {:g}, step {}, max_displacement {:g} (finite, >= 0)", state.time,
-                        state.step, state.max_displacement));
+            fmt::format("has time {:g}, step {}, max_displacement {:g}, time_step {:g} (finite, "
+                        ">= 0)",
+                        state.time, state.step, state.max_displacement, state.time_step));
   }
   const NeighborList::State& list = state.neighbors;
   const std::string l = Join(group, kListGroup);
@@ -292,14 +294,21 @@ void CheckEngineState(const Hdf5File& file, const std::string& group, const Engi
 }  // namespace
 
 std::string RunSummary::OneLine() const {
+  const std::string steps_taken =
+      min_time_step == max_time_step
+          ? fmt::format("time step {:.4g} s", time_step)
+          : fmt::format("time step {:.4g} .. {:.4g} s", min_time_step, max_time_step);
   return fmt::format(
              "{}: {} steps, {} particles, {:.4g} s simulated, {:.1f} s wall ({:.1f} s "
              "loop), {:.3g} particle-steps/s ({:.3f} us per particle-step), {} threads, "
-             "{} list builds, {} rows: {}",
+             "{} list builds, {} rows, {}{}: {}",
              ToString(termination), steps, particles, simulated_time, wall_seconds, loop_seconds,
              particle_steps_per_second,
              particle_steps_per_second > 0 ? 1e6 / particle_steps_per_second : 0.0, threads,
-             neighbor_builds, rows, message) +
+             neighbor_builds, rows, steps_taken,
+             stiffness_scaling != 1 ? fmt::format(", stiffness scaled by {:g}", stiffness_scaling)
+                                    : "",
+             message) +
          (validity.empty() ? "" : "; validity: " + validity);
 }
 
@@ -375,6 +384,7 @@ void WriteEngineState(Hdf5File& file, const std::string& group, const Engine::St
   file.WriteDoubles(Join(group, record::kStateGradient), ToVector(state.gradient), "1/s");
   file.SetAttribute(group, record::kStateTime, state.time);
   file.SetAttribute(group, record::kStateStep, state.step);
+  file.SetAttribute(group, record::kStateTimeStep, state.time_step);
   file.SetAttribute(group, record::kStateMaxDisplacement, state.max_displacement);
   file.SetAttribute(group, record::kStateForcesCurrent, int64_t{state.forces_current});
   file.SetAttribute(group, record::kStateThreads, static_cast<int64_t>(threads));
@@ -405,6 +415,10 @@ Engine::State ReadEngineState(const Hdf5File& file, const std::string& group, in
   state.gradient = ReadArray3(file, Join(group, record::kStateGradient));
   state.time = file.ReadDoubleAttribute(group, record::kStateTime);
   state.step = file.ReadIntAttribute(group, record::kStateStep);
+  // States written before Δt was stored have none: 0 keeps the engine's.
+  if (file.HasAttribute(group, record::kStateTimeStep)) {
+    state.time_step = file.ReadDoubleAttribute(group, record::kStateTimeStep);
+  }
   state.max_displacement = file.ReadDoubleAttribute(group, record::kStateMaxDisplacement);
   state.forces_current = file.ReadIntAttribute(group, record::kStateForcesCurrent) != 0;
   if (threads) *threads = static_cast<int>(file.ReadIntAttribute(group, record::kStateThreads));
@@ -583,6 +597,10 @@ void WriteSummary(Hdf5File& file, const RunSummary& summary, const ContactDurati
   file.SetAttribute(s, kRows, summary.rows);
   file.SetAttribute(s, kStagesCompleted, summary.stages_completed);
   file.SetAttribute(s, kTimeStep, summary.time_step);
+  file.SetAttribute(s, kTimeStepMin, summary.min_time_step);
+  file.SetAttribute(s, kTimeStepMax, summary.max_time_step);
+  file.SetAttribute(s, kTimeStepRule, summary.time_step_rule);
+  file.SetAttribute(s, kStiffnessScaling, summary.stiffness_scaling);
   file.SetAttribute(s, kContactDurationMinReduced, durations.smallest_reduced_mass);
   file.SetAttribute(s, kContactDurationMaxReduced, durations.largest_reduced_mass);
   file.SetAttribute(s, kContactDurationMinSingle, durations.smallest_single_mass);
@@ -620,6 +638,16 @@ RunSummary ReadSummary(const Hdf5File& file) {
   summary.rows = file.ReadIntAttribute(s, kRows);
   summary.stages_completed = file.ReadIntAttribute(s, kStagesCompleted);
   summary.time_step = file.ReadDoubleAttribute(s, kTimeStep);
+  // Results of earlier versions: one fixed step, unscaled stiffness.
+  summary.min_time_step = summary.max_time_step = summary.time_step;
+  if (file.HasAttribute(s, kTimeStepMin)) {
+    summary.min_time_step = file.ReadDoubleAttribute(s, kTimeStepMin);
+    summary.max_time_step = file.ReadDoubleAttribute(s, kTimeStepMax);
+    summary.time_step_rule = file.ReadStringAttribute(s, kTimeStepRule);
+  }
+  if (file.HasAttribute(s, kStiffnessScaling)) {
+    summary.stiffness_scaling = file.ReadDoubleAttribute(s, kStiffnessScaling);
+  }
   return summary;
 }
 
@@ -787,6 +815,12 @@ std::string DescribeResult(const Hdf5File& file) {
   line("stages_completed", std::to_string(summary.stages_completed));
   line("simulated_time_s", fmt::format("{:.6g}", summary.simulated_time));
   line("time_step_s", fmt::format("{:.6g}", summary.time_step));
+  if (summary.min_time_step != summary.max_time_step) {
+    line("time_step_range_s",
+         fmt::format("{:.6g} .. {:.6g}", summary.min_time_step, summary.max_time_step));
+  }
+  line("time_step_rule", summary.time_step_rule);
+  line("stiffness_scaling", fmt::format("{:g}", summary.stiffness_scaling));
   line("wall_s", fmt::format("{:.1f}", summary.wall_seconds));
   line("threads", std::to_string(summary.threads));
   line("validity", summary.validity.empty() ? "no flags" : summary.validity);

@@ -56,7 +56,12 @@ struct RunSummary {
   int64_t rows = 0;
   int64_t stages_completed = 0;
   int threads = 1;
+  // Δt of the run's first row (s), and the smallest and largest of its rows
+  // (they differ under the adaptive rule).
   double time_step = 0;
+  double min_time_step = 0, max_time_step = 0;
+  std::string time_step_rule = "fixed";  // "fixed", or AdaptiveTimeStep::Describe()
+  double stiffness_scaling = 1;          // Material::stiffness_scaling
   std::string OneLine() const;
 };
 

@@ -12,7 +12,8 @@
 //                          validity, the asymptote record, the type's own
 //                          keys, and (when kept) its end state under end_state/
 //   /summary               termination, message, validity flags, counters,
-//                          times, time step, contact durations
+//                          times, time step (first, smallest, largest, rule),
+//                          stiffness scaling, contact durations
 //   /final_state           the packing at the end (input order): cell,
 //                          positions, radii, velocities, spins; and the exact
 //                          engine state under engine/
@@ -47,6 +48,8 @@ inline constexpr char kColumnVoidRatio[] = "e";
 inline constexpr char kColumnPsiSigma[] = "psi_sigma_deg";
 inline constexpr char kColumnOverlapMax[] = "overlap_max";
 inline constexpr char kColumnTime[] = "time_s";
+inline constexpr char kColumnTimeStep[] = "time_step_s";
+inline constexpr char kColumnContactDurationMin[] = "contact_duration_min_s";
 inline constexpr char kColumnCoordination[] = "coordination";
 inline constexpr char kColumnMechanicalCoordination[] = "mechanical_coordination";
 inline constexpr char kColumnInertialNumberDmin[] = "inertial_number_dmin";
@@ -127,7 +130,11 @@ inline constexpr char kNeighborBuilds[] = "neighbor_builds";
 inline constexpr char kThreads[] = "threads";
 inline constexpr char kRows[] = "rows";
 inline constexpr char kStagesCompleted[] = "stages_completed";
-inline constexpr char kTimeStep[] = "time_step_s";
+inline constexpr char kTimeStep[] = "time_step_s";  // of the first row
+inline constexpr char kTimeStepMin[] = "time_step_min_s";
+inline constexpr char kTimeStepMax[] = "time_step_max_s";
+inline constexpr char kTimeStepRule[] = "time_step_rule";  // "fixed" or the adaptive rule
+inline constexpr char kStiffnessScaling[] = "stiffness_scaling";
 inline constexpr char kContactDurationMinReduced[] = "contact_duration_min_reduced_mass_s";
 inline constexpr char kContactDurationMaxReduced[] = "contact_duration_max_reduced_mass_s";
 inline constexpr char kContactDurationMinSingle[] = "contact_duration_min_single_mass_s";
@@ -159,6 +166,7 @@ inline constexpr char kStateCell[] = "cell";
 inline constexpr char kStateGradient[] = "gradient";
 inline constexpr char kStateTime[] = "time";
 inline constexpr char kStateStep[] = "step";
+inline constexpr char kStateTimeStep[] = "time_step";  // Δt of the next step (s)
 inline constexpr char kStateMaxDisplacement[] = "max_displacement";
 inline constexpr char kStateForcesCurrent[] = "forces_current";
 inline constexpr char kStateThreads[] = "threads";

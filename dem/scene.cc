@@ -73,11 +73,27 @@ Scene Scene::Parse(const std::string& text, const std::string& origin,
   if (root.Has("numerics")) {
     const ConfigTable n = root.GetTable("numerics");
     if (n.Has("time_step_s") && n.Has("time_step_fraction")) {
-      n.Fail("time_step_s", "and time_step_fraction are both given: give one of them");
+      n.Fail("time_step_s",
+             "and time_step_fraction are both given: give one of them (a fixed step, or the "
+             "adaptive step as a fraction of the shortest contact duration)");
     }
-    if (n.Has("time_step_s")) scene.time_step_s = n.GetDouble("time_step_s", Range::Open(0.0, 1.0));
-    scene.time_step_fraction = n.GetDouble("time_step_fraction", scene.time_step_fraction,
-                                           Range::Closed(kSmallestTimeStepFraction, 2.0 / kPi));
+    if (n.Has("time_step_s")) {
+      scene.time_step_s = n.GetDouble("time_step_s", Range::Open(0.0, 1.0));
+      for (const char* key : {"time_step_check_interval", "max_time_step_s"}) {
+        if (n.Has(key)) {
+          n.Fail(key,
+                 "applies only to the adaptive time step (time_step_fraction), not to the fixed "
+                 "time_step_s: remove one of them");
+        }
+      }
+    }
+    AdaptiveTimeStep::Options& adaptive = scene.adaptive_time_step;
+    adaptive.fraction = n.GetDouble("time_step_fraction", adaptive.fraction,
+                                    Range::Closed(kSmallestTimeStepFraction, 2.0 / kPi));
+    adaptive.check_interval =
+        n.GetInt("time_step_check_interval", adaptive.check_interval, Range::Closed(1, 1e6));
+    adaptive.max_time_step =
+        n.GetDouble("max_time_step_s", adaptive.max_time_step, Range::Open(0.0, 1.0));
     scene.skin_fraction =
         n.GetDouble("skin_fraction", scene.skin_fraction, {0.0, 2.0, false, true});
     scene.threads = static_cast<int>(n.GetInt("threads", 1, Range::Closed(1, 1024)));
@@ -151,7 +167,11 @@ std::string Scene::Canonical() const {
   if (time_step_s) {
     text.Add("numerics.time_step_s", *time_step_s);
   } else {
-    text.Add("numerics.time_step_fraction", time_step_fraction);
+    text.Add("numerics.time_step_fraction", adaptive_time_step.fraction);
+    text.Add("numerics.time_step_check_interval", adaptive_time_step.check_interval);
+    if (std::isfinite(adaptive_time_step.max_time_step)) {
+      text.Add("numerics.max_time_step_s", adaptive_time_step.max_time_step);
+    }
   }
   text.Add("numerics.skin_fraction", skin_fraction);
   text.Add("output.interval_strain", output.interval_strain);
@@ -186,7 +206,28 @@ Packing Scene::BuildSample(GenerationReport* report) const {
 
 double Scene::TimeStep(const Packing& packing) const {
   const ContactDurations durations = ComputeContactDurations(packing.radii, material);
-  if (!time_step_s) return time_step_fraction * durations.smallest_reduced_mass;
+  if (!time_step_s) {
+    const AdaptiveTimeStep::Options& adaptive = adaptive_time_step;
+    if (adaptive.fraction > durations.stability_fraction) {
+      throw InputError(fmt::format(
+          "{}: key 'numerics.time_step_fraction' = {:g} is above the stability limit {:.4g} of "
+          "this material's contacts (the leapfrog limit as a fraction of a contact's duration{}): "
+          "use at most {:.4g}, e.g. 0.1",
+          origin, adaptive.fraction, durations.stability_fraction,
+          material.has_friction() ? ", lowered by the tangential and rolling springs" : "",
+          durations.stability_fraction));
+    }
+    const double smallest = kSmallestTimeStepFraction * durations.smallest_reduced_mass;
+    if (adaptive.max_time_step < smallest) {
+      throw InputError(fmt::format(
+          "{}: key 'numerics.max_time_step_s' = {:g} s is below {:g} of the smallest contact "
+          "duration {:.4g} s: such a step resolves nothing more and multiplies the cost; use at "
+          "least {:.4g} s (or leave it out)",
+          origin, adaptive.max_time_step, kSmallestTimeStepFraction,
+          durations.smallest_reduced_mass, smallest));
+    }
+    return AdaptiveTimeStep(adaptive, material, packing.radii).UpperBound();
+  }
   if (*time_step_s < kSmallestTimeStepFraction * durations.smallest_reduced_mass) {
     throw InputError(fmt::format(
         "{}: key 'numerics.time_step_s' = {:g} s is below {:g} of the smallest contact duration "

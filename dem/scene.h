@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/output_path.h"
+#include "dem/adaptive_time_step.h"
 #include "dem/engine.h"
 #include "dem/packing.h"
 #include "dem/stage.h"
@@ -51,8 +52,12 @@ struct Scene {
   // state), for the check that no output overwrites them.
   std::vector<NamedPath> InputFiles() const;
   Material material;
+  // The time step: a fixed Δt (numerics.time_step_s), or else the adaptive
+  // rule (numerics.time_step_fraction, time_step_check_interval,
+  // max_time_step_s; dem/adaptive_time_step.h).
   std::optional<double> time_step_s;
-  double time_step_fraction = 0.1;  // of the smallest contact duration (reduced mass)
+  AdaptiveTimeStep::Options adaptive_time_step;
+  bool adaptive() const { return !time_step_s.has_value(); }
   double skin_fraction = 0.3;
   int threads = 1;
   OutputOptions output;
@@ -67,12 +72,16 @@ struct Scene {
   // The parsed, defaulted scene as canonical text: what the run computes,
   // without file names, thread counts and reporting intervals.
   std::string Canonical() const;
-  // The time step for a packing; throws InputError naming numerics.time_step_s
-  // and the computed limit when it is above the stability limit.
-  // Throws InputError, also below kSmallestTimeStepFraction of the
-  // smallest contact duration.
+  // The time step for a packing: the fixed Δt, or the adaptive rule's upper
+  // bound (its value before the first contact, AdaptiveTimeStep::UpperBound).
+  // Throws InputError naming the key and the computed limit: a fixed Δt above
+  // the stability limit or below kSmallestTimeStepFraction of the smallest
+  // contact duration; a fraction above the material's stability fraction
+  // (ContactDurations::stability_fraction); a max_time_step_s below
+  // kSmallestTimeStepFraction of the smallest contact duration.
   double TimeStep(const Packing& packing) const;
-  // What the scene implies at this time step, checked before the first step:
+  // What the scene implies at this time step (the largest the run takes),
+  // checked before the first step:
   // every stage moves the cell by at least kSmallestStrainPerStep per step,
   // and a stage whose stops all bound its steps from below (strains, time,
   // steps) needs at most kMaxStageSteps. Throws InputError naming the stage,

@@ -17,6 +17,7 @@
 #include "common/state_measures.h"
 #include "common/stopwatch.h"
 #include "common/time_series.h"
+#include "dem/adaptive_time_step.h"
 #include "dem/asymptote_detector.h"
 #include "dem/contact_statistics.h"
 #include "dem/engine.h"
@@ -50,11 +51,26 @@ std::string HashEngineState(const Engine::State& state) {
   hash.Update(state.gradient.data(), sizeof(state.gradient));
   hash.Update(&state.time, sizeof(state.time));
   hash.Update(&state.step, sizeof(state.step));
+  hash.Update(&state.time_step, sizeof(state.time_step));
   HashVector(hash, state.neighbors.offsets);
   HashVector(hash, state.neighbors.neighbors);
   HashVector(hash, state.neighbors.shear);
   HashVector(hash, state.neighbors.rolling);
   return hash.HexDigest();
+}
+
+// The time steps of the rows: the first (the step the run started with,
+// also after a restart) and the smallest and largest.
+void SummarizeTimeSteps(const TimeSeries& series, RunSummary* summary) {
+  if (series.rows() == 0) {
+    summary->min_time_step = summary->max_time_step = summary->time_step;
+    return;
+  }
+  const std::vector<double>& steps = series.Values(record::kColumnTimeStep);
+  summary->time_step = steps.front();
+  const auto [smallest, largest] = std::minmax_element(steps.begin(), steps.end());
+  summary->min_time_step = *smallest;
+  summary->max_time_step = *largest;
 }
 
 class Simulation {
@@ -104,6 +120,8 @@ class Simulation {
   bool generated_ = false;
   Provenance provenance_;
   std::optional<Engine> engine_;
+  // The adaptive time step (scenes without a fixed numerics.time_step_s).
+  std::optional<AdaptiveTimeStep> time_step_rule_;
   double min_diameter_ = 0, max_diameter_ = 0;
   TimeSeries series_;
   std::vector<double> histogram_edges_;
@@ -154,8 +172,13 @@ StageContext Simulation::Context() const {
 
 void Simulation::MakeEngine(const Engine::State* state) {
   Engine::Options engine_options;
+  // The fixed step, or the adaptive rule's largest: the feasibility check's
+  // bound of the fewest steps holds for the whole run.
   engine_options.time_step = scene_.TimeStep(initial_);
   scene_.CheckFeasible(engine_options.time_step);
+  if (scene_.adaptive()) {
+    time_step_rule_.emplace(scene_.adaptive_time_step, scene_.material, initial_.radii);
+  }
   engine_options.skin_fraction = scene_.skin_fraction;
   engine_options.threads = threads_;
   engine_.emplace(initial_, scene_.material, engine_options);
@@ -164,7 +187,11 @@ void Simulation::MakeEngine(const Engine::State* state) {
       throw InputError(fmt::format("{}: the saved state holds {} particles, its sample {}",
                                    scene_.origin, state->position.size(), initial_.size()));
     }
+    // The state carries the Δt it was saved with: a restart continues with
+    // it; a fixed-step scene (a fork of a run with another step) takes its
+    // own; an adaptive scene re-evaluates at its first step (a stage start).
     engine_->Restore(*state);
+    if (!scene_.adaptive()) engine_->SetTimeStep(engine_options.time_step);
   }
 }
 
@@ -635,6 +662,7 @@ RunSummary Simulation::Finish(RunSummary& summary, Termination termination,
   summary.neighbor_builds = engine_->neighbors().builds();
   summary.rows = static_cast<int64_t>(series_.rows());
   summary.stages_completed = static_cast<int64_t>(records_.size());
+  SummarizeTimeSteps(series_, &summary);
   try {
     if (termination != Termination::kCompleted) WriteCheckpoint();
   } catch (const FileError& error) {
@@ -707,10 +735,21 @@ RunSummary Simulation::Run() {
       initial_.size(), threads_, engine_->time_step(),
       engine_->time_step() / d.smallest_reduced_mass, d.smallest_reduced_mass,
       d.smallest_single_mass, d.largest_reduced_mass, d.largest_single_mass, d.critical_time_step));
+  Log("time step " + (time_step_rule_ ? time_step_rule_->Describe() : std::string("fixed")));
+  const Material& material = scene_.material;
+  if (material.stiffness_scaling != 1) {
+    Log(fmt::format(
+        "stiffness scaling {:g}: the contacts use E = {:.6g} MPa (of the grains' {:.6g} MPa); "
+        "the stiffness number kappa falls with it",
+        material.stiffness_scaling, material.contact_modulus() * 1e-6,
+        material.youngs_modulus * 1e-6));
+  }
   RunSummary summary;
   summary.particles = static_cast<int64_t>(engine_->size());
   summary.threads = threads_;
   summary.time_step = engine_->time_step();
+  summary.time_step_rule = time_step_rule_ ? time_step_rule_->Describe() : "fixed";
+  summary.stiffness_scaling = material.stiffness_scaling;
   const int64_t first_step = engine_->step();
   double loop_seconds = 0;
   Termination termination;
@@ -733,7 +772,6 @@ RunSummary Simulation::Run() {
 // it, check the stops, write the row, then advance (or end the stage there).
 Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_seconds) {
   Stopwatch since_checkpoint;
-  const double dt = engine_->time_step();
   const OutputOptions& output = scene_.output;
   while (!done()) {
     Stopwatch step_clock;
@@ -755,22 +793,31 @@ Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_sec
     const bool need_stress =
         output_due || sample_due || strain_stop || controller_->NeedsStress(stage_steps) ||
         current.stop.mean_stress_kpa.has_value() || std::isnan(clock.start_p_kpa);
-    // The strain of the step just taken, on the stage's clocks.
-    auto count_step = [&] {
+    const bool retime = time_step_rule_ && time_step_rule_->Due(stage_steps);
+    // The strain of the step just taken (of length dt), on the stage's clocks.
+    auto count_step = [&](double dt) {
       const auto& g = engine_->velocity_gradient();
       const double increment = dt * std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
       clock.strain_norm += increment;
       runner_.strain_since_output += increment;
       ++runner_.steps_since_output;
     };
-    if (!need_stress) {
-      // Nothing is measured, controlled, stopped or written at this step:
-      // forces, kick and drift in one pass (Engine::Step, bit-identical to
-      // ComputeForces + Integrate).
+    if (!need_stress && !retime) {
+      // Nothing is measured, controlled, stopped, written or re-timed at this
+      // step: forces, kick and drift in one pass (Engine::Step, bit-identical
+      // to ComputeForces + Integrate).
+      const double dt = engine_->time_step();
       engine_->Step({});
-      count_step();
+      count_step(dt);
     } else {
       engine_->ComputeForces({need_stress, controller_->NeedsStiffness()});
+      // The adaptive Δt from the contacts just evaluated, before anything uses
+      // this step's Δt: the controller's rate, the step itself, its strain.
+      if (retime) {
+        const double next = time_step_rule_->Evaluate(*engine_);
+        if (next != engine_->time_step()) engine_->SetTimeStep(next);
+      }
+      const double dt = engine_->time_step();
       double p = std::numeric_limits<double>::quiet_NaN();
       if (need_stress) {
         p = MeanStressKpa(engine_->sums());
@@ -839,7 +886,7 @@ Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_sec
         FinishStage(*reason);
       } else {
         engine_->Integrate();
-        count_step();
+        count_step(dt);
       }
     }
     loop_seconds += step_clock.Seconds();
@@ -860,6 +907,7 @@ Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_sec
       partial.simulated_time = engine_->time();
       partial.rows = static_cast<int64_t>(series_.rows());
       partial.stages_completed = static_cast<int64_t>(records_.size());
+      SummarizeTimeSteps(series_, &partial);
       WriteResults(partial);
       since_checkpoint = Stopwatch();
     }

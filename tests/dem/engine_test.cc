@@ -103,6 +103,48 @@ TEST(Engine, ASecondEvaluationAtTheSamePositionsDoesNotSlideTheContactsAgain) {
   EXPECT_EQ(engine.sums().contacts, 1);
 }
 
+TEST(Engine, ANewTimeStepMovesTheNextStepAndItsShearIncrementByTheNewStep) {
+  // Two held spheres in contact (1/m = 0: their velocities stay as set), the
+  // second sliding past the first at v along y: each force evaluation adds
+  // k_s Δt v to the shear force, the Δt of the step that made that slide.
+  const double r = 0.5e-3, overlap = 2e-6, v = 0.01, dt = 1e-8;
+  Engine engine(
+      TwoSpheres({0.004, 0.005, 0.005}, {0.004 + 2 * r - overlap, 0.005, 0.005}, r, r, 0.01),
+      Elastic(0.5), StepOptions(dt));
+  for (int64_t id : {0, 1}) engine.SetInverseMassAndInertia(Slot(engine, id), 0.0, 0.0);
+  engine.SetVelocity(Slot(engine, 1), {0.0, v, 0.0});
+  const double k_s = 0.3 * 500e6 * r;
+  // The stored shear force of the one pair (on sphere 0 or 1, whichever the
+  // list made i: its magnitude).
+  auto shear = [&engine] {
+    EXPECT_EQ(engine.neighbors().shear().size(), 1u);
+    return Norm(engine.neighbors().shear().at(0));
+  };
+  engine.ComputeForces({false, false});
+  const double first = shear();
+  EXPECT_NEAR(first, k_s * dt * v, 1e-9 * k_s * dt * v);
+  engine.SetTimeStep(0.5 * dt);
+  EXPECT_EQ(engine.time_step(), 0.5 * dt);
+  engine.Integrate();
+  EXPECT_EQ(engine.time(), 0.5 * dt);
+  EXPECT_NEAR(engine.Position(Slot(engine, 1)).y, 0.005 + 0.5 * dt * v, 1e-15);
+  engine.ComputeForces({false, false});
+  // The increment is k_s (Δt/2) v: the slide of the step just taken.
+  const double increment = shear() - first;
+  EXPECT_NEAR(increment, k_s * 0.5 * dt * v, 1e-6 * k_s * dt * v);
+  // The state carries Δt: an engine restored from it steps with it.
+  Engine restored(
+      TwoSpheres({0.004, 0.005, 0.005}, {0.004 + 2 * r - overlap, 0.005, 0.005}, r, r, 0.01),
+      Elastic(0.5), StepOptions(dt));
+  restored.Restore(engine.Save());
+  EXPECT_EQ(restored.time_step(), 0.5 * dt);
+  engine.Integrate();
+  restored.ComputeForces({false, false});
+  restored.Integrate();
+  EXPECT_EQ(restored.time(), engine.time());
+  EXPECT_EQ(restored.Position(Slot(restored, 1)).y, engine.Position(Slot(engine, 1)).y);
+}
+
 TEST(Engine, LoveWeberStressOfOneNormalContact) {
   const double r = 0.5e-3, overlap = 2e-6, side = 0.01;
   Engine engine(

@@ -44,6 +44,7 @@ void ExpectSame(const Material& a, const Material& b) {
   EXPECT_EQ(a.rolling_friction, b.rolling_friction);
   EXPECT_EQ(a.density, b.density);
   EXPECT_EQ(a.local_damping, b.local_damping);
+  EXPECT_EQ(a.stiffness_scaling, b.stiffness_scaling);
 }
 
 TEST(Material, DefaultMaterialIsValidAndIsThePapersLinearLaw) {
@@ -57,6 +58,8 @@ TEST(Material, DefaultMaterialIsValidAndIsThePapersLinearLaw) {
   EXPECT_EQ(material.density, 2650.0);
   EXPECT_EQ(material.local_damping, 0.5);
   EXPECT_EQ(material.rolling_friction, 0.0);  // the paper has no rolling resistance
+  EXPECT_EQ(material.stiffness_scaling, 1.0);
+  EXPECT_EQ(material.contact_modulus(), material.youngs_modulus);
   EXPECT_TRUE(material.has_friction());
   EXPECT_FALSE(material.has_rolling_resistance());
 }
@@ -134,6 +137,24 @@ TEST(ParseMaterial, RejectsValuesOutOfRangeUnknownLawsAndUnknownKeys) {
                  {"material.youngs_modulus_mpa", "-1", "in [0.001, 10000000]"});
 }
 
+TEST(ParseMaterial, StiffnessScalingIsAFractionOfTheContactModulus) {
+  const Material scaled = Parse("youngs_modulus_mpa = 400.0\nstiffness_scaling = 0.25\n");
+  EXPECT_EQ(scaled.stiffness_scaling, 0.25);
+  EXPECT_DOUBLE_EQ(scaled.youngs_modulus, 400e6);  // the grains' modulus is kept as given
+  EXPECT_DOUBLE_EQ(scaled.contact_modulus(), 100e6);
+  EXPECT_EQ(Parse("stiffness_scaling = 1.0\n").stiffness_scaling, 1.0);
+  for (const auto& [literal, spelling] : std::vector<std::pair<std::string, std::string>>{
+           {"0.0", "= 0 "}, {"-0.5", "= -0.5 "}, {"1.5", "= 1.5 "}}) {
+    ExpectMentions(ErrorOf("stiffness_scaling = " + literal + "\n"),
+                   {"scene.toml", "material.stiffness_scaling", spelling, "in (0, 1]"});
+  }
+  std::string why;
+  Material invalid;
+  invalid.stiffness_scaling = 0;
+  EXPECT_FALSE(invalid.IsValid(&why));
+  EXPECT_NE(why.find("stiffness_scaling"), std::string::npos) << why;
+}
+
 TEST(ParseMaterial, RejectsRollingResistanceWithoutFriction) {
   ExpectMentions(ErrorOf("rolling_friction = 0.1\nfriction_angle_rad = 0.0\n"),
                  {"material.rolling_friction", "0.1", "friction_angle_rad > 0"});
@@ -151,6 +172,7 @@ TEST(Material, ItsCanonicalTextIsWhatParseMaterialReadsBack) {
   hertz.youngs_modulus = 70e9;
   hertz.poissons_ratio = 0.22;
   hertz.local_damping = 0.0;
+  hertz.stiffness_scaling = 0.01;
   for (const Material& material : {Material{}, linear, hertz}) {
     CanonicalText canonical;
     material.Canonical(canonical, "");
@@ -227,6 +249,46 @@ TEST(ContactDurations, HertzMindlinUsesTheReferenceSpeedAndOverlap) {
               1e-12 * d.critical_time_step);
   EXPECT_NE(d.description.find("1 m/s"), std::string::npos) << d.description;
   EXPECT_NE(d.description.find("0.1"), std::string::npos) << d.description;
+}
+
+TEST(ContactDurations, ScalingTheStiffnessByAQuarterDoublesTheLinearDurations) {
+  // t_c = π sqrt(m_12/k_n) with k_n ∝ s E: a quarter of the stiffness
+  // doubles every duration and the stability limit (exactly: 4 is a power of 2).
+  const std::vector<double> radii = {0.1e-3, 0.3e-3, 0.5e-3};
+  Material scaled;
+  scaled.stiffness_scaling = 0.25;
+  const ContactDurations full = ComputeContactDurations(radii, Material{});
+  const ContactDurations soft = ComputeContactDurations(radii, scaled);
+  EXPECT_EQ(soft.smallest_reduced_mass, 2 * full.smallest_reduced_mass);
+  EXPECT_EQ(soft.largest_single_mass, 2 * full.largest_single_mass);
+  EXPECT_DOUBLE_EQ(soft.critical_time_step, 2 * full.critical_time_step);
+  EXPECT_EQ(soft.stability_fraction, full.stability_fraction);
+  // Hertz–Mindlin: the impact duration scales as E*^(-2/5).
+  Material hertz;
+  hertz.contact_law = ContactLaw::kHertzMindlin;
+  Material hertz_scaled = hertz;
+  hertz_scaled.stiffness_scaling = 0.25;
+  EXPECT_NEAR(ComputeContactDurations(radii, hertz_scaled).smallest_reduced_mass /
+                  ComputeContactDurations(radii, hertz).smallest_reduced_mass,
+              std::pow(0.25, -0.4), 1e-12);
+}
+
+TEST(ContactDurations, TheStabilityFractionIsTheLimitOverTheDurationAtOneStiffness) {
+  // Linear law, equal spheres: critical / t_c = 2/(π sqrt(factor)); without
+  // friction factor = 1, with the paper's k_s/k_n = 0.3 it is 3.5 · 0.3.
+  Material frictionless;
+  frictionless.friction_angle = 0;
+  const ContactDurations plain = ComputeContactDurations({0.1e-3, 0.1e-3}, frictionless);
+  EXPECT_NEAR(plain.stability_fraction, 2 / kPi, 1e-15);
+  EXPECT_NEAR(plain.critical_time_step / plain.smallest_reduced_mass, plain.stability_fraction,
+              1e-12);
+  const ContactDurations paper = ComputeContactDurations({0.1e-3, 0.1e-3}, Material{});
+  EXPECT_NEAR(paper.stability_fraction, 2 / (kPi * std::sqrt(1.05)), 1e-15);
+  // Hertz–Mindlin with friction (ν = 0.25: k_t/k_n = 6/7): 0.368.
+  Material hertz;
+  hertz.contact_law = ContactLaw::kHertzMindlin;
+  EXPECT_NEAR(ComputeContactDurations({0.1e-3}, hertz).stability_fraction,
+              2 / (kPi * std::sqrt(3.5 * 6.0 / 7.0)), 1e-15);
 }
 
 TEST(ContactDurations, StiffRollingResistanceTightensTheStabilityLimit) {

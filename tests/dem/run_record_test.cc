@@ -155,6 +155,25 @@ TEST_F(Fork, BadParentsAreRejectedWithTheReason) {
   EXPECT_FALSE(stray.empty());
 }
 
+// With the adaptive step (Hertz–Mindlin: Δt changes during the run) a fork
+// from a stage end steps exactly as the run that went on: the rule is
+// evaluated at every stage start and then every check interval of the stage.
+TEST(ForkWithAdaptiveTimeStep, FromAStageEndGivesTheSameBytesAsOneRun) {
+  const std::string numerics =
+      "[material]\ncontact_law = 'hertz_mindlin'\npoissons_ratio = 0.25\n"
+      "[numerics]\ntime_step_fraction = 0.1\ntime_step_check_interval = 30\n";
+  const std::string sample =
+      "[sample.generate]\ncount = 400\ncell_size_mm = 4.3\nseed = 4\n" + numerics + kOutput;
+  RunToFile(sample + kStageA + kStageB, "adaptive_straight");
+  RunToFile("[sample]\nstate = '" + TempPath("adaptive_straight.h5") + "'\nstage = 'ncl'\n" +
+                numerics + kOutput + kStageB,
+            "adaptive_fork");
+  const TimeSeries straight = SeriesOf("adaptive_straight");
+  const auto& dt = straight.Values(record::kColumnTimeStep);
+  ASSERT_LT(*std::min_element(dt.begin(), dt.end()), 0.9 * *std::max_element(dt.begin(), dt.end()));
+  ExpectSameRows(straight, SeriesOf("adaptive_fork"));
+}
+
 TEST(ForkWithAnotherMaterial, StartsTheHistoriesTheParentDidNotKeepFromZero) {
   // A frictionless parent keeps no shear history; the child adds friction and
   // rolling resistance, so both histories start at zero in every pair.

@@ -38,8 +38,11 @@ friction_angle_rad = {phi}
 rolling_friction = {roll}
 density_kg_m3 = {rho}
 local_damping = {damp}
+stiffness_scaling = {stiff}
 [numerics]
 time_step_fraction = {dtf}
+time_step_check_interval = {dtcheck}
+max_time_step_s = {dtmax}
 skin_fraction = {skin}
 threads = {threads}
 [output]
@@ -117,7 +120,10 @@ const std::vector<Key>& Keys() {
       {"material.rolling_friction", "roll", "0.0", {"0"}},
       {"material.density_kg_m3", "rho", "2650.0", {}},
       {"material.local_damping", "damp", "0.5", {"0"}},
+      {"material.stiffness_scaling", "stiff", "0.5", {}},
       {"numerics.time_step_fraction", "dtf", "0.2", {}},
+      {"numerics.time_step_check_interval", "dtcheck", "100", {}},
+      {"numerics.max_time_step_s", "dtmax", "1e-7", {}},
       {"numerics.skin_fraction", "skin", "0.3", {}},
       {"numerics.threads", "threads", "1", {}},
       {"output.interval_strain", "dstrain", "0.002", {}},
@@ -195,8 +201,8 @@ TEST(SceneHostileValues, EveryNumericKeyRejectsOrAcceptsEachValueAsListed) {
                                        "'" + key.name + "'", spelling);
     }
   }
-  // 47 keys x 7 values; the count is part of the closing note.
-  EXPECT_EQ(cases, 329);
+  // 50 keys x 7 values; the count is part of the closing note.
+  EXPECT_EQ(cases, 350);
   EXPECT_GT(rejected, 300);
 }
 
@@ -320,6 +326,10 @@ TEST(SceneInapplicableKeys, AreRejectedNamingTheKey) {
        "material.stiffness_ratio"},
       {sample + "[numerics]\ntime_step_s = 1e-7\ntime_step_fraction = 0.1\n" + ncl,
        "numerics.time_step_s"},
+      {sample + "[numerics]\ntime_step_s = 1e-7\ntime_step_check_interval = 10\n" + ncl,
+       "numerics.time_step_check_interval"},
+      {sample + "[numerics]\ntime_step_s = 1e-7\nmax_time_step_s = 1e-7\n" + ncl,
+       "numerics.max_time_step_s"},
       {"[sample]\nstage = \"ncl\"\n[sample.generate]\ncount = 100\n" + ncl, "sample.stage"},
       {sample + "[output]\noverlap_histogram = false\nhistogram_bins = 10\n" + ncl,
        "output.histogram_bins"},

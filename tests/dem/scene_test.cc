@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <functional>
 
@@ -78,6 +79,70 @@ TEST(Scene, NonPositiveModulusAndSizeAreRejected) {
 TEST(Scene, TimeStepAboveTheStabilityLimitIsRejectedWithTheLimit) {
   ExpectMentions(ErrorOf(Replace(kValid, "time_step_s = 1.2e-7", "time_step_s = 1e-6")),
                  {"numerics.time_step_s", "stability limit", "6."});
+}
+
+TEST(Scene, WithoutAFixedStepTheTimeStepIsAdaptive) {
+  const std::string adaptive_text =
+      Replace(kValid, "time_step_s = 1.2e-7",
+              "time_step_fraction = 0.2\ntime_step_check_interval = 25\nmax_time_step_s = 1e-7");
+  const Scene adaptive = Scene::Parse(adaptive_text, "adaptive.toml", "");
+  ASSERT_TRUE(adaptive.adaptive());
+  EXPECT_EQ(adaptive.adaptive_time_step.fraction, 0.2);
+  EXPECT_EQ(adaptive.adaptive_time_step.check_interval, 25);
+  EXPECT_EQ(adaptive.adaptive_time_step.max_time_step, 1e-7);
+  // The largest step: f t_c(min) = 0.2 · 1.05e-6 s capped at 1e-7 s.
+  EXPECT_EQ(adaptive.TimeStep(adaptive.BuildSample(nullptr)), 1e-7);
+  const std::string canonical = adaptive.Canonical();
+  EXPECT_NE(canonical.find("numerics.time_step_check_interval"), std::string::npos) << canonical;
+  EXPECT_NE(canonical.find("numerics.max_time_step_s"), std::string::npos) << canonical;
+  EXPECT_EQ(canonical.find("numerics.time_step_s"), std::string::npos) << canonical;
+  // Defaults: 0.1 of the shortest duration, every 100 steps, no cap.
+  const Scene defaults = Scene::Parse(Replace(kValid, "time_step_s = 1.2e-7", ""), "d.toml", "");
+  ASSERT_TRUE(defaults.adaptive());
+  EXPECT_EQ(defaults.adaptive_time_step.fraction, 0.1);
+  EXPECT_EQ(defaults.adaptive_time_step.check_interval, 100);
+  EXPECT_FALSE(std::isfinite(defaults.adaptive_time_step.max_time_step));
+  EXPECT_EQ(defaults.Canonical().find("max_time_step_s"), std::string::npos);
+  const Scene fixed = Scene::Parse(kValid, "fixed.toml", "");
+  EXPECT_FALSE(fixed.adaptive());
+  EXPECT_EQ(fixed.Canonical().find("time_step_check_interval"), std::string::npos);
+}
+
+TEST(Scene, TheAdaptiveKeysOfAFixedStepAreRejected) {
+  ExpectMentions(ErrorOf(Replace(kValid, "time_step_s = 1.2e-7",
+                                 "time_step_s = 1.2e-7\ntime_step_fraction = 0.1")),
+                 {"numerics.time_step_s", "time_step_fraction", "give one of them"});
+  ExpectMentions(ErrorOf(Replace(kValid, "time_step_s = 1.2e-7",
+                                 "time_step_s = 1.2e-7\ntime_step_check_interval = 10")),
+                 {"numerics.time_step_check_interval", "adaptive", "time_step_s"});
+  ExpectMentions(ErrorOf(Replace(kValid, "time_step_s = 1.2e-7",
+                                 "time_step_s = 1.2e-7\nmax_time_step_s = 1e-7")),
+                 {"numerics.max_time_step_s", "adaptive"});
+}
+
+TEST(Scene, AdaptiveKeysOutOfRangeAreRejectedWithTheRange) {
+  ExpectMentions(ErrorOf(Replace(kValid, "time_step_s = 1.2e-7", "time_step_fraction = 0.7")),
+                 {"numerics.time_step_fraction", "0.7", "[0.0001, 0.63"});
+  ExpectMentions(ErrorOf(Replace(kValid, "time_step_s = 1.2e-7", "time_step_check_interval = 0")),
+                 {"numerics.time_step_check_interval", "= 0", "in [1, 1000000]"});
+  ExpectMentions(ErrorOf(Replace(kValid, "time_step_s = 1.2e-7", "max_time_step_s = 2.0")),
+                 {"numerics.max_time_step_s", "= 2", "in (0, 1)"});
+  // Below 1e-4 of the smallest contact duration (1.047e-6 s): it resolves nothing more.
+  ExpectMentions(ErrorOf(Replace(kValid, "time_step_s = 1.2e-7", "max_time_step_s = 1e-11")),
+                 {"numerics.max_time_step_s", "1e-11", "below 0.0001", "1.047e-06"});
+}
+
+TEST(Scene, AFractionBeyondTheLeapfrogLimitOfTheContactsIsRejectedWithTheLimit) {
+  // The paper's linear law with friction: 2/(π sqrt(1.05)) = 0.621 of t_c.
+  ExpectMentions(ErrorOf(Replace(kValid, "time_step_s = 1.2e-7", "time_step_fraction = 0.63")),
+                 {"numerics.time_step_fraction", "0.63", "stability limit 0.6213"});
+  // Hertz–Mindlin with friction: k_t/k_n = 6/7 at ν = 0.25, 2/(π sqrt(3)) = 0.3676.
+  const std::string hertz =
+      Replace(kValid, "youngs_modulus_mpa = 500.0",
+              "youngs_modulus_mpa = 500.0\ncontact_law = 'hertz_mindlin'\npoissons_ratio = 0.25");
+  ExpectMentions(ErrorOf(Replace(hertz, "time_step_s = 1.2e-7", "time_step_fraction = 0.4")),
+                 {"numerics.time_step_fraction", "0.4", "stability limit 0.3676"});
+  EXPECT_EQ(ErrorOf(Replace(hertz, "time_step_s = 1.2e-7", "time_step_fraction = 0.35")), "");
 }
 
 TEST(Scene, NonMonotonicGsdIsRejectedNamingTheRow) {
