@@ -43,8 +43,8 @@ double EstimateSteps(const dem::Stage& stage, double time_step) {
 
 }  // namespace
 
-Plan Plan::Make(const Programme& programme, Scale scale, int threads,
-                const std::string& directory) {
+Plan Plan::Make(const Programme& programme, int threads, const std::string& directory) {
+  const Scale scale = programme.scale;
   Plan plan;
   plan.programme = programme;
   plan.scale = scale;
