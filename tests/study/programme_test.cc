@@ -6,6 +6,8 @@
 #include <string>
 
 #include "common/error.h"
+#include "dem/scene.h"
+#include "dem/strain_path_stage.h"
 #include "study/plan.h"
 
 namespace granasym::study {
@@ -276,6 +278,81 @@ TEST(Plan, ShardsCoverEveryLeafOnceWithTheirAncestors) {
     EXPECT_EQ(leaves.size(), 10u) << count << " shards";
     EXPECT_EQ(std::set<int>(leaves.begin(), leaves.end()).size(), 10u);
   }
+}
+
+// studies/programmes/rate.toml (issue 10 §2): the study at the small scale,
+// and the tiny scale that CI runs.
+std::string RateProgrammePath() {
+  return std::string(GRANASYM_PROGRAMMES_DIR) + "/rate.toml";
+}
+
+TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
+  const Programme small = Programme::Load(RateProgrammePath(), Scale::kSmall);
+  EXPECT_EQ(small.Current().replicates, 3);
+  // Per Young's modulus one NCL with a state at every start.
+  for (const char* ncl : {"ncl_E500", "ncl_E100"}) {
+    ASSERT_NE(small.Find(ncl), nullptr) << ncl;
+    EXPECT_EQ(small.Find(ncl)->stage_names,
+              (std::vector<std::string>{"p5", "p20", "p100", "p500"}));
+    EXPECT_NE(small.Find(ncl)->scene_body.find("inertial_number = 0.001"), std::string::npos);
+  }
+  // Every (ψ_ε, p_0) at the six I* and at 167 1/s; 90° at both moduli.
+  const std::vector<std::string> rates = {"I0.1", "I0.03", "I0.01", "I0.003", "I0.001",
+                                          "I0.0003", "D167"};
+  int rate_cases = 0;
+  for (const char* p : {"5", "20", "100", "500"}) {
+    for (const std::string& rate : rates) {
+      for (const std::string& name :
+           {"nc" + std::string(p) + "_psi0_" + rate, "nc" + std::string(p) + "_psi100_" + rate,
+            "nc" + std::string(p) + "_psi90_" + rate + "_E500",
+            "nc" + std::string(p) + "_psi90_" + rate + "_E100"}) {
+        const CaseSpec* c = small.Find(name);
+        ASSERT_NE(c, nullptr) << name;
+        EXPECT_EQ(c->figures, "rate") << name;
+        EXPECT_EQ(c->parent_stage, "p" + std::string(p)) << name;
+        ++rate_cases;
+      }
+    }
+  }
+  EXPECT_EQ(rate_cases, 4 * 7 * 4);
+  EXPECT_EQ(small.cases.size(), static_cast<size_t>(rate_cases + 2));
+  // The 90° cases of the softer material start from its own NCL.
+  EXPECT_EQ(small.Find("nc20_psi90_I0.001_E100")->parent, "ncl_E100");
+  EXPECT_NE(small.Find("nc20_psi90_I0.001_E100")->scene_body.find("youngs_modulus_mpa = 100"),
+            std::string::npos);
+  EXPECT_NE(small.Find("nc20_psi90_D167_E500")->scene_body.find("strain_norm = 0.8"),
+            std::string::npos);
+  // Every scene of every scale is a valid scene (Plan::Make parses them).
+  EXPECT_EQ(Plan::Make(small, 1, "out").cases.size(), 3 * small.cases.size());
+  const Programme paper = Programme::Load(RateProgrammePath(), Scale::kPaper);
+  EXPECT_EQ(paper.Current().count, 150000);
+  EXPECT_EQ(paper.cases.size(), small.cases.size());
+}
+
+TEST(RateProgramme, TinyScaleKeepsOneStartTwoRatesAndTheConstantRate) {
+  const Programme tiny = Programme::Load(RateProgrammePath(), Scale::kTiny);
+  std::vector<std::string> names;
+  for (const CaseSpec& c : tiny.cases) names.push_back(c.name);
+  EXPECT_EQ(names, (std::vector<std::string>{
+                       "ncl_E500", "nc100_psi0_I0.1", "nc100_psi0_I0.03", "nc100_psi0_D167",
+                       "nc100_psi90_I0.1_E500", "nc100_psi90_I0.03_E500",
+                       "nc100_psi90_D167_E500"}));
+  EXPECT_EQ(tiny.Find("ncl_E500")->stage_names, (std::vector<std::string>{"p100"}));
+  const Plan plan = Plan::Make(tiny, 1, "out");
+  EXPECT_EQ(plan.cases.size(), 14u);  // two replicates
+  EXPECT_EQ(plan.samples[0].options.count, 800u);
+  // The tiny caps and rates reach the scenes.
+  const int k = plan.Find("r1/nc100_psi90_I0.03_E500");
+  ASSERT_GE(k, 0);
+  const dem::Scene scene = dem::Scene::Parse(plan.cases[static_cast<size_t>(k)].scene_text,
+                                             "scene.toml", ".");
+  ASSERT_EQ(scene.stages.size(), 1u);
+  EXPECT_DOUBLE_EQ(*scene.stages[0].stop.strain_norm, 0.3);
+  const auto* path = scene.stages[0].As<dem::StrainPathStage>();
+  ASSERT_NE(path, nullptr);
+  EXPECT_EQ(path->rule, dem::RateRule::kInertial);
+  EXPECT_DOUBLE_EQ(path->inertial.inertial_number, 0.03);
+  EXPECT_DOUBLE_EQ(path->psi_epsilon_deg, 90);
 }
 
 }  // namespace
