@@ -182,131 +182,6 @@ Columns StateFields(const RateState& s) {
           {"flags", CsvText(s.flags)}};
 }
 
-void WriteFiles(const std::string& directory, const RateStudy& study) {
-  const RateStudyOptions& o = study.options;
-  auto join = [](const std::vector<std::string>& list) {
-    std::string text;
-    for (const std::string& item : list) text += (text.empty() ? "" : "/") + item;
-    return text;
-  };
-  const std::string usable = fmt::format(
-      "usable states: status {} ({} at psi_epsilon = 0), none flagged {}", join(o.statuses),
-      join(o.ncl_statuses), join(o.excluded_flags));
-
-  CsvWriter states({"the asymptotic states of the rate cases (figures key 'rate'), one row per "
-                    "case and detector stage; start_p_kpa: the p target of the state the case "
-                    "started from; stiffness_number: kappa of the contact law at p"});
-  for (const RateState& s : study.states) states.Add(StateFields(s));
-  states.SetHeader(StateFields(RateState{}));
-  states.Write(directory + "/" + kRateStatesFile);
-
-  CsvWriter summary({"per (E, psi_epsilon, start p, rate): the mean over the replicates' usable "
-                     "states and the half-width of its 95 % interval (Student t, n - 1 degrees "
-                     "of freedom; empty below two states)",
-                     usable});
-  auto group_fields = [](const RateGroup& g) {
-    Columns fields = KeyFields(g.key);
-    fields.emplace_back("states", std::to_string(g.states));
-    fields.emplace_back("used", std::to_string(g.used));
-    AddEstimate(&fields, "p_kpa", g.p_kpa);
-    AddEstimate(&fields, "e", g.e);
-    AddEstimate(&fields, "ln_1_plus_e", g.ln_1_plus_e);
-    AddEstimate(&fields, "psi_sigma_deg", g.psi_sigma_deg);
-    AddEstimate(&fields, "q_over_p", g.q_over_p);
-    AddEstimate(&fields, "ocr", g.ocr);
-    AddEstimate(&fields, "inertial_number_dmin", g.inertial_number_dmin);
-    AddEstimate(&fields, "inertial_number_dmax", g.inertial_number_dmax);
-    AddEstimate(&fields, "stiffness_number", g.stiffness_number);
-    return fields;
-  };
-  for (const RateGroup& g : study.groups) summary.Add(group_fields(g));
-  summary.SetHeader(group_fields(RateGroup{}));
-  summary.Write(directory + "/" + kRateSummaryFile);
-
-  CsvWriter lines({fmt::format("per (E, psi_epsilon, rate): ln(1+e) = N - lambda ln(p / 1 kPa) "
-                               "by least squares through the usable states of every start and "
-                               "replicate (at least two starts); position: ln(1+e) on the line "
-                               "at p = {:g} kPa with the 95 % interval of the prediction "
-                               "(Student t, points - 2 degrees of freedom)",
-                               o.reference_p_kpa),
-                   usable});
-  auto line_fields = [&o](const RateLine& l) {
-    Columns fields = {{"youngs_modulus_mpa", CsvNumber(l.youngs_modulus_mpa)},
-                      {"psi_epsilon_deg", CsvNumber(l.psi_epsilon_deg)},
-                      {"rate_rule", ToString(l.rule)},
-                      {"rate", CsvNumber(l.rate)},
-                      {"points", std::to_string(l.points)},
-                      {"N", CsvNumber(l.n)},
-                      {"lambda", CsvNumber(l.lambda)},
-                      {"reference_p_kpa", CsvNumber(o.reference_p_kpa)}};
-    AddEstimate(&fields, "position", l.position);
-    fields.emplace_back("p_min_kpa", CsvNumber(l.p_min_kpa));
-    fields.emplace_back("p_max_kpa", CsvNumber(l.p_max_kpa));
-    return fields;
-  };
-  for (const RateLine& l : study.lines) lines.Add(line_fields(l));
-  lines.SetHeader(line_fields(RateLine{}));
-  lines.Write(directory + "/" + kRateLinesFile);
-
-  CsvWriter quasi({fmt::format("the quasi-static limit per (E, psi_epsilon, start p): y = a + b "
-                               "I(d_max) by least squares through the usable states of the {} "
-                               "smallest I* (I(d_max) as measured over each asymptote's window; "
-                               "da Cruz et al. 2005: mu* = mu*_0 + b I at small I); a, b with "
-                               "95 % intervals (Student t, points - 2 degrees of freedom)",
-                               o.fit_rates),
-                   usable});
-  auto quasi_fields = [](const QuasiStaticFit& f) {
-    std::string rates;
-    for (double r : f.rates) rates += (rates.empty() ? "" : ";") + CsvNumber(r);
-    Columns fields = {{"youngs_modulus_mpa", CsvNumber(f.youngs_modulus_mpa)},
-                      {"psi_epsilon_deg", CsvNumber(f.psi_epsilon_deg)},
-                      {"start_p_kpa", CsvNumber(f.start_p_kpa)},
-                      {"quantity", f.quantity},
-                      {"rates", rates},
-                      {"points", std::to_string(f.points)},
-                      {"i_min", CsvNumber(f.i_min)},
-                      {"i_max", CsvNumber(f.i_max)}};
-    AddEstimate(&fields, "limit", f.limit);
-    AddEstimate(&fields, "slope", f.slope);
-    return fields;
-  };
-  for (const QuasiStaticFit& f : study.quasi_static) quasi.Add(quasi_fields(f));
-  quasi.SetHeader(quasi_fields(QuasiStaticFit{}));
-  quasi.Write(directory + "/" + kRateQuasiStaticFile);
-
-  CsvWriter verdicts(
-      {fmt::format("rate independence (SPEC 8.2) per (E, psi_epsilon, start p): the two "
-                   "smallest I* agree when the difference of their means is inside its 95 % "
-                   "interval (Welch: t with Welch-Satterthwaite degrees of freedom, rounded "
-                   "down) in ln(1+e), psi_sigma and the CSL's ln(1+e) at {:g} kPa",
-                   o.reference_p_kpa),
-       usable});
-  auto verdict_fields = [](const RateVerdict& v) {
-    Columns fields = {{"youngs_modulus_mpa", CsvNumber(v.youngs_modulus_mpa)},
-                      {"psi_epsilon_deg", CsvNumber(v.psi_epsilon_deg)},
-                      {"start_p_kpa", CsvNumber(v.start_p_kpa)},
-                      {"i_smallest", CsvNumber(v.smallest)},
-                      {"i_next", CsvNumber(v.next)}};
-    auto add = [&fields](const std::string& name, const Estimate& a, const Estimate& b,
-                         const Comparison& c) {
-      AddEstimate(&fields, name + "_smallest", a);
-      AddEstimate(&fields, name + "_next", b);
-      fields.emplace_back(name + "_difference", CsvNumber(c.difference));
-      fields.emplace_back(name + "_difference_ci95", CsvNumber(c.half_width));
-      fields.emplace_back(name + "_agreement", ToString(c.agreement));
-    };
-    add("ln_1_plus_e", v.ln_v_smallest, v.ln_v_next, v.ln_1_plus_e);
-    add("psi_sigma_deg", v.psi_smallest, v.psi_next, v.psi_sigma);
-    add("csl_position", v.csl_smallest, v.csl_next, v.csl_position);
-    fields.emplace_back("verdict", v.verdict);
-    fields.emplace_back("reason", CsvText(v.reason));
-    return fields;
-  };
-  for (const RateVerdict& v : study.verdicts) verdicts.Add(verdict_fields(v));
-  verdicts.SetHeader(verdict_fields(RateVerdict{}));
-  verdicts.Write(directory + "/" + kRateIndependenceFile);
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------- analysis
@@ -613,6 +488,131 @@ std::string RateStudy::Text() const {
   return text + "\n";
 }
 
+void WriteRateFiles(const std::string& directory, const RateStudy& study) {
+  const RateStudyOptions& o = study.options;
+  auto join = [](const std::vector<std::string>& list) {
+    std::string text;
+    for (const std::string& item : list) text += (text.empty() ? "" : "/") + item;
+    return text;
+  };
+  const std::string usable = fmt::format(
+      "usable states: status {} ({} at psi_epsilon = 0), none flagged {}", join(o.statuses),
+      join(o.ncl_statuses), join(o.excluded_flags));
+
+  CsvWriter states({"the asymptotic states of the rate cases (figures key 'rate'), one row per "
+                    "case and detector stage; start_p_kpa: the p target of the state the case "
+                    "started from; stiffness_number: kappa of the contact law at p"});
+  for (const RateState& s : study.states) states.Add(StateFields(s));
+  states.SetHeader(StateFields(RateState{}));
+  states.Write(directory + "/" + kRateStatesFile);
+
+  CsvWriter summary({"per (E, psi_epsilon, start p, rate): the mean over the replicates' usable "
+                     "states and the half-width of its 95 % interval (Student t, n - 1 degrees "
+                     "of freedom; empty below two states)",
+                     usable});
+  auto group_fields = [](const RateGroup& g) {
+    Columns fields = KeyFields(g.key);
+    fields.emplace_back("states", std::to_string(g.states));
+    fields.emplace_back("used", std::to_string(g.used));
+    AddEstimate(&fields, "p_kpa", g.p_kpa);
+    AddEstimate(&fields, "e", g.e);
+    AddEstimate(&fields, "ln_1_plus_e", g.ln_1_plus_e);
+    AddEstimate(&fields, "psi_sigma_deg", g.psi_sigma_deg);
+    AddEstimate(&fields, "q_over_p", g.q_over_p);
+    AddEstimate(&fields, "ocr", g.ocr);
+    AddEstimate(&fields, "inertial_number_dmin", g.inertial_number_dmin);
+    AddEstimate(&fields, "inertial_number_dmax", g.inertial_number_dmax);
+    AddEstimate(&fields, "stiffness_number", g.stiffness_number);
+    return fields;
+  };
+  for (const RateGroup& g : study.groups) summary.Add(group_fields(g));
+  summary.SetHeader(group_fields(RateGroup{}));
+  summary.Write(directory + "/" + kRateSummaryFile);
+
+  CsvWriter lines({fmt::format("per (E, psi_epsilon, rate): ln(1+e) = N - lambda ln(p / 1 kPa) "
+                               "by least squares through the usable states of every start and "
+                               "replicate (at least two starts); position: ln(1+e) on the line "
+                               "at p = {:g} kPa with the 95 % interval of the prediction "
+                               "(Student t, points - 2 degrees of freedom)",
+                               o.reference_p_kpa),
+                   usable});
+  auto line_fields = [&o](const RateLine& l) {
+    Columns fields = {{"youngs_modulus_mpa", CsvNumber(l.youngs_modulus_mpa)},
+                      {"psi_epsilon_deg", CsvNumber(l.psi_epsilon_deg)},
+                      {"rate_rule", ToString(l.rule)},
+                      {"rate", CsvNumber(l.rate)},
+                      {"points", std::to_string(l.points)},
+                      {"N", CsvNumber(l.n)},
+                      {"lambda", CsvNumber(l.lambda)},
+                      {"reference_p_kpa", CsvNumber(o.reference_p_kpa)}};
+    AddEstimate(&fields, "position", l.position);
+    fields.emplace_back("p_min_kpa", CsvNumber(l.p_min_kpa));
+    fields.emplace_back("p_max_kpa", CsvNumber(l.p_max_kpa));
+    return fields;
+  };
+  for (const RateLine& l : study.lines) lines.Add(line_fields(l));
+  lines.SetHeader(line_fields(RateLine{}));
+  lines.Write(directory + "/" + kRateLinesFile);
+
+  CsvWriter quasi({fmt::format("the quasi-static limit per (E, psi_epsilon, start p): y = a + b "
+                               "I(d_max) by least squares through the usable states of the {} "
+                               "smallest I* (I(d_max) as measured over each asymptote's window; "
+                               "da Cruz et al. 2005: mu* = mu*_0 + b I at small I); a, b with "
+                               "95 % intervals (Student t, points - 2 degrees of freedom)",
+                               o.fit_rates),
+                   usable});
+  auto quasi_fields = [](const QuasiStaticFit& f) {
+    std::string rates;
+    for (double r : f.rates) rates += (rates.empty() ? "" : ";") + CsvNumber(r);
+    Columns fields = {{"youngs_modulus_mpa", CsvNumber(f.youngs_modulus_mpa)},
+                      {"psi_epsilon_deg", CsvNumber(f.psi_epsilon_deg)},
+                      {"start_p_kpa", CsvNumber(f.start_p_kpa)},
+                      {"quantity", f.quantity},
+                      {"rates", rates},
+                      {"points", std::to_string(f.points)},
+                      {"i_min", CsvNumber(f.i_min)},
+                      {"i_max", CsvNumber(f.i_max)}};
+    AddEstimate(&fields, "limit", f.limit);
+    AddEstimate(&fields, "slope", f.slope);
+    return fields;
+  };
+  for (const QuasiStaticFit& f : study.quasi_static) quasi.Add(quasi_fields(f));
+  quasi.SetHeader(quasi_fields(QuasiStaticFit{}));
+  quasi.Write(directory + "/" + kRateQuasiStaticFile);
+
+  CsvWriter verdicts(
+      {fmt::format("rate independence (SPEC 8.2) per (E, psi_epsilon, start p): the two "
+                   "smallest I* agree when the difference of their means is inside its 95 % "
+                   "interval (Welch: t with Welch-Satterthwaite degrees of freedom, rounded "
+                   "down) in ln(1+e), psi_sigma and the CSL's ln(1+e) at {:g} kPa",
+                   o.reference_p_kpa),
+       usable});
+  auto verdict_fields = [](const RateVerdict& v) {
+    Columns fields = {{"youngs_modulus_mpa", CsvNumber(v.youngs_modulus_mpa)},
+                      {"psi_epsilon_deg", CsvNumber(v.psi_epsilon_deg)},
+                      {"start_p_kpa", CsvNumber(v.start_p_kpa)},
+                      {"i_smallest", CsvNumber(v.smallest)},
+                      {"i_next", CsvNumber(v.next)}};
+    auto add = [&fields](const std::string& name, const Estimate& a, const Estimate& b,
+                         const Comparison& c) {
+      AddEstimate(&fields, name + "_smallest", a);
+      AddEstimate(&fields, name + "_next", b);
+      fields.emplace_back(name + "_difference", CsvNumber(c.difference));
+      fields.emplace_back(name + "_difference_ci95", CsvNumber(c.half_width));
+      fields.emplace_back(name + "_agreement", ToString(c.agreement));
+    };
+    add("ln_1_plus_e", v.ln_v_smallest, v.ln_v_next, v.ln_1_plus_e);
+    add("psi_sigma_deg", v.psi_smallest, v.psi_next, v.psi_sigma);
+    add("csl_position", v.csl_smallest, v.csl_next, v.csl_position);
+    fields.emplace_back("verdict", v.verdict);
+    fields.emplace_back("reason", CsvText(v.reason));
+    return fields;
+  };
+  for (const RateVerdict& v : study.verdicts) verdicts.Add(verdict_fields(v));
+  verdicts.SetHeader(verdict_fields(RateVerdict{}));
+  verdicts.Write(directory + "/" + kRateIndependenceFile);
+}
+
 bool ServesRateStudy(const std::string& figures) {
   std::stringstream in(figures);
   std::string item;
@@ -690,7 +690,7 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
     return std::nullopt;
   }
   RateStudy study = RateStudy::Analyse(std::move(states), options);
-  WriteFiles(directory, study);
+  WriteRateFiles(directory, study);
   return study;
 }
 

@@ -151,7 +151,8 @@ struct QuasiStaticFit {
   std::string quantity;
   std::vector<double> rates;  // the I* values fitted over, ascending
   int points = 0;
-  double i_min = 0, i_max = 0;  // the measured I(d_max) range
+  double i_min = std::numeric_limits<double>::quiet_NaN();  // the measured I(d_max) range
+  double i_max = std::numeric_limits<double>::quiet_NaN();
   Estimate limit;               // a: the value as I → 0
   Estimate slope;               // b
   bool valid() const { return std::isfinite(limit.mean); }
@@ -197,6 +198,9 @@ bool ServesRateStudy(const std::string& figures);
 std::optional<RateStudy> WriteRateStudy(const std::string& directory,
                                         const std::vector<StateRow>& rows,
                                         const RateStudyOptions& options = {});
+
+// Writes the five rate files of an analysed study into `directory`.
+void WriteRateFiles(const std::string& directory, const RateStudy& study);
 
 // DIR/rate_states.csv back (InputError naming the file when malformed); empty
 // when the study has no rate cases (no file).

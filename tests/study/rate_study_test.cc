@@ -8,12 +8,18 @@
 #include <string>
 #include <vector>
 
+#include "common/csv_table.h"
 #include "common/error.h"
 #include "common/statistics.h"
+#include "tests/study/rate_states_fixture.h"
 
 namespace granasym::study {
 namespace {
 namespace fs = std::filesystem;
+using rate_fixture::CriticalStates;
+using rate_fixture::kDelta;
+using rate_fixture::kScatter;
+using rate_fixture::State;
 
 TEST(RateStudyOptions, DefaultOptionsAreValid) {
   std::string why;
@@ -60,61 +66,6 @@ TEST(Compare, WelchIntervalOfTheDifference) {
   const Comparison u = Compare(a, Estimate::Of({7.0}));
   EXPECT_EQ(u.agreement, Agreement::kUndetermined);
   EXPECT_DOUBLE_EQ(u.difference, 5.0);
-}
-
-// A synthetic rate study with known answers: E = 500 MPa, ψ_ε = 90° from NC
-// 20 and 100 kPa, three replicates at I* = 3e-4, 1e-3, 3e-3 and 1e-2 and one
-// at the constant ‖D‖ = 167 1/s; replicate scatter ±δ around exact lines, so
-// that least squares recover them exactly.
-RateState State(double psi, double p0, dem::RateRule rule, double rate, int replicate) {
-  RateState s;
-  s.replicate = replicate;
-  s.case_name = "case";
-  s.stage = "psi";
-  s.kind = std::abs(psi) < 1e-9 ? "ncl" : std::abs(psi - 90) < 1e-9 ? "csl" : "extension";
-  s.status = "detected";
-  s.youngs_modulus_mpa = 500;
-  s.psi_epsilon_deg = psi;
-  s.start_p_kpa = p0;
-  s.rule = rule;
-  if (rule == dem::RateRule::kInertial) {
-    s.inertial_number = rate;
-    s.stretching_rate = 167;
-  } else {
-    s.stretching_rate = rate;
-  }
-  return s;
-}
-
-constexpr double kDelta = 0.1;  // replicate scatter of ψ_σ (deg)
-const double kScatter[3] = {-1, 0, 1};
-
-std::vector<RateState> CriticalStates() {
-  std::vector<RateState> states;
-  for (double p0 : {20.0, 100.0}) {
-    for (double rate : {3e-4, 1e-3, 3e-3, 1e-2}) {
-      for (int r = 1; r <= 3; ++r) {
-        RateState s = State(90, p0, dem::RateRule::kInertial, rate, r);
-        s.inertial_number_dmax = rate;  // measured = target
-        // ψ_σ = 25 + 400 I below 1e-2; at 1e-2 far off the line (a rate the
-        // fit must leave out: it takes the three smallest I*).
-        s.psi_sigma_deg = (rate < 5e-3 ? 25 + 400 * rate : 40) + kDelta * kScatter[r - 1];
-        s.q_over_p = 3 / std::sqrt(2.0) * std::tan(s.psi_sigma_deg * M_PI / 180);
-        // The CSL ln(1+e) = 0.9 − 0.03 ln p, with the asymptote's p 0.3 p_0.
-        s.p_kpa = 0.3 * p0 * (1 + 0.01 * kScatter[r - 1]);
-        s.ln_1_plus_e = 0.9 - 0.03 * std::log(s.p_kpa) + 0.001 * kScatter[r - 1];
-        s.e = std::expm1(s.ln_1_plus_e);
-        states.push_back(s);
-      }
-    }
-    RateState constant = State(90, p0, dem::RateRule::kConstant, 167, 1);
-    constant.inertial_number_dmax = 0.2;
-    constant.psi_sigma_deg = 35;
-    constant.p_kpa = p0;
-    constant.ln_1_plus_e = 0.8;
-    states.push_back(constant);
-  }
-  return states;
 }
 
 TEST(RateStudy, GroupsByStartAndRateWithReplicateIntervals) {
@@ -266,6 +217,38 @@ TEST(ServesRateStudy, NamesTheRateFigureKey) {
   EXPECT_TRUE(ServesRateStudy("10, rate"));
   EXPECT_FALSE(ServesRateStudy("10, 16"));
   EXPECT_FALSE(ServesRateStudy("rates"));
+}
+
+TEST(WriteRateFiles, TheStatesReadBackAndEveryTableHasItsRows) {
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "write";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const RateStudy study = RateStudy::Analyse(CriticalStates());
+  WriteRateFiles(dir.string(), study);
+  const std::vector<RateState> back = ReadRateStates(dir.string());
+  ASSERT_EQ(back.size(), study.states.size());
+  for (size_t k = 0; k < back.size(); ++k) {
+    EXPECT_EQ(back[k].rule, study.states[k].rule);
+    EXPECT_EQ(back[k].start_p_kpa, study.states[k].start_p_kpa);
+    EXPECT_NEAR(back[k].psi_sigma_deg, study.states[k].psi_sigma_deg, 1e-8);
+    EXPECT_NEAR(back[k].ln_1_plus_e, study.states[k].ln_1_plus_e, 1e-9);
+  }
+  // The analysis of what was read back is the same.
+  const RateStudy again = RateStudy::Analyse(back);
+  ASSERT_EQ(again.verdicts.size(), study.verdicts.size());
+  EXPECT_EQ(again.verdicts[0].verdict, study.verdicts[0].verdict);
+  auto rows = [&dir](const char* name) {
+    const CsvTextTable table = CsvTextTable::ReadFile((dir / name).string());
+    return table.rows.size();
+  };
+  EXPECT_EQ(rows(kRateSummaryFile), study.groups.size());
+  EXPECT_EQ(rows(kRateLinesFile), study.lines.size());
+  EXPECT_EQ(rows(kRateQuasiStaticFile), study.quasi_static.size());
+  EXPECT_EQ(rows(kRateIndependenceFile), 2u);
+  const CsvTextTable verdicts =
+      CsvTextTable::ReadFile((dir / kRateIndependenceFile).string());
+  EXPECT_EQ(verdicts.rows[0][verdicts.Column("verdict")], "rate_dependent");
+  EXPECT_EQ(verdicts.rows[0][verdicts.Column("psi_sigma_deg_agreement")], "differ");
 }
 
 TEST(ReadRateStates, MalformedNumbersNameTheFileAndLine) {
