@@ -490,8 +490,8 @@ FigureSpec Fig09(const Context& ctx) {
     return std::any_of(c->stage_psi_epsilon.begin(), c->stage_psi_epsilon.end(),
                        [](double psi) { return std::abs(psi - 180) < 1; });
   };
-  const long monotonic = std::count_if(cases.begin(), cases.end(),
-                                       [&](const CaseData* c) { return !cycles_of(c); });
+  const long monotonic =
+      std::count_if(cases.begin(), cases.end(), [&](const CaseData* c) { return !cycles_of(c); });
   double p_min = 1e300, p_max = 0;
   for (const CaseData* c : cases) {
     std::vector<std::vector<double>> rows;
@@ -1031,7 +1031,6 @@ void SetRange(FigureSpec* spec, const std::string& name, const AxisRange& range)
   spec->variables.emplace_back(name + "_max", fmt::format("{:.8g}", hi));
 }
 
-
 // Colour (linetype) of each rate: the I* ascending, then the constant ‖D‖.
 std::map<std::pair<int, double>, int> RateColours(const RateStudy& rate) {
   std::set<std::pair<int, double>> rates;
@@ -1083,26 +1082,27 @@ std::string ModulusNote(const RateStudy& rate, double reference) {
   for (double e : moduli) {
     if (e != reference) others += (others.empty() ? "" : ", ") + Short(e);
   }
-  return others.empty() ? fmt::format("E = {} MPa", Short(reference))
-                        : fmt::format("filled: E = {} MPa, open: E = {} MPa", Short(reference),
-                                      others);
+  return others.empty()
+             ? fmt::format("E = {} MPa", Short(reference))
+             : fmt::format("filled: E = {} MPa, open: E = {} MPa", Short(reference), others);
 }
 
 FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
   const double reference = rate.ReferenceModulus();
-  FigureSpec spec = Spec(
-      "rate_psi_sigma_p", "rate (a)", "Asymptotic ψ_σ against p at each rate",
-      "The asymptotic stress obliquity ψ_σ against the asymptotic mean stress p of the rate "
-      "cases, one panel per ψ_ε: the mean over the replicates' usable states of each start "
-      "(NC at p_0) and rate, with the 95 % intervals of both means (Student t; none below two "
-      "states), one colour per rate (the fixed inertial numbers I* and the paper's constant "
-      "‖D‖), lines joining the starts of one rate; " +
-          ModulusNote(rate, reference) +
-          ". If the paper's p-dependence of ψ_σ (its Sec. 5.3) is a rate effect, the curves "
-          "flatten and coincide as I* falls. Data: rate_summary.csv.",
-      "rate_psi_sigma.gp");
+  FigureSpec spec =
+      Spec("rate_psi_sigma_p", "rate (a)", "Asymptotic ψ_σ against p at each rate",
+           "The asymptotic stress obliquity ψ_σ against the asymptotic mean stress p of the rate "
+           "cases, one panel per ψ_ε: the mean over the replicates' usable states of each start "
+           "(NC at p_0) and rate, with the 95 % intervals of both means (Student t; none below two "
+           "states), one colour per rate (the fixed inertial numbers I* and the paper's constant "
+           "‖D‖), lines joining the starts of one rate; " +
+               ModulusNote(rate, reference) +
+               ". If the paper's p-dependence of ψ_σ (its Sec. 5.3) is a rate effect, the curves "
+               "flatten and coincide as I* falls. Data: rate_summary.csv.",
+           "rate_psi_sigma.gp");
   const auto colours = RateColours(rate);
-  std::map<double, std::map<std::pair<double, std::pair<int, double>>, std::vector<const RateGroup*>>>
+  std::map<double,
+           std::map<std::pair<double, std::pair<int, double>>, std::vector<const RateGroup*>>>
       panels;  // ψ_ε → (E, rate) → groups
   for (const RateGroup& g : rate.groups) {
     if (g.used == 0) continue;
@@ -1128,8 +1128,7 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
         x.Add(g->p_kpa.mean, LogHalfWidth(g->p_kpa.mean, g->p_kpa.half_width));
         y.Add(g->psi_sigma_deg.mean, g->psi_sigma_deg.half_width);
         rows.push_back({g->p_kpa.mean, LogHalfWidth(g->p_kpa.mean, g->p_kpa.half_width),
-                        g->psi_sigma_deg.mean,
-                        Zeroed(g->psi_sigma_deg.half_width),
+                        g->psi_sigma_deg.mean, Zeroed(g->psi_sigma_deg.half_width),
                         static_cast<double>(DirectionPoint(90, curve.first == reference)),
                         static_cast<double>(colours.at(curve.second))});
       }
@@ -1162,26 +1161,25 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
 
 FigureSpec RateLines(const Context& ctx, const RateStudy& rate) {
   const double reference = rate.ReferenceModulus();
-  FigureSpec spec = Spec(
-      "rate_csl_ncl", "rate (b)", "NCL, CSL and NEL at each rate",
-      fmt::format(
-          "ln(1+e) against p (log scale) of the rate cases' usable asymptotic states, all "
-          "replicates and starts: ψ_ε = 0° (triangles: the NCL at that rate), 90° (circles: "
-          "the CSL), other directions (squares: e.g. the NEL of 100°); {}; one colour per "
-          "rate. Lines: ln(1+e) = N − λ ln p fitted through the states of one direction and "
-          "rate (at least two starts), drawn over their p range; rate_lines.csv gives N, λ "
-          "and ln(1+e) at {} kPa with its 95 % interval. Data: rate_states.csv.",
-          ModulusNote(rate, reference), Short(rate.options.reference_p_kpa)),
-      "rate_lines.gp");
+  FigureSpec spec =
+      Spec("rate_csl_ncl", "rate (b)", "NCL, CSL and NEL at each rate",
+           fmt::format(
+               "ln(1+e) against p (log scale) of the rate cases' usable asymptotic states, all "
+               "replicates and starts: ψ_ε = 0° (triangles: the NCL at that rate), 90° (circles: "
+               "the CSL), other directions (squares: e.g. the NEL of 100°); {}; one colour per "
+               "rate. Lines: ln(1+e) = N − λ ln p fitted through the states of one direction and "
+               "rate (at least two starts), drawn over their p range; rate_lines.csv gives N, λ "
+               "and ln(1+e) at {} kPa with its 95 % interval. Data: rate_states.csv.",
+               ModulusNote(rate, reference), Short(rate.options.reference_p_kpa)),
+           "rate_lines.gp");
   const auto colours = RateColours(rate);
   std::map<std::tuple<double, double, int, double>, std::vector<std::vector<double>>> blocks;
   for (const RateState& s : rate.states) {
     if (!rate.Usable(s)) continue;
-    blocks[{s.psi_epsilon_deg, s.youngs_modulus_mpa, static_cast<int>(s.rule), s.rate()}]
-        .push_back({s.p_kpa, s.ln_1_plus_e,
-                    static_cast<double>(
-                        DirectionPoint(s.psi_epsilon_deg, s.youngs_modulus_mpa == reference)),
-                    static_cast<double>(colours.at({static_cast<int>(s.rule), s.rate()}))});
+    blocks[{s.psi_epsilon_deg, s.youngs_modulus_mpa, static_cast<int>(s.rule), s.rate()}].push_back(
+        {s.p_kpa, s.ln_1_plus_e,
+         static_cast<double>(DirectionPoint(s.psi_epsilon_deg, s.youngs_modulus_mpa == reference)),
+         static_cast<double>(colours.at({static_cast<int>(s.rule), s.rate()}))});
   }
   if (blocks.empty()) return NotDrawn(spec, "no rate case has a usable asymptotic state");
   AxisRange x{}, y{};
@@ -1227,25 +1225,25 @@ FigureSpec RateLines(const Context& ctx, const RateStudy& rate) {
 FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   const double reference = rate.ReferenceModulus();
   const double low = ctx.options.literature_m_low, high = ctx.options.literature_m_high;
-  FigureSpec spec = Spec(
-      "rate_critical_state_ratio", "rate (c)",
-      "Critical-state stress ratio M against the inertial number, and its quasi-static limit",
-      fmt::format(
-          "M = q/p of the ψ_ε = 90° asymptotic states against their measured I(d_max) (means "
-          "over the replicates with 95 % intervals of both; circles: fixed I*, diamonds: the "
-          "paper's constant ‖D‖), one colour per start p_0; {}. Lines: the quasi-static fit "
-          "M = M_0 + b·I through the states of the {} smallest I* (least squares; da Cruz et "
-          "al. 2005, the paper's ref. [10] and Fig. 21: μ* = μ*_0 + b·I at small I); the "
-          "points at the left edge are M_0 = M(I → 0) with its 95 % interval "
-          "(rate_quasi_static.csv). Band: M = {}–{}, the range issue 10 gives for frictional "
-          "spheres at μ ≈ 0.5 without rolling resistance in triaxial compression; a source "
-          "for its numbers was not verified here (Goncu & Luding 2013, Acta Geotechnica 8, "
-          "629–643, report that the deviatoric stress ratio of sphere packings rises with "
-          "the contact friction and saturates for large μ; compare with their values before "
-          "relying on the band). Dashed: I = 10^{{-2}} (quasi-static, paper Sec. 5.3) and "
-          "10^{{-3}} (SPEC §8.2).",
-          ModulusNote(rate, reference), rate.options.fit_rates, Short(low), Short(high)),
-      "rate_critical_state.gp");
+  FigureSpec spec =
+      Spec("rate_critical_state_ratio", "rate (c)",
+           "Critical-state stress ratio M against the inertial number, and its quasi-static limit",
+           fmt::format(
+               "M = q/p of the ψ_ε = 90° asymptotic states against their measured I(d_max) (means "
+               "over the replicates with 95 % intervals of both; circles: fixed I*, diamonds: the "
+               "paper's constant ‖D‖), one colour per start p_0; {}. Lines: the quasi-static fit "
+               "M = M_0 + b·I through the states of the {} smallest I* (least squares; da Cruz et "
+               "al. 2005, the paper's ref. [10] and Fig. 21: μ* = μ*_0 + b·I at small I); the "
+               "points at the left edge are M_0 = M(I → 0) with its 95 % interval "
+               "(rate_quasi_static.csv). Band: M = {}–{}, the range issue 10 gives for frictional "
+               "spheres at μ ≈ 0.5 without rolling resistance in triaxial compression; a source "
+               "for its numbers was not verified here (Goncu & Luding 2013, Acta Geotechnica 8, "
+               "629–643, report that the deviatoric stress ratio of sphere packings rises with "
+               "the contact friction and saturates for large μ; compare with their values before "
+               "relying on the band). Dashed: I = 10^{{-2}} (quasi-static, paper Sec. 5.3) and "
+               "10^{{-3}} (SPEC §8.2).",
+               ModulusNote(rate, reference), rate.options.fit_rates, Short(low), Short(high)),
+           "rate_critical_state.gp");
   // Colours by start; point types by modulus (filled reference) and rule.
   std::set<double> starts;
   for (const RateGroup& g : rate.groups) {
@@ -1271,8 +1269,7 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
     by_curve[{g.key.youngs_modulus_mpa, g.key.start_p_kpa}].push_back(
         {g.inertial_number_dmax.mean,
          LogHalfWidth(g.inertial_number_dmax.mean, g.inertial_number_dmax.half_width),
-         g.q_over_p.mean,
-         Zeroed(g.q_over_p.half_width), static_cast<double>(point),
+         g.q_over_p.mean, Zeroed(g.q_over_p.half_width), static_cast<double>(point),
          static_cast<double>(colour_of.at(g.key.start_p_kpa))});
   }
   if (by_curve.empty()) return NotDrawn(spec, "no ψ_ε = 90° rate state has a measured I");
@@ -1302,8 +1299,9 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
     const auto colour = colour_of.find(f.start_p_kpa);
     if (colour == colour_of.end()) continue;
     const bool ref = f.youngs_modulus_mpa == reference;
-    const std::string title = fmt::format("E = {} MPa, NC {} kPa: M_0 = {:.3f}", Short(f.youngs_modulus_mpa),
-                                          Short(f.start_p_kpa), f.limit.mean);
+    const std::string title =
+        fmt::format("E = {} MPa, NC {} kPa: M_0 = {:.3f}", Short(f.youngs_modulus_mpa),
+                    Short(f.start_p_kpa), f.limit.mean);
     std::vector<std::vector<double>> rows;
     for (int k = 0; k <= 20; ++k) {
       const double i = std::exp(std::log(i_left) + (std::log(f.i_max) - std::log(i_left)) * k / 20);
@@ -1592,15 +1590,16 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
   std::set<std::string> declared;
   for (const CaseData& c : ctx.cases) declared.insert(c.figures.begin(), c.figures.end());
   const bool models = fs::exists(fs::path(directory) / "models");
-  figures.erase(std::remove_if(figures.begin(), figures.end(),
-                               [&](const FigureSpec& f) {
-                                 if (f.stem.rfind("fig05_", 0) == 0 && f.stem != "fig05_model_paths") {
-                                   return false;  // a calibrated model's: drawn when it ran
-                                 }
-                                 if (f.figure == "5") return !models;
-                                 return !declared.count(f.figure);
-                               }),
-                figures.end());
+  figures.erase(
+      std::remove_if(figures.begin(), figures.end(),
+                     [&](const FigureSpec& f) {
+                       if (f.stem.rfind("fig05_", 0) == 0 && f.stem != "fig05_model_paths") {
+                         return false;  // a calibrated model's: drawn when it ran
+                       }
+                       if (f.figure == "5") return !models;
+                       return !declared.count(f.figure);
+                     }),
+      figures.end());
   // The rate study's figures, when it has rate cases.
   const std::vector<RateState> rate_states = ReadRateStates(directory);
   if (!rate_states.empty()) {

@@ -172,8 +172,8 @@ Value Substitute(const Value& value, const Variables& variables, const std::stri
 // and 100.0 are one value and "100" (a string) another.
 std::string ValueKey(const Value& value) {
   if (value.is_integer() || value.is_floating()) {
-    const double number = value.is_integer() ? static_cast<double>(value.as_integer())
-                                             : value.as_floating();
+    const double number =
+        value.is_integer() ? static_cast<double>(value.as_integer()) : value.as_floating();
     char buffer[40];
     std::snprintf(buffer, sizeof buffer, "%.17g", number);
     return std::string("n:") + buffer;
@@ -538,8 +538,8 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
       }
       if (stage_tables.empty()) {
         Fail(origin, where + ".stage",
-             "gives case '" + spec.name + "' no stage at scale " + ToString(scale) +
-                 ": [scale." + ToString(scale) + ".only] leaves its `each` lists empty");
+             "gives case '" + spec.name + "' no stage at scale " + ToString(scale) + ": [scale." +
+                 ToString(scale) + ".only] leaves its `each` lists empty");
       }
       scene["stage"] = Value(stage_tables);
       spec.scene_body = FormatTable(scene);

@@ -148,14 +148,13 @@ void AddEstimate(Columns* fields, const std::string& name, const Estimate& estim
 }
 
 Columns KeyFields(const RateKey& key) {
-  return {{"youngs_modulus_mpa", CsvNumber(key.youngs_modulus_mpa)},
-          {"psi_epsilon_deg", CsvNumber(key.psi_epsilon_deg)},
-          {"start_p_kpa", CsvNumber(key.start_p_kpa)},
-          {"rate_rule", ToString(key.rule)},
-          {"inertial_number_target",
-           CsvNumber(key.rule == dem::RateRule::kInertial ? key.rate : kNaN)},
-          {"stretching_rate_per_s",
-           CsvNumber(key.rule == dem::RateRule::kConstant ? key.rate : kNaN)}};
+  return {
+      {"youngs_modulus_mpa", CsvNumber(key.youngs_modulus_mpa)},
+      {"psi_epsilon_deg", CsvNumber(key.psi_epsilon_deg)},
+      {"start_p_kpa", CsvNumber(key.start_p_kpa)},
+      {"rate_rule", ToString(key.rule)},
+      {"inertial_number_target", CsvNumber(key.rule == dem::RateRule::kInertial ? key.rate : kNaN)},
+      {"stretching_rate_per_s", CsvNumber(key.rule == dem::RateRule::kConstant ? key.rate : kNaN)}};
 }
 
 Columns StateFields(const RateState& s) {
@@ -462,8 +461,8 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
       const char* names[] = {"ln(1+e)", "psi_sigma", "the CSL position"};
       for (size_t k = 0; k < all.size(); ++k) {
         if (all[k]->agreement == Agreement::kDiffer) {
-          reasons.push_back(fmt::format("{} differs by {:.4g} (95 % interval +-{:.2g})",
-                                        names[k], all[k]->difference, all[k]->half_width));
+          reasons.push_back(fmt::format("{} differs by {:.4g} (95 % interval +-{:.2g})", names[k],
+                                        all[k]->difference, all[k]->half_width));
         }
       }
     }
@@ -495,21 +494,23 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
     for (const std::string& item : list) text += (text.empty() ? "" : "/") + item;
     return text;
   };
-  const std::string usable = fmt::format(
-      "usable states: status {} ({} at psi_epsilon = 0), none flagged {}", join(o.statuses),
-      join(o.ncl_statuses), join(o.excluded_flags));
+  const std::string usable =
+      fmt::format("usable states: status {} ({} at psi_epsilon = 0), none flagged {}",
+                  join(o.statuses), join(o.ncl_statuses), join(o.excluded_flags));
 
-  CsvWriter states({"the asymptotic states of the rate cases (figures key 'rate'), one row per "
-                    "case and detector stage; start_p_kpa: the p target of the state the case "
-                    "started from; stiffness_number: kappa of the contact law at p"});
+  CsvWriter states(
+      {"the asymptotic states of the rate cases (figures key 'rate'), one row per "
+       "case and detector stage; start_p_kpa: the p target of the state the case "
+       "started from; stiffness_number: kappa of the contact law at p"});
   for (const RateState& s : study.states) states.Add(StateFields(s));
   states.SetHeader(StateFields(RateState{}));
   states.Write(directory + "/" + kRateStatesFile);
 
-  CsvWriter summary({"per (E, psi_epsilon, start p, rate): the mean over the replicates' usable "
-                     "states and the half-width of its 95 % interval (Student t, n - 1 degrees "
-                     "of freedom; empty below two states)",
-                     usable});
+  CsvWriter summary(
+      {"per (E, psi_epsilon, start p, rate): the mean over the replicates' usable "
+       "states and the half-width of its 95 % interval (Student t, n - 1 degrees "
+       "of freedom; empty below two states)",
+       usable});
   auto group_fields = [](const RateGroup& g) {
     Columns fields = KeyFields(g.key);
     fields.emplace_back("states", std::to_string(g.states));
@@ -643,7 +644,8 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
     }
     if (index == stages.size()) continue;
     const std::string group = dem::StageGroup(index);
-    if (!file.HasAttribute(group, dem::record::kStageStretchingRate)) continue;  // not a strain path
+    if (!file.HasAttribute(group, dem::record::kStageStretchingRate))
+      continue;  // not a strain path
     RateState s;
     s.replicate = row.replicate;
     s.case_name = row.case_name;
@@ -658,20 +660,20 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
                                  : "constant";
     const std::optional<dem::RateRule> parsed = FromString<dem::RateRule>(rule);
     if (!parsed) {
-      throw InputError((folder / "result.h5").string() + ": " + group + " has rate rule '" +
-                       rule + "': expected " + AllowedNames<dem::RateRule>());
+      throw InputError((folder / "result.h5").string() + ": " + group + " has rate rule '" + rule +
+                       "': expected " + AllowedNames<dem::RateRule>());
     }
     s.rule = *parsed;
     if (s.rule == dem::RateRule::kInertial) {
       s.inertial_number = file.ReadDoubleAttribute(group, dem::record::kStageRateInertialNumber);
     }
     const auto canonical = CanonicalLines(dem::ReadProvenance(file).scene_canonical);
-    s.youngs_modulus_mpa =
-        CanonicalNumber(canonical, "material.youngs_modulus_mpa").value_or(kNaN);
-    s.start_p_kpa = parent.empty() ? kNaN
-                                   : StartStress((fs::path(directory) / "cases" / parent /
-                                                  "result.h5").string(),
-                                                 parent_stage);
+    s.youngs_modulus_mpa = CanonicalNumber(canonical, "material.youngs_modulus_mpa").value_or(kNaN);
+    s.start_p_kpa =
+        parent.empty()
+            ? kNaN
+            : StartStress((fs::path(directory) / "cases" / parent / "result.h5").string(),
+                          parent_stage);
     s.p_kpa = row.p_kpa;
     s.e = row.e;
     s.ln_1_plus_e = row.ln_1_plus_e;
@@ -699,8 +701,7 @@ std::vector<RateState> ReadRateStates(const std::string& directory) {
   std::vector<RateState> states;
   if (!fs::exists(path)) return states;
   const CsvTextTable table = CsvTextTable::ReadFile(path);
-  auto number = [&table, &path](const std::vector<std::string>& row, size_t r,
-                                const char* column) {
+  auto number = [&table, &path](const std::vector<std::string>& row, size_t r, const char* column) {
     const std::string& text = row[table.Column(column)];
     if (text.empty()) return kNaN;
     try {

@@ -107,7 +107,9 @@ struct RateState {
   double inertial_number_dmin = 0, inertial_number_dmax = 0;
   double stiffness_number = 0;  // κ at the asymptote's p (SPEC §8.2)
   // The rate of the case: I* for the inertial rule, ‖D‖ for a constant one.
-  double rate() const { return rule == dem::RateRule::kInertial ? inertial_number : stretching_rate; }
+  double rate() const {
+    return rule == dem::RateRule::kInertial ? inertial_number : stretching_rate;
+  }
 };
 
 // What groups states: the material, the direction, the start and the rate.
@@ -153,8 +155,8 @@ struct QuasiStaticFit {
   int points = 0;
   double i_min = std::numeric_limits<double>::quiet_NaN();  // the measured I(d_max) range
   double i_max = std::numeric_limits<double>::quiet_NaN();
-  Estimate limit;               // a: the value as I → 0
-  Estimate slope;               // b
+  Estimate limit;  // a: the value as I → 0
+  Estimate slope;  // b
   bool valid() const { return std::isfinite(limit.mean); }
 };
 

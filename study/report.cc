@@ -981,8 +981,7 @@ std::string VerdictCss(const std::string& value) {
 // A table of a CSV whose X_mean and X_ci95 columns become one column
 // "X (mean ± 95 %)" (the mean to 4 significant digits, the half-width to
 // 2); every other column as it is, `status`-like columns in `marked` styled.
-Block MeanIntervalTable(const CsvTextTable& summary,
-                        const std::set<std::string>& marked = {}) {
+Block MeanIntervalTable(const CsvTextTable& summary, const std::set<std::string>& marked = {}) {
   // Pair X_mean with X_ci95; every other column as it is.
   struct Column {
     std::string name;
@@ -1082,15 +1081,15 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
        "Per (E, ψ_ε, p_0, rate): the asymptotic state's means over the replicates.", true},
   };
   for (const Table& t : tables) {
-    section.blocks.push_back(Paragraph(Plain(std::string(t.title) + ". " + t.description +
-                                             " From ") +
-                                       Link(t.file, UrlPath(t.file), true) + Plain(".")));
+    section.blocks.push_back(
+        Paragraph(Plain(std::string(t.title) + ". " + t.description + " From ") +
+                  Link(t.file, UrlPath(t.file), true) + Plain(".")));
     if (!study.Exists(t.file)) {
       absent->push_back(t.file);
-      section.blocks.push_back(Note(Code(t.file) + Plain(" is absent: run ") +
-                                    Code("granasym study merge " + study.directory + " --out " +
-                                         study.directory) +
-                                    Plain(".")));
+      section.blocks.push_back(
+          Note(Code(t.file) + Plain(" is absent: run ") +
+               Code("granasym study merge " + study.directory + " --out " + study.directory) +
+               Plain(".")));
       continue;
     }
     const CsvTextTable table = CsvTextTable::ReadFile(study.Path(t.file));
@@ -1101,9 +1100,8 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
       section.blocks.push_back(Paragraph(Plain("No rows.")));
       continue;
     }
-    Block block = MeanIntervalTable(
-        table, {"verdict", "ln_1_plus_e_agreement", "psi_sigma_deg_agreement",
-                "csl_position_agreement"});
+    Block block = MeanIntervalTable(table, {"verdict", "ln_1_plus_e_agreement",
+                                            "psi_sigma_deg_agreement", "csl_position_agreement"});
     if (!t.folded) {
       section.blocks.push_back(std::move(block));
       continue;

@@ -589,10 +589,8 @@ StateTableSummary WriteStateTable(const std::string& directory,
   std::string ncl_csv =
       "replicate,case,points,detected,drifting,N,lambda_star,p_min_kpa,p_max_kpa\n";
   for (const NclFit& fit : summary.ncl) {
-    ncl_csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", fit.replicate, fit.case_name,
-                           fit.points, fit.detected,
-                           fit.drifting,
-                           CsvNumber(fit.valid() ? fit.n : kNaN),
+    ncl_csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", fit.replicate, fit.case_name, fit.points,
+                           fit.detected, fit.drifting, CsvNumber(fit.valid() ? fit.n : kNaN),
                            CsvNumber(fit.valid() ? fit.lambda : kNaN), CsvNumber(fit.p_min_kpa),
                            CsvNumber(fit.p_max_kpa));
   }

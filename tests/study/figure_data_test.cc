@@ -260,7 +260,8 @@ TEST(WriteFigureData, TheRateFiguresComeWithTheRateStudy) {
   EXPECT_EQ(variable(figures[1], "n_lines"), "5");
   EXPECT_EQ(variable(figures[2], "n_fits"), "2");
   EXPECT_EQ(variable(figures[2], "band_low"), "0.8");
-  const std::string limits = ReadTextFile((dir / "figures/data/rate_critical_state_limits.tsv").string());
+  const std::string limits =
+      ReadTextFile((dir / "figures/data/rate_critical_state_limits.tsv").string());
   EXPECT_NE(limits.find("NC 100 kPa: M_0 = "), std::string::npos) << limits;
   // The x axis reaches left of the limits, a third of the smallest measured I.
   EXPECT_LT(std::stod(variable(figures[2], "x_min")), 1e-4);

@@ -243,16 +243,16 @@ TEST(Plan, KeysChainThroughParentsAndThreads) {
   EXPECT_NE(one.cases[1].scene_text.find("state = \"../ncl/result.h5\""), std::string::npos);
 
   // A changed parameter of one case changes its key and its descendants' only.
-  const Plan changed =
-      Plan::Make(Parse(Replace(kProgramme, "axial_strain_rate = 50.0", "axial_strain_rate = 51.0")), 1,
-                 "out");
+  const Plan changed = Plan::Make(
+      Parse(Replace(kProgramme, "axial_strain_rate = 50.0", "axial_strain_rate = 51.0")), 1, "out");
   for (size_t k = 0; k < one.cases.size(); ++k) {
     const bool tx = one.cases[k].spec.name == "tx";
     EXPECT_EQ(one.cases[k].key != changed.cases[k].key, tx) << one.cases[k].id;
   }
-  const Plan parent_changed = Plan::Make(
-      Parse(Replace(kProgramme, "stretching_rate = 100.0\nstop.mean", "stretching_rate = 90.0\nstop.mean")), 1,
-      "out");
+  const Plan parent_changed =
+      Plan::Make(Parse(Replace(kProgramme, "stretching_rate = 100.0\nstop.mean",
+                               "stretching_rate = 90.0\nstop.mean")),
+                 1, "out");
   for (size_t k = 0; k < one.cases.size(); ++k) {
     EXPECT_NE(one.cases[k].key, parent_changed.cases[k].key) << one.cases[k].id;
   }
@@ -282,9 +282,7 @@ TEST(Plan, ShardsCoverEveryLeafOnceWithTheirAncestors) {
 
 // studies/programmes/rate.toml (issue 10 §2): the study at the small scale,
 // and the tiny scale that CI runs.
-std::string RateProgrammePath() {
-  return std::string(GRANASYM_PROGRAMMES_DIR) + "/rate.toml";
-}
+std::string RateProgrammePath() { return std::string(GRANASYM_PROGRAMMES_DIR) + "/rate.toml"; }
 
 TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
   const Programme small = Programme::Load(RateProgrammePath(), Scale::kSmall);
@@ -297,8 +295,8 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
     EXPECT_NE(small.Find(ncl)->scene_body.find("inertial_number = 0.001"), std::string::npos);
   }
   // Every (ψ_ε, p_0) at the six I* and at 167 1/s; 90° at both moduli.
-  const std::vector<std::string> rates = {"I0.1", "I0.03", "I0.01", "I0.003", "I0.001",
-                                          "I0.0003", "D167"};
+  const std::vector<std::string> rates = {"I0.1",   "I0.03",   "I0.01", "I0.003",
+                                          "I0.001", "I0.0003", "D167"};
   int rate_cases = 0;
   for (const char* p : {"5", "20", "100", "500"}) {
     for (const std::string& rate : rates) {
@@ -333,10 +331,9 @@ TEST(RateProgramme, TinyScaleKeepsOneStartTwoRatesAndTheConstantRate) {
   const Programme tiny = Programme::Load(RateProgrammePath(), Scale::kTiny);
   std::vector<std::string> names;
   for (const CaseSpec& c : tiny.cases) names.push_back(c.name);
-  EXPECT_EQ(names, (std::vector<std::string>{
-                       "ncl_E500", "nc100_psi0_I0.1", "nc100_psi0_I0.03", "nc100_psi0_D167",
-                       "nc100_psi90_I0.1_E500", "nc100_psi90_I0.03_E500",
-                       "nc100_psi90_D167_E500"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"ncl_E500", "nc100_psi0_I0.1", "nc100_psi0_I0.03",
+                                             "nc100_psi0_D167", "nc100_psi90_I0.1_E500",
+                                             "nc100_psi90_I0.03_E500", "nc100_psi90_D167_E500"}));
   EXPECT_EQ(tiny.Find("ncl_E500")->stage_names, (std::vector<std::string>{"p100"}));
   const Plan plan = Plan::Make(tiny, 1, "out");
   EXPECT_EQ(plan.cases.size(), 14u);  // two replicates
@@ -344,8 +341,8 @@ TEST(RateProgramme, TinyScaleKeepsOneStartTwoRatesAndTheConstantRate) {
   // The tiny caps and rates reach the scenes.
   const int k = plan.Find("r1/nc100_psi90_I0.03_E500");
   ASSERT_GE(k, 0);
-  const dem::Scene scene = dem::Scene::Parse(plan.cases[static_cast<size_t>(k)].scene_text,
-                                             "scene.toml", ".");
+  const dem::Scene scene =
+      dem::Scene::Parse(plan.cases[static_cast<size_t>(k)].scene_text, "scene.toml", ".");
   ASSERT_EQ(scene.stages.size(), 1u);
   EXPECT_DOUBLE_EQ(*scene.stages[0].stop.strain_norm, 0.3);
   const auto* path = scene.stages[0].As<dem::StrainPathStage>();

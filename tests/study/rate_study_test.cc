@@ -245,8 +245,7 @@ TEST(WriteRateFiles, TheStatesReadBackAndEveryTableHasItsRows) {
   EXPECT_EQ(rows(kRateLinesFile), study.lines.size());
   EXPECT_EQ(rows(kRateQuasiStaticFile), study.quasi_static.size());
   EXPECT_EQ(rows(kRateIndependenceFile), 2u);
-  const CsvTextTable verdicts =
-      CsvTextTable::ReadFile((dir / kRateIndependenceFile).string());
+  const CsvTextTable verdicts = CsvTextTable::ReadFile((dir / kRateIndependenceFile).string());
   EXPECT_EQ(verdicts.rows[0][verdicts.Column("verdict")], "rate_dependent");
   EXPECT_EQ(verdicts.rows[0][verdicts.Column("psi_sigma_deg_agreement")], "differ");
 }

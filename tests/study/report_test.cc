@@ -287,8 +287,8 @@ TEST(StudyReport, TheRateStudySectionAppearsOnlyWithRateFiles) {
   const std::string md = ReadTextFile(summary.markdown_path);
   EXPECT_NE(html.find("<h2 id=\"rate-study\">Rate study</h2>"), std::string::npos);
   EXPECT_NE(md.find("## Rate study"), std::string::npos);
-  for (const char* file : {kRateIndependenceFile, kRateQuasiStaticFile, kRateLinesFile,
-                           kRateSummaryFile}) {
+  for (const char* file :
+       {kRateIndependenceFile, kRateQuasiStaticFile, kRateLinesFile, kRateSummaryFile}) {
     EXPECT_NE(html.find(std::string("href=\"") + file + "\""), std::string::npos) << file;
   }
   // Verdicts and comparisons in the status colours; means with their intervals.
