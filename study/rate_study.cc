@@ -94,6 +94,7 @@ double StiffnessNumber(const std::map<std::string, std::string>& canonical, doub
 // The p target of stage `stage` of the run in `result` (its canonical scene),
 // or the stage's final p when it has none.
 double StartStress(const std::string& result, const std::string& stage) {
+  if (!fs::exists(result)) return kNaN;  // a parent computed again since: its start is unknown
   const Hdf5File file = Hdf5File::OpenRead(result);
   const std::vector<dem::StageRecord> stages = dem::ReadStageRecords(file);
   const auto canonical = CanonicalLines(dem::ReadProvenance(file).scene_canonical);
@@ -558,7 +559,8 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
   CsvWriter quasi({fmt::format("the quasi-static limit per (E, psi_epsilon, start p): y = a + b "
                                "I(d_max) by least squares through the usable states of the {} "
                                "smallest I* (I(d_max) as measured over each asymptote's window; "
-                               "da Cruz et al. 2005: mu* = mu*_0 + b I at small I); a, b with "
+                               "the small-I form of the mu(I) laws of da Cruz et al. 2005 and "
+                               "Jop et al. 2006); a, b with "
                                "95 % intervals (Student t, points - 2 degrees of freedom)",
                                o.fit_rates),
                    usable});

@@ -4,8 +4,8 @@
 // (E, ψ_ε, p_0, rate) it gives the replicate means with 95 % Student-t
 // intervals; per (E, ψ_ε, p_0) the quasi-static limit, extrapolated as I → 0
 // by the least-squares line y = a + b·I(d_max) through the states of the
-// smallest I* (da Cruz et al. 2005, the paper's ref. [10]: μ* = μ*_0 + b·I
-// at small I, the first-order form of Jop et al.'s μ(I), ref. [29]); per
+// smallest I* (the small-I form of the μ(I) laws that the paper cites: da
+// Cruz et al. 2005, its ref. [10], and Jop et al. 2006, ref. [29]); per
 // (E, ψ_ε, rate) the line ln(1+e) = N − λ ln p of its asymptotic states (the
 // NCL at ψ_ε = 0°, the CSL at 90°, the NEL beyond); and whether the two
 // smallest I* agree within their intervals in e, ψ_σ and the CSL's position
