@@ -321,7 +321,18 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
   EXPECT_NE(small.Find("nc20_psi90_D167_E500")->scene_body.find("strain_norm = 0.8"),
             std::string::npos);
   // Every scene of every scale is a valid scene (Plan::Make parses them).
-  EXPECT_EQ(Plan::Make(small, 1, "out").cases.size(), 3 * small.cases.size());
+  const Plan plan = Plan::Make(small, 1, "out");
+  EXPECT_EQ(plan.cases.size(), 3 * small.cases.size());
+  // The cost estimate (ETA, shards) of a path at fixed I* grows as 1/I*, not
+  // that of its cap of 5000 1/s.
+  auto steps = [&plan](const std::string& id) {
+    const int k = plan.Find(id);
+    EXPECT_GE(k, 0) << id;
+    return k < 0 ? 0.0 : plan.cases[static_cast<size_t>(k)].estimated_steps;
+  };
+  EXPECT_NEAR(steps("r1/nc20_psi90_I0.0003_E500") / steps("r1/nc20_psi90_I0.003_E500"), 10.0,
+              1e-9);
+  EXPECT_GT(steps("r1/nc20_psi90_I0.003_E500"), steps("r1/nc20_psi90_D167_E500"));
   const Programme paper = Programme::Load(RateProgrammePath(), Scale::kPaper);
   EXPECT_EQ(paper.Current().count, 150000);
   EXPECT_EQ(paper.cases.size(), small.cases.size());
