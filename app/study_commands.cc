@@ -87,7 +87,7 @@ void RegisterStudyCommands(CLI::App& app) {
     }
     CheckOutputFolder({"--out", out}, {{"the programme", programme_path}});
     if (threads > 0) threads = CapThreads(threads, "--threads");
-    const study::Programme programme = study::Programme::Load(programme_path);
+    const study::Programme programme = study::Programme::Load(programme_path, scale);
     const study::Parallelism parallelism = study::ChooseParallelism(
         HardwareThreads(), dem::PhysicalMemoryBytes(), programme.At(scale).count, jobs, threads);
     jobs = parallelism.jobs;
@@ -99,7 +99,7 @@ void RegisterStudyCommands(CLI::App& app) {
                    jobs, threads, jobs * threads, HardwareThreads());
     }
     options.jobs = jobs;
-    const study::Plan plan = study::Plan::Make(programme, scale, threads, out);
+    const study::Plan plan = study::Plan::Make(programme, threads, out);
     Progress::Options progress_options;
     progress_options.quiet = quiet;
     progress_options.plain_interval_s = 30;

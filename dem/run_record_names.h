@@ -109,6 +109,12 @@ inline constexpr char kStageStretchingRate[] = "stretching_rate_per_s";
 inline constexpr char kStageAxialStrainRate[] = "axial_strain_rate_per_s";
 inline constexpr char kStageRadialStressKpa[] = "radial_stress_kpa";
 inline constexpr char kStageMeanStressKpa[] = "mean_stress_kpa";
+// Strain-path stages: the rate rule (dem::RateRule's names) and, for the
+// inertial rule, its target and settings.
+inline constexpr char kStageRateRule[] = "rate_rule";
+inline constexpr char kStageRateInertialNumber[] = "rate_inertial_number";
+inline constexpr char kStageRateDiameter[] = "rate_diameter";
+inline constexpr char kStageRateMinMeanStressKpa[] = "rate_min_mean_stress_kpa";
 
 // Attributes of /summary.
 inline constexpr char kTermination[] = "termination";

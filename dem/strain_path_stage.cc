@@ -96,11 +96,11 @@ void StrainPathStage::Canonical(CanonicalText& text, const std::string& prefix) 
 void StrainPathStage::Describe(Hdf5File& file, const std::string& group) const {
   file.SetAttribute(group, record::kStagePsiEpsilonDeg, psi_epsilon_deg);
   file.SetAttribute(group, record::kStageStretchingRate, stretching_rate);
-  file.SetAttribute(group, "rate_rule", ToString(rule));
+  file.SetAttribute(group, record::kStageRateRule, ToString(rule));
   if (rule == RateRule::kInertial) {
-    file.SetAttribute(group, "rate_inertial_number", inertial.inertial_number);
-    file.SetAttribute(group, "rate_diameter", ToString(inertial.diameter));
-    file.SetAttribute(group, "rate_min_mean_stress_kpa", inertial.min_mean_stress_kpa);
+    file.SetAttribute(group, record::kStageRateInertialNumber, inertial.inertial_number);
+    file.SetAttribute(group, record::kStageRateDiameter, ToString(inertial.diameter));
+    file.SetAttribute(group, record::kStageRateMinMeanStressKpa, inertial.min_mean_stress_kpa);
   }
 }
 

@@ -20,6 +20,7 @@
 #include "common/time_series.h"
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
+#include "study/rate_study.h"
 #include "study/study_folder.h"
 
 namespace granasym::study {
@@ -483,6 +484,14 @@ FigureSpec Fig09(const Context& ctx) {
                   "ncl.gp");
   BlockFile file({"p_kpa", "ln_1_plus_e"});
   std::vector<const CaseData*> cases = ctx.Serving("9");
+  // A case with unloading (ψ_ε = 180°) stages is a cycle; several monotonic
+  // NCLs (of other materials) are told apart by their names.
+  auto cycles_of = [](const CaseData* c) {
+    return std::any_of(c->stage_psi_epsilon.begin(), c->stage_psi_epsilon.end(),
+                       [](double psi) { return std::abs(psi - 180) < 1; });
+  };
+  const long monotonic =
+      std::count_if(cases.begin(), cases.end(), [&](const CaseData* c) { return !cycles_of(c); });
   double p_min = 1e300, p_max = 0;
   for (const CaseData* c : cases) {
     std::vector<std::vector<double>> rows;
@@ -492,8 +501,10 @@ FigureSpec Fig09(const Context& ctx) {
       p_min = std::min(p_min, c->path.p[k]);
       p_max = std::max(p_max, c->path.p[k]);
     }
-    const bool cycles = c->stages.size() > 1 && c->name != ctx.study_ncl;
-    file.Add(cycles ? "unload (ψ_ε = 180°)/reload (0°) cycles" : "monotonic, ψ_ε = 0°", rows);
+    file.Add(cycles_of(c)    ? "unload (ψ_ε = 180°)/reload (0°) cycles"
+             : monotonic > 1 ? "monotonic, ψ_ε = 0° (" + c->name + ")"
+                             : "monotonic, ψ_ε = 0°",
+             rows);
   }
   if (file.blocks() == 0) return NotDrawn(spec, "no finished case serves Fig. 9");
   const NclLine ncl = ctx.StudyNcl(1);
@@ -970,6 +981,359 @@ FigureSpec Fig22(const Context& ctx) {
   return spec;
 }
 
+// ---------------------------------------------------------------- the rate study
+
+// The range of an axis that holds every point of a figure, padded so that no
+// point sits on the frame and a single value still spans a range (gnuplot
+// warns about an empty autoscaled range, which `study figures` treats as an
+// error): 8 % each side, in log for a log axis (and at least a decade);
+// a single linear value ±1.
+struct AxisRange {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  bool log = false;
+  void Add(double v) {
+    if (!std::isfinite(v) || (log && !(v > 0))) return;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  void Add(double v, double half_width) {
+    Add(v);
+    if (std::isfinite(half_width)) {
+      Add(v - half_width);
+      Add(v + half_width);
+    }
+  }
+  bool empty() const { return !(lo <= hi); }
+  std::pair<double, double> Padded() const {
+    if (log) {
+      // At least a decade, so that the axis has a labelled power of ten.
+      double a = std::log(lo), b = std::log(hi);
+      const double pad = 0.08 * (b - a);
+      a -= pad;
+      b += pad;
+      if (b - a < std::log(10.0)) {
+        const double middle = 0.5 * (a + b);
+        a = middle - 0.5 * std::log(10.0);
+        b = middle + 0.5 * std::log(10.0);
+      }
+      return {std::exp(a), std::exp(b)};
+    }
+    const double pad = hi - lo > 1e-12 * std::max(1.0, std::abs(hi)) ? 0.08 * (hi - lo) : 1.0;
+    return {lo - pad, hi + pad};
+  }
+};
+
+// Sets `<name>_min` and `<name>_max` for a script's `set xrange`.
+void SetRange(FigureSpec* spec, const std::string& name, const AxisRange& range) {
+  const auto [lo, hi] = range.Padded();
+  spec->variables.emplace_back(name + "_min", fmt::format("{:.8g}", lo));
+  spec->variables.emplace_back(name + "_max", fmt::format("{:.8g}", hi));
+}
+
+// Colour (linetype) of each rate: the I* ascending, then the constant ‖D‖.
+std::map<std::pair<int, double>, int> RateColours(const RateStudy& rate) {
+  std::set<std::pair<int, double>> rates;
+  for (const RateGroup& g : rate.groups) rates.insert({static_cast<int>(g.key.rule), g.key.rate});
+  std::vector<std::pair<int, double>> order(rates.begin(), rates.end());
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) {
+    const bool ia = a.first == static_cast<int>(dem::RateRule::kInertial);
+    const bool ib = b.first == static_cast<int>(dem::RateRule::kInertial);
+    return ia != ib ? ia : a.second < b.second;
+  });
+  std::map<std::pair<int, double>, int> colours;
+  for (size_t k = 0; k < order.size(); ++k) colours[order[k]] = static_cast<int>(k) + 1;
+  return colours;
+}
+
+std::string RateTitle(int rule, double rate) {
+  return RateKey{0, 0, 0, static_cast<dem::RateRule>(rule), rate}.RateLabel();
+}
+
+// Gnuplot words ("a b" "c") of the rates' legend titles, in colour order.
+std::string RateTitles(const std::map<std::pair<int, double>, int>& colours) {
+  std::vector<std::string> titles(colours.size());
+  for (const auto& [rate, colour] : colours) {
+    titles[static_cast<size_t>(colour - 1)] = RateTitle(rate.first, rate.second);
+  }
+  std::string words;
+  for (const std::string& t : titles) words += (words.empty() ? "\"" : " \"") + t + "\"";
+  return words;
+}
+
+double Zeroed(double v) { return std::isfinite(v) ? v : 0.0; }
+// The half-width of an interval of a positive value on a log axis: at most
+// 0.9 of the value (the lower end stays positive).
+double LogHalfWidth(double mean, double half_width) {
+  return std::min(Zeroed(half_width), 0.9 * mean);
+}
+
+// Point types: filled for the reference Young's modulus, open for others;
+// a triangle for ψ_ε = 0°, a circle at 90°, a square beyond (rate_lines.gp).
+int DirectionPoint(double psi, bool reference_modulus) {
+  const int filled = std::abs(psi) < 1e-6 ? 9 : std::abs(psi - 90) < 1e-6 ? 7 : 5;
+  return reference_modulus ? filled : filled - 1;
+}
+
+std::string ModulusNote(const RateStudy& rate, double reference) {
+  std::set<double> moduli;
+  for (const RateGroup& g : rate.groups) moduli.insert(g.key.youngs_modulus_mpa);
+  std::string others;
+  for (double e : moduli) {
+    if (e != reference) others += (others.empty() ? "" : ", ") + Short(e);
+  }
+  return others.empty()
+             ? fmt::format("E = {} MPa", Short(reference))
+             : fmt::format("filled: E = {} MPa, open: E = {} MPa", Short(reference), others);
+}
+
+FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
+  const double reference = rate.ReferenceModulus();
+  FigureSpec spec =
+      Spec("rate_psi_sigma_p", "rate (a)", "Asymptotic ψ_σ against p at each rate",
+           "The asymptotic stress obliquity ψ_σ against the asymptotic mean stress p of the rate "
+           "cases, one panel per ψ_ε: the mean over the replicates' usable states of each start "
+           "(NC at p_0) and rate, with the 95 % intervals of both means (Student t; none below two "
+           "states), one colour per rate (the fixed inertial numbers I* and the paper's constant "
+           "‖D‖), lines joining the starts of one rate; " +
+               ModulusNote(rate, reference) +
+               ". If the paper's p-dependence of ψ_σ (its Sec. 5.3) is a rate effect, the curves "
+               "flatten and coincide as I* falls. Data: rate_summary.csv.",
+           "rate_psi_sigma.gp");
+  const auto colours = RateColours(rate);
+  std::map<double,
+           std::map<std::pair<double, std::pair<int, double>>, std::vector<const RateGroup*>>>
+      panels;  // ψ_ε → (E, rate) → groups
+  for (const RateGroup& g : rate.groups) {
+    if (g.used == 0) continue;
+    panels[g.key.psi_epsilon_deg]
+          [{g.key.youngs_modulus_mpa, {static_cast<int>(g.key.rule), g.key.rate}}]
+              .push_back(&g);
+  }
+  if (panels.empty()) return NotDrawn(spec, "no rate case has a usable asymptotic state");
+  std::string panel_titles, panel_blocks, ranges[4];
+  int k = 0;
+  for (const auto& [psi, curves] : panels) {
+    ++k;
+    AxisRange x{}, y{};
+    x.log = true;
+    BlockFile file({"p_kpa", "p_ci95", "psi_sigma_deg", "psi_sigma_ci95", "point_type", "colour"});
+    for (const auto& [curve, groups] : curves) {
+      std::vector<const RateGroup*> sorted = groups;
+      std::sort(sorted.begin(), sorted.end(), [](const RateGroup* a, const RateGroup* b) {
+        return a->p_kpa.mean < b->p_kpa.mean;
+      });
+      std::vector<std::vector<double>> rows;
+      for (const RateGroup* g : sorted) {
+        x.Add(g->p_kpa.mean, LogHalfWidth(g->p_kpa.mean, g->p_kpa.half_width));
+        y.Add(g->psi_sigma_deg.mean, g->psi_sigma_deg.half_width);
+        rows.push_back({g->p_kpa.mean, LogHalfWidth(g->p_kpa.mean, g->p_kpa.half_width),
+                        g->psi_sigma_deg.mean, Zeroed(g->psi_sigma_deg.half_width),
+                        static_cast<double>(DirectionPoint(90, curve.first == reference)),
+                        static_cast<double>(colours.at(curve.second))});
+      }
+      file.Add(fmt::format("{}, E = {} MPa", RateTitle(curve.second.first, curve.second.second),
+                           Short(curve.first)),
+               rows);
+    }
+    file.Write(ctx.File(fmt::format("rate_psi_sigma_{}.tsv", k)));
+    panel_titles += fmt::format("{}\"ψ_ε = {}°\"", panel_titles.empty() ? "" : " ", Short(psi));
+    panel_blocks += fmt::format("{}{}", panel_blocks.empty() ? "" : " ", file.blocks());
+    const auto [x_lo, x_hi] = x.Padded();
+    const auto [y_lo, y_hi] = y.Padded();
+    const double values[4] = {x_lo, x_hi, y_lo, y_hi};
+    for (int r = 0; r < 4; ++r) {
+      ranges[r] += fmt::format("{}{:.8g}", ranges[r].empty() ? "" : " ", values[r]);
+    }
+  }
+  Set(&spec, "panel_x_min", ranges[0]);
+  Set(&spec, "panel_x_max", ranges[1]);
+  Set(&spec, "panel_y_min", ranges[2]);
+  Set(&spec, "panel_y_max", ranges[3]);
+  Set(&spec, "n_panels", k);
+  Set(&spec, "panel_titles", panel_titles);
+  Set(&spec, "panel_blocks", panel_blocks);
+  Set(&spec, "n_rates", static_cast<int>(colours.size()));
+  Set(&spec, "rate_titles", RateTitles(colours));
+  Set(&spec, "modulus_note", ModulusNote(rate, reference));
+  return spec;
+}
+
+FigureSpec RateLines(const Context& ctx, const RateStudy& rate) {
+  const double reference = rate.ReferenceModulus();
+  FigureSpec spec =
+      Spec("rate_csl_ncl", "rate (b)", "NCL, CSL and NEL at each rate",
+           fmt::format(
+               "ln(1+e) against p (log scale) of the rate cases' usable asymptotic states, all "
+               "replicates and starts: ψ_ε = 0° (triangles: the NCL at that rate), 90° (circles: "
+               "the CSL), other directions (squares: e.g. the NEL of 100°); {}; one colour per "
+               "rate. Lines: ln(1+e) = N − λ ln p fitted through the states of one direction and "
+               "rate (at least two starts), drawn over their p range; rate_lines.csv gives N, λ "
+               "and ln(1+e) at {} kPa with its 95 % interval. Data: rate_states.csv.",
+               ModulusNote(rate, reference), Short(rate.options.reference_p_kpa)),
+           "rate_lines.gp");
+  const auto colours = RateColours(rate);
+  std::map<std::tuple<double, double, int, double>, std::vector<std::vector<double>>> blocks;
+  for (const RateState& s : rate.states) {
+    if (!rate.Usable(s)) continue;
+    blocks[{s.psi_epsilon_deg, s.youngs_modulus_mpa, static_cast<int>(s.rule), s.rate()}].push_back(
+        {s.p_kpa, s.ln_1_plus_e,
+         static_cast<double>(DirectionPoint(s.psi_epsilon_deg, s.youngs_modulus_mpa == reference)),
+         static_cast<double>(colours.at({static_cast<int>(s.rule), s.rate()}))});
+  }
+  if (blocks.empty()) return NotDrawn(spec, "no rate case has a usable asymptotic state");
+  AxisRange x{}, y{};
+  x.log = true;
+  for (const auto& [key, rows] : blocks) {
+    for (const std::vector<double>& row : rows) {
+      x.Add(row[0]);
+      y.Add(row[1]);
+    }
+  }
+  BlockFile states({"p_kpa", "ln_1_plus_e", "point_type", "colour"});
+  for (const auto& [key, rows] : blocks) {
+    states.Add(fmt::format("ψ_ε = {}°, E = {} MPa, {}", Short(std::get<0>(key)),
+                           Short(std::get<1>(key)), RateTitle(std::get<2>(key), std::get<3>(key))),
+               rows);
+  }
+  states.Write(ctx.File("rate_lines_states.tsv"));
+  BlockFile lines({"p_kpa", "ln_1_plus_e", "colour"});
+  for (const RateLine& l : rate.lines) {
+    if (!l.valid()) continue;
+    const double colour = colours.at({static_cast<int>(l.rule), l.rate});
+    std::vector<std::vector<double>> rows;
+    for (double p : {l.p_min_kpa, l.p_max_kpa}) {
+      rows.push_back({p, l.n - l.lambda * std::log(p), colour});
+      y.Add(rows.back()[1]);
+    }
+    lines.Add(fmt::format("ψ_ε = {}°, E = {} MPa, {}: N = {:.4f}, λ = {:.4f}",
+                          Short(l.psi_epsilon_deg), Short(l.youngs_modulus_mpa),
+                          RateKey{0, 0, 0, l.rule, l.rate}.RateLabel(), l.n, l.lambda),
+              rows);
+  }
+  if (lines.blocks() > 0) lines.Write(ctx.File("rate_lines_fits.tsv"));
+  SetRange(&spec, "x", x);
+  SetRange(&spec, "y", y);
+  Set(&spec, "n_states", states.blocks());
+  Set(&spec, "n_lines", lines.blocks());
+  Set(&spec, "n_rates", static_cast<int>(colours.size()));
+  Set(&spec, "rate_titles", RateTitles(colours));
+  Set(&spec, "modulus_note", ModulusNote(rate, reference));
+  return spec;
+}
+
+FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
+  const double reference = rate.ReferenceModulus();
+  const double low = ctx.options.literature_m_low, high = ctx.options.literature_m_high;
+  FigureSpec spec =
+      Spec("rate_critical_state_ratio", "rate (c)",
+           "Critical-state stress ratio M against the inertial number, and its quasi-static limit",
+           fmt::format(
+               "M = q/p of the ψ_ε = 90° asymptotic states against their measured I(d_max) (means "
+               "over the replicates with 95 % intervals of both; circles: fixed I*, diamonds: the "
+               "paper's constant ‖D‖), one colour per start p_0; {}. Lines: the quasi-static fit "
+               "M = M_0 + b·I through the states of the {} smallest I* (least squares: the "
+               "small-I form of the μ(I) laws of the paper's refs. [10], da Cruz et al. 2005, "
+               "and [29], Jop et al. 2006); the "
+               "points at the left edge are M_0 = M(I → 0) with its 95 % interval "
+               "(rate_quasi_static.csv). Band: M = {}–{}, the range issue 10 gives for frictional "
+               "spheres at μ ≈ 0.5 without rolling resistance in triaxial compression; a source "
+               "for its numbers was not verified here (Goncu & Luding, 'Effect of particle "
+               "friction and polydispersity on the macroscopic stress-strain relations of "
+               "granular materials', Acta Geotechnica, report that the deviatoric stress ratio "
+               "of sphere packings rises with the contact friction from a non-zero value at "
+               "μ = 0 and saturates for large μ; compare with their values before relying on "
+               "the band). Dashed: I = 10^{{-2}} (quasi-static, paper Sec. 5.3) and "
+               "10^{{-3}} (SPEC §8.2).",
+               ModulusNote(rate, reference), rate.options.fit_rates, Short(low), Short(high)),
+           "rate_critical_state.gp");
+  // Colours by start; point types by modulus (filled reference) and rule.
+  std::set<double> starts;
+  for (const RateGroup& g : rate.groups) {
+    if (std::abs(g.key.psi_epsilon_deg - 90) < 1e-6 && g.used > 0) starts.insert(g.key.start_p_kpa);
+  }
+  if (starts.empty()) return NotDrawn(spec, "no ψ_ε = 90° rate case has a usable asymptotic state");
+  std::map<double, int> colour_of;
+  std::string start_titles;
+  for (double p : starts) {
+    colour_of[p] = static_cast<int>(colour_of.size()) + 1;
+    start_titles += fmt::format("{}\"NC {} kPa\"", start_titles.empty() ? "" : " ", Short(p));
+  }
+  BlockFile groups({"inertial_number", "inertial_number_ci95", "q_over_p", "q_over_p_ci95",
+                    "point_type", "colour"});
+  double i_min = 1e300;
+  std::map<std::pair<double, double>, std::vector<std::vector<double>>> by_curve;  // (E, p_0)
+  for (const RateGroup& g : rate.groups) {
+    if (std::abs(g.key.psi_epsilon_deg - 90) > 1e-6 || g.used == 0) continue;
+    if (!(g.inertial_number_dmax.mean > 0) || !std::isfinite(g.q_over_p.mean)) continue;
+    const bool ref = g.key.youngs_modulus_mpa == reference;
+    const int point = g.key.rule == dem::RateRule::kInertial ? (ref ? 7 : 6) : (ref ? 13 : 12);
+    i_min = std::min(i_min, g.inertial_number_dmax.mean);
+    by_curve[{g.key.youngs_modulus_mpa, g.key.start_p_kpa}].push_back(
+        {g.inertial_number_dmax.mean,
+         LogHalfWidth(g.inertial_number_dmax.mean, g.inertial_number_dmax.half_width),
+         g.q_over_p.mean, Zeroed(g.q_over_p.half_width), static_cast<double>(point),
+         static_cast<double>(colour_of.at(g.key.start_p_kpa))});
+  }
+  if (by_curve.empty()) return NotDrawn(spec, "no ψ_ε = 90° rate state has a measured I");
+  AxisRange x{}, y{};
+  x.log = true;
+  y.Add(low);
+  y.Add(high);
+  for (const auto& [curve, rows] : by_curve) {
+    for (const std::vector<double>& row : rows) {
+      x.Add(row[0], row[1]);
+      y.Add(row[2], row[3]);
+    }
+  }
+  for (auto& [curve, rows] : by_curve) {
+    std::sort(rows.begin(), rows.end());
+    groups.Add(fmt::format("E = {} MPa, NC {} kPa", Short(curve.first), Short(curve.second)), rows);
+  }
+  groups.Write(ctx.File("rate_critical_state_groups.tsv"));
+  // The quasi-static lines and limits, drawn from a left edge a third of
+  // the smallest measured I.
+  const double i_left = i_min / 3;
+  x.Add(i_left);
+  BlockFile fits({"inertial_number", "q_over_p", "q_over_p_ci95", "point_type", "colour"});
+  BlockFile limits({"inertial_number", "q_over_p", "q_over_p_ci95", "point_type", "colour"});
+  for (const QuasiStaticFit& f : rate.quasi_static) {
+    if (f.quantity != "q_over_p" || std::abs(f.psi_epsilon_deg - 90) > 1e-6 || !f.valid()) continue;
+    const auto colour = colour_of.find(f.start_p_kpa);
+    if (colour == colour_of.end()) continue;
+    const bool ref = f.youngs_modulus_mpa == reference;
+    const std::string title =
+        fmt::format("E = {} MPa, NC {} kPa: M_0 = {:.3f}", Short(f.youngs_modulus_mpa),
+                    Short(f.start_p_kpa), f.limit.mean);
+    std::vector<std::vector<double>> rows;
+    for (int k = 0; k <= 20; ++k) {
+      const double i = std::exp(std::log(i_left) + (std::log(f.i_max) - std::log(i_left)) * k / 20);
+      rows.push_back({i, f.limit.mean + f.slope.mean * i, 0.0, ref ? 7.0 : 6.0,
+                      static_cast<double>(colour->second)});
+    }
+    fits.Add(title, rows);
+    limits.Add(title, {{i_left, f.limit.mean, Zeroed(f.limit.half_width), ref ? 5.0 : 4.0,
+                        static_cast<double>(colour->second)}});
+    y.Add(f.limit.mean, f.limit.half_width);
+    y.Add(rows.back()[1]);
+  }
+  if (fits.blocks() > 0) {
+    fits.Write(ctx.File("rate_critical_state_fits.tsv"));
+    limits.Write(ctx.File("rate_critical_state_limits.tsv"));
+  }
+  SetRange(&spec, "x", x);
+  SetRange(&spec, "y", y);
+  Set(&spec, "n_groups", groups.blocks());
+  Set(&spec, "n_fits", fits.blocks());
+  Set(&spec, "n_starts", static_cast<int>(colour_of.size()));
+  Set(&spec, "start_titles", start_titles);
+  Set(&spec, "modulus_note", ModulusNote(rate, reference));
+  spec.variables.emplace_back("band_low", fmt::format("{:g}", low));
+  spec.variables.emplace_back("band_high", fmt::format("{:g}", high));
+  spec.variables.emplace_back("i_left", fmt::format("{:.6g}", i_left));
+  return spec;
+}
+
 }  // namespace
 
 bool FigureDataOptions::IsValid(std::string* why) const {
@@ -989,6 +1353,10 @@ bool FigureDataOptions::IsValid(std::string* why) const {
   }
   if (psi_epsilon_half_rows < 1) {
     *why = "psi_epsilon_half_rows: must be at least 1";
+    return false;
+  }
+  if (!(literature_m_low > 0 && literature_m_high > literature_m_low)) {
+    *why = "literature_m_low, literature_m_high: need 0 < low < high";
     return false;
   }
   return true;
@@ -1220,6 +1588,29 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
   figures.push_back(Fig21(ctx));
   figures.push_back(Fig22(ctx));
   figures.push_back(Sec52(ctx));
+  // The paper's figures that this study's programme declares (every one, for
+  // paper.toml): a programme of other cases lists its own figures only.
+  std::set<std::string> declared;
+  for (const CaseData& c : ctx.cases) declared.insert(c.figures.begin(), c.figures.end());
+  const bool models = fs::exists(fs::path(directory) / "models");
+  figures.erase(
+      std::remove_if(figures.begin(), figures.end(),
+                     [&](const FigureSpec& f) {
+                       if (f.stem.rfind("fig05_", 0) == 0 && f.stem != "fig05_model_paths") {
+                         return false;  // a calibrated model's: drawn when it ran
+                       }
+                       if (f.figure == "5") return !models;
+                       return !declared.count(f.figure);
+                     }),
+      figures.end());
+  // The rate study's figures, when it has rate cases.
+  const std::vector<RateState> rate_states = ReadRateStates(directory);
+  if (!rate_states.empty()) {
+    const RateStudy rate = RateStudy::Analyse(rate_states);
+    figures.push_back(RatePsiSigma(ctx, rate));
+    figures.push_back(RateLines(ctx, rate));
+    figures.push_back(RateCriticalState(ctx, rate));
+  }
   return figures;
 }
 

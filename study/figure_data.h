@@ -52,6 +52,11 @@ struct FigureDataOptions {
   // The calibrated models overlaid, DIR/calibration/<model>/plot_data/.
   std::vector<std::string> models = {"hypoplastic_clay", "modified_cam_clay",
                                      "hypoplastic_sand"};
+  // The band of the critical-state stress ratio M = q/p drawn with the rate
+  // study's quasi-static M (issue 10: about 0.8-0.95 in triaxial compression
+  // for frictional spheres at μ ≈ 0.5 without rolling resistance; the
+  // caption says what it rests on).
+  double literature_m_low = 0.8, literature_m_high = 0.95;
   bool IsValid(std::string* why) const;
 };
 
@@ -124,8 +129,11 @@ void ModelSectionAt(const ModelOverlay& model, double level, const NclLine& stud
                     std::vector<double>* p_over_pe, std::vector<double>* q_over_pe);
 
 // Writes DIR/figures/data/ and returns the figures (with the reason for
-// each that has no data). Throws InputError when DIR is not a study folder
-// with a state table.
+// each that has no data): the paper's figures that the study's cases declare
+// in their `figures` keys (Fig. 5 when it has model runs, the calibrated
+// models' Fig. 5 when `study calibrate` ran them), and the rate study's
+// three figures when it has rate cases (study/rate_study.h). Throws
+// InputError when DIR is not a study folder with a state table.
 std::vector<FigureSpec> WriteFigureData(const std::string& directory,
                                         const FigureDataOptions& options = {});
 

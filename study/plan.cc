@@ -26,10 +26,21 @@ void AddField(Sha256& hash, const std::string& name, const std::string& value) {
 }
 
 // Steps a stage is expected to take, from its stop conditions (a rough
-// figure for the ETA; measured steps of finished cases replace it).
-double EstimateSteps(const dem::Stage& stage, double time_step) {
+// figure for the ETA and the shards' balance; measured steps of finished
+// cases replace it). A stage at a fixed inertial number is taken at the
+// rate of I* for d = 1 mm (the default GSD's largest) at its p target, or
+// 100 kPa without one.
+double EstimateSteps(const dem::Stage& stage, double time_step, double density) {
   double rate = 167.0;
-  if (const auto* path = stage.As<dem::StrainPathStage>()) rate = path->stretching_rate;
+  if (const auto* path = stage.As<dem::StrainPathStage>()) {
+    rate = path->stretching_rate;
+    if (path->rule == dem::RateRule::kInertial) {
+      const double p_kpa = std::max(stage.stop.mean_stress_kpa.value_or(100.0),
+                                    path->inertial.min_mean_stress_kpa);
+      rate = std::min(rate, path->inertial.inertial_number *
+                                std::sqrt(p_kpa * 1e3 / (2 * density)) / 1e-3);
+    }
+  }
   if (const auto* triaxial = stage.As<dem::TriaxialStage>()) {
     rate = 1.5 * std::abs(triaxial->axial_strain_rate);
   }
@@ -43,8 +54,8 @@ double EstimateSteps(const dem::Stage& stage, double time_step) {
 
 }  // namespace
 
-Plan Plan::Make(const Programme& programme, Scale scale, int threads,
-                const std::string& directory) {
+Plan Plan::Make(const Programme& programme, int threads, const std::string& directory) {
+  const Scale scale = programme.scale;
   Plan plan;
   plan.programme = programme;
   plan.scale = scale;
@@ -121,7 +132,9 @@ Plan Plan::Make(const Programme& programme, Scale scale, int threads,
       AddField(hash, "threads", std::to_string(threads));
       c.key = hash.HexDigest();
       const double time_step = scene.time_step_s.value_or(1.2e-7);
-      for (const dem::Stage& stage : scene.stages) c.estimated_steps += EstimateSteps(stage, time_step);
+      for (const dem::Stage& stage : scene.stages) {
+        c.estimated_steps += EstimateSteps(stage, time_step, scene.material.density);
+      }
       if (c.parent >= 0) plan.cases[static_cast<size_t>(c.parent)].children.push_back(
           static_cast<int>(plan.cases.size()));
       plan.cases.push_back(std::move(c));

@@ -66,10 +66,10 @@ struct Plan {
   std::vector<PlannedCase> cases;      // parents before children
   std::vector<PlannedModelCase> model_cases;
 
-  // Expands the programme; every case's scene is parsed here, so that bad
-  // input fails before anything runs (the message names the programme and the case).
-  static Plan Make(const Programme& programme, Scale scale, int threads,
-                   const std::string& directory);
+  // Plans the programme at the scale it was expanded at (Programme::scale);
+  // every case's scene is parsed here, so that bad input fails before
+  // anything runs (the message names the programme and the case).
+  static Plan Make(const Programme& programme, int threads, const std::string& directory);
   // The cases of shard `index` (1-based) of `count`: the leaves are dealt
   // out by estimated cost (longest first to the least loaded shard), and
   // every shard includes the ancestors of its leaves (computed once, by

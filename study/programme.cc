@@ -100,8 +100,12 @@ double DoubleAt(const std::string& origin, const std::string& key, const Table& 
   return v;
 }
 
-// The shortest decimal text that reads back as exactly `value`.
+// The shortest decimal text that reads back as exactly `value` (an integral
+// value as an integer: 90.0 is "90", not "9e+01").
 std::string ShortestText(double value) {
+  if (value == std::floor(value) && std::abs(value) < 1e15) {
+    return std::to_string(static_cast<int64_t>(value));
+  }
   char buffer[40];
   for (int precision = 1; precision <= 17; ++precision) {
     std::snprintf(buffer, sizeof buffer, "%.*g", precision, value);
@@ -164,21 +168,90 @@ Value Substitute(const Value& value, const Variables& variables, const std::stri
   return Value(out);
 }
 
-// Every combination of the lists of `vary` (the last key varies fastest).
+// A value's identity for `only`: its kind and its shortest text, so that 100
+// and 100.0 are one value and "100" (a string) another.
+std::string ValueKey(const Value& value) {
+  if (value.is_integer() || value.is_floating()) {
+    const double number =
+        value.is_integer() ? static_cast<double>(value.as_integer()) : value.as_floating();
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, "%.17g", number);
+    return std::string("n:") + buffer;
+  }
+  return "s:" + ValueText(value);
+}
+
+// The scale's lists and placeholders while a programme is expanded.
+struct ScaleExpansion {
+  Scale scale = Scale::kTiny;
+  std::map<std::string, std::vector<Value>> only;  // variable → values kept
+  Variables variables;                             // [scale.X.variables]
+
+  // `list` of variable `name` with only the values this scale keeps.
+  std::vector<Value> Restrict(const std::string& name, const Array& list) const {
+    const auto it = only.find(name);
+    if (it == only.end()) return std::vector<Value>(list.begin(), list.end());
+    std::set<std::string> kept;
+    for (const Value& value : it->second) kept.insert(ValueKey(value));
+    std::vector<Value> out;
+    for (const Value& item : list) {
+      if (kept.count(ValueKey(item))) out.push_back(item);
+    }
+    return out;
+  }
+};
+
+// The values of every `vary` and `each` list of the programme, by variable
+// (as ValueKey), read before the expansion so that a restriction that could
+// take no effect (a misspelt variable or value) is named as such.
+std::map<std::string, std::set<std::string>> ListValues(const Table& top) {
+  std::map<std::string, std::set<std::string>> values;
+  auto add = [&values](const Value* lists) {
+    if (!lists || !lists->is_table()) return;
+    for (const auto& [name, list] : lists->as_table()) {
+      if (!list.is_array()) continue;
+      for (const Value& item : list.as_array()) values[name].insert(ValueKey(item));
+    }
+  };
+  for (const char* entries : {"run", "model_run"}) {
+    const Value* array = FindKey(top, entries);
+    if (!array || !array->is_array()) continue;
+    for (const Value& entry : array->as_array()) {
+      if (!entry.is_table()) continue;
+      add(FindKey(entry.as_table(), "vary"));
+      const Value* stages = FindKey(entry.as_table(), "stage");
+      if (!stages || !stages->is_array()) continue;
+      for (const Value& stage : stages->as_array()) {
+        if (stage.is_table()) add(FindKey(stage.as_table(), "each"));
+      }
+    }
+  }
+  return values;
+}
+
+// Every combination of the lists of `vary` (the last key varies fastest),
+// restricted to the values the scale keeps; none when a list is left empty.
 std::vector<Variables> Combinations(const std::string& origin, const std::string& key,
-                                    const Value* vary) {
+                                    const Value* vary, ScaleExpansion& expansion) {
   std::vector<Variables> combinations{Variables{}};
   if (!vary) return combinations;
   for (const auto& [name, list] : TableAt(origin, key, *vary)) {
     if (!list.is_array() || list.as_array().empty()) {
       Fail(origin, key + "." + name, "must be a non-empty array of values");
     }
+    if (expansion.variables.count(name)) {
+      Fail(origin, key + "." + name,
+           "is also a variable of [scale." + std::string(ToString(expansion.scale)) +
+               ".variables]: give each placeholder one source");
+    }
+    for (const Value& item : list.as_array()) {
+      if (item.is_table() || item.is_array()) {
+        Fail(origin, key + "." + name, "must hold numbers or strings, not " + TypeName(item));
+      }
+    }
     std::vector<Variables> next;
     for (const Variables& partial : combinations) {
-      for (const Value& item : list.as_array()) {
-        if (item.is_table() || item.is_array()) {
-          Fail(origin, key + "." + name, "must hold numbers or strings, not " + TypeName(item));
-        }
+      for (const Value& item : expansion.Restrict(name, list.as_array())) {
         Variables extended = partial;
         extended[name] = item;
         next.push_back(std::move(extended));
@@ -224,16 +297,16 @@ double SampleSpec::CellSizeMm(int64_t count) const {
          std::cbrt(static_cast<double>(count) / static_cast<double>(reference_count));
 }
 
-Programme Programme::Load(const std::string& path) {
+Programme Programme::Load(const std::string& path, Scale scale) {
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the programme file");
   std::stringstream text;
   text << in.rdbuf();
-  return Parse(text.str(), path, std::filesystem::path(path).parent_path().string());
+  return Parse(text.str(), path, std::filesystem::path(path).parent_path().string(), scale);
 }
 
 Programme Programme::Parse(const std::string& text, const std::string& origin,
-                           const std::string& base_directory) {
+                           const std::string& base_directory, Scale scale) {
   Value root;
   try {
     std::istringstream in(text);
@@ -245,6 +318,7 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
   CheckKeys(origin, "", top, {"study", "scale", "sample", "scene", "run", "model_run"});
   Programme programme;
   programme.origin = origin;
+  programme.scale = scale;
 
   static const Table kEmpty;
   const Value* study_value = FindKey(top, "study");
@@ -256,19 +330,84 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
 
   const Value* scales = FindKey(top, "scale");
   if (!scales) Fail(origin, "scale", "is missing: give [scale.tiny], [scale.small], [scale.paper]");
+  ScaleExpansion expansion;
+  expansion.scale = scale;
+  std::optional<std::set<std::string>> variable_names;  // the same at every scale
+  std::string first_scale;
   for (const auto& [name, value] : TableAt(origin, "scale", *scales)) {
-    const std::optional<Scale> scale = FromString<Scale>(name);
-    if (!scale) {
+    const std::optional<Scale> parsed = FromString<Scale>(name);
+    if (!parsed) {
       Fail(origin, "scale." + name, "is not a scale: expected " + AllowedNames<Scale>());
     }
     const std::string prefix = "scale." + name + ".";
     const Table& table = TableAt(origin, "scale." + name, value);
-    CheckKeys(origin, prefix, table, {"count", "replicates"});
+    CheckKeys(origin, prefix, table, {"count", "replicates", "only", "variables"});
     ScaleSpec spec;
     if (!FindKey(table, "count")) Fail(origin, prefix + "count", "is missing");
     spec.count = IntAt(origin, prefix + "count", table, 0, 2, 2000000000);
     spec.replicates = static_cast<int>(IntAt(origin, prefix + "replicates", table, 1, 1, 1000));
-    programme.scales[*scale] = spec;
+    std::map<std::string, std::vector<Value>> only;
+    if (const Value* restrictions = FindKey(table, "only")) {
+      for (const auto& [variable, list] : TableAt(origin, prefix + "only", *restrictions)) {
+        const std::string where = prefix + "only." + variable;
+        if (!list.is_array() || list.as_array().empty()) {
+          Fail(origin, where, "must be a non-empty array of the values kept");
+        }
+        for (const Value& item : list.as_array()) {
+          if (!(item.is_string() || item.is_integer() || item.is_floating())) {
+            Fail(origin, where, "must hold numbers or strings, not " + TypeName(item));
+          }
+          only[variable].push_back(item);
+          spec.only[variable].push_back(ValueText(item));
+        }
+      }
+    }
+    Variables variables;
+    std::set<std::string> names;
+    if (const Value* defined = FindKey(table, "variables")) {
+      for (const auto& [variable, item] : TableAt(origin, prefix + "variables", *defined)) {
+        if (item.is_table() || item.is_array()) {
+          Fail(origin, prefix + "variables." + variable,
+               "must be a number, a string or a boolean, not " + TypeName(item));
+        }
+        variables[variable] = item;
+        spec.variables[variable] = ValueText(item);
+        names.insert(variable);
+      }
+    }
+    if (!variable_names) {
+      variable_names = names;
+      first_scale = name;
+    } else if (*variable_names != names) {
+      auto list = [](const std::set<std::string>& set) {
+        std::string text;
+        for (const std::string& n : set) text += (text.empty() ? "" : ", ") + n;
+        return text.empty() ? std::string("none") : text;
+      };
+      Fail(origin, prefix + "variables",
+           "defines " + list(names) + " but [scale." + first_scale + ".variables] defines " +
+               list(*variable_names) + ": every scale gives the same placeholders");
+    }
+    if (*parsed == scale) {
+      expansion.only = std::move(only);
+      expansion.variables = std::move(variables);
+    }
+    programme.scales[*parsed] = spec;
+  }
+  programme.At(scale);  // the scale asked for exists
+  const std::map<std::string, std::set<std::string>> list_values = ListValues(top);
+  for (const auto& [variable, values] : expansion.only) {
+    const std::string where = "scale." + std::string(ToString(scale)) + ".only." + variable;
+    const auto it = list_values.find(variable);
+    if (it == list_values.end()) {
+      Fail(origin, where, "names no variable of a `vary` or `each` list of the programme");
+    }
+    for (const Value& value : values) {
+      if (!it->second.count(ValueKey(value))) {
+        Fail(origin, where,
+             "keeps " + ValueText(value) + ", which no list of '" + variable + "' holds");
+      }
+    }
   }
 
   const Value* sample_value = FindKey(top, "sample");
@@ -321,11 +460,13 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
     if (const Value* scene = FindKey(run, "scene")) {
       overrides = TableAt(origin, where + ".scene", *scene);
     }
-    for (const Variables& variables : Combinations(origin, where + ".vary", FindKey(run, "vary"))) {
+    for (Variables variables :
+         Combinations(origin, where + ".vary", FindKey(run, "vary"), expansion)) {
       CaseSpec spec;
       spec.run = name_template;
       spec.figures = figures;
       for (const auto& [var, value] : variables) spec.variables[var] = ValueText(value);
+      for (const auto& [var, value] : expansion.variables) variables[var] = value;
       spec.name = Substitute(Value(name_template), variables, origin, where + ".name")
                       .as_string()
                       .str;
@@ -348,7 +489,9 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
         const CaseSpec* parent = programme.Find(spec.parent);
         if (!parent) {
           Fail(origin, case_where + ".from",
-               "= '" + from + "' names no earlier case: parents come before their children");
+               "= '" + from + "' names no earlier case at scale " + ToString(scale) +
+                   ": parents come before their children (and [scale." + ToString(scale) +
+                   ".only] keeps a child only with its parent)");
         }
         if (!spec.parent_stage.empty()) {
           bool found = false;
@@ -375,7 +518,7 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
         const Value each = repeats ? stage.at("each") : Value();
         stage.erase("each");
         for (const Variables& repeat :
-             Combinations(origin, stage_where + ".each", repeats ? &each : nullptr)) {
+             Combinations(origin, stage_where + ".each", repeats ? &each : nullptr, expansion)) {
           Variables all = variables;
           for (const auto& [var, value] : repeat) all[var] = value;
           Value expanded = Substitute(Value(stage), all, origin, stage_where);
@@ -393,6 +536,11 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
           stage_tables.push_back(expanded);
         }
       }
+      if (stage_tables.empty()) {
+        Fail(origin, where + ".stage",
+             "gives case '" + spec.name + "' no stage at scale " + ToString(scale) + ": [scale." +
+                 ToString(scale) + ".only] leaves its `each` lists empty");
+      }
       scene["stage"] = Value(stage_tables);
       spec.scene_body = FormatTable(scene);
       programme.cases.push_back(std::move(spec));
@@ -407,8 +555,8 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
       CheckKeys(origin, where + ".", entry,
                 {"name", "vary", "figures", "model", "initial", "integration", "stage"});
       const std::string name_template = StringAt(origin, where + ".name", entry, "", true);
-      for (const Variables& variables :
-           Combinations(origin, where + ".vary", FindKey(entry, "vary"))) {
+      for (Variables variables :
+           Combinations(origin, where + ".vary", FindKey(entry, "vary"), expansion)) {
         ModelCaseSpec spec;
         spec.name =
             Substitute(Value(name_template), variables, origin, where + ".name").as_string().str;
@@ -418,6 +566,7 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
         }
         spec.figures = StringAt(origin, where + ".figures", entry, "", false);
         for (const auto& [var, value] : variables) spec.variables[var] = ValueText(value);
+        for (const auto& [var, value] : expansion.variables) variables[var] = value;
         Table test;
         for (const char* key : {"model", "initial", "integration", "stage"}) {
           if (const Value* value = FindKey(entry, key)) {
@@ -429,8 +578,14 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
       }
     }
   }
+  if (programme.cases.empty()) {
+    Fail(origin, "scale." + std::string(ToString(scale)) + ".only",
+         "leaves the programme no case at this scale");
+  }
   if (!programme.ncl_case.empty() && !programme.Find(programme.ncl_case)) {
-    Fail(origin, "study.ncl", "= '" + programme.ncl_case + "' names no case of the programme");
+    Fail(origin, "study.ncl",
+         "= '" + programme.ncl_case + "' names no case of the programme at scale " +
+             ToString(scale));
   }
   return programme;
 }

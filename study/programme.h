@@ -5,9 +5,13 @@
 //   [study]
 //   name = "paper"
 //   ncl = "ncl"             # the run whose ψ_ε = 0° stages give the study's NCL (OCR, p_e*)
-//   [scale.tiny]            # scales change the sphere count (and so the cell) only
+//   [scale.tiny]            # the sphere count (and so the cell) and the replicates
 //   count = 300
 //   replicates = 2          # samples with seeds seed, seed + 1, ...
+//   [scale.tiny.only]       # optional: the values of `vary` and `each` lists kept at
+//   p = [20]                #   this scale (a list left empty drops its run's cases)
+//   [scale.tiny.variables]  # optional: placeholders {var} with a value per scale; every
+//   strain_cap = 0.1        #   scale defines the same names
 //   [sample]                # the generated sample, at the reference count and cell
 //   reference_count = 150000
 //   reference_cell_size_mm = 31.0
@@ -28,6 +32,13 @@
 // A string that is exactly "{var}" becomes the variable's value with its
 // type (a number stays a number); "{var}" inside a longer string is replaced
 // by the value's shortest exact decimal text.
+//
+// A programme is expanded at one scale: `only` keeps the values of every
+// list of that variable that it names (a value that no list holds, or a
+// variable that no list varies, is an error: a misspelt restriction would
+// otherwise run the whole programme), and the scale's `variables` are
+// defined in every run, stage and scene table (a `vary` or `each` variable
+// of the same name is an error).
 #pragma once
 
 #include <cstdint>
@@ -60,6 +71,10 @@ using granasym::ToString;
 struct ScaleSpec {
   int64_t count = 0;   // spheres
   int replicates = 1;  // samples with different seeds
+  // [scale.<name>.only]: list variable → the values kept (as text).
+  std::map<std::string, std::vector<std::string>> only;
+  // [scale.<name>.variables]: placeholder → value (as text).
+  std::map<std::string, std::string> variables;
 };
 
 // The generated sample. The cell side scales with the count at constant
@@ -100,16 +115,19 @@ struct Programme {
   std::string name, description;
   std::string ncl_case;  // may be empty
   std::map<Scale, ScaleSpec> scales;
+  Scale scale = Scale::kTiny;  // the scale the cases are expanded at
   SampleSpec sample;
-  std::vector<CaseSpec> cases;  // parents before children
+  std::vector<CaseSpec> cases;  // parents before children, at `scale`
   std::vector<ModelCaseSpec> model_cases;
 
-  static Programme Load(const std::string& path);
+  // The programme expanded at `scale` (InputError when it has no such scale).
+  static Programme Load(const std::string& path, Scale scale);
   // `base_directory` resolves relative paths (the GSD table).
   static Programme Parse(const std::string& text, const std::string& origin,
-                         const std::string& base_directory);
+                         const std::string& base_directory, Scale scale);
   const CaseSpec* Find(const std::string& name) const;
   const ScaleSpec& At(Scale scale) const;  // InputError when the programme lacks it
+  const ScaleSpec& Current() const { return At(scale); }
 };
 
 }  // namespace granasym::study

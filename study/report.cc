@@ -18,6 +18,7 @@
 #include "common/error.h"
 #include "common/provenance.h"
 #include "common/text_file.h"
+#include "study/rate_study.h"
 
 namespace granasym::study {
 
@@ -968,17 +969,19 @@ Section StatesSection(const StudyFolder& study) {
   return section;
 }
 
-Section ReplicateSection(const StudyFolder& study) {
-  Section section{"replicate-summary", "Replicate summary", 2, {}};
-  if (!study.summary) {
-    section.blocks.push_back(MissingTableNote("asymptotic_states_summary.csv", study.directory));
-    return section;
-  }
-  const CsvTextTable& summary = *study.summary;
-  section.blocks.push_back(Paragraph(
-      Plain("Per case and stage: the mean over the replicates' detected states ± the half-width "
-            "of its 95 % confidence interval (Student t; none below two states), from ") +
-      Link("asymptotic_states_summary.csv", "asymptotic_states_summary.csv", true) + Plain(".")));
+// The style of a comparison or verdict of the rate study (the stylesheet's
+// status colours: green, amber, red).
+std::string VerdictCss(const std::string& value) {
+  if (value == "agree" || value == "rate_independent") return "status-detected";
+  if (value == "differ" || value == "rate_dependent") return "status-invalid";
+  if (value == "undetermined") return "status-drifting";
+  return "";
+}
+
+// A table of a CSV whose X_mean and X_ci95 columns become one column
+// "X (mean ± 95 %)" (the mean to 4 significant digits, the half-width to
+// 2); every other column as it is, `status`-like columns in `marked` styled.
+Block MeanIntervalTable(const CsvTextTable& summary, const std::set<std::string>& marked = {}) {
   // Pair X_mean with X_ci95; every other column as it is.
   struct Column {
     std::string name;
@@ -1007,7 +1010,9 @@ Section ReplicateSection(const StudyFolder& study) {
     std::vector<Cell> row;
     for (const Column& column : columns) {
       if (column.ci < 0) {
-        row.push_back(FieldCell(fields[column.value]));
+        Cell cell = FieldCell(fields[column.value]);
+        if (marked.count(column.name)) cell.css = VerdictCss(fields[column.value]);
+        row.push_back(std::move(cell));
         continue;
       }
       const std::optional<double> mean = Number(fields[column.value]),
@@ -1019,7 +1024,94 @@ Section ReplicateSection(const StudyFolder& study) {
     }
     table.rows.push_back(std::move(row));
   }
+  return table;
+}
+
+Section ReplicateSection(const StudyFolder& study) {
+  Section section{"replicate-summary", "Replicate summary", 2, {}};
+  if (!study.summary) {
+    section.blocks.push_back(MissingTableNote("asymptotic_states_summary.csv", study.directory));
+    return section;
+  }
+  const CsvTextTable& summary = *study.summary;
+  section.blocks.push_back(Paragraph(
+      Plain("Per case and stage: the mean over the replicates' detected states ± the half-width "
+            "of its 95 % confidence interval (Student t; none below two states), from ") +
+      Link("asymptotic_states_summary.csv", "asymptotic_states_summary.csv", true) + Plain(".")));
+  Block table = MeanIntervalTable(summary);
   section.blocks.push_back(std::move(table));
+  return section;
+}
+
+// The rate study (study/rate_study.h): only for a study with rate cases.
+std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::string>* absent) {
+  if (!study.Exists(kRateStatesFile)) return std::nullopt;
+  Section section{"rate-study", "Rate study", 2, {}};
+  section.blocks.push_back(Paragraph(
+      Plain("The asymptotic states of the cases whose ") + Code("figures") +
+      Plain(" key names the rate study: proportional paths at fixed inertial numbers I* (the "
+            "stretching rate set from the measured p, ‖D‖ = I* √(p/2ρ_s)/d) and at constant "
+            "‖D‖, from NC states at several p_0, by Young's modulus E. Usable states are those "
+            "the tables' comments name; every number below has its 95 % interval (Student t). "
+            "Figures rate (a)–(c) above draw them.")));
+  struct Table {
+    const char* file;
+    const char* title;
+    const char* description;
+    bool folded;
+  };
+  const Table tables[] = {
+      {kRateIndependenceFile, "Rate independence",
+       "Per (E, ψ_ε, p_0): the two smallest I* compared in ln(1+e), ψ_σ and the position of the "
+       "CSL (ln(1+e) of the ψ_ε = 90° line at the reference p); rate_independent when all "
+       "three agree within the 95 % interval of their difference, rate_dependent when one "
+       "differs, undetermined when an interval is missing (the reason says which).",
+       false},
+      {kRateQuasiStaticFile, "Quasi-static limits",
+       "Per (E, ψ_ε, p_0) and quantity: the limit a of y = a + b·I(d_max) as I → 0, fitted "
+       "through the states of the smallest I*; for ψ_ε = 90° the q_over_p rows are the "
+       "quasi-static critical-state ratio M_0.",
+       false},
+      {kRateLinesFile, "Lines at each rate",
+       "Per (E, ψ_ε, rate): ln(1+e) = N − λ ln(p / 1 kPa) through the states of every start "
+       "(the NCL at ψ_ε = 0°, the CSL at 90°, the NEL beyond) and its position at the "
+       "reference p.",
+       false},
+      {kRateSummaryFile, "Means per start and rate",
+       "Per (E, ψ_ε, p_0, rate): the asymptotic state's means over the replicates.", true},
+  };
+  for (const Table& t : tables) {
+    section.blocks.push_back(
+        Paragraph(Plain(std::string(t.title) + ". " + t.description + " From ") +
+                  Link(t.file, UrlPath(t.file), true) + Plain(".")));
+    if (!study.Exists(t.file)) {
+      absent->push_back(t.file);
+      section.blocks.push_back(
+          Note(Code(t.file) + Plain(" is absent: run ") +
+               Code("granasym study merge " + study.directory + " --out " + study.directory) +
+               Plain(".")));
+      continue;
+    }
+    const CsvTextTable table = CsvTextTable::ReadFile(study.Path(t.file));
+    for (const std::string& comment : table.comments) {
+      section.blocks.push_back(Paragraph(Plain(comment)));
+    }
+    if (table.rows.empty()) {
+      section.blocks.push_back(Paragraph(Plain("No rows.")));
+      continue;
+    }
+    Block block = MeanIntervalTable(table, {"verdict", "ln_1_plus_e_agreement",
+                                            "psi_sigma_deg_agreement", "csl_position_agreement"});
+    if (!t.folded) {
+      section.blocks.push_back(std::move(block));
+      continue;
+    }
+    Block details;
+    details.type = Block::Type::kDetails;
+    details.text = Plain(fmt::format("{} rows", table.rows.size()));
+    details.children.push_back(std::move(block));
+    section.blocks.push_back(std::move(details));
+  }
   return section;
 }
 
@@ -1222,6 +1314,7 @@ ReportSummary WriteReport(const std::string& directory) {
     models.push_back(ModelSection(study, model, &calibrated, &absent));
     summary.models_calibrated += calibrated ? 1 : 0;
   }
+  std::optional<Section> rate = RateSection(study, &absent);
   study.absent.insert(study.absent.end(), absent.begin(), absent.end());
   std::sort(study.absent.begin(), study.absent.end());
 
@@ -1255,6 +1348,7 @@ ReportSummary WriteReport(const std::string& directory) {
       Plain("Paths of one ψ_ε from different starting stresses (paper Sec. 4.3): whether and at "
             "which p they join."),
       study.directory));
+  if (rate) document.sections.push_back(std::move(*rate));
   document.sections.push_back(RunTimesSection(study, cases));
   document.sections.push_back(ProvenanceSection(study));
   std::map<std::string, int> anchors;

@@ -18,6 +18,7 @@
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
 #include "dem/stage_validity.h"
+#include "study/rate_study.h"
 #include "study/state_table_names.h"
 #include "study/study_folder.h"
 
@@ -267,21 +268,6 @@ ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising
 
 namespace {
 
-std::string CsvText(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += '"';
-    out += c == '\n' ? ' ' : c;
-  }
-  return out + "\"";
-}
-
-std::string Number(double value) {
-  if (std::isnan(value)) return "";
-  return fmt::format("{:.10g}", value);
-}
-
 struct NumberColumn {
   const char* name;
   const char* units;
@@ -329,7 +315,7 @@ void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
   for (const StateRow& row : rows) {
     csv += std::to_string(row.replicate) + "," + row.kind + "," + row.status + "," +
            CsvText(row.case_id) + "," + CsvText(row.case_name) + "," + CsvText(row.stage);
-    for (const NumberColumn& column : kNumberColumns) csv += "," + Number(row.*column.member);
+    for (const NumberColumn& column : kNumberColumns) csv += "," + CsvNumber(row.*column.member);
     csv += "," + CsvText(row.ncl_reference) + "," + CsvText(row.run) + "," + CsvText(row.figures) + "," + CsvText(row.flags) + "," +
            CsvText(row.detector) + "," + CsvText(row.message) + "\n";
   }
@@ -409,7 +395,7 @@ void WriteSummary(const std::string& directory, const std::vector<StateRow>& row
         if (std::isfinite(row->*column.member)) values.push_back(row->*column.member);
       }
       const Interval interval = MeanInterval95(values);
-      csv += "," + Number(interval.mean) + "," + Number(interval.half_width);
+      csv += "," + CsvNumber(interval.mean) + "," + CsvNumber(interval.half_width);
     }
     csv += "\n";
   }
@@ -442,6 +428,21 @@ StateRow JoinedRow(const ConvergenceRow& joined, const ConvergenceTolerance& tol
 }
 
 }  // namespace
+
+std::string CsvText(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c == '\n' ? ' ' : c;
+  }
+  return out + "\"";
+}
+
+std::string CsvNumber(double value) {
+  if (std::isnan(value)) return "";
+  return fmt::format("{:.10g}", value);
+}
 
 Interval MeanInterval95(const std::vector<double>& values) {
   Interval interval{kNaN, kNaN};
@@ -588,12 +589,10 @@ StateTableSummary WriteStateTable(const std::string& directory,
   std::string ncl_csv =
       "replicate,case,points,detected,drifting,N,lambda_star,p_min_kpa,p_max_kpa\n";
   for (const NclFit& fit : summary.ncl) {
-    ncl_csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", fit.replicate, fit.case_name,
-                           fit.points, fit.detected,
-                           fit.drifting,
-                           Number(fit.valid() ? fit.n : kNaN),
-                           Number(fit.valid() ? fit.lambda : kNaN), Number(fit.p_min_kpa),
-                           Number(fit.p_max_kpa));
+    ncl_csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", fit.replicate, fit.case_name, fit.points,
+                           fit.detected, fit.drifting, CsvNumber(fit.valid() ? fit.n : kNaN),
+                           CsvNumber(fit.valid() ? fit.lambda : kNaN), CsvNumber(fit.p_min_kpa),
+                           CsvNumber(fit.p_max_kpa));
   }
   WriteTextFileAtomically(directory + "/ncl_fit.csv", ncl_csv);
 
@@ -605,16 +604,19 @@ StateTableSummary WriteStateTable(const std::string& directory,
       tolerance.ln_1_plus_e, tolerance.psi_sigma_deg);
   for (const ConvergenceRow& row : convergence) {
     conv_csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", row.replicate, row.kind,
-                            Number(row.psi_epsilon_deg), row.case_a, row.case_b, row.status,
-                            Number(row.joined_at_p_kpa), Number(row.ln_1_plus_e),
-                            Number(row.psi_sigma_deg), Number(row.overlap_from_p_kpa),
-                            Number(row.overlap_to_p_kpa));
+                            CsvNumber(row.psi_epsilon_deg), row.case_a, row.case_b, row.status,
+                            CsvNumber(row.joined_at_p_kpa), CsvNumber(row.ln_1_plus_e),
+                            CsvNumber(row.psi_sigma_deg), CsvNumber(row.overlap_from_p_kpa),
+                            CsvNumber(row.overlap_to_p_kpa));
   }
   WriteTextFileAtomically(directory + "/path_convergence.csv", conv_csv);
 
   for (const StateRow& row : rows) ++summary.counts[row.kind][row.status];
   WriteRows(directory, rows, summary.ncl);
   WriteSummary(directory, rows);
+  if (const std::optional<RateStudy> rate = WriteRateStudy(directory, rows)) {
+    summary.rate = rate->Text();
+  }
   return summary;
 }
 
@@ -651,7 +653,7 @@ std::string StateTableSummary::Text() const {
                               fit.replicate, fit.case_name, fit.points);
   }
   text += fmt::format("  path convergence: {} pairs joined, {} not\n", joined, not_joined);
-  return text;
+  return text + rate;
 }
 
 }  // namespace granasym::study

@@ -5,7 +5,8 @@
 // interval over replicates), DIR/ncl_fit.csv (the study's own NCLs that OCR
 // and p_e* refer to: a state uses the NCL of its nearest ancestor case that
 // has one, else the study's `ncl`), and DIR/path_convergence.csv (the paper's Sec. 4.3
-// evidence: where paths of one ψ_ε from different starting states join).
+// evidence: where paths of one ψ_ε from different starting states join);
+// with rate cases also the rate study's files (study/rate_study.h).
 #pragma once
 
 #include <map>
@@ -88,6 +89,7 @@ struct StateTableSummary {
   std::map<std::string, std::map<std::string, int>> counts;  // kind → status → rows
   std::vector<NclFit> ncl;
   int joined = 0, not_joined = 0;
+  std::string rate;  // the rate study's line (study/rate_study.h); empty without rate cases
   std::string Text() const;
 };
 
@@ -97,6 +99,12 @@ struct Interval {
   double mean, half_width;
 };
 Interval MeanInterval95(const std::vector<double>& values);
+
+// A field of the study's CSV files (quoted when it holds a comma, a quote or a
+// line break; line breaks become spaces) and a number (10 significant
+// digits; empty for NaN).
+std::string CsvText(const std::string& text);
+std::string CsvNumber(double value);
 
 // Builds the tables from the case folders below `directory` and writes them.
 StateTableSummary WriteStateTable(const std::string& directory,

@@ -12,7 +12,8 @@ set format x "10^{%T}"
 set xlabel label_p
 set ylabel label_lnv
 file = data."/fig09_paths.tsv"
+# The fitted NCL is an optional layer, a macro (gnuplot reads a file even for
+# an empty loop).
+fit_layer = has_fit > 0 ? ', for [i=n_paths:n_paths+has_fit-1] file index i using "p_kpa":"ln_1_plus_e" with lines dt 2 lc rgb "black" title columnheader(3)' : ''
 plot for [i=0:n_paths-1] file index i using "p_kpa":"ln_1_plus_e" with lines lt (i+1) \
-       title columnheader(3), \
-     for [i=n_paths:n_paths+has_fit-1] file index i using "p_kpa":"ln_1_plus_e" with lines \
-       dt 2 lc rgb "black" title columnheader(3)
+       title columnheader(3) @fit_layer

@@ -8,6 +8,9 @@
 
 #include "common/error.h"
 #include "common/text_file.h"
+#include "study/rate_study.h"
+#include "study/state_table.h"
+#include "tests/study/rate_states_fixture.h"
 
 namespace granasym::study {
 namespace {
@@ -201,6 +204,70 @@ TEST(WriteFigureIndex, OneRowPerFigureWithTabsRemovedFromFields) {
             "fig09_ncl\t9\tNCL\ta caption over lines\n"
             "fig17_asbs_sections\t17\tASBS\tNot drawn: no NCL.\n");
   fs::remove_all(folder);
+}
+
+// A study folder with a state table but no case, and the stems WriteFigureData lists.
+std::vector<std::string> Stems(const std::vector<FigureSpec>& figures) {
+  std::vector<std::string> stems;
+  for (const FigureSpec& f : figures) stems.push_back(f.stem);
+  return stems;
+}
+
+fs::path BareStudy(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "figure_data" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  WriteTextFileAtomically((dir / "study.toml").string(),
+                          "programme = \"rate\"\nscale = \"tiny\"\nncl = \"ncl\"\n");
+  WriteStateTable(dir.string());
+  return dir;
+}
+
+TEST(WriteFigureData, OnlyThePaperFiguresThatTheCasesDeclareAreListed) {
+  const fs::path dir = BareStudy("declared");
+  EXPECT_TRUE(WriteFigureData(dir.string()).empty());
+  // A case (not run) that serves Figs. 9 and 22: those two, not drawn.
+  fs::create_directories(dir / "cases/r1/ncl");
+  WriteTextFileAtomically((dir / "cases/r1/ncl/case.toml").string(),
+                          "id = \"r1/ncl\"\nname = \"ncl\"\nreplicate = 1\nkey = \"k\"\n"
+                          "figures = \"9, 22\"\n");
+  const std::vector<FigureSpec> figures = WriteFigureData(dir.string());
+  EXPECT_EQ(Stems(figures), (std::vector<std::string>{"fig09_ncl", "fig22_inertial_number"}));
+  for (const FigureSpec& f : figures) EXPECT_FALSE(f.not_drawn.empty()) << f.stem;
+}
+
+TEST(WriteFigureData, TheRateFiguresComeWithTheRateStudy) {
+  const fs::path dir = BareStudy("rate");
+  const RateStudy rate = RateStudy::Analyse(rate_fixture::CriticalStates());
+  WriteRateFiles(dir.string(), rate);
+  const std::vector<FigureSpec> figures = WriteFigureData(dir.string());
+  ASSERT_EQ(Stems(figures), (std::vector<std::string>{"rate_psi_sigma_p", "rate_csl_ncl",
+                                                      "rate_critical_state_ratio"}));
+  auto variable = [](const FigureSpec& f, const std::string& name) {
+    for (const auto& [key, value] : f.variables) {
+      if (key == name) return value;
+    }
+    return std::string("absent");
+  };
+  for (const FigureSpec& f : figures) EXPECT_TRUE(f.not_drawn.empty()) << f.stem << f.not_drawn;
+  // (a): one panel (ψ_ε = 90°), one curve per rate (4 I* and 167 1/s).
+  EXPECT_EQ(variable(figures[0], "n_panels"), "1");
+  EXPECT_EQ(variable(figures[0], "panel_blocks"), "'5'");
+  EXPECT_EQ(variable(figures[0], "rate_titles"),
+            "'\"I* = 0.0003\" \"I* = 0.001\" \"I* = 0.003\" \"I* = 0.01\" \"‖D‖ = 167 1/s\"'");
+  EXPECT_TRUE(fs::exists(dir / "figures/data/rate_psi_sigma_1.tsv"));
+  // (b): a CSL per rate with two starts; (c): a quasi-static line per start.
+  EXPECT_EQ(variable(figures[1], "n_lines"), "5");
+  EXPECT_EQ(variable(figures[2], "n_fits"), "2");
+  EXPECT_EQ(variable(figures[2], "band_low"), "0.8");
+  const std::string limits =
+      ReadTextFile((dir / "figures/data/rate_critical_state_limits.tsv").string());
+  EXPECT_NE(limits.find("NC 100 kPa: M_0 = "), std::string::npos) << limits;
+  // The x axis reaches left of the limits, a third of the smallest measured I.
+  EXPECT_LT(std::stod(variable(figures[2], "x_min")), 1e-4);
+  // Without the rate files, no rate figure.
+  fs::remove(dir / kRateStatesFile);
+  EXPECT_TRUE(WriteFigureData(dir.string()).empty());
 }
 
 }  // namespace

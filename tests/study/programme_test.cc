@@ -6,6 +6,8 @@
 #include <string>
 
 #include "common/error.h"
+#include "dem/scene.h"
+#include "dem/strain_path_stage.h"
 #include "study/plan.h"
 
 namespace granasym::study {
@@ -50,7 +52,9 @@ radial_stress_kpa = 50.5
 stop.axial_strain = 0.01
 )";
 
-Programme Parse(const std::string& text) { return Programme::Parse(text, "p.toml", "."); }
+Programme Parse(const std::string& text, Scale scale = Scale::kTiny) {
+  return Programme::Parse(text, "p.toml", ".", scale);
+}
 
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
   const size_t at = text.find(from);
@@ -113,36 +117,149 @@ TEST(Programme, BadInputNamesTheKey) {
             std::string::npos);
 }
 
+// A scale that keeps some values of the lists and sets placeholders.
+const char* kScaled = R"(
+[study]
+name = "t"
+ncl = "ncl"
+[scale.tiny]
+count = 100
+[scale.tiny.only]
+p = [50.5]
+psi = [90.0]
+[scale.tiny.variables]
+cap = 0.01
+[scale.small]
+count = 200
+replicates = 2
+[scale.small.variables]
+cap = 0.5
+[sample]
+reference_count = 100
+reference_cell_size_mm = 4.0
+[scene.numerics]
+time_step_s = 1e-7
+[[run]]
+name = "ncl"
+from = "sample"
+[[run.stage]]
+each = { p = [10, 50.5] }
+name = "p{p}"
+psi_epsilon_deg = 0.0
+stretching_rate = 100.0
+stop.mean_stress_kpa = "{p}"
+[[run]]
+name = "nc{p}_psi{psi}"
+from = "ncl@p{p}"
+vary = { p = [10, 50.5], psi = [45, 90] }
+[[run.stage]]
+psi_epsilon_deg = "{psi}"
+stretching_rate = 100.0
+stop = { strain_norm = "{cap}", asymptote = true }
+[[run]]
+name = "tx_psi{psi}"
+from = "ncl"
+vary = { psi = [45] }
+[[run.stage]]
+type = "triaxial"
+axial_strain_rate = 50.0
+radial_stress_kpa = 50.5
+stop.axial_strain = "{cap}"
+)";
+
+TEST(Programme, ScaleKeepsTheValuesOfItsListsAndSetsItsPlaceholders) {
+  const Programme tiny = Parse(kScaled, Scale::kTiny);
+  std::vector<std::string> names;
+  for (const CaseSpec& c : tiny.cases) names.push_back(c.name);
+  // Only p = 50.5 (as the number 50.5: `each` and `vary` alike) and ψ = 90
+  // (90.0 keeps the integer 90); the triaxial run's only ψ is dropped.
+  EXPECT_EQ(names, (std::vector<std::string>{"ncl", "nc50.5_psi90"}));
+  EXPECT_EQ(tiny.cases[0].stage_names, (std::vector<std::string>{"p50.5"}));
+  EXPECT_NE(tiny.cases[1].scene_body.find("strain_norm = 0.01"), std::string::npos)
+      << tiny.cases[1].scene_body;
+  EXPECT_EQ(tiny.Current().only.at("p"), (std::vector<std::string>{"50.5"}));
+  EXPECT_EQ(tiny.Current().variables.at("cap"), "0.01");
+
+  const Programme small = Parse(kScaled, Scale::kSmall);
+  EXPECT_EQ(small.cases.size(), 6u);  // ncl, 4 paths, 1 triaxial
+  EXPECT_EQ(small.cases[0].stage_names, (std::vector<std::string>{"p10", "p50.5"}));
+  EXPECT_NE(small.Find("tx_psi45")->scene_body.find("axial_strain = 0.5"), std::string::npos);
+  const Plan plan = Plan::Make(small, 1, "out");
+  EXPECT_EQ(plan.cases.size(), 12u);  // two replicates at this scale
+  EXPECT_EQ(plan.scale, Scale::kSmall);
+}
+
+TEST(Programme, ScaleRestrictionsThatTakeNoEffectAreErrors) {
+  auto message = [](const std::string& text, Scale scale = Scale::kTiny) {
+    try {
+      Parse(text, scale);
+    } catch (const InputError& error) {
+      return std::string(error.what());
+    }
+    return std::string("accepted");
+  };
+  // A value no list holds, a variable no list varies.
+  EXPECT_NE(message(Replace(kScaled, "p = [50.5]", "p = [50]")).find("keeps 50, which no list"),
+            std::string::npos);
+  EXPECT_NE(message(Replace(kScaled, "psi = [90.0]", "phi = [90.0]"))
+                .find("scale.tiny.only.phi' names no variable"),
+            std::string::npos);
+  // A string is not the number it spells.
+  EXPECT_NE(message(Replace(kScaled, "p = [50.5]", "p = [\"50.5\"]")).find("which no list"),
+            std::string::npos);
+  // Scales define the same placeholders, and no list reuses their names.
+  EXPECT_NE(message(Replace(kScaled, "cap = 0.5", "limit = 0.5"))
+                .find("every scale gives the same placeholders"),
+            std::string::npos);
+  EXPECT_NE(message(Replace(kScaled, "vary = { psi = [45] }", "vary = { psi = [45], cap = [1] }"),
+                    Scale::kSmall)
+                .find("is also a variable of [scale.small.variables]"),
+            std::string::npos);
+  // A child kept without its parent stage, a case left without stages.
+  EXPECT_NE(message(Replace(kScaled, "each = { p = [10, 50.5] }", "each = { p = [10] }"))
+                .find("gives case 'ncl' no stage at scale tiny"),
+            std::string::npos);
+  EXPECT_NE(message(Replace(kScaled, "from = \"ncl@p{p}\"", "from = \"ncl@p10\""))
+                .find("has no stage 'p10'"),
+            std::string::npos);
+  // The scale asked for must exist.
+  EXPECT_NE(message(kScaled, Scale::kPaper).find("has no [scale.paper]"), std::string::npos);
+  // Placeholders of the scale fill every table; an undefined one is named.
+  EXPECT_NE(message(Replace(kScaled, "\"{cap}\", asymptote", "\"{limit}\", asymptote"))
+                .find("{limit}, which is not a variable here (defined: cap"),
+            std::string::npos);
+}
+
 TEST(Plan, KeysChainThroughParentsAndThreads) {
   const Programme p = Parse(kProgramme);
-  const Plan one = Plan::Make(p, Scale::kTiny, 1, "out");
+  const Plan one = Plan::Make(p, 1, "out");
   ASSERT_EQ(one.cases.size(), 12u);  // two replicates
   EXPECT_EQ(one.cases[0].id, "r1/ncl");
   EXPECT_EQ(one.cases[6].id, "r2/ncl");
   EXPECT_NE(one.cases[0].key, one.cases[6].key);  // another seed
   EXPECT_NE(one.samples[0].key, one.samples[1].key);
-  const Plan two = Plan::Make(p, Scale::kTiny, 2, "out");
+  const Plan two = Plan::Make(p, 2, "out");
   for (size_t k = 0; k < one.cases.size(); ++k) EXPECT_NE(one.cases[k].key, two.cases[k].key);
   EXPECT_NE(one.cases[1].scene_text.find("state = \"../ncl/result.h5\""), std::string::npos);
 
   // A changed parameter of one case changes its key and its descendants' only.
-  const Plan changed =
-      Plan::Make(Parse(Replace(kProgramme, "axial_strain_rate = 50.0", "axial_strain_rate = 51.0")),
-                 Scale::kTiny, 1, "out");
+  const Plan changed = Plan::Make(
+      Parse(Replace(kProgramme, "axial_strain_rate = 50.0", "axial_strain_rate = 51.0")), 1, "out");
   for (size_t k = 0; k < one.cases.size(); ++k) {
     const bool tx = one.cases[k].spec.name == "tx";
     EXPECT_EQ(one.cases[k].key != changed.cases[k].key, tx) << one.cases[k].id;
   }
-  const Plan parent_changed = Plan::Make(
-      Parse(Replace(kProgramme, "stretching_rate = 100.0\nstop.mean", "stretching_rate = 90.0\nstop.mean")),
-      Scale::kTiny, 1, "out");
+  const Plan parent_changed =
+      Plan::Make(Parse(Replace(kProgramme, "stretching_rate = 100.0\nstop.mean",
+                               "stretching_rate = 90.0\nstop.mean")),
+                 1, "out");
   for (size_t k = 0; k < one.cases.size(); ++k) {
     EXPECT_NE(one.cases[k].key, parent_changed.cases[k].key) << one.cases[k].id;
   }
 }
 
 TEST(Plan, ShardsCoverEveryLeafOnceWithTheirAncestors) {
-  const Plan plan = Plan::Make(Parse(kProgramme), Scale::kTiny, 1, "out");
+  const Plan plan = Plan::Make(Parse(kProgramme), 1, "out");
   std::multiset<int> leaves;
   for (int count : {1, 2, 3, 5}) {
     leaves.clear();
@@ -161,6 +278,89 @@ TEST(Plan, ShardsCoverEveryLeafOnceWithTheirAncestors) {
     EXPECT_EQ(leaves.size(), 10u) << count << " shards";
     EXPECT_EQ(std::set<int>(leaves.begin(), leaves.end()).size(), 10u);
   }
+}
+
+// studies/programmes/rate.toml (issue 10 §2): the study at the small scale,
+// and the tiny scale that CI runs.
+std::string RateProgrammePath() { return std::string(GRANASYM_PROGRAMMES_DIR) + "/rate.toml"; }
+
+TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
+  const Programme small = Programme::Load(RateProgrammePath(), Scale::kSmall);
+  EXPECT_EQ(small.Current().replicates, 3);
+  // Per Young's modulus one NCL with a state at every start.
+  for (const char* ncl : {"ncl_E500", "ncl_E100"}) {
+    ASSERT_NE(small.Find(ncl), nullptr) << ncl;
+    EXPECT_EQ(small.Find(ncl)->stage_names,
+              (std::vector<std::string>{"p5", "p20", "p100", "p500"}));
+    EXPECT_NE(small.Find(ncl)->scene_body.find("inertial_number = 0.001"), std::string::npos);
+  }
+  // Every (ψ_ε, p_0) at the six I* and at 167 1/s; 90° at both moduli.
+  const std::vector<std::string> rates = {"I0.1",   "I0.03",   "I0.01", "I0.003",
+                                          "I0.001", "I0.0003", "D167"};
+  int rate_cases = 0;
+  for (const char* p : {"5", "20", "100", "500"}) {
+    for (const std::string& rate : rates) {
+      for (const std::string& name :
+           {"nc" + std::string(p) + "_psi0_" + rate, "nc" + std::string(p) + "_psi100_" + rate,
+            "nc" + std::string(p) + "_psi90_" + rate + "_E500",
+            "nc" + std::string(p) + "_psi90_" + rate + "_E100"}) {
+        const CaseSpec* c = small.Find(name);
+        ASSERT_NE(c, nullptr) << name;
+        EXPECT_EQ(c->figures, "rate") << name;
+        EXPECT_EQ(c->parent_stage, "p" + std::string(p)) << name;
+        ++rate_cases;
+      }
+    }
+  }
+  EXPECT_EQ(rate_cases, 4 * 7 * 4);
+  EXPECT_EQ(small.cases.size(), static_cast<size_t>(rate_cases + 2));
+  // The 90° cases of the softer material start from its own NCL.
+  EXPECT_EQ(small.Find("nc20_psi90_I0.001_E100")->parent, "ncl_E100");
+  EXPECT_NE(small.Find("nc20_psi90_I0.001_E100")->scene_body.find("youngs_modulus_mpa = 100"),
+            std::string::npos);
+  EXPECT_NE(small.Find("nc20_psi90_D167_E500")->scene_body.find("strain_norm = 0.8"),
+            std::string::npos);
+  // Every scene of every scale is a valid scene (Plan::Make parses them).
+  const Plan plan = Plan::Make(small, 1, "out");
+  EXPECT_EQ(plan.cases.size(), 3 * small.cases.size());
+  // The cost estimate (ETA, shards) of a path at fixed I* grows as 1/I*, not
+  // that of its cap of 5000 1/s.
+  auto steps = [&plan](const std::string& id) {
+    const int k = plan.Find(id);
+    EXPECT_GE(k, 0) << id;
+    return k < 0 ? 0.0 : plan.cases[static_cast<size_t>(k)].estimated_steps;
+  };
+  EXPECT_NEAR(steps("r1/nc20_psi90_I0.0003_E500") / steps("r1/nc20_psi90_I0.003_E500"), 10.0,
+              1e-9);
+  EXPECT_GT(steps("r1/nc20_psi90_I0.003_E500"), steps("r1/nc20_psi90_D167_E500"));
+  const Programme paper = Programme::Load(RateProgrammePath(), Scale::kPaper);
+  EXPECT_EQ(paper.Current().count, 150000);
+  EXPECT_EQ(paper.cases.size(), small.cases.size());
+}
+
+TEST(RateProgramme, TinyScaleKeepsOneStartTwoRatesAndTheConstantRate) {
+  const Programme tiny = Programme::Load(RateProgrammePath(), Scale::kTiny);
+  std::vector<std::string> names;
+  for (const CaseSpec& c : tiny.cases) names.push_back(c.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"ncl_E500", "nc100_psi0_I0.1", "nc100_psi0_I0.03",
+                                             "nc100_psi0_D167", "nc100_psi90_I0.1_E500",
+                                             "nc100_psi90_I0.03_E500", "nc100_psi90_D167_E500"}));
+  EXPECT_EQ(tiny.Find("ncl_E500")->stage_names, (std::vector<std::string>{"p100"}));
+  const Plan plan = Plan::Make(tiny, 1, "out");
+  EXPECT_EQ(plan.cases.size(), 14u);  // two replicates
+  EXPECT_EQ(plan.samples[0].options.count, 800u);
+  // The tiny caps and rates reach the scenes.
+  const int k = plan.Find("r1/nc100_psi90_I0.03_E500");
+  ASSERT_GE(k, 0);
+  const dem::Scene scene =
+      dem::Scene::Parse(plan.cases[static_cast<size_t>(k)].scene_text, "scene.toml", ".");
+  ASSERT_EQ(scene.stages.size(), 1u);
+  EXPECT_DOUBLE_EQ(*scene.stages[0].stop.strain_norm, 0.3);
+  const auto* path = scene.stages[0].As<dem::StrainPathStage>();
+  ASSERT_NE(path, nullptr);
+  EXPECT_EQ(path->rule, dem::RateRule::kInertial);
+  EXPECT_DOUBLE_EQ(path->inertial.inertial_number, 0.03);
+  EXPECT_DOUBLE_EQ(path->psi_epsilon_deg, 90);
 }
 
 }  // namespace

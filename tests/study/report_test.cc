@@ -2,12 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "common/error.h"
 #include "common/text_file.h"
+#include "study/rate_study.h"
+#include "tests/study/rate_states_fixture.h"
 
 namespace granasym::study {
 namespace {
@@ -271,6 +274,39 @@ TEST(StudyReport, BadInputIsAnErrorNamingTheFile) {
               std::string::npos)
         << error.what();
   }
+}
+
+TEST(StudyReport, TheRateStudySectionAppearsOnlyWithRateFiles) {
+  const fs::path dir = FullStudy("rate");
+  const std::string before = ReadTextFile(WriteReport(dir.string()).html_path);
+  EXPECT_EQ(before.find("Rate study"), std::string::npos);
+  EXPECT_EQ(before.find("rate_summary.csv"), std::string::npos);
+  WriteRateFiles(dir.string(), RateStudy::Analyse(rate_fixture::CriticalStates()));
+  const ReportSummary summary = WriteReport(dir.string());
+  const std::string html = ReadTextFile(summary.html_path);
+  const std::string md = ReadTextFile(summary.markdown_path);
+  EXPECT_NE(html.find("<h2 id=\"rate-study\">Rate study</h2>"), std::string::npos);
+  EXPECT_NE(md.find("## Rate study"), std::string::npos);
+  for (const char* file :
+       {kRateIndependenceFile, kRateQuasiStaticFile, kRateLinesFile, kRateSummaryFile}) {
+    EXPECT_NE(html.find(std::string("href=\"") + file + "\""), std::string::npos) << file;
+  }
+  // Verdicts and comparisons in the status colours; means with their intervals.
+  EXPECT_EQ(Count(html, "<td class=\"status-invalid\">rate_dependent</td>"), 2);
+  EXPECT_NE(html.find("<td class=\"status-invalid\">differ</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"status-detected\">agree</td>"), std::string::npos);
+  EXPECT_NE(html.find("psi_sigma_deg_smallest (mean ± 95 %)"), std::string::npos);
+  EXPECT_NE(html.find("limit (mean ± 95 %)"), std::string::npos);
+  // The tables' comments state the fit and the criterion.
+  EXPECT_NE(html.find("Welch"), std::string::npos);
+  EXPECT_NE(html.find("da Cruz et al. 2005"), std::string::npos);
+  // A missing table is named where it would be, and among the absent inputs.
+  fs::remove(dir / kRateLinesFile);
+  const ReportSummary partial = WriteReport(dir.string());
+  EXPECT_NE(std::find(partial.absent.begin(), partial.absent.end(), kRateLinesFile),
+            partial.absent.end());
+  EXPECT_NE(ReadTextFile(partial.html_path).find("<code>rate_lines.csv</code> is absent"),
+            std::string::npos);
 }
 
 }  // namespace

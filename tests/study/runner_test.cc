@@ -85,8 +85,8 @@ std::string Dir(const std::string& name) {
 
 StudyOutcome RunProgramme(const std::string& text, const std::string& dir, RunnerOptions options = {},
                  int threads = 1) {
-  const Programme programme = Programme::Parse(text, "runner_test.toml", ".");
-  const Plan plan = Plan::Make(programme, Scale::kTiny, threads, dir);
+  const Programme programme = Programme::Parse(text, "runner_test.toml", ".", Scale::kTiny);
+  const Plan plan = Plan::Make(programme, threads, dir);
   if (options.jobs == 1) options.jobs = 2;
   return RunStudy(plan, options);
 }

@@ -1,0 +1,753 @@
+#include "study/rate_study.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "common/config.h"
+#include "common/csv_table.h"
+#include "common/error.h"
+#include "common/hdf5_file.h"
+#include "common/statistics.h"
+#include "common/text_file.h"
+#include "dem/run_record.h"
+#include "dem/run_record_names.h"
+
+namespace granasym::study {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+bool Contains(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+bool HasFlag(const std::string& flags, const std::string& flag) {
+  std::stringstream in(flags);
+  std::string item;
+  while (std::getline(in, item, ';')) {
+    if (Trimmed(item) == flag) return true;
+  }
+  return false;
+}
+
+std::string RateText(dem::RateRule rule, double rate) {
+  return rule == dem::RateRule::kInertial ? fmt::format("I* = {:g}", rate)
+                                          : fmt::format("‖D‖ = {:g} 1/s", rate);
+}
+
+// ---------------------------------------------------------------- reading
+
+// The `key = value` lines of a canonical scene (common/canonical_text.h);
+// string values keep their quotes.
+std::map<std::string, std::string> CanonicalLines(const std::string& text) {
+  std::map<std::string, std::string> lines;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const size_t eq = line.find(" = ");
+    if (eq != std::string::npos) lines[line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  return lines;
+}
+
+std::optional<double> CanonicalNumber(const std::map<std::string, std::string>& lines,
+                                      const std::string& key) {
+  const auto it = lines.find(key);
+  if (it == lines.end()) return std::nullopt;
+  try {
+    size_t used = 0;
+    const double value = std::stod(it->second, &used);
+    if (used == it->second.size()) return value;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+std::string Unquoted(const std::string& text) {
+  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') {
+    return text.substr(1, text.size() - 2);
+  }
+  return text;
+}
+
+// The stiffness number κ of the contact law at mean stress p (SPEC §8.2):
+// linear κ = E/(2p), Hertz–Mindlin κ = (E/((1 − ν²) p))^(2/3).
+double StiffnessNumber(const std::map<std::string, std::string>& canonical, double p_kpa) {
+  const std::optional<double> e_mpa = CanonicalNumber(canonical, "material.youngs_modulus_mpa");
+  if (!e_mpa || !(p_kpa > 0)) return kNaN;
+  const auto law = canonical.find("material.contact_law");
+  if (law != canonical.end() && Unquoted(law->second) == "hertz_mindlin") {
+    const double nu = CanonicalNumber(canonical, "material.poissons_ratio").value_or(kNaN);
+    return std::pow(*e_mpa * 1e3 / ((1 - nu * nu) * p_kpa), 2.0 / 3.0);
+  }
+  return *e_mpa * 1e3 / (2 * p_kpa);
+}
+
+// The p target of stage `stage` of the run in `result` (its canonical scene),
+// or the stage's final p when it has none.
+double StartStress(const std::string& result, const std::string& stage) {
+  if (!fs::exists(result)) return kNaN;  // a parent computed again since: its start is unknown
+  const Hdf5File file = Hdf5File::OpenRead(result);
+  const std::vector<dem::StageRecord> stages = dem::ReadStageRecords(file);
+  const auto canonical = CanonicalLines(dem::ReadProvenance(file).scene_canonical);
+  size_t index = stages.size();
+  for (size_t k = 0; k < stages.size(); ++k) {
+    if (stage.empty() ? k + 1 == stages.size() : stages[k].name == stage) index = k;
+  }
+  if (index == stages.size()) return kNaN;
+  const std::optional<double> target =
+      CanonicalNumber(canonical, fmt::format("stage[{}].stop.mean_stress_kpa", index));
+  return target ? *target : stages[index].validity.final_mean_stress_kpa;
+}
+
+// ---------------------------------------------------------------- writing
+
+using Columns = std::vector<std::pair<std::string, std::string>>;  // name, field
+
+std::string CsvLine(const Columns& fields, bool header) {
+  std::string line;
+  for (size_t k = 0; k < fields.size(); ++k) {
+    line += (k ? "," : "") + (header ? fields[k].first : fields[k].second);
+  }
+  return line + "\n";
+}
+
+// Rows of (column, field) pairs into CSV text with a header and comments.
+class CsvWriter {
+ public:
+  explicit CsvWriter(std::vector<std::string> comments) : comments_(std::move(comments)) {}
+  void Add(const Columns& fields) {
+    if (header_.empty()) header_ = CsvLine(fields, true);
+    body_ += CsvLine(fields, false);
+  }
+  // The header of a table without rows.
+  void SetHeader(const Columns& fields) {
+    if (header_.empty()) header_ = CsvLine(fields, true);
+  }
+  void Write(const std::string& path) const {
+    std::string text;
+    for (const std::string& comment : comments_) text += "# " + comment + "\n";
+    WriteTextFileAtomically(path, text + header_ + body_);
+  }
+
+ private:
+  std::vector<std::string> comments_;
+  std::string header_, body_;
+};
+
+void AddEstimate(Columns* fields, const std::string& name, const Estimate& estimate) {
+  fields->emplace_back(name + "_mean", CsvNumber(estimate.mean));
+  fields->emplace_back(name + "_ci95", CsvNumber(estimate.half_width));
+}
+
+Columns KeyFields(const RateKey& key) {
+  return {
+      {"youngs_modulus_mpa", CsvNumber(key.youngs_modulus_mpa)},
+      {"psi_epsilon_deg", CsvNumber(key.psi_epsilon_deg)},
+      {"start_p_kpa", CsvNumber(key.start_p_kpa)},
+      {"rate_rule", ToString(key.rule)},
+      {"inertial_number_target", CsvNumber(key.rule == dem::RateRule::kInertial ? key.rate : kNaN)},
+      {"stretching_rate_per_s", CsvNumber(key.rule == dem::RateRule::kConstant ? key.rate : kNaN)}};
+}
+
+Columns StateFields(const RateState& s) {
+  return {{"replicate", std::to_string(s.replicate)},
+          {"case_name", CsvText(s.case_name)},
+          {"stage", CsvText(s.stage)},
+          {"kind", s.kind},
+          {"status", s.status},
+          {"youngs_modulus_mpa", CsvNumber(s.youngs_modulus_mpa)},
+          {"psi_epsilon_deg", CsvNumber(s.psi_epsilon_deg)},
+          {"start_p_kpa", CsvNumber(s.start_p_kpa)},
+          {"rate_rule", ToString(s.rule)},
+          {"inertial_number_target", CsvNumber(s.inertial_number)},
+          {"stretching_rate_per_s", CsvNumber(s.stretching_rate)},
+          {"p_kpa", CsvNumber(s.p_kpa)},
+          {"e", CsvNumber(s.e)},
+          {"ln_1_plus_e", CsvNumber(s.ln_1_plus_e)},
+          {"psi_sigma_deg", CsvNumber(s.psi_sigma_deg)},
+          {"q_over_p", CsvNumber(s.q_over_p)},
+          {"ocr", CsvNumber(s.ocr)},
+          {"inertial_number_dmin", CsvNumber(s.inertial_number_dmin)},
+          {"inertial_number_dmax", CsvNumber(s.inertial_number_dmax)},
+          {"stiffness_number", CsvNumber(s.stiffness_number)},
+          {"flags", CsvText(s.flags)}};
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- analysis
+
+bool RateStudyOptions::IsValid(std::string* why) const {
+  if (statuses.empty()) {
+    *why = "statuses: give at least one detector status";
+    return false;
+  }
+  if (fit_rates < 2) {
+    *why = fmt::format("fit_rates = {}: a line needs at least 2 rates", fit_rates);
+    return false;
+  }
+  if (!(reference_p_kpa > 0) || !std::isfinite(reference_p_kpa)) {
+    *why = "reference_p_kpa: must be a positive mean stress (kPa)";
+    return false;
+  }
+  return true;
+}
+
+Estimate Estimate::Of(const std::vector<double>& values) {
+  Estimate estimate;
+  estimate.n = static_cast<int>(values.size());
+  if (values.empty()) return estimate;
+  double sum = 0;
+  for (double v : values) sum += v;
+  estimate.mean = sum / static_cast<double>(values.size());
+  if (values.size() < 2) return estimate;
+  double squares = 0;
+  for (double v : values) squares += (v - estimate.mean) * (v - estimate.mean);
+  const double variance = squares / static_cast<double>(values.size() - 1);
+  estimate.dof = estimate.n - 1;
+  estimate.standard_error = std::sqrt(variance / static_cast<double>(values.size()));
+  estimate.half_width = StudentT95(estimate.dof) * estimate.standard_error;
+  return estimate;
+}
+
+Estimate Estimate::Fitted(double value, double standard_error, int points) {
+  Estimate estimate;
+  estimate.mean = value;
+  estimate.n = points;
+  if (points >= 3 && std::isfinite(standard_error)) {
+    estimate.dof = points - 2;
+    estimate.standard_error = standard_error;
+    estimate.half_width = StudentT95(estimate.dof) * standard_error;
+  }
+  return estimate;
+}
+
+Comparison Compare(const Estimate& a, const Estimate& b) {
+  Comparison c;
+  c.difference = b.mean - a.mean;
+  if (!std::isfinite(c.difference) || !a.has_interval() || !b.has_interval()) return c;
+  const double va = a.standard_error * a.standard_error, vb = b.standard_error * b.standard_error;
+  const double denominator = va * va / a.dof + vb * vb / b.dof;
+  double dof = denominator > 0 ? (va + vb) * (va + vb) / denominator : a.dof + b.dof;
+  dof = std::max(1.0, std::floor(dof));
+  c.half_width = StudentT95(static_cast<int>(std::min(dof, 1e6))) * std::sqrt(va + vb);
+  c.agreement = std::abs(c.difference) <= c.half_width ? Agreement::kAgree : Agreement::kDiffer;
+  return c;
+}
+
+bool RateKey::operator<(const RateKey& other) const {
+  return std::tie(youngs_modulus_mpa, psi_epsilon_deg, start_p_kpa, rule, rate) <
+         std::tie(other.youngs_modulus_mpa, other.psi_epsilon_deg, other.start_p_kpa, other.rule,
+                  other.rate);
+}
+
+std::string RateKey::RateLabel() const { return RateText(rule, rate); }
+
+RateKey KeyOf(const RateState& state) {
+  return RateKey{state.youngs_modulus_mpa, state.psi_epsilon_deg, state.start_p_kpa, state.rule,
+                 state.rate()};
+}
+
+bool RateStudy::Usable(const RateState& s) const {
+  const bool isotropic = s.kind == "ncl";
+  if (!Contains(isotropic ? options.ncl_statuses : options.statuses, s.status)) return false;
+  for (const std::string& flag : options.excluded_flags) {
+    if (HasFlag(s.flags, flag)) return false;
+  }
+  return s.p_kpa > 0 && std::isfinite(s.ln_1_plus_e) && std::isfinite(s.psi_sigma_deg);
+}
+
+const RateGroup* RateStudy::Find(const RateKey& key) const {
+  for (const RateGroup& g : groups) {
+    if (g.key == key) return &g;
+  }
+  return nullptr;
+}
+
+double RateStudy::ReferenceModulus() const {
+  std::map<double, int> count;
+  for (const RateGroup& g : groups) ++count[g.key.youngs_modulus_mpa];
+  double best = kNaN;
+  int most = 0;
+  for (const auto& [modulus, n] : count) {
+    if (n >= most) {
+      most = n;
+      best = modulus;
+    }
+  }
+  return best;
+}
+
+RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("rate study options: " + why);
+  RateStudy study;
+  study.options = options;
+  study.states = std::move(states);
+
+  // Groups: the replicates of one (E, ψ_ε, p_0, rate).
+  std::map<RateKey, std::vector<const RateState*>> members;
+  for (const RateState& s : study.states) members[KeyOf(s)].push_back(&s);
+  for (const auto& [key, list] : members) {
+    RateGroup group;
+    group.key = key;
+    group.states = static_cast<int>(list.size());
+    std::vector<const RateState*> used;
+    for (const RateState* s : list) {
+      if (study.Usable(*s)) used.push_back(s);
+    }
+    group.used = static_cast<int>(used.size());
+    auto estimate = [&used](double RateState::*member) {
+      std::vector<double> values;
+      for (const RateState* s : used) {
+        if (std::isfinite(s->*member)) values.push_back(s->*member);
+      }
+      return Estimate::Of(values);
+    };
+    group.p_kpa = estimate(&RateState::p_kpa);
+    group.e = estimate(&RateState::e);
+    group.ln_1_plus_e = estimate(&RateState::ln_1_plus_e);
+    group.psi_sigma_deg = estimate(&RateState::psi_sigma_deg);
+    group.q_over_p = estimate(&RateState::q_over_p);
+    group.ocr = estimate(&RateState::ocr);
+    group.inertial_number_dmin = estimate(&RateState::inertial_number_dmin);
+    group.inertial_number_dmax = estimate(&RateState::inertial_number_dmax);
+    group.stiffness_number = estimate(&RateState::stiffness_number);
+    study.groups.push_back(group);
+  }
+
+  // Lines per (E, ψ_ε, rate) through the usable states of every start.
+  using LineKey = std::tuple<double, double, dem::RateRule, double>;
+  std::map<LineKey, std::vector<const RateState*>> line_members;
+  for (const RateState& s : study.states) {
+    if (study.Usable(s)) {
+      line_members[{s.youngs_modulus_mpa, s.psi_epsilon_deg, s.rule, s.rate()}].push_back(&s);
+    }
+  }
+  const double ln_reference = std::log(options.reference_p_kpa);
+  for (const auto& [key, list] : line_members) {
+    RateLine line;
+    std::tie(line.youngs_modulus_mpa, line.psi_epsilon_deg, line.rule, line.rate) = key;
+    std::set<double> starts;
+    std::vector<double> x, y;
+    for (const RateState* s : list) {
+      starts.insert(s->start_p_kpa);
+      x.push_back(std::log(s->p_kpa) - ln_reference);
+      y.push_back(s->ln_1_plus_e);
+    }
+    line.points = static_cast<int>(x.size());
+    line.p_min_kpa = std::exp(*std::min_element(x.begin(), x.end()) + ln_reference);
+    line.p_max_kpa = std::exp(*std::max_element(x.begin(), x.end()) + ln_reference);
+    const LineFit fit = FitLine(x, y);
+    if (starts.size() >= 2 && fit.valid()) {
+      line.lambda = -fit.slope;
+      line.n = fit.intercept - fit.slope * ln_reference;  // at p = 1 kPa
+      line.position = Estimate::Fitted(fit.intercept, fit.intercept_error, fit.points);
+    }
+    study.lines.push_back(line);
+  }
+  auto find_line = [&study](double e, double psi, double rate) -> const RateLine* {
+    for (const RateLine& l : study.lines) {
+      if (l.youngs_modulus_mpa == e && l.psi_epsilon_deg == psi &&
+          l.rule == dem::RateRule::kInertial && l.rate == rate) {
+        return &l;
+      }
+    }
+    return nullptr;
+  };
+
+  // Per (E, ψ_ε, p_0): the inertial groups in ascending I*.
+  using StartKey = std::tuple<double, double, double>;
+  std::map<StartKey, std::vector<const RateGroup*>> by_start;
+  for (const RateGroup& g : study.groups) {
+    if (g.key.rule != dem::RateRule::kInertial) continue;
+    by_start[{g.key.youngs_modulus_mpa, g.key.psi_epsilon_deg, g.key.start_p_kpa}].push_back(&g);
+  }
+  for (const auto& [start, groups] : by_start) {
+    const auto& [e_mpa, psi, p0] = start;
+    // Quasi-static limits: the smallest I* with usable states.
+    std::vector<const RateGroup*> fitted;
+    for (const RateGroup* g : groups) {
+      if (g->used > 0 && static_cast<int>(fitted.size()) < options.fit_rates) fitted.push_back(g);
+    }
+    for (const char* quantity : {"psi_sigma_deg", "q_over_p", "ln_1_plus_e"}) {
+      const std::string name = quantity;
+      double RateState::*member = name == "psi_sigma_deg" ? &RateState::psi_sigma_deg
+                                  : name == "q_over_p"    ? &RateState::q_over_p
+                                                          : &RateState::ln_1_plus_e;
+      QuasiStaticFit fit;
+      fit.youngs_modulus_mpa = e_mpa;
+      fit.psi_epsilon_deg = psi;
+      fit.start_p_kpa = p0;
+      fit.quantity = name;
+      std::vector<double> x, y;
+      for (const RateGroup* g : fitted) {
+        fit.rates.push_back(g->key.rate);
+        for (const RateState& s : study.states) {
+          if (!(KeyOf(s) == g->key) || !study.Usable(s)) continue;
+          if (!(s.inertial_number_dmax > 0) || !std::isfinite(s.*member)) continue;
+          x.push_back(s.inertial_number_dmax);
+          y.push_back(s.*member);
+        }
+      }
+      fit.points = static_cast<int>(x.size());
+      if (!x.empty()) {
+        fit.i_min = *std::min_element(x.begin(), x.end());
+        fit.i_max = *std::max_element(x.begin(), x.end());
+      }
+      if (fitted.size() >= 2) {
+        const LineFit line = FitLine(x, y);
+        if (line.valid()) {
+          fit.limit = Estimate::Fitted(line.intercept, line.intercept_error, line.points);
+          fit.slope = Estimate::Fitted(line.slope, line.slope_error, line.points);
+        }
+      }
+      study.quasi_static.push_back(fit);
+    }
+    // Rate independence: the two smallest I* of the programme, whatever they reached.
+    if (groups.size() < 2) continue;
+    RateVerdict v;
+    v.youngs_modulus_mpa = e_mpa;
+    v.psi_epsilon_deg = psi;
+    v.start_p_kpa = p0;
+    const RateGroup& a = *groups[0];
+    const RateGroup& b = *groups[1];
+    v.smallest = a.key.rate;
+    v.next = b.key.rate;
+    v.ln_v_smallest = a.ln_1_plus_e;
+    v.ln_v_next = b.ln_1_plus_e;
+    v.psi_smallest = a.psi_sigma_deg;
+    v.psi_next = b.psi_sigma_deg;
+    v.ln_1_plus_e = Compare(a.ln_1_plus_e, b.ln_1_plus_e);
+    v.psi_sigma = Compare(a.psi_sigma_deg, b.psi_sigma_deg);
+    std::vector<std::string> missing;
+    for (const RateGroup* g : {&a, &b}) {
+      if (g->used < 2) {
+        missing.push_back(fmt::format("I* = {:g}: {} usable of {} states (an interval needs 2)",
+                                      g->key.rate, g->used, g->states));
+      }
+    }
+    const RateLine* csl_a = find_line(e_mpa, 90.0, a.key.rate);
+    const RateLine* csl_b = find_line(e_mpa, 90.0, b.key.rate);
+    if (csl_a) v.csl_smallest = csl_a->position;
+    if (csl_b) v.csl_next = csl_b->position;
+    v.csl_position = Compare(v.csl_smallest, v.csl_next);
+    for (const auto& [line, rate] : {std::pair{csl_a, a.key.rate}, std::pair{csl_b, b.key.rate}}) {
+      if (!line || !line->position.has_interval()) {
+        missing.push_back(fmt::format(
+            "no CSL with an interval at I* = {:g}, E = {:g} MPa (psi_epsilon = 90 deg states of "
+            "at least two starts, three points)",
+            rate, e_mpa));
+      }
+    }
+    const std::vector<const Comparison*> all = {&v.ln_1_plus_e, &v.psi_sigma, &v.csl_position};
+    const bool differs = std::any_of(all.begin(), all.end(), [](const Comparison* c) {
+      return c->agreement == Agreement::kDiffer;
+    });
+    const bool agree = std::all_of(all.begin(), all.end(), [](const Comparison* c) {
+      return c->agreement == Agreement::kAgree;
+    });
+    v.verdict = differs ? "rate_dependent" : agree ? "rate_independent" : "undetermined";
+    std::vector<std::string> reasons;
+    if (differs) {
+      const char* names[] = {"ln(1+e)", "psi_sigma", "the CSL position"};
+      for (size_t k = 0; k < all.size(); ++k) {
+        if (all[k]->agreement == Agreement::kDiffer) {
+          reasons.push_back(fmt::format("{} differs by {:.4g} (95 % interval +-{:.2g})", names[k],
+                                        all[k]->difference, all[k]->half_width));
+        }
+      }
+    }
+    if (!differs && !agree) reasons = missing;
+    for (const std::string& r : reasons) v.reason += (v.reason.empty() ? "" : "; ") + r;
+    study.verdicts.push_back(v);
+  }
+  return study;
+}
+
+std::string RateStudy::Text() const {
+  std::map<std::string, int> verdict_counts;
+  for (const RateVerdict& v : verdicts) ++verdict_counts[v.verdict];
+  int fits = 0;
+  for (const QuasiStaticFit& f : quasi_static) fits += f.valid() ? 1 : 0;
+  std::string text = fmt::format(
+      "  rate study: {} states in {} groups of (E, psi_epsilon, start p, rate), {} lines, {} of "
+      "{} quasi-static limits determined;",
+      states.size(), groups.size(), lines.size(), fits, quasi_static.size());
+  if (verdicts.empty()) text += " no verdict (fewer than two I* per start)";
+  for (const auto& [verdict, count] : verdict_counts) text += fmt::format(" {} {}", count, verdict);
+  return text + "\n";
+}
+
+void WriteRateFiles(const std::string& directory, const RateStudy& study) {
+  const RateStudyOptions& o = study.options;
+  auto join = [](const std::vector<std::string>& list) {
+    std::string text;
+    for (const std::string& item : list) text += (text.empty() ? "" : "/") + item;
+    return text;
+  };
+  const std::string usable =
+      fmt::format("usable states: status {} ({} at psi_epsilon = 0), none flagged {}",
+                  join(o.statuses), join(o.ncl_statuses), join(o.excluded_flags));
+
+  CsvWriter states(
+      {"the asymptotic states of the rate cases (figures key 'rate'), one row per "
+       "case and detector stage; start_p_kpa: the p target of the state the case "
+       "started from; stiffness_number: kappa of the contact law at p"});
+  for (const RateState& s : study.states) states.Add(StateFields(s));
+  states.SetHeader(StateFields(RateState{}));
+  states.Write(directory + "/" + kRateStatesFile);
+
+  CsvWriter summary(
+      {"per (E, psi_epsilon, start p, rate): the mean over the replicates' usable "
+       "states and the half-width of its 95 % interval (Student t, n - 1 degrees "
+       "of freedom; empty below two states)",
+       usable});
+  auto group_fields = [](const RateGroup& g) {
+    Columns fields = KeyFields(g.key);
+    fields.emplace_back("states", std::to_string(g.states));
+    fields.emplace_back("used", std::to_string(g.used));
+    AddEstimate(&fields, "p_kpa", g.p_kpa);
+    AddEstimate(&fields, "e", g.e);
+    AddEstimate(&fields, "ln_1_plus_e", g.ln_1_plus_e);
+    AddEstimate(&fields, "psi_sigma_deg", g.psi_sigma_deg);
+    AddEstimate(&fields, "q_over_p", g.q_over_p);
+    AddEstimate(&fields, "ocr", g.ocr);
+    AddEstimate(&fields, "inertial_number_dmin", g.inertial_number_dmin);
+    AddEstimate(&fields, "inertial_number_dmax", g.inertial_number_dmax);
+    AddEstimate(&fields, "stiffness_number", g.stiffness_number);
+    return fields;
+  };
+  for (const RateGroup& g : study.groups) summary.Add(group_fields(g));
+  summary.SetHeader(group_fields(RateGroup{}));
+  summary.Write(directory + "/" + kRateSummaryFile);
+
+  CsvWriter lines({fmt::format("per (E, psi_epsilon, rate): ln(1+e) = N - lambda ln(p / 1 kPa) "
+                               "by least squares through the usable states of every start and "
+                               "replicate (at least two starts); position: ln(1+e) on the line "
+                               "at p = {:g} kPa with the 95 % interval of the prediction "
+                               "(Student t, points - 2 degrees of freedom)",
+                               o.reference_p_kpa),
+                   usable});
+  auto line_fields = [&o](const RateLine& l) {
+    Columns fields = {{"youngs_modulus_mpa", CsvNumber(l.youngs_modulus_mpa)},
+                      {"psi_epsilon_deg", CsvNumber(l.psi_epsilon_deg)},
+                      {"rate_rule", ToString(l.rule)},
+                      {"rate", CsvNumber(l.rate)},
+                      {"points", std::to_string(l.points)},
+                      {"N", CsvNumber(l.n)},
+                      {"lambda", CsvNumber(l.lambda)},
+                      {"reference_p_kpa", CsvNumber(o.reference_p_kpa)}};
+    AddEstimate(&fields, "position", l.position);
+    fields.emplace_back("p_min_kpa", CsvNumber(l.p_min_kpa));
+    fields.emplace_back("p_max_kpa", CsvNumber(l.p_max_kpa));
+    return fields;
+  };
+  for (const RateLine& l : study.lines) lines.Add(line_fields(l));
+  lines.SetHeader(line_fields(RateLine{}));
+  lines.Write(directory + "/" + kRateLinesFile);
+
+  CsvWriter quasi({fmt::format("the quasi-static limit per (E, psi_epsilon, start p): y = a + b "
+                               "I(d_max) by least squares through the usable states of the {} "
+                               "smallest I* (I(d_max) as measured over each asymptote's window; "
+                               "the small-I form of the mu(I) laws of da Cruz et al. 2005 and "
+                               "Jop et al. 2006); a, b with "
+                               "95 % intervals (Student t, points - 2 degrees of freedom)",
+                               o.fit_rates),
+                   usable});
+  auto quasi_fields = [](const QuasiStaticFit& f) {
+    std::string rates;
+    for (double r : f.rates) rates += (rates.empty() ? "" : ";") + CsvNumber(r);
+    Columns fields = {{"youngs_modulus_mpa", CsvNumber(f.youngs_modulus_mpa)},
+                      {"psi_epsilon_deg", CsvNumber(f.psi_epsilon_deg)},
+                      {"start_p_kpa", CsvNumber(f.start_p_kpa)},
+                      {"quantity", f.quantity},
+                      {"rates", rates},
+                      {"points", std::to_string(f.points)},
+                      {"i_min", CsvNumber(f.i_min)},
+                      {"i_max", CsvNumber(f.i_max)}};
+    AddEstimate(&fields, "limit", f.limit);
+    AddEstimate(&fields, "slope", f.slope);
+    return fields;
+  };
+  for (const QuasiStaticFit& f : study.quasi_static) quasi.Add(quasi_fields(f));
+  quasi.SetHeader(quasi_fields(QuasiStaticFit{}));
+  quasi.Write(directory + "/" + kRateQuasiStaticFile);
+
+  CsvWriter verdicts(
+      {fmt::format("rate independence (SPEC 8.2) per (E, psi_epsilon, start p): the two "
+                   "smallest I* agree when the difference of their means is inside its 95 % "
+                   "interval (Welch: t with Welch-Satterthwaite degrees of freedom, rounded "
+                   "down) in ln(1+e), psi_sigma and the CSL's ln(1+e) at {:g} kPa",
+                   o.reference_p_kpa),
+       usable});
+  auto verdict_fields = [](const RateVerdict& v) {
+    Columns fields = {{"youngs_modulus_mpa", CsvNumber(v.youngs_modulus_mpa)},
+                      {"psi_epsilon_deg", CsvNumber(v.psi_epsilon_deg)},
+                      {"start_p_kpa", CsvNumber(v.start_p_kpa)},
+                      {"i_smallest", CsvNumber(v.smallest)},
+                      {"i_next", CsvNumber(v.next)}};
+    auto add = [&fields](const std::string& name, const Estimate& a, const Estimate& b,
+                         const Comparison& c) {
+      AddEstimate(&fields, name + "_smallest", a);
+      AddEstimate(&fields, name + "_next", b);
+      fields.emplace_back(name + "_difference", CsvNumber(c.difference));
+      fields.emplace_back(name + "_difference_ci95", CsvNumber(c.half_width));
+      fields.emplace_back(name + "_agreement", ToString(c.agreement));
+    };
+    add("ln_1_plus_e", v.ln_v_smallest, v.ln_v_next, v.ln_1_plus_e);
+    add("psi_sigma_deg", v.psi_smallest, v.psi_next, v.psi_sigma);
+    add("csl_position", v.csl_smallest, v.csl_next, v.csl_position);
+    fields.emplace_back("verdict", v.verdict);
+    fields.emplace_back("reason", CsvText(v.reason));
+    return fields;
+  };
+  for (const RateVerdict& v : study.verdicts) verdicts.Add(verdict_fields(v));
+  verdicts.SetHeader(verdict_fields(RateVerdict{}));
+  verdicts.Write(directory + "/" + kRateIndependenceFile);
+}
+
+bool ServesRateStudy(const std::string& figures) {
+  std::stringstream in(figures);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (Trimmed(item) == "rate") return true;
+  }
+  return false;
+}
+
+std::optional<RateStudy> WriteRateStudy(const std::string& directory,
+                                        const std::vector<StateRow>& rows,
+                                        const RateStudyOptions& options) {
+  std::vector<RateState> states;
+  bool any = false;
+  for (const StateRow& row : rows) {
+    if (!ServesRateStudy(row.figures)) continue;
+    any = true;
+    if (row.status == "no_result" || row.stage.empty()) continue;
+    const fs::path folder = fs::path(directory) / "cases" / row.case_id;
+    const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
+    const std::string parent = record.GetString("parent", "");
+    const std::string parent_stage = record.GetString("parent_stage", "");
+    const Hdf5File file = Hdf5File::OpenRead((folder / "result.h5").string());
+    const std::vector<dem::StageRecord> stages = dem::ReadStageRecords(file);
+    size_t index = stages.size();
+    for (size_t k = 0; k < stages.size(); ++k) {
+      if (stages[k].name == row.stage) index = k;
+    }
+    if (index == stages.size()) continue;
+    const std::string group = dem::StageGroup(index);
+    if (!file.HasAttribute(group, dem::record::kStageStretchingRate))
+      continue;  // not a strain path
+    RateState s;
+    s.replicate = row.replicate;
+    s.case_name = row.case_name;
+    s.stage = row.stage;
+    s.kind = row.kind;
+    s.status = row.status;
+    s.flags = row.flags;
+    s.psi_epsilon_deg = file.ReadDoubleAttribute(group, dem::record::kStagePsiEpsilonDeg);
+    s.stretching_rate = file.ReadDoubleAttribute(group, dem::record::kStageStretchingRate);
+    const std::string rule = file.HasAttribute(group, dem::record::kStageRateRule)
+                                 ? file.ReadStringAttribute(group, dem::record::kStageRateRule)
+                                 : "constant";
+    const std::optional<dem::RateRule> parsed = FromString<dem::RateRule>(rule);
+    if (!parsed) {
+      throw InputError((folder / "result.h5").string() + ": " + group + " has rate rule '" + rule +
+                       "': expected " + AllowedNames<dem::RateRule>());
+    }
+    s.rule = *parsed;
+    if (s.rule == dem::RateRule::kInertial) {
+      s.inertial_number = file.ReadDoubleAttribute(group, dem::record::kStageRateInertialNumber);
+    }
+    const auto canonical = CanonicalLines(dem::ReadProvenance(file).scene_canonical);
+    s.youngs_modulus_mpa = CanonicalNumber(canonical, "material.youngs_modulus_mpa").value_or(kNaN);
+    s.start_p_kpa =
+        parent.empty()
+            ? kNaN
+            : StartStress((fs::path(directory) / "cases" / parent / "result.h5").string(),
+                          parent_stage);
+    s.p_kpa = row.p_kpa;
+    s.e = row.e;
+    s.ln_1_plus_e = row.ln_1_plus_e;
+    s.psi_sigma_deg = row.psi_sigma_deg;
+    s.q_over_p = row.q_over_p;
+    s.ocr = row.ocr;
+    s.inertial_number_dmin = row.inertial_number_dmin;
+    s.inertial_number_dmax = row.inertial_number_dmax;
+    s.stiffness_number = StiffnessNumber(canonical, row.p_kpa);
+    states.push_back(s);
+  }
+  const std::vector<const char*> files = {kRateStatesFile, kRateSummaryFile, kRateLinesFile,
+                                          kRateQuasiStaticFile, kRateIndependenceFile};
+  if (!any) {
+    for (const char* name : files) fs::remove(fs::path(directory) / name);
+    return std::nullopt;
+  }
+  RateStudy study = RateStudy::Analyse(std::move(states), options);
+  WriteRateFiles(directory, study);
+  return study;
+}
+
+std::vector<RateState> ReadRateStates(const std::string& directory) {
+  const std::string path = directory + "/" + kRateStatesFile;
+  std::vector<RateState> states;
+  if (!fs::exists(path)) return states;
+  const CsvTextTable table = CsvTextTable::ReadFile(path);
+  auto number = [&table, &path](const std::vector<std::string>& row, size_t r, const char* column) {
+    const std::string& text = row[table.Column(column)];
+    if (text.empty()) return kNaN;
+    try {
+      size_t used = 0;
+      const double value = std::stod(text, &used);
+      if (used == text.size()) return value;
+    } catch (const std::exception&) {
+    }
+    throw InputError(fmt::format("{}: line {}: column {}: '{}' is not a number", path,
+                                 table.line_numbers[r], column, text));
+  };
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    const std::vector<std::string>& row = table.rows[r];
+    RateState s;
+    s.replicate = static_cast<int>(number(row, r, "replicate"));
+    s.case_name = row[table.Column("case_name")];
+    s.stage = row[table.Column("stage")];
+    s.kind = row[table.Column("kind")];
+    s.status = row[table.Column("status")];
+    s.flags = row[table.Column("flags")];
+    const std::string rule = row[table.Column("rate_rule")];
+    const std::optional<dem::RateRule> parsed = FromString<dem::RateRule>(rule);
+    if (!parsed) {
+      throw InputError(fmt::format("{}: line {}: rate_rule '{}': expected {}", path,
+                                   table.line_numbers[r], rule, AllowedNames<dem::RateRule>()));
+    }
+    s.rule = *parsed;
+    s.youngs_modulus_mpa = number(row, r, "youngs_modulus_mpa");
+    s.psi_epsilon_deg = number(row, r, "psi_epsilon_deg");
+    s.start_p_kpa = number(row, r, "start_p_kpa");
+    s.inertial_number = number(row, r, "inertial_number_target");
+    s.stretching_rate = number(row, r, "stretching_rate_per_s");
+    s.p_kpa = number(row, r, "p_kpa");
+    s.e = number(row, r, "e");
+    s.ln_1_plus_e = number(row, r, "ln_1_plus_e");
+    s.psi_sigma_deg = number(row, r, "psi_sigma_deg");
+    s.q_over_p = number(row, r, "q_over_p");
+    s.ocr = number(row, r, "ocr");
+    s.inertial_number_dmin = number(row, r, "inertial_number_dmin");
+    s.inertial_number_dmax = number(row, r, "inertial_number_dmax");
+    s.stiffness_number = number(row, r, "stiffness_number");
+    states.push_back(s);
+  }
+  return states;
+}
+
+}  // namespace granasym::study

@@ -1,0 +1,218 @@
+// The rate study (issue 10 §2, SPEC §8.2): asymptotic states of proportional
+// paths driven at fixed inertial numbers I* (and at a constant ‖D‖, the
+// paper's 167 1/s), from NC states at several p, with replicates. Per
+// (E, ψ_ε, p_0, rate) it gives the replicate means with 95 % Student-t
+// intervals; per (E, ψ_ε, p_0) the quasi-static limit, extrapolated as I → 0
+// by the least-squares line y = a + b·I(d_max) through the states of the
+// smallest I* (the small-I form of the μ(I) laws that the paper cites: da
+// Cruz et al. 2005, its ref. [10], and Jop et al. 2006, ref. [29]); per
+// (E, ψ_ε, rate) the line ln(1+e) = N − λ ln p of its asymptotic states (the
+// NCL at ψ_ε = 0°, the CSL at 90°, the NEL beyond); and whether the two
+// smallest I* agree within their intervals in e, ψ_σ and the CSL's position
+// (SPEC §8.2: rate-independent).
+//
+// Rate cases are the cases whose `figures` key names "rate" (the programme
+// says which cases make up the rate study: studies/programmes/rate.toml);
+// a study without them has no rate files. Files in the study folder:
+//
+//   rate_states.csv        one row per rate case and detector stage: its E, ψ_ε, start
+//                          p_0, rule, I* or ‖D‖, and the asymptotic state of the state table
+//   rate_summary.csv       per (E, ψ_ε, p_0, rate): means and 95 % intervals over replicates
+//   rate_lines.csv         per (E, ψ_ε, rate): N, λ and ln(1+e) at the reference p (± 95 %)
+//   rate_quasi_static.csv  per (E, ψ_ε, p_0, quantity): the limit a ± 95 %, the slope b ± 95 %
+//   rate_independence.csv  per (E, ψ_ε, p_0): the two smallest I* compared, and the verdict
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/enum_names.h"
+#include "dem/strain_path_stage.h"
+#include "study/state_table.h"
+
+namespace granasym::study {
+
+enum class Agreement { kAgree, kDiffer, kUndetermined };
+}  // namespace granasym::study
+
+template <>
+struct granasym::EnumNames<granasym::study::Agreement> {
+  static constexpr EnumEntry<study::Agreement> kEntries[] = {
+      {study::Agreement::kAgree, "agree", "the difference is inside its 95 % interval"},
+      {study::Agreement::kDiffer, "differ", "the difference is outside its 95 % interval"},
+      {study::Agreement::kUndetermined, "undetermined",
+       "an estimate lacks its interval (fewer than two states, or three points for a line)"},
+  };
+};
+
+namespace granasym::study {
+
+struct RateStudyOptions {
+  // Detector statuses of the states that enter means, lines, fits and verdicts.
+  std::vector<std::string> statuses = {"detected"};
+  // ψ_ε = 0° states also when drifting: on the isotropic path the detector's
+  // ψ_σ and slope tests are at the noise level of a small sample (the
+  // study's own NCL fit takes them for the same reason, state_table.h).
+  std::vector<std::string> ncl_statuses = {"detected", "drifting"};
+  // Validity flags that exclude a state (a gas or liquefied sample, overlaps
+  // that make a result unreliable, SPEC §8.3).
+  std::vector<std::string> excluded_flags = {"gas", "overlap_above_10pct"};
+  // The quasi-static line is fitted through the states of this many of the
+  // smallest I* values (with usable states); at least 2.
+  int fit_rates = 3;
+  // The mean stress (kPa) at which a line's position is read and compared.
+  double reference_p_kpa = 100.0;
+  bool IsValid(std::string* why) const;
+};
+
+// A mean (or a fitted value) with its standard error and the half-width of
+// its two-sided 95 % interval (Student t with `dof` degrees of freedom);
+// NaN errors when there is no interval.
+struct Estimate {
+  double mean = std::numeric_limits<double>::quiet_NaN();
+  double standard_error = std::numeric_limits<double>::quiet_NaN();
+  double half_width = std::numeric_limits<double>::quiet_NaN();
+  int n = 0;    // values
+  int dof = 0;  // degrees of freedom of the interval (0: none)
+  bool has_interval() const { return dof >= 1 && std::isfinite(standard_error); }
+  static Estimate Of(const std::vector<double>& values);  // mean over n, dof n − 1
+  static Estimate Fitted(double value, double standard_error, int points);  // dof points − 2
+};
+
+// Whether two estimates agree: the difference b − a against the half-width
+// of its 95 % interval, t_{ν} sqrt(se_a² + se_b²), ν by Welch–Satterthwaite
+// (rounded down, so the interval is not narrower than it should be).
+struct Comparison {
+  Agreement agreement = Agreement::kUndetermined;
+  double difference = std::numeric_limits<double>::quiet_NaN();
+  double half_width = std::numeric_limits<double>::quiet_NaN();
+};
+Comparison Compare(const Estimate& a, const Estimate& b);
+
+// One rate case's asymptotic state (a row of rate_states.csv).
+struct RateState {
+  int replicate = 1;
+  std::string case_name, stage, kind, status, flags;
+  double youngs_modulus_mpa = 0;
+  double psi_epsilon_deg = 0;  // the stage's nominal direction
+  double start_p_kpa = 0;      // the state it started from: the parent stage's p target
+  dem::RateRule rule = dem::RateRule::kConstant;
+  double inertial_number = std::numeric_limits<double>::quiet_NaN();  // I* (inertial rule)
+  double stretching_rate = 0;  // ‖D‖ (constant), its cap (inertial), 1/s
+  // The asymptotic state (the state table's row).
+  double p_kpa = 0, e = 0, ln_1_plus_e = 0, psi_sigma_deg = 0, q_over_p = 0, ocr = 0;
+  double inertial_number_dmin = 0, inertial_number_dmax = 0;
+  double stiffness_number = 0;  // κ at the asymptote's p (SPEC §8.2)
+  // The rate of the case: I* for the inertial rule, ‖D‖ for a constant one.
+  double rate() const {
+    return rule == dem::RateRule::kInertial ? inertial_number : stretching_rate;
+  }
+};
+
+// What groups states: the material, the direction, the start and the rate.
+struct RateKey {
+  double youngs_modulus_mpa = 0, psi_epsilon_deg = 0, start_p_kpa = 0;
+  dem::RateRule rule = dem::RateRule::kConstant;
+  double rate = 0;
+  bool operator<(const RateKey& other) const;
+  bool operator==(const RateKey& other) const { return !(*this < other) && !(other < *this); }
+  std::string RateLabel() const;  // "I* = 0.001" or "‖D‖ = 167 1/s"
+};
+RateKey KeyOf(const RateState& state);
+
+// Per (E, ψ_ε, p_0, rate): the replicates' states and their means.
+struct RateGroup {
+  RateKey key;
+  int states = 0;  // rows of the group
+  int used = 0;    // of them usable (statuses, flags)
+  Estimate p_kpa, e, ln_1_plus_e, psi_sigma_deg, q_over_p, ocr, inertial_number_dmin,
+      inertial_number_dmax, stiffness_number;
+};
+
+// Per (E, ψ_ε, rate): ln(1+e) = N − λ ln(p / 1 kPa) through the usable states
+// of every start (all replicates), and ln(1+e) on it at the reference p.
+struct RateLine {
+  double youngs_modulus_mpa = 0, psi_epsilon_deg = 0;
+  dem::RateRule rule = dem::RateRule::kConstant;
+  double rate = 0;
+  int points = 0;
+  double n = std::numeric_limits<double>::quiet_NaN();
+  double lambda = std::numeric_limits<double>::quiet_NaN();
+  Estimate position;  // ln(1+e) at reference_p_kpa (the prediction's standard error)
+  double p_min_kpa = 0, p_max_kpa = 0;
+  bool valid() const { return std::isfinite(n) && std::isfinite(lambda); }
+};
+
+// Per (E, ψ_ε, p_0) and quantity (psi_sigma_deg, q_over_p, ln_1_plus_e): the
+// line y = a + b·I(d_max) through the usable states of the smallest I*.
+struct QuasiStaticFit {
+  double youngs_modulus_mpa = 0, psi_epsilon_deg = 0, start_p_kpa = 0;
+  std::string quantity;
+  std::vector<double> rates;  // the I* values fitted over, ascending
+  int points = 0;
+  double i_min = std::numeric_limits<double>::quiet_NaN();  // the measured I(d_max) range
+  double i_max = std::numeric_limits<double>::quiet_NaN();
+  Estimate limit;  // a: the value as I → 0
+  Estimate slope;  // b
+  bool valid() const { return std::isfinite(limit.mean); }
+};
+
+// Per (E, ψ_ε, p_0): the two smallest I* compared in ln(1+e), ψ_σ and the
+// CSL's position (ln(1+e) at the reference p of the CSLs of those I* at
+// this E). Rate-independent when all three agree, rate-dependent when one
+// differs, undetermined otherwise (`reason` says what is missing).
+struct RateVerdict {
+  double youngs_modulus_mpa = 0, psi_epsilon_deg = 0, start_p_kpa = 0;
+  double smallest = std::numeric_limits<double>::quiet_NaN();  // I*
+  double next = std::numeric_limits<double>::quiet_NaN();      // the next larger I*
+  Estimate ln_v_smallest, ln_v_next, psi_smallest, psi_next, csl_smallest, csl_next;
+  Comparison ln_1_plus_e, psi_sigma, csl_position;
+  std::string verdict;  // rate_independent, rate_dependent, undetermined
+  std::string reason;
+};
+
+struct RateStudy {
+  RateStudyOptions options;
+  std::vector<RateState> states;  // every row, usable or not
+  std::vector<RateGroup> groups;  // in key order
+  std::vector<RateLine> lines;
+  std::vector<QuasiStaticFit> quasi_static;
+  std::vector<RateVerdict> verdicts;
+  bool Usable(const RateState& state) const;
+  const RateGroup* Find(const RateKey& key) const;
+  // The Young's modulus of most groups (ties: the largest), the study's main
+  // material; the others are its stiffness variants. NaN without groups.
+  double ReferenceModulus() const;
+  std::string Text() const;  // a few lines for the console
+  static RateStudy Analyse(std::vector<RateState> states, const RateStudyOptions& options = {});
+};
+
+// Whether a case's `figures` key ("10, rate") names the rate study.
+bool ServesRateStudy(const std::string& figures);
+
+// Reads the rate cases of the study folder (their case.toml, their result and
+// their parent's, for the rate rule, E and the start) against the rows of
+// its state table, analyses them and writes the rate files; returns nullopt,
+// and removes rate files of an earlier run, when there are no rate cases.
+std::optional<RateStudy> WriteRateStudy(const std::string& directory,
+                                        const std::vector<StateRow>& rows,
+                                        const RateStudyOptions& options = {});
+
+// Writes the five rate files of an analysed study into `directory`.
+void WriteRateFiles(const std::string& directory, const RateStudy& study);
+
+// DIR/rate_states.csv back (InputError naming the file when malformed); empty
+// when the study has no rate cases (no file).
+std::vector<RateState> ReadRateStates(const std::string& directory);
+
+// The file names, for the report and the figures.
+inline constexpr char kRateStatesFile[] = "rate_states.csv";
+inline constexpr char kRateSummaryFile[] = "rate_summary.csv";
+inline constexpr char kRateLinesFile[] = "rate_lines.csv";
+inline constexpr char kRateQuasiStaticFile[] = "rate_quasi_static.csv";
+inline constexpr char kRateIndependenceFile[] = "rate_independence.csv";
+
+}  // namespace granasym::study

@@ -1,0 +1,288 @@
+#include "study/rate_study.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "common/csv_table.h"
+#include "common/error.h"
+#include "common/statistics.h"
+#include "tests/study/rate_states_fixture.h"
+
+namespace granasym::study {
+namespace {
+namespace fs = std::filesystem;
+using rate_fixture::CriticalStates;
+using rate_fixture::kDelta;
+using rate_fixture::kScatter;
+using rate_fixture::State;
+
+TEST(RateStudyOptions, DefaultOptionsAreValid) {
+  std::string why;
+  EXPECT_TRUE(RateStudyOptions{}.IsValid(&why)) << why;
+  RateStudyOptions bad;
+  bad.fit_rates = 1;
+  EXPECT_FALSE(bad.IsValid(&why));
+  EXPECT_NE(why.find("fit_rates"), std::string::npos);
+}
+
+TEST(Estimate, MeanAndStudentTInterval) {
+  const Estimate e = Estimate::Of({1.0, 2.0, 3.0});
+  EXPECT_DOUBLE_EQ(e.mean, 2.0);
+  EXPECT_EQ(e.dof, 2);
+  EXPECT_NEAR(e.standard_error, 1.0 / std::sqrt(3.0), 1e-12);  // s = 1
+  EXPECT_NEAR(e.half_width, 4.303 / std::sqrt(3.0), 1e-12);    // t_{0.975, 2}
+  const Estimate one = Estimate::Of({5.0});
+  EXPECT_DOUBLE_EQ(one.mean, 5.0);
+  EXPECT_FALSE(one.has_interval());
+  EXPECT_TRUE(std::isnan(one.half_width));
+  // A fitted value needs three points for an interval.
+  EXPECT_FALSE(Estimate::Fitted(1.0, 0.1, 2).has_interval());
+  EXPECT_NEAR(Estimate::Fitted(1.0, 0.1, 3).half_width, 12.706 * 0.1, 1e-12);
+}
+
+TEST(Compare, WelchIntervalOfTheDifference) {
+  // Equal standard errors and dof: ν = 2 dof exactly (rounded down stays).
+  const Estimate a = Estimate::Of({1.0, 2.0, 3.0});
+  const Estimate b = Estimate::Of({4.0, 5.0, 6.0});
+  const Comparison c = Compare(a, b);
+  EXPECT_DOUBLE_EQ(c.difference, 3.0);
+  EXPECT_NEAR(c.half_width, StudentT95(4) * std::sqrt(2.0 / 3.0), 1e-12);
+  EXPECT_EQ(c.agreement, Agreement::kDiffer);  // 3 > 2.776 * 0.816 = 2.27
+  const Estimate near = Estimate::Of({2.5, 3.5, 4.5});
+  EXPECT_EQ(Compare(a, near).agreement, Agreement::kAgree);  // 1.5 < 2.27
+  // Unequal variances: ν by Welch-Satterthwaite, rounded down.
+  const Estimate wide = Estimate::Of({0.0, 10.0});  // se 5, dof 1
+  const Comparison w = Compare(a, wide);
+  const double va = 1.0 / 3.0, vb = 25.0;
+  const double nu = std::floor((va + vb) * (va + vb) / (va * va / 2 + vb * vb / 1));
+  EXPECT_EQ(nu, 1.0);
+  EXPECT_NEAR(w.half_width, StudentT95(1) * std::sqrt(va + vb), 1e-9);
+  // Without an interval on either side: undetermined, the difference still given.
+  const Comparison u = Compare(a, Estimate::Of({7.0}));
+  EXPECT_EQ(u.agreement, Agreement::kUndetermined);
+  EXPECT_DOUBLE_EQ(u.difference, 5.0);
+}
+
+TEST(RateStudy, GroupsByStartAndRateWithReplicateIntervals) {
+  const RateStudy study = RateStudy::Analyse(CriticalStates());
+  ASSERT_EQ(study.groups.size(), 10u);  // 2 starts x (4 I* + 167 1/s)
+  const RateGroup* g = study.Find(RateKey{500, 90, 20, dem::RateRule::kInertial, 1e-3});
+  ASSERT_NE(g, nullptr);
+  EXPECT_EQ(g->used, 3);
+  EXPECT_NEAR(g->psi_sigma_deg.mean, 25.4, 1e-12);
+  // s = δ (scatter −δ, 0, +δ), so the half-width is t_{0.975,2} δ/√3.
+  EXPECT_NEAR(g->psi_sigma_deg.half_width, 4.303 * kDelta / std::sqrt(3.0), 1e-9);
+  const RateGroup* c = study.Find(RateKey{500, 90, 100, dem::RateRule::kConstant, 167});
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(c->used, 1);
+  EXPECT_FALSE(c->psi_sigma_deg.has_interval());
+  EXPECT_EQ(c->key.RateLabel(), "‖D‖ = 167 1/s");
+}
+
+TEST(RateStudy, QuasiStaticLimitIsTheInterceptOfTheSmallestRates) {
+  const RateStudy study = RateStudy::Analyse(CriticalStates());
+  const QuasiStaticFit* fit = nullptr;
+  for (const QuasiStaticFit& f : study.quasi_static) {
+    if (f.start_p_kpa == 100 && f.quantity == "psi_sigma_deg") fit = &f;
+  }
+  ASSERT_NE(fit, nullptr);
+  EXPECT_EQ(fit->rates, (std::vector<double>{3e-4, 1e-3, 3e-3}));  // 1e-2 left out
+  EXPECT_EQ(fit->points, 9);
+  EXPECT_NEAR(fit->limit.mean, 25.0, 1e-9);
+  EXPECT_NEAR(fit->slope.mean, 400.0, 1e-6);
+  // The intercept's standard error of ordinary least squares, by hand:
+  // residuals ±δ, 0 at each of the three I*, s² = 6δ²/(9 − 2).
+  const std::vector<double> x = {3e-4, 1e-3, 3e-3};
+  double mean = 0, sxx = 0;
+  for (double v : x) mean += v / 3;
+  for (double v : x) sxx += 3 * (v - mean) * (v - mean);
+  const double s2 = 6 * kDelta * kDelta / 7;
+  const double se = std::sqrt(s2 * (1.0 / 9 + mean * mean / sxx));
+  EXPECT_NEAR(fit->limit.standard_error, se, 1e-9);
+  EXPECT_NEAR(fit->limit.half_width, StudentT95(7) * se, 1e-9);
+  EXPECT_EQ(fit->limit.dof, 7);
+  // With all four rates the far point at 1e-2 moves the intercept.
+  RateStudyOptions four;
+  four.fit_rates = 4;
+  const RateStudy all = RateStudy::Analyse(CriticalStates(), four);
+  for (const QuasiStaticFit& f : all.quasi_static) {
+    if (f.start_p_kpa == 100 && f.quantity == "psi_sigma_deg") {
+      EXPECT_GT(std::abs(f.limit.mean - 25.0), 0.5);
+    }
+  }
+}
+
+TEST(RateStudy, LinesThroughEveryStartGiveTheCslAndItsPosition) {
+  const RateStudy study = RateStudy::Analyse(CriticalStates());
+  const RateLine* line = nullptr;
+  for (const RateLine& l : study.lines) {
+    if (l.rule == dem::RateRule::kInertial && l.rate == 1e-3) line = &l;
+  }
+  ASSERT_NE(line, nullptr);
+  ASSERT_TRUE(line->valid());
+  EXPECT_EQ(line->points, 6);
+  EXPECT_NEAR(line->lambda, 0.03, 2e-4);
+  EXPECT_NEAR(line->n, 0.9, 1e-3);
+  EXPECT_NEAR(line->position.mean, 0.9 - 0.03 * std::log(100.0), 1e-3);
+  EXPECT_TRUE(line->position.has_interval());
+  // The constant rate has one state per start: a line, but no interval.
+  for (const RateLine& l : study.lines) {
+    if (l.rule == dem::RateRule::kConstant) {
+      EXPECT_EQ(l.points, 2);
+      EXPECT_FALSE(l.position.has_interval());
+    }
+  }
+  // One start is not a line.
+  std::vector<RateState> one_start;
+  for (const RateState& s : CriticalStates()) {
+    if (s.start_p_kpa == 20) one_start.push_back(s);
+  }
+  for (const RateLine& l : RateStudy::Analyse(one_start).lines) EXPECT_FALSE(l.valid());
+}
+
+TEST(RateStudy, TwoSmallestRatesDecideRateIndependence) {
+  // ψ_σ differs between 3e-4 and 1e-3 by 400 · 7e-4 = 0.28°, against a
+  // Welch interval of t_4 · δ sqrt(2/3) = 0.23°: rate-dependent.
+  const RateStudy study = RateStudy::Analyse(CriticalStates());
+  ASSERT_EQ(study.verdicts.size(), 2u);
+  for (const RateVerdict& v : study.verdicts) {
+    EXPECT_EQ(v.smallest, 3e-4);
+    EXPECT_EQ(v.next, 1e-3);
+    EXPECT_EQ(v.psi_sigma.agreement, Agreement::kDiffer);
+    EXPECT_NEAR(v.psi_sigma.difference, 0.28, 1e-9);
+    EXPECT_NEAR(v.psi_sigma.half_width, StudentT95(4) * kDelta * std::sqrt(2.0 / 3), 1e-9);
+    EXPECT_EQ(v.ln_1_plus_e.agreement, Agreement::kAgree);
+    EXPECT_EQ(v.csl_position.agreement, Agreement::kAgree);
+    EXPECT_EQ(v.verdict, "rate_dependent");
+    EXPECT_NE(v.reason.find("psi_sigma differs"), std::string::npos) << v.reason;
+  }
+  // Flatten ψ_σ below 1e-3: all three agree.
+  std::vector<RateState> flat = CriticalStates();
+  for (RateState& s : flat) {
+    if (s.rule == dem::RateRule::kInertial && s.inertial_number < 2e-3) {
+      s.psi_sigma_deg = 25 + kDelta * kScatter[s.replicate - 1];
+    }
+  }
+  for (const RateVerdict& v : RateStudy::Analyse(flat).verdicts) {
+    EXPECT_EQ(v.verdict, "rate_independent") << v.reason;
+    EXPECT_TRUE(v.reason.empty());
+  }
+  // One replicate left at the smallest I* of one start: no interval there.
+  std::vector<RateState> sparse;
+  for (const RateState& s : flat) {
+    if (s.start_p_kpa == 20 && s.inertial_number == 3e-4 && s.replicate > 1) continue;
+    sparse.push_back(s);
+  }
+  const RateStudy partial = RateStudy::Analyse(sparse);
+  for (const RateVerdict& v : partial.verdicts) {
+    if (v.start_p_kpa == 20) {
+      EXPECT_EQ(v.verdict, "undetermined");
+      EXPECT_EQ(v.psi_sigma.agreement, Agreement::kUndetermined);
+      EXPECT_NE(v.reason.find("I* = 0.0003: 1 usable of 1 states"), std::string::npos) << v.reason;
+    } else {
+      EXPECT_EQ(v.verdict, "rate_independent") << v.reason;
+    }
+  }
+}
+
+TEST(RateStudy, UsableStatesFollowTheStatusesAndFlags) {
+  std::vector<RateState> states = CriticalStates();
+  states[0].status = "drifting";  // ψ_ε = 90°: not usable
+  states[1].flags = "rate_affected;gas";
+  RateState ncl = State(0, 20, dem::RateRule::kInertial, 1e-3, 1);
+  ncl.status = "drifting";  // ψ_ε = 0°: usable (the NCL's noise, state_table.h)
+  ncl.p_kpa = 50;
+  ncl.ln_1_plus_e = 0.8;
+  states.push_back(ncl);
+  const RateStudy study = RateStudy::Analyse(states);
+  EXPECT_FALSE(study.Usable(study.states[0]));
+  EXPECT_FALSE(study.Usable(study.states[1]));
+  EXPECT_TRUE(study.Usable(study.states[2]));
+  EXPECT_TRUE(study.Usable(study.states.back()));
+  const RateGroup* g = study.Find(KeyOf(study.states[0]));
+  ASSERT_NE(g, nullptr);
+  EXPECT_EQ(g->states, 3);
+  EXPECT_EQ(g->used, 1);
+  // The reference modulus is that of most groups.
+  EXPECT_EQ(study.ReferenceModulus(), 500);
+}
+
+TEST(ServesRateStudy, NamesTheRateFigureKey) {
+  EXPECT_TRUE(ServesRateStudy("rate"));
+  EXPECT_TRUE(ServesRateStudy("10, rate"));
+  EXPECT_FALSE(ServesRateStudy("10, 16"));
+  EXPECT_FALSE(ServesRateStudy("rates"));
+}
+
+TEST(WriteRateFiles, TheStatesReadBackAndEveryTableHasItsRows) {
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "write";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const RateStudy study = RateStudy::Analyse(CriticalStates());
+  WriteRateFiles(dir.string(), study);
+  const std::vector<RateState> back = ReadRateStates(dir.string());
+  ASSERT_EQ(back.size(), study.states.size());
+  for (size_t k = 0; k < back.size(); ++k) {
+    EXPECT_EQ(back[k].rule, study.states[k].rule);
+    EXPECT_EQ(back[k].start_p_kpa, study.states[k].start_p_kpa);
+    EXPECT_NEAR(back[k].psi_sigma_deg, study.states[k].psi_sigma_deg, 1e-8);
+    EXPECT_NEAR(back[k].ln_1_plus_e, study.states[k].ln_1_plus_e, 1e-9);
+  }
+  // The analysis of what was read back is the same.
+  const RateStudy again = RateStudy::Analyse(back);
+  ASSERT_EQ(again.verdicts.size(), study.verdicts.size());
+  EXPECT_EQ(again.verdicts[0].verdict, study.verdicts[0].verdict);
+  auto rows = [&dir](const char* name) {
+    const CsvTextTable table = CsvTextTable::ReadFile((dir / name).string());
+    return table.rows.size();
+  };
+  EXPECT_EQ(rows(kRateSummaryFile), study.groups.size());
+  EXPECT_EQ(rows(kRateLinesFile), study.lines.size());
+  EXPECT_EQ(rows(kRateQuasiStaticFile), study.quasi_static.size());
+  EXPECT_EQ(rows(kRateIndependenceFile), 2u);
+  const CsvTextTable verdicts = CsvTextTable::ReadFile((dir / kRateIndependenceFile).string());
+  EXPECT_EQ(verdicts.rows[0][verdicts.Column("verdict")], "rate_dependent");
+  EXPECT_EQ(verdicts.rows[0][verdicts.Column("psi_sigma_deg_agreement")], "differ");
+}
+
+TEST(ReadRateStates, MalformedNumbersNameTheFileAndLine) {
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "read";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  EXPECT_TRUE(ReadRateStates(dir.string()).empty());  // no file: no rate study
+  const std::string header =
+      "replicate,case_name,stage,kind,status,youngs_modulus_mpa,psi_epsilon_deg,start_p_kpa,"
+      "rate_rule,inertial_number_target,stretching_rate_per_s,p_kpa,e,ln_1_plus_e,"
+      "psi_sigma_deg,q_over_p,ocr,inertial_number_dmin,inertial_number_dmax,stiffness_number,"
+      "flags\n";
+  std::ofstream(dir / kRateStatesFile)
+      << "# comment\n"
+      << header
+      << "1,nc20_psi90_I0.001,psi90,csl,detected,500,90,20,inertial,0.001,167,6,0.7,0.53,25.4,"
+         "1.0,1.9,0.0002,0.001,41666,\n";
+  const std::vector<RateState> states = ReadRateStates(dir.string());
+  ASSERT_EQ(states.size(), 1u);
+  EXPECT_EQ(states[0].rule, dem::RateRule::kInertial);
+  EXPECT_DOUBLE_EQ(states[0].rate(), 0.001);
+  EXPECT_DOUBLE_EQ(states[0].start_p_kpa, 20);
+  std::ofstream(dir / kRateStatesFile)
+      << header
+      << "1,c,s,csl,detected,500,90,twenty,inertial,0.001,167,6,0.7,0.53,25.4,1.0,1.9,0.0002,"
+         "0.001,41666,\n";
+  try {
+    ReadRateStates(dir.string());
+    FAIL() << "accepted a malformed number";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("line 2"), std::string::npos) << message;
+    EXPECT_NE(message.find("start_p_kpa"), std::string::npos) << message;
+  }
+}
+
+}  // namespace
+}  // namespace granasym::study

@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# The rate study (studies/programmes/rate.toml, issue 10 §2) at the tiny scale
+# through the command line:
+#   rate_tiny_test.sh GRANASYM PROGRAMME WORK_DIR
+# `study run` (timed: the tiny scale is meant to take under two minutes on 2
+# cores), the rate files with a row per rate case and per group, `study
+# figures` drawing the rate figures and only the paper figures the programme
+# declares, `study report` with its Rate study section, and a second run
+# that computes nothing and writes the same rate tables.
+set -euo pipefail
+source "$(dirname "$0")/../app/test_lib.sh"
+granasym="$1" programme="$2" work="$3"
+rm -rf "$work"
+mkdir -p "$work"
+out="$work/study"
+
+start=$(date +%s%N)
+"$granasym" study run "$programme" --scale tiny --out "$out" --jobs 2 --threads 1 --quiet \
+  | tee "$work/first.txt"
+run_ms=$(( ($(date +%s%N) - start) / 1000000 ))
+grep -q " 0 interrupted" "$work/first.txt" || fail "the first run was interrupted"
+grep -q "rate study: " "$work/first.txt" || fail "study run printed no rate-study line"
+
+# Rows of a CSV without its '#' comments and header.
+rows() { grep -v '^#' "$1" | tail -n +2 | wc -l; }
+for file in rate_states.csv rate_summary.csv rate_lines.csv rate_quasi_static.csv \
+            rate_independence.csv; do
+  [ -s "$out/$file" ] || { fail "$out/$file is missing or empty"; continue; }
+done
+# Two replicates of six rate cases (ψ_ε = 0° and 90° at I* = 0.1, 0.03 and
+# 167 1/s from NC 100 kPa), one detector stage each; six groups; a verdict
+# per direction; three quasi-static quantities per direction.
+[ "$(rows "$out/rate_states.csv")" -eq 12 ] || fail "rate_states.csv: $(rows "$out/rate_states.csv") rows, not 12"
+[ "$(rows "$out/rate_summary.csv")" -eq 6 ] || fail "rate_summary.csv: not 6 groups"
+[ "$(rows "$out/rate_independence.csv")" -eq 2 ] || fail "rate_independence.csv: not 2 verdicts"
+[ "$(rows "$out/rate_quasi_static.csv")" -eq 6 ] || fail "rate_quasi_static.csv: not 6 rows"
+if grep -v '^#' "$out/rate_independence.csv" | tail -n +2 |
+   grep -vE ',(rate_independent|rate_dependent|undetermined),' | grep -q .; then
+  fail "a verdict is not one of rate_independent, rate_dependent, undetermined"
+fi
+# Every rate case of the state table is in rate_states.csv, with its start and rate.
+in_table=$(grep -c ',rate,' "$out/asymptotic_states.csv" || true)
+[ "$in_table" -eq 12 ] || fail "the state table has $in_table rate rows, not 12"
+if grep -v '^#' "$out/rate_states.csv" | tail -n +2 | awk -F, '$8 != 100' | grep -q .; then
+  fail "a rate state does not start from NC 100 kPa"
+fi
+
+"$granasym" study figures "$out" | tee "$work/figures.txt"
+index="$out/figures/index.tsv"
+stems=$(tail -n +2 "$index" | cut -f1 | tr '\n' ' ')
+[ "$stems" = "fig09_ncl rate_psi_sigma_p rate_csl_ncl rate_critical_state_ratio " ] ||
+  fail "figures/index.tsv lists '$stems'"
+for stem in fig09_ncl rate_psi_sigma_p rate_csl_ncl; do
+  for ext in png pdf; do
+    [ -s "$out/figures/$stem.$ext" ] || fail "$stem.$ext was not drawn"
+  done
+done
+# M against I needs a detected 90° state: drawn, or the index says why not.
+if [ ! -s "$out/figures/rate_critical_state_ratio.png" ]; then
+  grep -P "^rate_critical_state_ratio\t.*Not drawn: no ψ_ε = 90° rate" "$index" ||
+    fail "rate_critical_state_ratio neither drawn nor explained"
+fi
+
+"$granasym" study report "$out" | tee "$work/report.txt"
+grep -q "^## Rate study" "$out/report.md" || fail "report.md has no Rate study section"
+grep -q 'id="rate-study"' "$out/index.html" || fail "index.html has no Rate study section"
+grep -q "Figure rate (a)" "$out/report.md" || fail "the report does not show figure rate (a)"
+
+cp "$out/rate_summary.csv" "$work/summary_first.csv"
+start=$(date +%s%N)
+"$granasym" study run "$programme" --scale tiny --out "$out" --jobs 2 --threads 1 --quiet \
+  > "$work/second.txt"
+second_ms=$(( ($(date +%s%N) - start) / 1000000 ))
+grep -q ": 0 computed" "$work/second.txt" || fail "the second run computed cases"
+cmp -s "$work/summary_first.csv" "$out/rate_summary.csv" ||
+  fail "the cached re-run wrote another rate_summary.csv"
+
+[ "$failures" -eq 0 ] || { echo "$failures failures"; exit 1; }
+echo "PASS: tiny rate study in ${run_ms} ms (budget 120 s on 2 cores), cached re-run in ${second_ms} ms"
