@@ -402,12 +402,12 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     if (advance_inline) advance(advanced, n, max2);
     thread_sums_[t] = local;
 #pragma omp barrier
-    if (kAdvanceToo && threads > 1) {
-      // Each thread adds the other threads' contributions to its own
-      // particles (in the same order as below) and advances them.
+    if (threads > 1) {
+      // Each thread adds the contributions of the threads before it (whose
+      // pairs reach its particles; those after it do not) to its own
+      // particles, in thread order, and with kAdvanceToo advances them.
       for (int64_t i = begin; i < end; ++i) {
         for (int u = 1; u <= t; ++u) {
-          if (i < n * u / threads) continue;
           const Vec4& f = thread_force_[u - 1][i];
           force_[i].x += f.x;
           force_[i].y += f.y;
@@ -420,28 +420,9 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
           }
         }
       }
-      advance(begin, end, max2);
+      if constexpr (kAdvanceToo) advance(begin, end, max2);
     }
     thread_max2_[t] = max2;
-    // Add the other threads' contributions in a fixed order.
-    if (!kAdvanceToo && threads > 1) {
-#pragma omp for schedule(static)
-      for (int64_t i = 0; i < n; ++i) {
-        for (int u = 1; u < threads; ++u) {
-          if (i < n * u / threads) continue;
-          const Vec4& f = thread_force_[u - 1][i];
-          force_[i].x += f.x;
-          force_[i].y += f.y;
-          force_[i].z += f.z;
-          if constexpr (kUseFriction) {
-            const Vec4& m = thread_torque_[u - 1][i];
-            torque_[i].x += m.x;
-            torque_[i].y += m.y;
-            torque_[i].z += m.z;
-          }
-        }
-      }
-    }
   }
   if constexpr (kSumStress || kSumStiffness) {
     Sums total;
