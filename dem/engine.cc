@@ -28,6 +28,13 @@ inline double MinimumImage(double delta) {
   return delta - ((delta + kRound) - kRound);
 }
 
+// The branch vector l = x_j + s − x_i of the nearest image of j, from scaled
+// positions and the cell sides (m).
+inline Vec3 Branch(const Vec4& pi, const Vec4& pj, double lx, double ly, double lz) {
+  return {lx * MinimumImage(pj.x - pi.x), ly * MinimumImage(pj.y - pi.y),
+          lz * MinimumImage(pj.z - pi.z)};
+}
+
 inline double Sign(double x) { return static_cast<double>((x > 0) - (x < 0)); }
 
 // v ← v + Δt a with a = load · w (w = v.w: the inverse mass or inertia) and,
@@ -259,9 +266,8 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
       for (int64_t p = p0; p < p1; ++p) {
         const int32_t i = owner[p], j = neighbor[p];
         const Vec4 pi = position[i], pj = position[j];
-        const double bx = lx * MinimumImage(pj.x - pi.x);
-        const double by = ly * MinimumImage(pj.y - pi.y);
-        const double bz = lz * MinimumImage(pj.z - pi.z);
+        const Vec3 l = Branch(pi, pj, lx, ly, lz);
+        const double bx = l.x, by = l.y, bz = l.z;
         const double distance2 = bx * bx + by * by + bz * bz;
         const double reach = pi.w + pj.w;
         const bool touching = distance2 < reach * reach;
@@ -383,14 +389,12 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
           const double weight =
               law.NormalStiffness(batch.ri[k], batch.rj[k], std::sqrt(distance2)) / distance2;
           const double xx = branch.x * branch.x, yy = branch.y * branch.y, zz = branch.z * branch.z;
-          // Explicit fused multiply-adds: left to contraction, the kernels
-          // compiled for different flags did not all round these the same.
-          local.stiffness[0] = std::fma(weight * xx, xx, local.stiffness[0]);
-          local.stiffness[1] = std::fma(weight * yy, yy, local.stiffness[1]);
-          local.stiffness[2] = std::fma(weight * zz, zz, local.stiffness[2]);
-          local.stiffness[3] = std::fma(weight * xx, yy, local.stiffness[3]);
-          local.stiffness[4] = std::fma(weight * xx, zz, local.stiffness[4]);
-          local.stiffness[5] = std::fma(weight * yy, zz, local.stiffness[5]);
+          local.stiffness[0] += weight * xx * xx;
+          local.stiffness[1] += weight * yy * yy;
+          local.stiffness[2] += weight * zz * zz;
+          local.stiffness[3] += weight * xx * yy;
+          local.stiffness[4] += weight * xx * zz;
+          local.stiffness[5] += weight * yy * zz;
         }
       }
       if (advance_inline) {
@@ -571,10 +575,8 @@ double Engine::SmallestContactDuration() const {
           const Vec4 pi = position[i];
           for (int64_t p = offsets[i]; p < offsets[i + 1]; ++p) {
             const Vec4 pj = position[neighbor[p]];
-            const double bx = lx * MinimumImage(pj.x - pi.x);
-            const double by = ly * MinimumImage(pj.y - pi.y);
-            const double bz = lz * MinimumImage(pj.z - pi.z);
-            const double distance2 = bx * bx + by * by + bz * bz;
+            const Vec3 l = Branch(pi, pj, lx, ly, lz);
+            const double distance2 = l.x * l.x + l.y * l.y + l.z * l.z;
             const double reach = pi.w + pj.w;
             if (!(distance2 < reach * reach)) continue;
             const double stiffness = law.NormalStiffness(pi.w, pj.w, std::sqrt(distance2));

@@ -735,7 +735,8 @@ RunSummary Simulation::Run() {
       initial_.size(), threads_, engine_->time_step(),
       engine_->time_step() / d.smallest_reduced_mass, d.smallest_reduced_mass,
       d.smallest_single_mass, d.largest_reduced_mass, d.largest_single_mass, d.critical_time_step));
-  Log("time step " + (time_step_rule_ ? time_step_rule_->Describe() : std::string("fixed")));
+  const std::string time_step_rule = time_step_rule_ ? time_step_rule_->Describe() : "fixed";
+  Log("time step " + time_step_rule);
   const Material& material = scene_.material;
   if (material.stiffness_scaling != 1) {
     Log(fmt::format(
@@ -748,7 +749,7 @@ RunSummary Simulation::Run() {
   summary.particles = static_cast<int64_t>(engine_->size());
   summary.threads = threads_;
   summary.time_step = engine_->time_step();
-  summary.time_step_rule = time_step_rule_ ? time_step_rule_->Describe() : "fixed";
+  summary.time_step_rule = time_step_rule;
   summary.stiffness_scaling = material.stiffness_scaling;
   const int64_t first_step = engine_->step();
   double loop_seconds = 0;
