@@ -389,12 +389,14 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
           const double weight =
               law.NormalStiffness(batch.ri[k], batch.rj[k], std::sqrt(distance2)) / distance2;
           const double xx = branch.x * branch.x, yy = branch.y * branch.y, zz = branch.z * branch.z;
-          local.stiffness[0] += weight * xx * xx;
-          local.stiffness[1] += weight * yy * yy;
-          local.stiffness[2] += weight * zz * zz;
-          local.stiffness[3] += weight * xx * yy;
-          local.stiffness[4] += weight * xx * zz;
-          local.stiffness[5] += weight * yy * zz;
+          // Fused multiply-adds written out (the library compiles without
+          // contraction); they keep the rounding these sums had.
+          local.stiffness[0] = std::fma(weight * xx, xx, local.stiffness[0]);
+          local.stiffness[1] = std::fma(weight * yy, yy, local.stiffness[1]);
+          local.stiffness[2] = std::fma(weight * zz, zz, local.stiffness[2]);
+          local.stiffness[3] = std::fma(weight * xx, yy, local.stiffness[3]);
+          local.stiffness[4] = std::fma(weight * xx, zz, local.stiffness[4]);
+          local.stiffness[5] = std::fma(weight * yy, zz, local.stiffness[5]);
         }
       }
       if (advance_inline) {
