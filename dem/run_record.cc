@@ -675,6 +675,7 @@ void WriteRunner(Hdf5File& file, const RunnerRecord& runner) {
   file.WriteMatrix(r + "/detector_samples", samples, runner.detector_samples.size(), 7);
   file.SetAttribute(r, "target_distance", clock.target_distance);
   file.SetAttribute(r, "target_distance_strain", clock.target_distance_strain);
+  file.SetAttribute(r, "gas_since_strain", clock.gas_since_strain);
 }
 
 RunnerRecord ReadRunner(const Hdf5File& file) {
@@ -707,6 +708,8 @@ RunnerRecord ReadRunner(const Hdf5File& file) {
   }
   clock.target_distance = file.ReadDoubleAttribute(r, "target_distance");
   clock.target_distance_strain = file.ReadDoubleAttribute(r, "target_distance_strain");
+  if (file.HasAttribute(r, "gas_since_strain"))
+    clock.gas_since_strain = file.ReadDoubleAttribute(r, "gas_since_strain");
   return runner;
 }
 

@@ -89,6 +89,9 @@ class Simulation {
   void AddRow();
   // The guards checked on every output row: a failure message, or nullopt.
   std::optional<std::string> CheckRowGuards(bool stage_ends);
+  // stop.liquefied: the reason when the stage's rows have been a gas over the
+  // detector's window; tracks the start of the latest run of gas rows.
+  std::optional<std::string> LiquefiedStop();
   // Ends the current stage with its record; `failed`: the run fails in it.
   void FinishStage(const std::string& reason, bool failed = false);
   // How the loop ended.
@@ -303,6 +306,27 @@ void Simulation::AddRow() {
   runner_.steps_since_output = 0;
   last_p_kpa_ = row.stress.mean() / kKiloPascal;
   last_psi_deg_ = row.stress.psi() / kDegree;
+}
+
+std::optional<std::string> Simulation::LiquefiedStop() {
+  StageClock& clock = runner_.clock;
+  const double p = series_.Last(record::kColumnMeanStress);
+  const double z = series_.Last(record::kColumnMechanicalCoordination);
+  if (!IsGas(p, z)) {
+    clock.gas_since_strain = std::numeric_limits<double>::quiet_NaN();
+    return std::nullopt;
+  }
+  if (std::isnan(clock.gas_since_strain)) clock.gas_since_strain = clock.strain_norm;
+  const Stage& current = stage();
+  const double window = current.asymptote.window_strain;
+  if (!current.stop.liquefied || clock.strain_norm - clock.gas_since_strain < window) {
+    return std::nullopt;
+  }
+  return fmt::format(
+      "liquefied: a gas (p below {:g} kPa or mechanical coordination below {:g}) on every row "
+      "over {:.3g} of strain since {:.4g}; now p {:.4g} kPa, Z_m {:.3g}",
+      kValidityLimits.gas_mean_stress_kpa, kValidityLimits.gas_mechanical_coordination,
+      clock.strain_norm - clock.gas_since_strain, clock.gas_since_strain, p, z);
 }
 
 std::optional<std::string> Simulation::CheckRowGuards(bool stage_ends) {
@@ -879,6 +903,7 @@ Simulation::Outcome Simulation::Loop(const RunSummary& summary, double& loop_sec
           loop_seconds += step_clock.Seconds();
           return Outcome{Termination::kFailed, *failure};
         }
+        if (!reason) reason = LiquefiedStop();
       }
       if (reason) {
         // The stage ends at the state that met its condition (its last row);

@@ -37,6 +37,7 @@ StopConditions StopConditions::Parse(const ConfigTable& stop) {
   s.time_s = OptionalDouble(stop, "time_s", {0.0, 1e6, false, true});
   if (stop.Has("steps")) s.steps = stop.GetInt("steps", Range::Closed(1, kMaxStageSteps));
   s.asymptote = stop.GetBool("asymptote", false);
+  s.liquefied = stop.GetBool("liquefied", false);
   return s;
 }
 
@@ -62,6 +63,7 @@ void StopConditions::Canonical(CanonicalText& text, const std::string& prefix) c
   optional("time_s", time_s);
   if (steps) text.Add(prefix + "steps", *steps);
   text.Add(prefix + "asymptote", asymptote);
+  if (liquefied) text.Add(prefix + "liquefied", true);  // absent: the keys of older scenes hold
 }
 
 ControlOptions ControlOptions::Parse(const ConfigTable& control) {

@@ -69,6 +69,10 @@ struct StopConditions {
   std::optional<double> time_s;       // stage duration (s)
   std::optional<int64_t> steps;       // stage steps
   bool asymptote = false;             // stop when the asymptotic state is detected
+  // Stop when the sample has been a gas (SPEC §8.3: no load-bearing network
+  // or no stress) on every output row over the detector's window_strain: it
+  // has liquefied and no asymptote follows on a path that keeps dilating.
+  bool liquefied = false;
   bool any() const;
   static StopConditions Parse(const ConfigTable& stop);  // a [stage.stop] table
   void Canonical(CanonicalText& text, const std::string& prefix) const;
@@ -89,6 +93,9 @@ struct StageClock {
   // where it was seen; the distance is infinite before the first such row.
   double target_distance = std::numeric_limits<double>::infinity();
   double target_distance_strain = 0;
+  // The stage strain of the first of the latest output rows that were all a
+  // gas (NaN when the last row was not a gas): stop.liquefied measures from it.
+  double gas_since_strain = std::numeric_limits<double>::quiet_NaN();
   int64_t steps(const Engine& engine) const { return engine.step() - start_step; }
 };
 

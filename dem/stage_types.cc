@@ -68,6 +68,15 @@ Stage ParseStage(const ConfigTable& table, size_t index) {
     if (!kind) stop.Fail("asymptote", "= true, but " + type + " stages have no asymptote detector");
     stage.detect_asymptote = true;
   }
+  if (stage.stop.liquefied) {
+    if (!kind) stop.Fail("liquefied", "= true, but " + type + " stages have no asymptote detector");
+    if (!stage.stop.any()) {
+      stop.Fail("liquefied",
+                "= true is not enough to end a stage (the sample may never liquefy): add "
+                "strain_norm, time_s, steps or asymptote");
+    }
+    stage.detect_asymptote = true;  // its record then says "gas"
+  }
   if (!stage.stop.any() && !stage.spec->StopsByItself()) {
     stop.Fail("",
               "has no stop condition: give at least one of mean_stress_kpa, axial_strain, "

@@ -287,6 +287,8 @@ double RateStudy::ReferenceModulus() const {
   return best;
 }
 
+static void AnalyseExtension(RateStudy* study);  // §3: extension_steps and extension_limits
+
 RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("rate study options: " + why);
@@ -471,7 +473,136 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
     for (const std::string& r : reasons) v.reason += (v.reason.empty() ? "" : "; ") + r;
     study.verdicts.push_back(v);
   }
+  AnalyseExtension(&study);
   return study;
+}
+
+static void AnalyseExtension(RateStudy* study) {
+  // Per (E, rule, rate, p_0): the groups at ψ_ε ≥ 90° (map order: ψ_ε ascending).
+  using SweepKey = std::tuple<double, int, double, double>;
+  std::map<SweepKey, std::map<double, const RateGroup*>> sweeps;
+  for (const RateGroup& g : study->groups) {
+    if (g.key.psi_epsilon_deg < 90.0) continue;
+    sweeps[{g.key.youngs_modulus_mpa, static_cast<int>(g.key.rule), g.key.rate,
+            g.key.start_p_kpa}][g.key.psi_epsilon_deg] = &g;
+  }
+  auto sigma_r = [](const Estimate& q_over_p) {
+    Estimate e = q_over_p;
+    e.mean = 1.0 - q_over_p.mean / 3.0;
+    e.standard_error = q_over_p.standard_error / 3.0;
+    e.half_width = q_over_p.half_width / 3.0;
+    return e;
+  };
+  for (const auto& [key, groups] : sweeps) {
+    if (groups.rbegin()->first <= 90.0) continue;  // no extension step
+    ExtensionLimit limit;
+    limit.youngs_modulus_mpa = std::get<0>(key);
+    limit.rule = static_cast<dem::RateRule>(std::get<1>(key));
+    limit.rate = std::get<2>(key);
+    limit.start_p_kpa = std::get<3>(key);
+    limit.steps = static_cast<int>(groups.size());
+    limit.psi_max_deg = groups.rbegin()->first;
+    std::vector<double> asymptote_steps;  // ψ_ε of the asymptote steps so far
+    for (const auto& [psi, g] : groups) {
+      ExtensionStep step;
+      step.youngs_modulus_mpa = limit.youngs_modulus_mpa;
+      step.start_p_kpa = limit.start_p_kpa;
+      step.psi_epsilon_deg = psi;
+      step.rule = limit.rule;
+      step.rate = limit.rate;
+      step.states = g->states;
+      step.used = g->used;
+      for (const RateState& s : study->states) {
+        if (KeyOf(s) == g->key && (s.status == "gas" || HasFlag(s.flags, "gas"))) {
+          ++step.liquefied;
+        }
+      }
+      step.sigma_r_over_p = sigma_r(g->q_over_p);
+      step.psi_sigma_deg = g->psi_sigma_deg;
+      step.p_kpa = g->p_kpa;
+      step.ln_1_plus_e = g->ln_1_plus_e;
+      const Estimate& r = step.sigma_r_over_p;
+      if (2 * step.liquefied > step.states) {
+        step.status = "liquefied";
+      } else if (step.used >= 2 && r.has_interval()) {
+        step.status = r.mean - r.half_width > 0 ? "asymptote" : "limit_d";
+      } else {
+        step.status = "undetermined";
+      }
+      study->extension_steps.push_back(step);
+      if (!limit.result.empty()) continue;  // the sweep's end is found; later steps are listed
+      if (step.status == "asymptote") {
+        limit.last_asymptote_deg = psi;
+        asymptote_steps.push_back(psi);
+      } else if (step.status == "liquefied") {
+        limit.result = "liquefied";
+        limit.liquefied_at_deg = psi;
+      } else if (step.status == "limit_d") {
+        limit.result = "limit_d";
+        limit.limit_step_deg = psi;
+        // The line through this step and the last two asymptote steps,
+        // x centred on the points' mean (so that a and b are uncorrelated).
+        std::vector<double> through = {psi};
+        for (size_t k = asymptote_steps.size(); k-- > 0 && through.size() < 3;) {
+          through.push_back(asymptote_steps[k]);
+        }
+        std::vector<double> x, y;
+        for (const RateState& s : study->states) {
+          if (s.youngs_modulus_mpa != limit.youngs_modulus_mpa || s.rule != limit.rule ||
+              s.rate() != limit.rate || s.start_p_kpa != limit.start_p_kpa ||
+              std::find(through.begin(), through.end(), s.psi_epsilon_deg) == through.end() ||
+              !study->Usable(s) || !std::isfinite(s.q_over_p)) {
+            continue;
+          }
+          x.push_back(s.psi_epsilon_deg);
+          y.push_back(1.0 - s.q_over_p / 3.0);
+        }
+        double centre = 0;
+        for (double v : x) centre += v / static_cast<double>(std::max<size_t>(x.size(), 1));
+        for (double& v : x) v -= centre;
+        const LineFit fit = FitLine(x, y);
+        if (fit.valid() && fit.slope < 0) {
+          const double offset = -fit.intercept / fit.slope;
+          const double se = std::sqrt(fit.intercept_error * fit.intercept_error +
+                                      offset * offset * fit.slope_error * fit.slope_error) /
+                            std::abs(fit.slope);
+          limit.psi_d_deg = Estimate::Fitted(centre + offset, se, fit.points);
+        }
+      }
+    }
+    if (limit.result.empty()) {
+      const std::string last = study->extension_steps.back().status;
+      limit.result = last == "asymptote" ? "not_reached" : "undetermined";
+    }
+    study->extension_limits.push_back(limit);
+  }
+}
+
+std::string ExtensionLimit::Text() const {
+  const std::string last =
+      std::isfinite(last_asymptote_deg)
+          ? fmt::format("asymptotes up to psi_epsilon = {:g} deg", last_asymptote_deg)
+          : std::string("no asymptote at psi_epsilon > 90 deg before it");
+  if (result == "liquefied") {
+    return fmt::format("liquefied at psi_epsilon = {:g} deg ({})", liquefied_at_deg, last);
+  }
+  if (result == "limit_d") {
+    const std::string bracket =
+        std::isfinite(last_asymptote_deg)
+            ? fmt::format("between {:g} and {:g} deg", last_asymptote_deg, limit_step_deg)
+            : fmt::format("at or below {:g} deg", limit_step_deg);
+    if (psi_d_deg.has_interval()) {
+      return fmt::format("psi_epsilon(d) = {:.1f} +- {:.1f} deg (sigma_r/p reaches 0 {})",
+                         psi_d_deg.mean, psi_d_deg.half_width, bracket);
+    }
+    return fmt::format("psi_epsilon(d) {} (sigma_r/p zero within its interval at {:g} deg)",
+                       bracket, limit_step_deg);
+  }
+  if (result == "not_reached") {
+    return fmt::format("sigma_r/p > 0 at every psi_epsilon up to {:g} deg: the limit d lies beyond",
+                       psi_max_deg);
+  }
+  return fmt::format("undetermined up to psi_epsilon = {:g} deg ({})", psi_max_deg, last);
 }
 
 std::string RateStudy::Text() const {
@@ -485,7 +616,12 @@ std::string RateStudy::Text() const {
       states.size(), groups.size(), lines.size(), fits, quasi_static.size());
   if (verdicts.empty()) text += " no verdict (fewer than two I* per start)";
   for (const auto& [verdict, count] : verdict_counts) text += fmt::format(" {} {}", count, verdict);
-  return text + "\n";
+  text += "\n";
+  for (const ExtensionLimit& l : extension_limits) {
+    text += fmt::format("  extension, E {:g} MPa, {}, from {:g} kPa: {}\n", l.youngs_modulus_mpa,
+                        RateText(l.rule, l.rate), l.start_p_kpa, l.Text());
+  }
+  return text;
 }
 
 void WriteRateFiles(const std::string& directory, const RateStudy& study) {
@@ -614,6 +750,61 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
   for (const RateVerdict& v : study.verdicts) verdicts.Add(verdict_fields(v));
   verdicts.SetHeader(verdict_fields(RateVerdict{}));
   verdicts.Write(directory + "/" + kRateIndependenceFile);
+
+  auto sweep_fields = [](double e_mpa, dem::RateRule rule, double rate, double p0) {
+    return Columns{
+        {"youngs_modulus_mpa", CsvNumber(e_mpa)},
+        {"rate_rule", ToString(rule)},
+        {"inertial_number_target", CsvNumber(rule == dem::RateRule::kInertial ? rate : kNaN)},
+        {"stretching_rate_per_s", CsvNumber(rule == dem::RateRule::kConstant ? rate : kNaN)},
+        {"start_p_kpa", CsvNumber(p0)}};
+  };
+  CsvWriter steps(
+      {"the extension sweep (issue 10 section 3): per (E, rate, start p) and psi_epsilon >= 90 "
+       "deg, the asymptotic sigma_r/p = 1 - (q/p)/3 (zero at the limit d, psi_sigma = 54.74 deg) "
+       "over the usable states, with 95 % intervals; liquefied: replicates with status or flag "
+       "gas",
+       usable,
+       "status: asymptote (sigma_r/p > 0 outside its interval), limit_d (zero within it), "
+       "liquefied (most replicates), undetermined (fewer than two usable states)"});
+  auto step_fields = [&](const ExtensionStep& x) {
+    Columns fields = sweep_fields(x.youngs_modulus_mpa, x.rule, x.rate, x.start_p_kpa);
+    fields.emplace_back("psi_epsilon_deg", CsvNumber(x.psi_epsilon_deg));
+    fields.emplace_back("states", std::to_string(x.states));
+    fields.emplace_back("used", std::to_string(x.used));
+    fields.emplace_back("liquefied", std::to_string(x.liquefied));
+    AddEstimate(&fields, "sigma_r_over_p", x.sigma_r_over_p);
+    AddEstimate(&fields, "psi_sigma_deg", x.psi_sigma_deg);
+    AddEstimate(&fields, "p_kpa", x.p_kpa);
+    AddEstimate(&fields, "ln_1_plus_e", x.ln_1_plus_e);
+    fields.emplace_back("status", x.status);
+    return fields;
+  };
+  for (const ExtensionStep& x : study.extension_steps) steps.Add(step_fields(x));
+  steps.SetHeader(step_fields(ExtensionStep{}));
+  steps.Write(directory + "/" + kRateExtensionFile);
+
+  CsvWriter limits(
+      {"the end of each extension sweep: limit_d (psi_epsilon(d), where sigma_r/p is zero within "
+       "its interval; psi_d from the least-squares line of sigma_r/p against psi_epsilon through "
+       "the limit step and the two asymptote steps before it, 95 % delta-method interval), "
+       "liquefied (the first psi_epsilon at which most replicates liquefied), not_reached or "
+       "undetermined"});
+  auto limit_fields = [&](const ExtensionLimit& l) {
+    Columns fields = sweep_fields(l.youngs_modulus_mpa, l.rule, l.rate, l.start_p_kpa);
+    fields.emplace_back("steps", std::to_string(l.steps));
+    fields.emplace_back("psi_max_deg", CsvNumber(l.psi_max_deg));
+    fields.emplace_back("result", l.result);
+    fields.emplace_back("last_asymptote_deg", CsvNumber(l.last_asymptote_deg));
+    fields.emplace_back("liquefied_at_deg", CsvNumber(l.liquefied_at_deg));
+    fields.emplace_back("limit_step_deg", CsvNumber(l.limit_step_deg));
+    AddEstimate(&fields, "psi_d_deg", l.psi_d_deg);
+    fields.emplace_back("text", CsvText(l.result.empty() ? std::string() : l.Text()));
+    return fields;
+  };
+  for (const ExtensionLimit& l : study.extension_limits) limits.Add(limit_fields(l));
+  limits.SetHeader(limit_fields(ExtensionLimit{}));
+  limits.Write(directory + "/" + kRateExtensionLimitFile);
 }
 
 bool ServesRateStudy(const std::string& figures) {
@@ -687,8 +878,10 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
     s.stiffness_number = StiffnessNumber(canonical, row.p_kpa);
     states.push_back(s);
   }
-  const std::vector<const char*> files = {kRateStatesFile, kRateSummaryFile, kRateLinesFile,
-                                          kRateQuasiStaticFile, kRateIndependenceFile};
+  const std::vector<const char*> files = {kRateStatesFile,      kRateSummaryFile,
+                                          kRateLinesFile,       kRateQuasiStaticFile,
+                                          kRateIndependenceFile, kRateExtensionFile,
+                                          kRateExtensionLimitFile};
   if (!any) {
     for (const char* name : files) fs::remove(fs::path(directory) / name);
     return std::nullopt;

@@ -21,6 +21,8 @@
 //   rate_lines.csv         per (E, ψ_ε, rate): N, λ and ln(1+e) at the reference p (± 95 %)
 //   rate_quasi_static.csv  per (E, ψ_ε, p_0, quantity): the limit a ± 95 %, the slope b ± 95 %
 //   rate_independence.csv  per (E, ψ_ε, p_0): the two smallest I* compared, and the verdict
+//   rate_extension.csv     per (E, rate, p_0, ψ_ε ≥ 90°): σ_r/p, ψ_σ, liquefied replicates
+//   rate_extension_limit.csv per (E, rate, p_0): ψ_ε(d) ± 95 %, or where it liquefies
 #pragma once
 
 #include <cmath>
@@ -174,6 +176,44 @@ struct RateVerdict {
   std::string reason;
 };
 
+// §3 (issue 10): the extension sweep. Per (E, rate, p_0), the groups with
+// ψ_ε ≥ 90° in ascending ψ_ε, each with the asymptotic σ_r/p = 1 − (q/p)/3
+// (zero at the limit "d", where ψ_σ = atan √2 = 54.74°, SPEC §2) and how
+// many of its replicates liquefied (status or flag "gas": no load-bearing
+// network or p below the floor, SPEC §8.3).
+struct ExtensionStep {
+  double youngs_modulus_mpa = 0, start_p_kpa = 0, psi_epsilon_deg = 0;
+  dem::RateRule rule = dem::RateRule::kConstant;
+  double rate = 0;
+  int states = 0, used = 0, liquefied = 0;
+  Estimate sigma_r_over_p, psi_sigma_deg, p_kpa, ln_1_plus_e;
+  // asymptote: σ_r/p > 0 outside its interval; limit_d: zero within it (or
+  // below); liquefied: most replicates liquefied; undetermined: fewer than
+  // two usable states and no majority liquefied.
+  std::string status;
+};
+
+// The end of one sweep: the limit ψ_ε(d) (σ_r/p zero within its interval),
+// or the ψ_ε at which the sample liquefies first, or neither up to the
+// largest ψ_ε swept.
+struct ExtensionLimit {
+  double youngs_modulus_mpa = 0, start_p_kpa = 0;
+  dem::RateRule rule = dem::RateRule::kConstant;
+  double rate = 0;
+  int steps = 0;
+  double psi_max_deg = std::numeric_limits<double>::quiet_NaN();  // the largest ψ_ε swept
+  // limit_d, liquefied, not_reached (σ_r/p > 0 up to psi_max), undetermined.
+  std::string result;
+  double last_asymptote_deg = std::numeric_limits<double>::quiet_NaN();
+  double liquefied_at_deg = std::numeric_limits<double>::quiet_NaN();
+  double limit_step_deg = std::numeric_limits<double>::quiet_NaN();  // the first limit_d step
+  // ψ_ε(d): the root of the least-squares line σ_r/p = a + b ψ_ε through the
+  // usable states of the limit step and the (up to two) asymptote steps
+  // before it, with its delta-method interval (t, points − 2 dof).
+  Estimate psi_d_deg;
+  std::string Text() const;  // "psi_epsilon(d) = 127.2 +- 3.1 deg", "liquefied at ..."
+};
+
 struct RateStudy {
   RateStudyOptions options;
   std::vector<RateState> states;  // every row, usable or not
@@ -181,6 +221,8 @@ struct RateStudy {
   std::vector<RateLine> lines;
   std::vector<QuasiStaticFit> quasi_static;
   std::vector<RateVerdict> verdicts;
+  std::vector<ExtensionStep> extension_steps;    // by (E, rate, p_0), ψ_ε ascending
+  std::vector<ExtensionLimit> extension_limits;  // one per (E, rate, p_0) with a ψ_ε > 90° step
   bool Usable(const RateState& state) const;
   const RateGroup* Find(const RateKey& key) const;
   // The Young's modulus of most groups (ties: the largest), the study's main
@@ -201,7 +243,7 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
                                         const std::vector<StateRow>& rows,
                                         const RateStudyOptions& options = {});
 
-// Writes the five rate files of an analysed study into `directory`.
+// Writes the seven rate files of an analysed study into `directory`.
 void WriteRateFiles(const std::string& directory, const RateStudy& study);
 
 // DIR/rate_states.csv back (InputError naming the file when malformed); empty
@@ -214,5 +256,7 @@ inline constexpr char kRateSummaryFile[] = "rate_summary.csv";
 inline constexpr char kRateLinesFile[] = "rate_lines.csv";
 inline constexpr char kRateQuasiStaticFile[] = "rate_quasi_static.csv";
 inline constexpr char kRateIndependenceFile[] = "rate_independence.csv";
+inline constexpr char kRateExtensionFile[] = "rate_extension.csv";
+inline constexpr char kRateExtensionLimitFile[] = "rate_extension_limit.csv";
 
 }  // namespace granasym::study

@@ -975,6 +975,10 @@ std::string VerdictCss(const std::string& value) {
   if (value == "agree" || value == "rate_independent") return "status-detected";
   if (value == "differ" || value == "rate_dependent") return "status-invalid";
   if (value == "undetermined") return "status-drifting";
+  // The extension sweep (rate_extension*.csv).
+  if (value == "asymptote" || value == "limit_d") return "status-detected";
+  if (value == "liquefied") return "status-invalid";
+  if (value == "not_reached") return "status-drifting";
   return "";
 }
 
@@ -1077,6 +1081,17 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
        "(the NCL at ψ_ε = 0°, the CSL at 90°, the NEL beyond) and its position at the "
        "reference p.",
        false},
+      {kRateExtensionLimitFile, "How far the extension states go",
+       "Per (E, rate, p_0): the sweep of ψ_ε from 90° upwards ends at the limit d, where the "
+       "asymptotic σ_r/p is zero within its 95 % interval (ψ_ε(d) is the root of the "
+       "least-squares line of σ_r/p against ψ_ε through the last steps, with its interval), or "
+       "at the first ψ_ε at which most replicates liquefied (a gas: mechanical coordination "
+       "below 3 or p below 0.5 kPa), or it reaches neither.",
+       false},
+      {kRateExtensionFile, "Extension sweep, step by step",
+       "Per (E, rate, p_0, ψ_ε ≥ 90°): σ_r/p and ψ_σ of the asymptotic states, the replicates "
+       "that liquefied, and the step's status.",
+       true},
       {kRateSummaryFile, "Means per start and rate",
        "Per (E, ψ_ε, p_0, rate): the asymptotic state's means over the replicates.", true},
   };
@@ -1100,8 +1115,9 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
       section.blocks.push_back(Paragraph(Plain("No rows.")));
       continue;
     }
-    Block block = MeanIntervalTable(table, {"verdict", "ln_1_plus_e_agreement",
-                                            "psi_sigma_deg_agreement", "csl_position_agreement"});
+    Block block =
+        MeanIntervalTable(table, {"verdict", "ln_1_plus_e_agreement", "psi_sigma_deg_agreement",
+                                  "csl_position_agreement", "result", "status"});
     if (!t.folded) {
       section.blocks.push_back(std::move(block));
       continue;

@@ -60,7 +60,9 @@ TEST(InertialRate, TheCapBoundsTheRateAndTheInertialNumberFallsBelowItsTarget) {
   const std::vector<double>& p = series.Values(record::kColumnMeanStress);
   const std::vector<double>& inertial = series.Values(record::kColumnInertialNumberDmax);
   for (size_t k = 1; k < p.size(); ++k) {
-    if (p[k] > 2.0) EXPECT_LT(inertial[k], 0.5) << "row " << k;
+    if (p[k] > 2.0) {
+      EXPECT_LT(inertial[k], 0.5) << "row " << k;
+    }
   }
 }
 

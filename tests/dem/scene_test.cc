@@ -64,6 +64,23 @@ TEST(Scene, UnknownKeyIsRejectedWithTheValidKeys) {
                  {"bad.toml", "material.friction_angle", "friction_angle_rad"});
 }
 
+TEST(Scene, StopOnLiquefactionNeedsAnotherConditionAndADetector) {
+  // Alone it may never end the stage.
+  ExpectMentions(ErrorOf(Replace(kValid, "mean_stress_kpa = 100.0", "liquefied = true")),
+                 {"bad.toml", "stop.liquefied", "not enough", "strain_norm"});
+  // Rest stages have no asymptote detector (and so no window).
+  const std::string rest = Replace(Replace(kValid, "psi_epsilon_deg = 0.0\nstretching_rate = 167.0",
+                                           "type = \"rest\"\nmean_stress_kpa = 100.0"),
+                                   "[stage.stop]\nmean_stress_kpa = 100.0",
+                                   "[stage.stop]\nsteps = 10\nliquefied = true");
+  ExpectMentions(ErrorOf(rest), {"stop.liquefied", "rest", "no asymptote detector"});
+  const Scene scene = Scene::Parse(
+      Replace(kValid, "mean_stress_kpa = 100.0", "mean_stress_kpa = 100.0\nliquefied = true"),
+      "good.toml", "");
+  EXPECT_TRUE(scene.stages[0].stop.liquefied);
+  EXPECT_TRUE(scene.stages[0].detect_asymptote);
+}
+
 TEST(Scene, WrongTypeIsRejected) {
   ExpectMentions(ErrorOf(Replace(kValid, "stretching_rate = 167.0", "stretching_rate = 'fast'")),
                  {"stage[0].stretching_rate", "expected a number"});

@@ -421,6 +421,42 @@ strain_norm = 0.1
   EXPECT_NE(result.summary.validity.find("stage 'extension': "), std::string::npos);
 }
 
+TEST(ValidityGuards, AnExtensionPathThatLiquefiesStopsOneWindowLater) {
+  // The path of the test above, asked to stop on liquefaction: it ends after
+  // 0.02 of strain of gas rows, long before its strain cap; without the key
+  // the same path runs to the cap.
+  const std::string stage = R"(
+[[stage]]
+name = "extension"
+psi_epsilon_deg = 120.0
+stretching_rate = 167.0
+[stage.asymptote]
+window_strain = 0.02
+[stage.stop]
+asymptote = true
+strain_norm = 0.5
+)";
+  const std::string base = SampleToml(500, 4.6, 1) + kNcl200 + stage;
+  const Result result = RunText(base + "liquefied = true\n", "liquefied");
+  ASSERT_EQ(result.summary.termination, Termination::kCompleted) << result.summary.message;
+  const std::vector<StageRecord> records =
+      ReadStageRecords(Hdf5File::OpenRead(TempPath("liquefied.h5")));
+  ASSERT_EQ(records.size(), 2u);
+  const StageRecord& r = records[1];
+  EXPECT_NE(r.stop_reason.find("liquefied: a gas"), std::string::npos) << r.stop_reason;
+  ASSERT_TRUE(r.asymptote);
+  EXPECT_EQ(r.asymptote->status, AsymptoteStatus::kGas);
+  EXPECT_TRUE(r.validity.Has(ValidityFlag::kGas));
+  // The rows of the last 0.02 of strain (an output row every 0.002) are a gas.
+  const std::vector<double>& p = result.series.Values("p_kpa");
+  const std::vector<double>& z = result.series.Values("mechanical_coordination");
+  ASSERT_EQ(static_cast<size_t>(r.last_row) + 1, p.size());
+  for (size_t k = p.size() - 10; k < p.size(); ++k) EXPECT_TRUE(IsGas(p[k], z[k])) << k;
+  const Result capped = RunText(base, "liquefied_capped");
+  ASSERT_EQ(capped.summary.termination, Termination::kCompleted) << capped.summary.message;
+  EXPECT_LT(2 * result.summary.steps, capped.summary.steps);
+}
+
 TEST(ValidityGuards, AnExtensionPathAskedToReachAThousandKpaFails) {
   const std::string text = SampleToml(500, 4.6, 1) + kNcl200 + R"(
 [[stage]]

@@ -64,4 +64,41 @@ inline std::vector<RateState> CriticalStates() {
   return states;
 }
 
+// An extension sweep with known ends (issue 10 §3), E = 500 MPa, I* = 3e-3,
+// three replicates per ψ_ε: from NC 100 kPa, σ_r/p = 0.6 − 0.02 (ψ_ε − 90°)
+// ± 0.01 at ψ_ε = 90 ... 130°, so that the limit d lies at 120° exactly;
+// from NC 20 kPa, asymptotes at 90° and 100°, and from 110° on two of three
+// replicates liquefy.
+inline RateState SweepState(double psi, double p0, double sigma_r_over_p, int replicate) {
+  RateState s = State(psi, p0, dem::RateRule::kInertial, 3e-3, replicate);
+  s.inertial_number_dmax = 3e-3;
+  s.q_over_p = 3 * (1 - sigma_r_over_p);
+  s.psi_sigma_deg = std::atan2(std::sqrt(2.0) * s.q_over_p, 3.0) * 180 / M_PI;
+  s.p_kpa = 10 * std::exp(-(psi - 90) / 10);
+  s.ln_1_plus_e = 0.5 + 0.001 * psi;
+  s.e = std::expm1(s.ln_1_plus_e);
+  return s;
+}
+
+inline std::vector<RateState> ExtensionSweep() {
+  std::vector<RateState> states;
+  for (double psi : {90.0, 100.0, 110.0, 120.0, 130.0}) {
+    for (int r = 1; r <= 3; ++r) {
+      states.push_back(SweepState(psi, 100, 0.6 - 0.02 * (psi - 90) + 0.01 * kScatter[r - 1], r));
+    }
+  }
+  for (double psi : {90.0, 100.0, 110.0, 120.0}) {
+    for (int r = 1; r <= 3; ++r) {
+      RateState s = SweepState(psi, 20, 0.5 - 0.01 * (psi - 90) + 0.01 * kScatter[r - 1], r);
+      if (psi >= 110 && r >= 2) {
+        s.status = "gas";
+        s.flags = "gas";
+        s.p_kpa = 0.3;
+      }
+      states.push_back(s);
+    }
+  }
+  return states;
+}
+
 }  // namespace granasym::study::rate_fixture

@@ -250,6 +250,85 @@ TEST(WriteRateFiles, TheStatesReadBackAndEveryTableHasItsRows) {
   EXPECT_EQ(verdicts.rows[0][verdicts.Column("psi_sigma_deg_agreement")], "differ");
 }
 
+TEST(ExtensionSweep, TheLimitDIsTheRootOfTheLineThroughTheLastSteps) {
+  const RateStudy study = RateStudy::Analyse(rate_fixture::ExtensionSweep());
+  ASSERT_EQ(study.extension_limits.size(), 2u);  // from 20 and from 100 kPa
+  const ExtensionLimit& d = study.extension_limits[1];
+  EXPECT_EQ(d.start_p_kpa, 100);
+  EXPECT_EQ(d.result, "limit_d");
+  EXPECT_EQ(d.steps, 5);
+  EXPECT_EQ(d.psi_max_deg, 130);
+  EXPECT_EQ(d.last_asymptote_deg, 110);
+  EXPECT_EQ(d.limit_step_deg, 120);
+  // σ_r/p is exactly linear in the means and the scatter is symmetric: the
+  // line through 100°, 110° and 120° (9 states) has its root at 120°.
+  EXPECT_NEAR(d.psi_d_deg.mean, 120.0, 1e-9);
+  ASSERT_TRUE(d.psi_d_deg.has_interval());
+  EXPECT_EQ(d.psi_d_deg.n, 9);
+  // se of the root: the residual scatter (0.01 at each step, s² = 0.0001 · 6/7)
+  // over the slope 0.02 per degree, at the root 10° from the centre.
+  const double s = 0.01 * std::sqrt(6.0 / 7.0);
+  const double se = std::sqrt(s * s / 9 + 100 * s * s / 600) / 0.02;
+  EXPECT_NEAR(d.psi_d_deg.standard_error, se, 1e-9);
+  EXPECT_NEAR(d.psi_d_deg.half_width, StudentT95(7) * se, 1e-9);
+  EXPECT_NE(d.Text().find("psi_epsilon(d) = 120.0 +- "), std::string::npos) << d.Text();
+  EXPECT_NE(d.Text().find("between 110 and 120 deg"), std::string::npos) << d.Text();
+  // Every step is listed, also the one past the limit.
+  std::vector<std::string> statuses;
+  for (const ExtensionStep& x : study.extension_steps) {
+    if (x.start_p_kpa == 100) statuses.push_back(x.status);
+  }
+  EXPECT_EQ(statuses, (std::vector<std::string>{"asymptote", "asymptote", "asymptote", "limit_d",
+                                                "limit_d"}));
+  const ExtensionStep& at120 = study.extension_steps[3 + 4];
+  EXPECT_EQ(at120.psi_epsilon_deg, 120);
+  EXPECT_NEAR(at120.sigma_r_over_p.mean, 0.0, 1e-12);
+  EXPECT_NEAR(at120.psi_sigma_deg.mean, std::atan(std::sqrt(2.0)) * 180 / M_PI, 0.5);
+}
+
+TEST(ExtensionSweep, ASweepThatLiquefiesFirstSaysWhere) {
+  const RateStudy study = RateStudy::Analyse(rate_fixture::ExtensionSweep());
+  const ExtensionLimit& l = study.extension_limits[0];
+  EXPECT_EQ(l.start_p_kpa, 20);
+  EXPECT_EQ(l.result, "liquefied");
+  EXPECT_EQ(l.liquefied_at_deg, 110);
+  EXPECT_EQ(l.last_asymptote_deg, 100);
+  EXPECT_FALSE(std::isfinite(l.psi_d_deg.mean));
+  EXPECT_EQ(l.Text(), "liquefied at psi_epsilon = 110 deg (asymptotes up to psi_epsilon = 100 deg)");
+  const ExtensionStep& at110 = study.extension_steps[2];
+  EXPECT_EQ(at110.liquefied, 2);
+  EXPECT_EQ(at110.used, 1);
+  EXPECT_EQ(at110.status, "liquefied");
+  // A sweep that stays above zero says the limit lies beyond it; one of
+  // ψ_ε = 90° only is no sweep.
+  std::vector<RateState> short_sweep;
+  for (const RateState& s : rate_fixture::ExtensionSweep()) {
+    if (s.start_p_kpa == 100 && s.psi_epsilon_deg <= 110) short_sweep.push_back(s);
+  }
+  const RateStudy beyond = RateStudy::Analyse(short_sweep);
+  ASSERT_EQ(beyond.extension_limits.size(), 1u);
+  EXPECT_EQ(beyond.extension_limits[0].result, "not_reached");
+  EXPECT_NE(beyond.extension_limits[0].Text().find("beyond"), std::string::npos);
+  EXPECT_TRUE(RateStudy::Analyse(CriticalStates()).extension_limits.empty());
+}
+
+TEST(ExtensionSweep, BothFilesHaveTheirRows) {
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "extension";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const RateStudy study = RateStudy::Analyse(rate_fixture::ExtensionSweep());
+  WriteRateFiles(dir.string(), study);
+  const CsvTextTable steps = CsvTextTable::ReadFile((dir / kRateExtensionFile).string());
+  EXPECT_EQ(steps.rows.size(), 9u);
+  EXPECT_EQ(steps.rows[2][steps.Column("status")], "liquefied");
+  const CsvTextTable limits = CsvTextTable::ReadFile((dir / kRateExtensionLimitFile).string());
+  ASSERT_EQ(limits.rows.size(), 2u);
+  EXPECT_EQ(limits.rows[1][limits.Column("result")], "limit_d");
+  EXPECT_NEAR(std::stod(limits.rows[1][limits.Column("psi_d_deg_mean")]), 120.0, 1e-6);
+  EXPECT_NE(limits.rows[0][limits.Column("text")].find("liquefied at psi_epsilon = 110"),
+            std::string::npos);
+}
+
 TEST(ReadRateStates, MalformedNumbersNameTheFileAndLine) {
   const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "read";
   fs::remove_all(dir);

@@ -309,5 +309,24 @@ TEST(StudyReport, TheRateStudySectionAppearsOnlyWithRateFiles) {
             std::string::npos);
 }
 
+TEST(Report, TheRateSectionSaysHowFarTheExtensionStatesGo) {
+  const fs::path dir = FullStudy("rate_extension");
+  std::vector<RateState> states = rate_fixture::CriticalStates();
+  for (const RateState& s : rate_fixture::ExtensionSweep()) states.push_back(s);
+  WriteRateFiles(dir.string(), RateStudy::Analyse(states));
+  const ReportSummary summary = WriteReport(dir.string());
+  const std::string html = ReadTextFile(summary.html_path);
+  const std::string md = ReadTextFile(summary.markdown_path);
+  for (const char* file : {kRateExtensionLimitFile, kRateExtensionFile}) {
+    EXPECT_NE(html.find(std::string("href=\"") + file + "\""), std::string::npos) << file;
+  }
+  EXPECT_NE(html.find("How far the extension states go"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"status-invalid\">liquefied</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td class=\"status-detected\">limit_d</td>"), std::string::npos);
+  EXPECT_NE(html.find("liquefied at psi_epsilon = 110 deg"), std::string::npos);
+  EXPECT_NE(md.find("psi_epsilon(d) = 120.0 +- "), std::string::npos);
+  EXPECT_NE(html.find("psi_d_deg (mean ± 95 %)"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace granasym::study
