@@ -1222,6 +1222,83 @@ FigureSpec RateLines(const Context& ctx, const RateStudy& rate) {
   return spec;
 }
 
+// Rate (d), issue 10 §3: σ_r/p of the extension sweep against ψ_ε, one
+// colour per sweep (E, rate, p_0); liquefied steps on the zero line, and
+// ψ_ε(d) with its interval where a sweep reached the limit d.
+FigureSpec RateExtension(const Context& ctx, const RateStudy& rate) {
+  FigureSpec spec = Spec(
+      "rate_extension", "rate (d)", "Extension states up to the limit d",
+      "The asymptotic σ_r/p = 1 − (q/p)/3 of the rate cases with ψ_ε ≥ 90° against ψ_ε (means "
+      "over the replicates' usable states with their 95 % intervals), one colour per sweep "
+      "(E, rate, start p_0). σ_r/p = 0 is the limit d (ψ_σ = 54.74°). Crosses on the zero "
+      "line: steps at which most replicates liquefied (a gas: mechanical coordination below 3 "
+      "or p below 0.5 kPa; no asymptote). Squares with horizontal bars: ψ_ε(d), the root of "
+      "the least-squares line of σ_r/p through the last steps, with its 95 % interval. Data: "
+      "rate_extension.csv, rate_extension_limit.csv.",
+      "rate_extension.gp");
+  using SweepKey = std::tuple<double, int, double, double>;
+  auto key_of = [](double e_mpa, dem::RateRule rule, double r, double p0) {
+    return SweepKey{e_mpa, static_cast<int>(rule), r, p0};
+  };
+  std::map<SweepKey, int> colour_of;
+  for (const ExtensionLimit& l : rate.extension_limits) {
+    colour_of.emplace(key_of(l.youngs_modulus_mpa, l.rule, l.rate, l.start_p_kpa),
+                      static_cast<int>(colour_of.size()) + 1);
+  }
+  if (colour_of.empty()) return NotDrawn(spec, "no rate case runs at ψ_ε > 90°");
+  auto title = [](const SweepKey& k) {
+    return fmt::format("E = {} MPa, {}, NC {} kPa", Short(std::get<0>(k)),
+                       RateTitle(std::get<1>(k), std::get<2>(k)), Short(std::get<3>(k)));
+  };
+  std::map<SweepKey, std::vector<std::vector<double>>> steps, liquefied;
+  AxisRange x{}, y{};
+  y.Add(0.0);
+  for (const ExtensionStep& st : rate.extension_steps) {
+    const SweepKey k = key_of(st.youngs_modulus_mpa, st.rule, st.rate, st.start_p_kpa);
+    const auto colour = colour_of.find(k);
+    if (colour == colour_of.end()) continue;
+    x.Add(st.psi_epsilon_deg);
+    if (st.status == "liquefied") {
+      liquefied[k].push_back({st.psi_epsilon_deg, 0.0, static_cast<double>(colour->second)});
+    } else if (st.used > 0 && std::isfinite(st.sigma_r_over_p.mean)) {
+      y.Add(st.sigma_r_over_p.mean, st.sigma_r_over_p.half_width);
+      steps[k].push_back({st.psi_epsilon_deg, st.sigma_r_over_p.mean,
+                          Zeroed(st.sigma_r_over_p.half_width),
+                          static_cast<double>(colour->second)});
+    }
+  }
+  BlockFile step_file({"psi_epsilon_deg", "sigma_r_over_p", "sigma_r_over_p_ci95", "colour"});
+  for (const auto& [k, rows] : steps) step_file.Add(title(k), rows);
+  BlockFile liquefied_file({"psi_epsilon_deg", "sigma_r_over_p", "colour"});
+  for (const auto& [k, rows] : liquefied) liquefied_file.Add(title(k), rows);
+  BlockFile limit_file({"psi_epsilon_deg", "psi_epsilon_ci95", "sigma_r_over_p", "colour"});
+  for (const ExtensionLimit& l : rate.extension_limits) {
+    if (l.result != "limit_d" || !std::isfinite(l.psi_d_deg.mean)) continue;
+    const SweepKey k = key_of(l.youngs_modulus_mpa, l.rule, l.rate, l.start_p_kpa);
+    x.Add(l.psi_d_deg.mean, l.psi_d_deg.half_width);
+    limit_file.Add(title(k) + ": " + l.Text(),
+                   {{l.psi_d_deg.mean, Zeroed(l.psi_d_deg.half_width), 0.0,
+                     static_cast<double>(colour_of.at(k))}});
+  }
+  if (step_file.blocks() > 0) step_file.Write(ctx.File("rate_extension_steps.tsv"));
+  if (liquefied_file.blocks() > 0) liquefied_file.Write(ctx.File("rate_extension_liquefied.tsv"));
+  if (limit_file.blocks() > 0) limit_file.Write(ctx.File("rate_extension_limits.tsv"));
+  std::string sweep_titles;
+  std::vector<std::string> ordered(colour_of.size());
+  for (const auto& [k, colour] : colour_of) ordered[static_cast<size_t>(colour - 1)] = title(k);
+  for (const std::string& t : ordered) {
+    sweep_titles += fmt::format("{}\"{}\"", sweep_titles.empty() ? "" : " ", t);
+  }
+  SetRange(&spec, "x", x);
+  SetRange(&spec, "y", y);
+  Set(&spec, "n_steps", step_file.blocks());
+  Set(&spec, "n_liquefied", liquefied_file.blocks());
+  Set(&spec, "n_limits", limit_file.blocks());
+  Set(&spec, "n_sweeps", static_cast<int>(colour_of.size()));
+  Set(&spec, "sweep_titles", sweep_titles);
+  return spec;
+}
+
 FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   const double reference = rate.ReferenceModulus();
   const double low = ctx.options.literature_m_low, high = ctx.options.literature_m_high;
@@ -1610,6 +1687,7 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
     figures.push_back(RatePsiSigma(ctx, rate));
     figures.push_back(RateLines(ctx, rate));
     figures.push_back(RateCriticalState(ctx, rate));
+    if (!rate.extension_limits.empty()) figures.push_back(RateExtension(ctx, rate));
   }
   return figures;
 }

@@ -270,5 +270,29 @@ TEST(WriteFigureData, TheRateFiguresComeWithTheRateStudy) {
   EXPECT_TRUE(WriteFigureData(dir.string()).empty());
 }
 
+TEST(WriteFigureData, TheExtensionSweepHasItsFigureWhenItHasAnExtensionStep) {
+  const fs::path dir = BareStudy("rate_extension");
+  std::vector<RateState> states = rate_fixture::CriticalStates();
+  for (const RateState& s : rate_fixture::ExtensionSweep()) states.push_back(s);
+  WriteRateFiles(dir.string(), RateStudy::Analyse(states));
+  const std::vector<FigureSpec> figures = WriteFigureData(dir.string());
+  ASSERT_EQ(Stems(figures),
+            (std::vector<std::string>{"rate_psi_sigma_p", "rate_csl_ncl",
+                                      "rate_critical_state_ratio", "rate_extension"}));
+  const FigureSpec& f = figures.back();
+  EXPECT_TRUE(f.not_drawn.empty()) << f.not_drawn;
+  std::map<std::string, std::string> v(f.variables.begin(), f.variables.end());
+  EXPECT_EQ(v["n_sweeps"], "2");
+  EXPECT_EQ(v["n_steps"], "2");      // both sweeps have usable steps
+  EXPECT_EQ(v["n_liquefied"], "1");  // NC 20 kPa from 110°
+  EXPECT_EQ(v["n_limits"], "1");     // NC 100 kPa: ψ_ε(d) = 120°
+  const std::string limits = ReadTextFile((dir / "figures/data/rate_extension_limits.tsv").string());
+  EXPECT_NE(limits.find("psi_epsilon(d) = 120.0 +- "), std::string::npos) << limits;
+  const std::string liquefied =
+      ReadTextFile((dir / "figures/data/rate_extension_liquefied.tsv").string());
+  EXPECT_NE(liquefied.find("\n110\t0\t1\n120\t0\t1"), std::string::npos) << liquefied;
+  // A rate study without ψ_ε > 90° has no sweep figure (the test above).
+}
+
 }  // namespace
 }  // namespace granasym::study

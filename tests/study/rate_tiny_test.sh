@@ -24,23 +24,33 @@ grep -q "rate study: " "$work/first.txt" || fail "study run printed no rate-stud
 # Rows of a CSV without its '#' comments and header.
 rows() { grep -v '^#' "$1" | tail -n +2 | wc -l; }
 for file in rate_states.csv rate_summary.csv rate_lines.csv rate_quasi_static.csv \
-            rate_independence.csv; do
+            rate_independence.csv rate_extension.csv rate_extension_limit.csv; do
   [ -s "$out/$file" ] || { fail "$out/$file is missing or empty"; continue; }
 done
-# Two replicates of six rate cases (ψ_ε = 0° and 90° at I* = 0.1, 0.03 and
-# 167 1/s from NC 100 kPa), one detector stage each; six groups; a verdict
-# per direction; three quasi-static quantities per direction.
-[ "$(rows "$out/rate_states.csv")" -eq 12 ] || fail "rate_states.csv: $(rows "$out/rate_states.csv") rows, not 12"
-[ "$(rows "$out/rate_summary.csv")" -eq 6 ] || fail "rate_summary.csv: not 6 groups"
+# Two replicates of eight rate cases (ψ_ε = 0° and 90° at I* = 0.1, 0.03 and
+# 167 1/s from NC 100 kPa, and the extension sweep's 120° and 150° at
+# I* = 0.1), one detector stage each; eight groups; a verdict per direction
+# with two I*; three quasi-static quantities per direction.
+[ "$(rows "$out/rate_states.csv")" -eq 16 ] || fail "rate_states.csv: $(rows "$out/rate_states.csv") rows, not 16"
+[ "$(rows "$out/rate_summary.csv")" -eq 8 ] || fail "rate_summary.csv: not 8 groups"
 [ "$(rows "$out/rate_independence.csv")" -eq 2 ] || fail "rate_independence.csv: not 2 verdicts"
-[ "$(rows "$out/rate_quasi_static.csv")" -eq 6 ] || fail "rate_quasi_static.csv: not 6 rows"
+[ "$(rows "$out/rate_quasi_static.csv")" -eq 12 ] || fail "rate_quasi_static.csv: not 12 rows"
+# The sweep at I* = 0.1 from NC 100 kPa: three steps (90°, 120°, 150°) and
+# one end, a result of the four kinds with its sentence.
+[ "$(rows "$out/rate_extension.csv")" -eq 3 ] || fail "rate_extension.csv: not 3 steps"
+[ "$(rows "$out/rate_extension_limit.csv")" -eq 1 ] || fail "rate_extension_limit.csv: not 1 sweep"
+grep -v '^#' "$out/rate_extension_limit.csv" | tail -n +2 |
+  grep -qE ',(limit_d|liquefied|not_reached|undetermined),.*,"?(psi_epsilon\(d\)|liquefied at|sigma_r/p > 0|undetermined)' ||
+  fail "rate_extension_limit.csv: no result with its sentence"
+grep -q "extension, E 500 MPa, I\* = 0.1, from 100 kPa: " "$work/first.txt" ||
+  fail "study run printed no extension line"
 if grep -v '^#' "$out/rate_independence.csv" | tail -n +2 |
    grep -vE ',(rate_independent|rate_dependent|undetermined),' | grep -q .; then
   fail "a verdict is not one of rate_independent, rate_dependent, undetermined"
 fi
 # Every rate case of the state table is in rate_states.csv, with its start and rate.
 in_table=$(grep -c ',rate,' "$out/asymptotic_states.csv" || true)
-[ "$in_table" -eq 12 ] || fail "the state table has $in_table rate rows, not 12"
+[ "$in_table" -eq 16 ] || fail "the state table has $in_table rate rows, not 16"
 if grep -v '^#' "$out/rate_states.csv" | tail -n +2 | awk -F, '$8 != 100' | grep -q .; then
   fail "a rate state does not start from NC 100 kPa"
 fi
@@ -48,9 +58,9 @@ fi
 "$granasym" study figures "$out" | tee "$work/figures.txt"
 index="$out/figures/index.tsv"
 stems=$(tail -n +2 "$index" | cut -f1 | tr '\n' ' ')
-[ "$stems" = "fig09_ncl rate_psi_sigma_p rate_csl_ncl rate_critical_state_ratio " ] ||
+[ "$stems" = "fig09_ncl rate_psi_sigma_p rate_csl_ncl rate_critical_state_ratio rate_extension " ] ||
   fail "figures/index.tsv lists '$stems'"
-for stem in fig09_ncl rate_psi_sigma_p rate_csl_ncl; do
+for stem in fig09_ncl rate_psi_sigma_p rate_csl_ncl rate_extension; do
   for ext in png pdf; do
     [ -s "$out/figures/$stem.$ext" ] || fail "$stem.$ext was not drawn"
   done
