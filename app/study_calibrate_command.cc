@@ -8,12 +8,14 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/config.h"
 #include "common/error.h"
 #include "common/text_file.h"
+#include "study/rate_study.h"
 #ifdef GRANASYM_HAVE_CALIBRATION
 #include "calibration/calibration_config.h"
 #include "calibration/calibration_report.h"
@@ -31,7 +33,8 @@ namespace fs = std::filesystem;
 
 // The generated input: the study's table two folders up, the default
 // selections spelled out so that a user sees (and can edit) them.
-std::string CalibrationToml(const std::string& directory, const std::string& model) {
+std::string CalibrationToml(const std::string& directory, const std::string& model,
+                            const study::QuasiStaticSelection* quasi_static) {
   std::string ncl;
   const std::string study_file = directory + "/study.toml";
   if (fs::exists(study_file)) ncl = ConfigTable::ParseFile(study_file).GetString("ncl", "");
@@ -50,6 +53,17 @@ std::string CalibrationToml(const std::string& directory, const std::string& mod
         "# only states whose OCR refers to the study's NCL (other samples, e.g. phi = 0, stay "
         "out)\nncl_references = [{}]\n",
         TomlQuoted(ncl));
+  }
+  if (quasi_static) {
+    s += fmt::format(
+        "# a rate study: only its quasi-static states, the rate cases at I* = {:g} and E = {:g} "
+        "MPa (calibration/quasi_static.toml; `study calibrate --inertial-number` chooses I*)\n"
+        "cases = [",
+        quasi_static->inertial_number, quasi_static->youngs_modulus_mpa);
+    for (size_t k = 0; k < quasi_static->cases.size(); ++k) {
+      s += (k ? ", " : "") + TomlQuoted(quasi_static->cases[k]);
+    }
+    s += "]\n";
   }
   s += "psi_sigma_uncertainty_deg = 0.5\nln_1_plus_e_uncertainty = 0.002\n\n"
        "[fitter]\nmethod = \"ceres\"\nfix_undetermined = true\n\n"
@@ -99,12 +113,13 @@ int WriteModelPaths(const std::string& folder, const std::string& model_block) {
 }
 
 // One model: writes its folder and returns the line to print.
-std::string CalibrateOne(const std::string& directory, ModelKind model) {
+std::string CalibrateOne(const std::string& directory, ModelKind model,
+                         const study::QuasiStaticSelection* quasi_static) {
   const std::string name = calibration::ToString(model);
   const std::string folder = (fs::path(directory) / "calibration" / name).string();
   fs::create_directories(folder);
   const std::string config_path = folder + "/calibration.toml";
-  WriteTextFileAtomically(config_path, CalibrationToml(directory, name));
+  WriteTextFileAtomically(config_path, CalibrationToml(directory, name, quasi_static));
   const calibration::CalibrationConfig config =
       calibration::ReadCalibrationConfigFile(config_path);
   const calibration::CalibrationRun run = calibration::RunCalibration(config);
@@ -146,6 +161,7 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
   static std::string directory;
   static std::vector<std::string> models = {"hypoplastic_clay", "modified_cam_clay",
                                             "hypoplastic_sand"};
+  static double inertial_number = 0;
   CLI::App* calibrate = study->add_subcommand(
       "calibrate",
       "fit the constitutive models to the study's asymptotic states; writes "
@@ -159,6 +175,10 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
                    "comma-separated: hypoplastic_clay, modified_cam_clay, hypoplastic_sand "
                    "(default all three)")
       ->delimiter(',');
+  calibrate->add_option(
+      "--inertial-number", inertial_number,
+      "a rate study (with rate_states.csv): fit the rate cases at this I* only (default: the "
+      "smallest I* with usable psi_epsilon = 90 deg states from two starts)");
   calibrate->callback([] {
 #ifdef GRANASYM_HAVE_CALIBRATION
     std::vector<ModelKind> kinds;
@@ -176,10 +196,30 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
                        ": no asymptotic_states.h5 (run `granasym study run` or `granasym study "
                        "merge` first)");
     }
+    // A rate study: the models are fitted to its quasi-static states only.
+    std::optional<study::QuasiStaticSelection> quasi_static;
+    const std::vector<study::RateState> rate_states = study::ReadRateStates(directory);
+    if (!rate_states.empty()) {
+      const study::RateStudy rate = study::RateStudy::Analyse(rate_states);
+      quasi_static = study::SelectQuasiStatic(
+          rate, inertial_number > 0 ? std::optional<double>(inertial_number) : std::nullopt);
+      if (!quasi_static->valid()) {
+        throw InputError(directory + ": a rate study, but " + quasi_static->reason +
+                         (inertial_number > 0 ? "" : "; choose one with --inertial-number"));
+      }
+      study::WriteQuasiStaticSelection(directory, *quasi_static);
+      std::printf("rate study: fitting the %zu rate cases at I* = %g, E = %g MPa\n",
+                  quasi_static->cases.size(), quasi_static->inertial_number,
+                  quasi_static->youngs_modulus_mpa);
+    } else if (inertial_number > 0) {
+      throw InputError("--inertial-number " + fmt::format("{:g}", inertial_number) + ": " +
+                       directory + " is not a rate study (no rate_states.csv)");
+    }
+    const study::QuasiStaticSelection* selection = quasi_static ? &*quasi_static : nullptr;
     bool failed = false;
     for (ModelKind kind : kinds) {
       try {
-        std::printf("%s\n", CalibrateOne(directory, kind).c_str());
+        std::printf("%s\n", CalibrateOne(directory, kind, selection).c_str());
       } catch (const std::exception& error) {
         std::printf("%s: FAILED: %s\n", calibration::ToString(kind), error.what());
         failed = true;

@@ -164,6 +164,10 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
       }
       if (t.Has("exclude_flags")) o.exclude_flags = t.GetStrings("exclude_flags");
       if (t.Has("ncl_references")) o.ncl_references = t.GetStrings("ncl_references");
+      if (t.Has("cases")) {
+        o.cases = t.GetStrings("cases");
+        if (o.cases.empty()) t.Fail("cases", "is empty: name at least one case or leave it out");
+      }
       if (t.Has("psi_epsilon_range_deg")) {
         const std::vector<double> range =
             t.GetDoubles("psi_epsilon_range_deg", Range::Closed(-180, 180));

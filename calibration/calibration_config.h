@@ -31,6 +31,7 @@
 //   psi_epsilon_range_deg = [-180, 180]
 //   ncl_references = ["ncl"]      # only states whose OCR refers to these NCL
 //                                 #   cases (default all)
+//   cases = ["nc100_psi90_I0.001_E500"]  # only these case names (default all)
 //   triaxial_kind_tolerance_deg = 2.0  # triaxial states within this of 90 deg: CSL
 //   # csv datasets:
 //   kind = "auto"                 # auto | ncl | csl | compression | extension | asbs |

@@ -209,6 +209,7 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
         !Contains(options.ncl_references, row.ncl_reference)) {
       continue;
     }
+    if (!options.cases.empty() && !Contains(options.cases, row.case_name)) continue;
     const auto key = std::make_pair(row.case_name, row.stage);
     if (!groups.count(key)) order.push_back(key);
     groups[key].push_back(&row);
@@ -222,10 +223,11 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
     for (const auto& [key, count] : present) counts += fmt::format(" {} {};", count, key);
     throw InputError(fmt::format(
         "dataset '{}': {}: no state passes the selections (kinds {}; statuses {}; "
-        "psi_epsilon_range_deg [{}, {}]; exclude_flags {}{}); the table holds:{}",
+        "psi_epsilon_range_deg [{}, {}]; exclude_flags {}{}{}); the table holds:{}",
         name, path, Join(options.kinds), Join(options.statuses), options.psi_epsilon_min_deg,
         options.psi_epsilon_max_deg, Join(options.exclude_flags),
         options.ncl_references.empty() ? "" : "; ncl_references " + Join(options.ncl_references),
+        options.cases.empty() ? "" : fmt::format("; {} named cases", options.cases.size()),
         counts));
   }
   const double stated_psi = options.psi_sigma_uncertainty_deg * kDegree;

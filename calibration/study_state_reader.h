@@ -13,7 +13,9 @@
 //     (default ["overlap_above_10pct", "gas"]);
 //   ncl_references: only rows whose OCR refers to one of these NCL cases
 //     (default all; a study with samples of other materials, e.g. φ = 0,
-//     names its own NCL case here so that the others stay out).
+//     names its own NCL case here so that the others stay out);
+//   cases: only rows of these case names (default all; `study calibrate`
+//     names the rate study's quasi-static cases here, study/rate_study.h).
 // Replicates: the state is the replicate mean of ln p, ln(1+e), ψ_σ and ψ_ε
 // (and of the table's OCR); its uncertainties are the standard errors of the
 // mean of ψ_σ and ln(1+e), floored at the stated uncertainty / √n (n
@@ -35,6 +37,7 @@ struct StudyReadOptions {
   std::vector<std::string> statuses = {"detected"};
   std::vector<std::string> exclude_flags = {"overlap_above_10pct", "gas"};
   std::vector<std::string> ncl_references;  // empty: all
+  std::vector<std::string> cases;           // empty: all
   double triaxial_kind_tolerance_deg = 2.0;
   double kind_tolerance_deg = 0.5;  // ψ_ε within this of 0°, 90° counts as there
   double psi_sigma_uncertainty_deg = 0.5;  // one standard deviation, per state

@@ -1299,6 +1299,106 @@ FigureSpec RateExtension(const Context& ctx, const RateStudy& rate) {
   return spec;
 }
 
+// Rate (e), issue 10 §4: the quasi-static asymptotic states (the rate
+// cases at the I* the models were calibrated to, calibration/quasi_static.toml,
+// or the default selection) beside the paper-rate ones (constant ‖D‖) at the
+// reference modulus, with the calibrated models of this folder.
+FigureSpec RateAgainstModels(const Context& ctx, const RateStudy& rate) {
+  std::optional<QuasiStaticSelection> selection = ReadQuasiStaticSelection(ctx.directory);
+  const bool calibrated = selection.has_value();
+  if (!selection) selection = SelectQuasiStatic(rate);
+  FigureSpec spec = Spec(
+      "rate_against_models", "rate (e)",
+      "Quasi-static and paper-rate asymptotic states against the calibrated models",
+      fmt::format(
+          "The asymptotic states of the rate cases at {} (filled circles: the quasi-static "
+          "set{}) and at the paper's constant ‖D‖ (open diamonds), E = {} MPa, all ψ_ε: (a) ψ_σ "
+          "against ψ_ε, the means over the replicates of each start with their 95 % intervals; "
+          "(b) ln(1+e) against p, every usable state, one colour per ψ_ε. Lines: the models "
+          "calibrated in this folder to the quasi-static set (`granasym study calibrate`), "
+          "their ψ_σ(ψ_ε) in (a) and their asymptotic lines in (b). Data: rate_summary.csv, "
+          "rate_states.csv.",
+          selection->valid() ? fmt::format("I* = {:g}", selection->inertial_number)
+                             : std::string("the smallest I*"),
+          calibrated ? ", calibration/quasi_static.toml" : ", not yet calibrated",
+          Short(selection->youngs_modulus_mpa)),
+      "rate_models.gp");
+  if (!selection->valid()) return NotDrawn(spec, selection->reason);
+  const double e_mpa = selection->youngs_modulus_mpa, i_star = selection->inertial_number;
+  auto quasi = [&](dem::RateRule rule, double r) {
+    return rule == dem::RateRule::kInertial && r == i_star;
+  };
+  // (a) group means of each set (0: quasi-static, 1: the paper rate); (b) states.
+  std::vector<std::vector<double>> set_rows[2];
+  for (const RateGroup& g : rate.groups) {
+    if (g.key.youngs_modulus_mpa != e_mpa || g.used == 0) continue;
+    const int set = quasi(g.key.rule, g.key.rate) ? 0 : g.key.rule == dem::RateRule::kConstant ? 1 : -1;
+    if (set < 0) continue;
+    // Side by side at each ψ_ε, so that the intervals do not hide each other.
+    set_rows[set].push_back({g.key.psi_epsilon_deg + (set == 0 ? -0.6 : 0.6), g.psi_sigma_deg.mean,
+                             Zeroed(g.psi_sigma_deg.half_width)});
+  }
+  const char* set_files[2] = {"rate_models_quasi_static.tsv", "rate_models_paper_rate.tsv"};
+  for (int set = 0; set < 2; ++set) {
+    if (set_rows[set].empty()) continue;
+    BlockFile means({"psi_epsilon_deg", "psi_sigma_deg", "psi_sigma_ci95"});
+    means.Add(set == 0 ? fmt::format("I* = {:g}", i_star) : std::string("constant ‖D‖"),
+              set_rows[set]);
+    means.Write(ctx.File(set_files[set]));
+  }
+  std::map<double, std::vector<std::vector<double>>> by_psi;
+  std::set<double> directions;
+  for (const RateState& s : rate.states) {
+    if (s.youngs_modulus_mpa != e_mpa || !rate.Usable(s)) continue;
+    const bool is_quasi = quasi(s.rule, s.rate());
+    if (!is_quasi && s.rule != dem::RateRule::kConstant) continue;
+    directions.insert(s.psi_epsilon_deg);
+    by_psi[s.psi_epsilon_deg].push_back({s.p_kpa, s.ln_1_plus_e, is_quasi ? 7.0 : 12.0});
+  }
+  if (by_psi.empty()) return NotDrawn(spec, "no usable state at the selected rates");
+  BlockFile states({"p_kpa", "ln_1_plus_e", "point_type"});
+  std::string psi_titles;
+  for (const auto& [psi, rows] : by_psi) {
+    states.Add(fmt::format("ψ_ε = {}°", Short(psi)), rows);
+    psi_titles += fmt::format("{}\"ψ_ε = {}°\"", psi_titles.empty() ? "" : " ", Short(psi));
+  }
+  states.Write(ctx.File("rate_models_states.tsv"));
+  // The models: ψ_σ(ψ_ε) over the swept range, lines at the study's directions.
+  BlockFile curves({"psi_epsilon_deg", "psi_sigma_deg"});
+  BlockFile lines({"p_kpa", "ln_1_plus_e"});
+  const double lo = *directions.begin() - 5, hi = *directions.rbegin() + 5;
+  for (const ModelOverlay& model : ctx.models) {
+    std::vector<std::vector<double>> curve, rows;
+    for (size_t k = 0; k < model.psi_epsilon_deg.size() && k < model.psi_sigma_deg.size(); ++k) {
+      if (model.psi_epsilon_deg[k] >= lo && model.psi_epsilon_deg[k] <= hi) {
+        curve.push_back({model.psi_epsilon_deg[k], model.psi_sigma_deg[k]});
+      }
+    }
+    for (const ModelOverlay::Line& line : model.lines) {
+      if (line.psi_epsilon_deg < lo || line.psi_epsilon_deg > hi) continue;
+      for (size_t k = 0; k < line.ln_p.size(); ++k) {
+        rows.push_back({std::exp(line.ln_p[k]), line.ln_1_plus_e[k]});
+      }
+      rows.push_back({});
+    }
+    if (curve.empty() || rows.empty()) continue;
+    curves.Add(model.title, curve);
+    lines.Add(model.title, rows);
+  }
+  if (curves.blocks() > 0) {
+    curves.Write(ctx.File("rate_models_curves.tsv"));
+    lines.Write(ctx.File("rate_models_lines.tsv"));
+  }
+  spec.caption += " " + ctx.models_note;
+  Set(&spec, "n_models", curves.blocks());
+  Set(&spec, "n_psi", states.blocks());
+  Set(&spec, "psi_titles", psi_titles);
+  Set(&spec, "quasi_title", fmt::format("I* = {:g}", i_star));
+  Set(&spec, "n_quasi_static", set_rows[0].empty() ? 0 : 1);
+  Set(&spec, "n_paper_rate", set_rows[1].empty() ? 0 : 1);
+  return spec;
+}
+
 FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   const double reference = rate.ReferenceModulus();
   const double low = ctx.options.literature_m_low, high = ctx.options.literature_m_high;
@@ -1688,6 +1788,7 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
     figures.push_back(RateLines(ctx, rate));
     figures.push_back(RateCriticalState(ctx, rate));
     if (!rate.extension_limits.empty()) figures.push_back(RateExtension(ctx, rate));
+    figures.push_back(RateAgainstModels(ctx, rate));
   }
   return figures;
 }

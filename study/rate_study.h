@@ -232,6 +232,27 @@ struct RateStudy {
   static RateStudy Analyse(std::vector<RateState> states, const RateStudyOptions& options = {});
 };
 
+// §4 (issue 10): the quasi-static states that `study calibrate` fits the
+// models to in a rate study, and that figure rate (e) sets beside the
+// paper-rate ones: the rate cases at one I* and the reference modulus. By
+// default the smallest I* whose ψ_ε = 90° cases have usable states from at
+// least two starts (so that it has a CSL); `inertial_number` chooses it.
+struct QuasiStaticSelection {
+  double inertial_number = std::numeric_limits<double>::quiet_NaN();
+  double youngs_modulus_mpa = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::string> cases;  // case names, each once, in the states' order
+  std::string reason;              // why there is none (empty when valid)
+  bool valid() const { return !cases.empty(); }
+};
+QuasiStaticSelection SelectQuasiStatic(const RateStudy& study,
+                                       std::optional<double> inertial_number = std::nullopt);
+// DIR/calibration/quasi_static.toml, written by `study calibrate` for a rate
+// study: the selection its calibrations were fitted to.
+inline constexpr char kQuasiStaticSelectionFile[] = "calibration/quasi_static.toml";
+void WriteQuasiStaticSelection(const std::string& directory, const QuasiStaticSelection& s);
+// The selection written there, or nullopt without the file (InputError when malformed).
+std::optional<QuasiStaticSelection> ReadQuasiStaticSelection(const std::string& directory);
+
 // Whether a case's `figures` key ("10, rate") names the rate study.
 bool ServesRateStudy(const std::string& figures);
 

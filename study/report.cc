@@ -1057,7 +1057,17 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
             "stretching rate set from the measured p, ‖D‖ = I* √(p/2ρ_s)/d) and at constant "
             "‖D‖, from NC states at several p_0, by Young's modulus E. Usable states are those "
             "the tables' comments name; every number below has its 95 % interval (Student t). "
-            "Figures rate (a)–(c) above draw them.")));
+            "Figures rate (a)–(e) above draw them.")));
+  if (const std::optional<QuasiStaticSelection> selection =
+          ReadQuasiStaticSelection(study.directory)) {
+    section.blocks.push_back(Paragraph(
+        Plain(fmt::format("The calibrated models (Parameters, and figure rate (e)) were fitted to "
+                          "the quasi-static states only: the {} rate cases at I* = {:g}, "
+                          "E = {:g} MPa, from ",
+                          selection->cases.size(), selection->inertial_number,
+                          selection->youngs_modulus_mpa)) +
+        Link(kQuasiStaticSelectionFile, UrlPath(kQuasiStaticSelectionFile), true) + Plain(".")));
+  }
   struct Table {
     const char* file;
     const char* title;

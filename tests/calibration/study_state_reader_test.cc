@@ -168,6 +168,21 @@ TEST(StudyStateReader, AveragesReplicatesAndWeightsByTheirStandardError) {
   options.psi_epsilon_max_deg = 45;
   // The drifting row and the joined state: two states of ψ_ε = 30°.
   EXPECT_EQ(ReadStatesStudy(dir, "study", options).points.size(), 2u);
+  // Named cases only (a rate study's quasi-static set): the CSL's three
+  // replicates are one state; the joined state has a name of its own.
+  options = StudyReadOptions();
+  options.cases = {"nc100_psi90"};
+  ASSERT_EQ(ReadStatesStudy(dir, "study", options).points.size(), 1u);
+  EXPECT_EQ(ReadStatesStudy(dir, "study", options).points[0].replicates, 3);
+  options.cases = {"nc100_psi90", "nc5_psi30+nc20_psi30"};
+  EXPECT_EQ(ReadStatesStudy(dir, "study", options).points.size(), 2u);
+  options.cases = {"no_such_case"};
+  try {
+    ReadStatesStudy(dir, "study", options);
+    FAIL() << "no named case, accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("1 named cases"), std::string::npos) << error.what();
+  }
   options = StudyReadOptions();
   options.exclude_flags = {};
   EXPECT_EQ(ReadStatesStudy(dir, "study", options).points.size(), 4u);  // the gas row too

@@ -241,8 +241,9 @@ TEST(WriteFigureData, TheRateFiguresComeWithTheRateStudy) {
   const RateStudy rate = RateStudy::Analyse(rate_fixture::CriticalStates());
   WriteRateFiles(dir.string(), rate);
   const std::vector<FigureSpec> figures = WriteFigureData(dir.string());
-  ASSERT_EQ(Stems(figures), (std::vector<std::string>{"rate_psi_sigma_p", "rate_csl_ncl",
-                                                      "rate_critical_state_ratio"}));
+  ASSERT_EQ(Stems(figures),
+            (std::vector<std::string>{"rate_psi_sigma_p", "rate_csl_ncl",
+                                      "rate_critical_state_ratio", "rate_against_models"}));
   auto variable = [](const FigureSpec& f, const std::string& name) {
     for (const auto& [key, value] : f.variables) {
       if (key == name) return value;
@@ -270,6 +271,47 @@ TEST(WriteFigureData, TheRateFiguresComeWithTheRateStudy) {
   EXPECT_TRUE(WriteFigureData(dir.string()).empty());
 }
 
+int Count(const std::string& text, const std::string& part) {
+  int n = 0;
+  for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+TEST(WriteFigureData, TheQuasiStaticSetStandsBesideThePaperRate) {
+  const fs::path dir = BareStudy("rate_models");
+  const RateStudy rate = RateStudy::Analyse(rate_fixture::CriticalStates());
+  WriteRateFiles(dir.string(), rate);
+  auto find = [](const std::vector<FigureSpec>& figures) {
+    for (const FigureSpec& f : figures) {
+      if (f.stem == "rate_against_models") return f;
+    }
+    ADD_FAILURE() << "no rate_against_models";
+    return FigureSpec{};
+  };
+  // Uncalibrated: the default selection, the smallest I* with a CSL from two starts.
+  FigureSpec f = find(WriteFigureData(dir.string()));
+  EXPECT_TRUE(f.not_drawn.empty()) << f.not_drawn;
+  std::map<std::string, std::string> v(f.variables.begin(), f.variables.end());
+  EXPECT_EQ(v["quasi_title"], "'I* = 0.0003'");
+  EXPECT_EQ(v["n_quasi_static"], "1");
+  EXPECT_EQ(v["n_paper_rate"], "1");
+  EXPECT_EQ(v["n_models"], "0");
+  EXPECT_NE(f.caption.find("not yet calibrated"), std::string::npos) << f.caption;
+  // The selection that `study calibrate` wrote decides: I* = 0.003, both starts.
+  WriteQuasiStaticSelection(dir.string(), SelectQuasiStatic(rate, 3e-3));
+  f = find(WriteFigureData(dir.string()));
+  EXPECT_NE(f.caption.find("I* = 0.003 (filled circles: the quasi-static set, "
+                           "calibration/quasi_static.toml)"),
+            std::string::npos)
+      << f.caption;
+  const std::string quasi =
+      ReadTextFile((dir / "figures/data/rate_models_quasi_static.tsv").string());
+  // Two groups (the starts) at ψ_ε = 90°, drawn 0.6° to the left; ψ_σ = 25 + 400·3e-3.
+  EXPECT_EQ(Count(quasi, "\n89.4\t26.2"), 2) << quasi;
+  const std::string paper = ReadTextFile((dir / "figures/data/rate_models_paper_rate.tsv").string());
+  EXPECT_EQ(Count(paper, "\n90.6\t35\t"), 2) << paper;
+}
+
 TEST(WriteFigureData, TheExtensionSweepHasItsFigureWhenItHasAnExtensionStep) {
   const fs::path dir = BareStudy("rate_extension");
   std::vector<RateState> states = rate_fixture::CriticalStates();
@@ -278,8 +320,9 @@ TEST(WriteFigureData, TheExtensionSweepHasItsFigureWhenItHasAnExtensionStep) {
   const std::vector<FigureSpec> figures = WriteFigureData(dir.string());
   ASSERT_EQ(Stems(figures),
             (std::vector<std::string>{"rate_psi_sigma_p", "rate_csl_ncl",
-                                      "rate_critical_state_ratio", "rate_extension"}));
-  const FigureSpec& f = figures.back();
+                                      "rate_critical_state_ratio", "rate_extension",
+                                      "rate_against_models"}));
+  const FigureSpec& f = figures[3];
   EXPECT_TRUE(f.not_drawn.empty()) << f.not_drawn;
   std::map<std::string, std::string> v(f.variables.begin(), f.variables.end());
   EXPECT_EQ(v["n_sweeps"], "2");

@@ -1,5 +1,6 @@
 #include "study/rate_study.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -327,6 +328,41 @@ TEST(ExtensionSweep, BothFilesHaveTheirRows) {
   EXPECT_NEAR(std::stod(limits.rows[1][limits.Column("psi_d_deg_mean")]), 120.0, 1e-6);
   EXPECT_NE(limits.rows[0][limits.Column("text")].find("liquefied at psi_epsilon = 110"),
             std::string::npos);
+}
+
+TEST(QuasiStatic, TheSmallestRateWithACslFromTwoStartsIsTheCalibratedSet) {
+  std::vector<RateState> states = CriticalStates();
+  for (RateState& s : states) {
+    s.case_name = fmt::format("nc{:g}_psi90_{}{:g}", s.start_p_kpa,
+                              s.rule == dem::RateRule::kInertial ? "I" : "D", s.rate());
+  }
+  // At 3e-4 only one start keeps usable states: 1e-3 is the smallest with a CSL.
+  for (RateState& s : states) {
+    if (s.rule == dem::RateRule::kInertial && s.inertial_number == 3e-4 && s.start_p_kpa == 20) {
+      s.flags = "gas";
+    }
+  }
+  const RateStudy study = RateStudy::Analyse(states);
+  const QuasiStaticSelection chosen = SelectQuasiStatic(study);
+  ASSERT_TRUE(chosen.valid()) << chosen.reason;
+  EXPECT_EQ(chosen.inertial_number, 1e-3);
+  EXPECT_EQ(chosen.youngs_modulus_mpa, 500);
+  EXPECT_EQ(chosen.cases, (std::vector<std::string>{"nc20_psi90_I0.001", "nc100_psi90_I0.001"}));
+  // Asked for: any I* the study has, also one without a CSL.
+  EXPECT_EQ(SelectQuasiStatic(study, 3e-4).cases.size(), 2u);
+  const QuasiStaticSelection none = SelectQuasiStatic(study, 0.5);
+  EXPECT_FALSE(none.valid());
+  EXPECT_NE(none.reason.find("no rate case runs at I* = 0.5"), std::string::npos) << none.reason;
+  EXPECT_NE(none.reason.find("0.0003, 0.001, 0.003, 0.01"), std::string::npos) << none.reason;
+  // Written and read back.
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "selection";
+  fs::remove_all(dir);
+  EXPECT_FALSE(ReadQuasiStaticSelection(dir.string()).has_value());
+  WriteQuasiStaticSelection(dir.string(), chosen);
+  const std::optional<QuasiStaticSelection> back = ReadQuasiStaticSelection(dir.string());
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->inertial_number, 1e-3);
+  EXPECT_EQ(back->cases, chosen.cases);
 }
 
 TEST(ReadRateStates, MalformedNumbersNameTheFileAndLine) {

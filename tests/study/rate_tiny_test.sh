@@ -58,7 +58,7 @@ fi
 "$granasym" study figures "$out" | tee "$work/figures.txt"
 index="$out/figures/index.tsv"
 stems=$(tail -n +2 "$index" | cut -f1 | tr '\n' ' ')
-[ "$stems" = "fig09_ncl rate_psi_sigma_p rate_csl_ncl rate_critical_state_ratio rate_extension " ] ||
+[ "$stems" = "fig09_ncl rate_psi_sigma_p rate_csl_ncl rate_critical_state_ratio rate_extension rate_against_models " ] ||
   fail "figures/index.tsv lists '$stems'"
 for stem in fig09_ncl rate_psi_sigma_p rate_csl_ncl rate_extension; do
   for ext in png pdf; do
@@ -70,6 +70,16 @@ if [ ! -s "$out/figures/rate_critical_state_ratio.png" ]; then
   grep -P "^rate_critical_state_ratio\t.*Not drawn: no ψ_ε = 90° rate" "$index" ||
     fail "rate_critical_state_ratio neither drawn nor explained"
 fi
+
+# Models against the quasi-static set need a CSL from two starts: the tiny
+# scale has one start, so the figure says why it is not drawn, and
+# `study calibrate` refuses with the reason.
+grep -P "^rate_against_models\t.*Not drawn: no I\* has usable psi_epsilon = 90 deg states from two starts" "$index" ||
+  fail "rate_against_models: no reason given"
+if "$granasym" study calibrate "$out" > "$work/calibrate.txt" 2>&1; then
+  fail "study calibrate fitted a rate study without a quasi-static CSL"
+fi
+grep -q "a rate study, but no I\* has usable" "$work/calibrate.txt" || fail "calibrate gave no reason"
 
 "$granasym" study report "$out" | tee "$work/report.txt"
 grep -q "^## Rate study" "$out/report.md" || fail "report.md has no Rate study section"
