@@ -1,5 +1,6 @@
 #include "study/programme.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <set>
@@ -287,6 +288,7 @@ std::string RateProgrammePath() { return std::string(GRANASYM_PROGRAMMES_DIR) + 
 TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
   const Programme small = Programme::Load(RateProgrammePath(), Scale::kSmall);
   EXPECT_EQ(small.Current().replicates, 3);
+  EXPECT_EQ(small.Current().count, 5000);
   // Per Young's modulus one NCL with a state at every start.
   for (const char* ncl : {"ncl_E500", "ncl_E100"}) {
     ASSERT_NE(small.Find(ncl), nullptr) << ncl;
@@ -294,25 +296,42 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
               (std::vector<std::string>{"p5", "p20", "p100", "p500"}));
     EXPECT_NE(small.Find(ncl)->scene_body.find("inertial_number = 0.001"), std::string::npos);
   }
-  // Every (ψ_ε, p_0) at the six I* and at 167 1/s; 90° at both moduli.
-  const std::vector<std::string> rates = {"I0.1",   "I0.03",   "I0.01", "I0.003",
-                                          "I0.001", "I0.0003", "D167"};
+  // Every (ψ_ε, p_0) at five I* and at 167 1/s; 90° also at E = 100 MPa for
+  // the three smallest I* and 167 1/s; 3e-4 on the 90° path from 100 kPa.
+  auto expect = [&small](const std::string& name, const std::string& p) {
+    const CaseSpec* c = small.Find(name);
+    EXPECT_NE(c, nullptr) << name;
+    if (!c) return 0;
+    EXPECT_EQ(c->figures, "rate") << name;
+    EXPECT_EQ(c->parent_stage, "p" + p) << name;
+    return 1;
+  };
   int rate_cases = 0;
-  for (const char* p : {"5", "20", "100", "500"}) {
-    for (const std::string& rate : rates) {
-      for (const std::string& name :
-           {"nc" + std::string(p) + "_psi0_" + rate, "nc" + std::string(p) + "_psi100_" + rate,
-            "nc" + std::string(p) + "_psi90_" + rate + "_E500",
-            "nc" + std::string(p) + "_psi90_" + rate + "_E100"}) {
-        const CaseSpec* c = small.Find(name);
-        ASSERT_NE(c, nullptr) << name;
-        EXPECT_EQ(c->figures, "rate") << name;
-        EXPECT_EQ(c->parent_stage, "p" + std::string(p)) << name;
-        ++rate_cases;
-      }
+  for (const std::string p : {"5", "20", "100", "500"}) {
+    for (const std::string rate : {"I0.1", "I0.03", "I0.01", "I0.003", "I0.001", "D167"}) {
+      rate_cases += expect("nc" + p + "_psi0_" + rate, p);
+      rate_cases += expect("nc" + p + "_psi100_" + rate, p);
+      rate_cases += expect("nc" + p + "_psi90_" + rate + "_E500", p);
     }
+    for (const std::string rate : {"I0.01", "I0.003", "I0.001", "D167"}) {
+      rate_cases += expect("nc" + p + "_psi90_" + rate + "_E100", p);
+    }
+    EXPECT_EQ(small.Find("nc" + p + "_psi90_I0.1_E100"), nullptr);
   }
-  EXPECT_EQ(rate_cases, 4 * 7 * 4);
+  rate_cases += expect("nc100_psi90_I0.0003_E500", "100");
+  EXPECT_EQ(small.Find("nc20_psi90_I0.0003_E500"), nullptr);
+  // The extension sweep: 95°, 105° ... 150° from NC 100 kPa at I* = 3e-3
+  // (100° is the rate cases'), stopping on liquefaction; not at I* = 0.1.
+  for (int psi = 95; psi <= 150; psi += 5) {
+    if (psi == 100) continue;
+    rate_cases += expect(fmt::format("nc100_psi{}_I0.003", psi), "100");
+    EXPECT_EQ(small.Find(fmt::format("nc100_psi{}_I0.1", psi)), nullptr) << psi;
+  }
+  EXPECT_NE(small.Find("nc100_psi150_I0.003")->scene_body.find("liquefied = true"),
+            std::string::npos);
+  EXPECT_NE(small.Find("nc100_psi100_I0.003")->scene_body.find("liquefied = true"),
+            std::string::npos);
+  EXPECT_EQ(rate_cases, 4 * 6 * 3 + 4 * 4 + 1 + 11);
   EXPECT_EQ(small.cases.size(), static_cast<size_t>(rate_cases + 2));
   // The 90° cases of the softer material start from its own NCL.
   EXPECT_EQ(small.Find("nc20_psi90_I0.001_E100")->parent, "ncl_E100");
@@ -323,6 +342,11 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
   // Every scene of every scale is a valid scene (Plan::Make parses them).
   const Plan plan = Plan::Make(small, 1, "out");
   EXPECT_EQ(plan.cases.size(), 3 * small.cases.size());
+  const int d167 = plan.Find("r1/nc20_psi90_D167_E500");
+  ASSERT_GE(d167, 0);
+  EXPECT_EQ(dem::Scene::Parse(plan.cases[static_cast<size_t>(d167)].scene_text, "scene.toml", ".")
+                .adaptive_time_step.fraction,
+            0.3);
   // The cost estimate (ETA, shards) of a path at fixed I* grows as 1/I*, not
   // that of its cap of 5000 1/s.
   auto steps = [&plan](const std::string& id) {
@@ -330,7 +354,7 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
     EXPECT_GE(k, 0) << id;
     return k < 0 ? 0.0 : plan.cases[static_cast<size_t>(k)].estimated_steps;
   };
-  EXPECT_NEAR(steps("r1/nc20_psi90_I0.0003_E500") / steps("r1/nc20_psi90_I0.003_E500"), 10.0,
+  EXPECT_NEAR(steps("r1/nc100_psi90_I0.0003_E500") / steps("r1/nc100_psi90_I0.003_E500"), 10.0,
               1e-9);
   EXPECT_GT(steps("r1/nc20_psi90_I0.003_E500"), steps("r1/nc20_psi90_D167_E500"));
   const Programme paper = Programme::Load(RateProgrammePath(), Scale::kPaper);
@@ -344,10 +368,11 @@ TEST(RateProgramme, TinyScaleKeepsOneStartTwoRatesAndTheConstantRate) {
   for (const CaseSpec& c : tiny.cases) names.push_back(c.name);
   EXPECT_EQ(names, (std::vector<std::string>{"ncl_E500", "nc100_psi0_I0.1", "nc100_psi0_I0.03",
                                              "nc100_psi0_D167", "nc100_psi90_I0.1_E500",
-                                             "nc100_psi90_I0.03_E500", "nc100_psi90_D167_E500"}));
+                                             "nc100_psi90_I0.03_E500", "nc100_psi90_D167_E500",
+                                             "nc100_psi120_I0.1", "nc100_psi150_I0.1"}));
   EXPECT_EQ(tiny.Find("ncl_E500")->stage_names, (std::vector<std::string>{"p100"}));
   const Plan plan = Plan::Make(tiny, 1, "out");
-  EXPECT_EQ(plan.cases.size(), 14u);  // two replicates
+  EXPECT_EQ(plan.cases.size(), 18u);  // two replicates
   EXPECT_EQ(plan.samples[0].options.count, 800u);
   // The tiny caps and rates reach the scenes.
   const int k = plan.Find("r1/nc100_psi90_I0.03_E500");
