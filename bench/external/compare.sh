@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Whole-run comparison of granasym with LAMMPS (gran/hooke/history) and Yade
 # (FrictMat + Cundall-Strack) on the same periodic packing under the same
-# loading: isotropic compression (psi_epsilon = 0), velocity gradient
-# L = diag(-|D|/sqrt3, -|D|/sqrt3, -|D|/sqrt3) with |D| = 167 1/s,
-# dt = 1.2e-7 s, K steps.  Not part of CI.  See README.md in this directory.
+# loading: proportional straining at psi_epsilon = PSI (default 0: isotropic
+# compression; 90: isochoric axial compression), velocity gradient
+# L = diag(-eps_a, -eps_r, -eps_r) with |D| = 167 1/s (SPEC section 2, axis 1
+# = x the axial one), dt = 1.2e-7 s, K steps.  Not part of CI.  See README.md
+# in this directory.
 #
-# usage: compare.sh --packing FILE [--steps K] [--threads T]
+# usage: compare.sh --packing FILE [--steps K] [--threads T] [--psi PSI]
 #                   [--granasym PATH] [--out DIR] [--repeat R]
 #                   [--skin-frac F] [--lammps-gamma G] [--lammps-mpi]
 #                   [--skip-granasym] [--skip-lammps] [--skip-yade] [--no-install]
@@ -27,6 +29,7 @@ SKIP_L=0
 SKIP_Y=0
 INSTALL=1
 STRETCH=167.0
+PSI=0
 
 usage() { sed -n '2,12p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
 
@@ -35,6 +38,7 @@ while [[ $# -gt 0 ]]; do
     --packing) PACKING="$2"; shift 2 ;;
     --steps) STEPS="$2"; shift 2 ;;
     --threads) THREADS="$2"; shift 2 ;;
+    --psi) PSI="$2"; shift 2 ;;
     --granasym) GRANASYM="$2"; shift 2 ;;
     --out) OUT="$2"; shift 2 ;;
     --repeat) REPEAT="$2"; shift 2 ;;
@@ -55,6 +59,8 @@ done
 [[ "$STEPS" =~ ^[0-9]+$ && "$STEPS" -gt 0 ]] || { echo "--steps must be a positive integer" >&2; exit 2; }
 [[ "$THREADS" =~ ^[0-9]+$ && "$THREADS" -gt 0 ]] || { echo "--threads must be a positive integer" >&2; exit 2; }
 [[ "$REPEAT" =~ ^[0-9]+$ && "$REPEAT" -gt 0 ]] || { echo "--repeat must be a positive integer" >&2; exit 2; }
+[[ "$PSI" =~ ^-?[0-9]+([.][0-9]+)?$ ]] && awk -v p="$PSI" 'BEGIN { exit !(p >= 0 && p <= 180) }' ||
+  { echo "--psi must be a number of degrees in [0, 180], got '$PSI'" >&2; exit 2; }
 
 mkdir -p "$OUT"
 OUT="$(cd "$OUT" && pwd)"
@@ -63,7 +69,10 @@ if [[ "$GRANASYM" != /* && -e "$GRANASYM" ]]; then
   GRANASYM="$(cd "$(dirname "$GRANASYM")" && pwd)/$(basename "$GRANASYM")"
 fi
 
-RATE="$(python3 -c "import math; print(repr(-$STRETCH/math.sqrt(3.0)))")"
+# Velocity gradient components (tension positive) of psi_epsilon = PSI:
+# eps_a = |D| (cos/sqrt3 + sin sqrt(2/3)), eps_r = |D| (cos/sqrt3 - sin/sqrt6).
+RATE_A="$(python3 -c "import math; p = math.radians($PSI); print(repr(-$STRETCH * (math.cos(p) / math.sqrt(3) + math.sin(p) * math.sqrt(2 / 3))))")"
+RATE_R="$(python3 -c "import math; p = math.radians($PSI); print(repr(-$STRETCH * (math.cos(p) / math.sqrt(3) - math.sin(p) / math.sqrt(6))))")"
 NPART="$(head -n1 "$PACKING" | awk '{print $1}')"
 RESULTS="$OUT/results.tsv"
 NOTES="$OUT/notes.txt"
@@ -138,7 +147,7 @@ interval_strain = 1.0e9
 [[stage]]
 name = "compress"
 type = "strain_path"
-psi_epsilon_deg = 0.0
+psi_epsilon_deg = $PSI
 stretching_rate = $STRETCH
 
 [stage.stop]
@@ -211,7 +220,7 @@ run_lammps() {
   local lmp
   if ! lmp="$(find_lmp)"; then note "LAMMPS skipped: no lmp / lmp_serial / lmp_mpi binary"; return 0; fi
   python3 "$HERE/lammps_input.py" --packing "$PACKING" --dir "$dir" --steps "$STEPS" \
-    --rate "$RATE" --gamma "$LMP_GAMMA" --skin-frac "$SKIN_FRAC" > /dev/null
+    --rate "$RATE_A" --rate-yz "$RATE_R" --gamma "$LMP_GAMMA" --skin-frac "$SKIN_FRAC" > /dev/null
   while IFS= read -r line; do note "$line"; done < "$dir/notes.txt"
 
   local cmd=("$lmp") tlabel="$THREADS"
@@ -254,7 +263,7 @@ run_yade() {
   local walls=() i res w
   for ((i = 1; i <= REPEAT; i++)); do
     # -n: no GUI, -x: exit when the script ends, -j: OpenMP threads
-    if ! (cd "$dir" && yade -j "$THREADS" -n -x "$HERE/yade_run.py" "$PACKING" "$STEPS" "$RATE" "$SKIN_FRAC") \
+    if ! (cd "$dir" && yade -j "$THREADS" -n -x "$HERE/yade_run.py" "$PACKING" "$STEPS" "$RATE_A" "$SKIN_FRAC" 0.5 "$RATE_R") \
          > "$dir/stdout.txt" 2>&1; then
       note "Yade failed (see $dir/stdout.txt): $(tail -n1 "$dir/stdout.txt")"
       return 0
@@ -272,7 +281,7 @@ run_yade() {
 }
 
 echo "packing: $PACKING (N = $NPART), steps = $STEPS, threads = $THREADS, repeat = $REPEAT"
-echo "loading: L = diag($RATE, $RATE, $RATE) 1/s, dt = 1.2e-7 s"
+echo "loading: psi_epsilon = $PSI deg, L = diag($RATE_A, $RATE_R, $RATE_R) 1/s, dt = 1.2e-7 s"
 run_granasym
 run_lammps
 run_yade

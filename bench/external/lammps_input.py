@@ -39,7 +39,9 @@ def main():
     ap.add_argument("--dir", required=True, help="output directory")
     ap.add_argument("--steps", type=int, default=2000)
     ap.add_argument("--rate", type=float, default=-167.0 / math.sqrt(3.0),
-                    help="diagonal velocity gradient component [1/s] (same on x, y, z)")
+                    help="velocity gradient component L_xx [1/s] (also y, z without --rate-yz)")
+    ap.add_argument("--rate-yz", type=float, default=None,
+                    help="velocity gradient components L_yy = L_zz [1/s] (default: --rate)")
     ap.add_argument("--dt", type=float, default=1.2e-7)
     ap.add_argument("--young", type=float, default=500e6)
     ap.add_argument("--kt-ratio", type=float, default=0.3)
@@ -52,6 +54,7 @@ def main():
     ap.add_argument("--thermo", type=int, default=0,
                     help="thermo output interval (default: steps/4)")
     a = ap.parse_args()
+    rate_yz = a.rate if a.rate_yz is None else a.rate_yz
 
     with open(a.packing) as f:
         head = f.readline().split()
@@ -86,7 +89,7 @@ def main():
         f.write("\nVelocities\n\n")
         for i, (x, y, z, r) in enumerate(sph, 1):
             f.write("%d %.12e %.12e %.12e 0 0 0\n" % (
-                i, a.rate * (x - 0.5 * lx), a.rate * (y - 0.5 * ly), a.rate * (z - 0.5 * lz)))
+                i, a.rate * (x - 0.5 * lx), rate_yz * (y - 0.5 * ly), rate_yz * (z - 0.5 * lz)))
 
     notes = [
         "LAMMPS approximation: constant k_n = E*r_mean = %.6e N/m for every pair "
@@ -95,8 +98,8 @@ def main():
         % (a.kt_ratio, kt, a.friction_angle, mu),
         "LAMMPS has no Cundall local damping; gamma_n = gamma_t = %g 1/s instead, "
         "so p differs from granasym/Yade (compare time per particle-step)." % a.gamma,
-        "Loading: fix deform trate %.6g on x y z (true strain rate, matches H <- H + dt L H), "
-        "remap v, initial velocity = affine field." % a.rate,
+        "Loading: fix deform trate %.6g on x, %.6g on y and z (true strain rate, matches "
+        "H <- H + dt L H), remap v, initial velocity = affine field." % (a.rate, rate_yz),
     ]
     with open(os.path.join(a.dir, "notes.txt"), "w") as f:
         f.write("\n".join(notes) + "\n")
@@ -117,7 +120,7 @@ neigh_modify    delay 0 every 1 check yes
 
 timestep        {dt:.10e}
 fix             integ all nve/sphere
-fix             load all deform 1 x trate {rate:.10e} y trate {rate:.10e} z trate {rate:.10e} remap v
+fix             load all deform 1 x trate {rate:.10e} y trate {rate_yz:.10e} z trate {rate_yz:.10e} remap v
 
 # pressure from the pair virial only (LAMMPS: positive = compression)
 compute         pvir all pressure NULL virial
@@ -129,7 +132,7 @@ thermo          {thermo}
 
 run             {steps}
 print           "RESULT code=lammps N={n} steps={steps} p_kpa=${{p_kpa}} e=${{e}}"
-""".format(kn=kn, kt=kt, g=a.gamma, mu=mu, skin=skin, dt=a.dt, rate=a.rate,
+""".format(kn=kn, kt=kt, g=a.gamma, mu=mu, skin=skin, dt=a.dt, rate=a.rate, rate_yz=rate_yz,
            vs=v_solid, thermo=thermo, steps=a.steps, n=n)
     with open(os.path.join(a.dir, "in.lmp"), "w") as f:
         f.write(inp)

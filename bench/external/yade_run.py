@@ -1,14 +1,14 @@
 # Yade script for the granasym external comparison.
 #
 # Run non-interactively (Debian 12 yade 2023.02a):
-#     yade -j THREADS -n -x yade_run.py PACKING STEPS [RATE] [SKIN_FRAC] [DAMPING]
+#     yade -j THREADS -n -x yade_run.py PACKING STEPS [RATE] [SKIN_FRAC] [DAMPING] [RATE_YZ]
 # (-n: no GUI, -x: exit when the script ends, -j: OpenMP threads).
 #
 # Builds a periodic cell from the plain-text packing ("N Lx Ly Lz", then
 # "x y z r" per sphere, metres), FrictMat spheres (E = 500 MPa, k_s/k_n = 0.3,
 # friction angle 0.5 rad, 2650 kg/m^3), the linear Cundall-Strack law, local
 # damping 0.5 (DAMPING, for checks only), dt = 1.2e-7 s, and a constant diagonal velocity gradient
-# diag(RATE, RATE, RATE) (default -167/sqrt(3) 1/s).  Times O.run(STEPS, True)
+# diag(RATE, RATE_YZ, RATE_YZ) (default -167/sqrt(3) 1/s, RATE_YZ = RATE).  Times O.run(STEPS, True)
 # and prints, as its last line,
 #     RESULT code=yade N=... steps=... threads=... wall_s=... p_kpa=... e=...
 # with p compression positive (Yade's stress is tension positive) and
@@ -25,13 +25,14 @@ import time
 
 args = [a for a in sys.argv[1:]]
 if len(args) < 2:
-    print("usage: yade -n -x yade_run.py PACKING STEPS [RATE] [SKIN_FRAC] [DAMPING]")
+    print("usage: yade -n -x yade_run.py PACKING STEPS [RATE] [SKIN_FRAC] [DAMPING] [RATE_YZ]")
     sys.exit(2)
 packing = args[0]
 steps = int(args[1])
 rate = float(args[2]) if len(args) > 2 else -167.0 / math.sqrt(3.0)
 skin_frac = float(args[3]) if len(args) > 3 else 0.1
 damping = float(args[4]) if len(args) > 4 else 0.5  # other values: checks only
+rate_yz = float(args[5]) if len(args) > 5 else rate  # L_yy = L_zz (default: isotropic)
 
 with open(packing) as f:
     head = f.readline().split()
@@ -67,7 +68,7 @@ O.engines = [
     NewtonIntegrator(damping=damping, gravity=Vector3(0, 0, 0)),
 ]
 O.dt = 1.2e-7
-O.cell.velGrad = Matrix3(rate, 0, 0, 0, rate, 0, 0, 0, rate)
+O.cell.velGrad = Matrix3(rate, 0, 0, 0, rate_yz, 0, 0, 0, rate_yz)
 
 t0 = time.time()
 O.run(steps, True)
