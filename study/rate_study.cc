@@ -132,6 +132,14 @@ class CsvWriter {
   void SetHeader(const Columns& fields) {
     if (header_.empty()) header_ = CsvLine(fields, true);
   }
+  // Every row through `fields` (a default row gives the header of an empty
+  // table), then the file.
+  template <typename Row, typename Fields>
+  void WriteRows(const std::vector<Row>& rows, Fields fields, const std::string& path) {
+    for (const Row& row : rows) Add(fields(row));
+    SetHeader(fields(Row{}));
+    Write(path);
+  }
   void Write(const std::string& path) const {
     std::string text;
     for (const std::string& comment : comments_) text += "# " + comment + "\n";
@@ -639,9 +647,7 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
       {"the asymptotic states of the rate cases (figures key 'rate'), one row per "
        "case and detector stage; start_p_kpa: the p target of the state the case "
        "started from; stiffness_number: kappa of the contact law at p"});
-  for (const RateState& s : study.states) states.Add(StateFields(s));
-  states.SetHeader(StateFields(RateState{}));
-  states.Write(directory + "/" + kRateStatesFile);
+  states.WriteRows(study.states, StateFields, directory + "/" + kRateStatesFile);
 
   CsvWriter summary(
       {"per (E, psi_epsilon, start p, rate): the mean over the replicates' usable "
@@ -663,9 +669,7 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
     AddEstimate(&fields, "stiffness_number", g.stiffness_number);
     return fields;
   };
-  for (const RateGroup& g : study.groups) summary.Add(group_fields(g));
-  summary.SetHeader(group_fields(RateGroup{}));
-  summary.Write(directory + "/" + kRateSummaryFile);
+  summary.WriteRows(study.groups, group_fields, directory + "/" + kRateSummaryFile);
 
   CsvWriter lines({fmt::format("per (E, psi_epsilon, rate): ln(1+e) = N - lambda ln(p / 1 kPa) "
                                "by least squares through the usable states of every start and "
@@ -688,9 +692,7 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
     fields.emplace_back("p_max_kpa", CsvNumber(l.p_max_kpa));
     return fields;
   };
-  for (const RateLine& l : study.lines) lines.Add(line_fields(l));
-  lines.SetHeader(line_fields(RateLine{}));
-  lines.Write(directory + "/" + kRateLinesFile);
+  lines.WriteRows(study.lines, line_fields, directory + "/" + kRateLinesFile);
 
   CsvWriter quasi({fmt::format("the quasi-static limit per (E, psi_epsilon, start p): y = a + b "
                                "I(d_max) by least squares through the usable states of the {} "
@@ -715,9 +717,7 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
     AddEstimate(&fields, "slope", f.slope);
     return fields;
   };
-  for (const QuasiStaticFit& f : study.quasi_static) quasi.Add(quasi_fields(f));
-  quasi.SetHeader(quasi_fields(QuasiStaticFit{}));
-  quasi.Write(directory + "/" + kRateQuasiStaticFile);
+  quasi.WriteRows(study.quasi_static, quasi_fields, directory + "/" + kRateQuasiStaticFile);
 
   CsvWriter verdicts(
       {fmt::format("rate independence (SPEC 8.2) per (E, psi_epsilon, start p): the two "
@@ -747,9 +747,7 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
     fields.emplace_back("reason", CsvText(v.reason));
     return fields;
   };
-  for (const RateVerdict& v : study.verdicts) verdicts.Add(verdict_fields(v));
-  verdicts.SetHeader(verdict_fields(RateVerdict{}));
-  verdicts.Write(directory + "/" + kRateIndependenceFile);
+  verdicts.WriteRows(study.verdicts, verdict_fields, directory + "/" + kRateIndependenceFile);
 
   auto sweep_fields = [](double e_mpa, dem::RateRule rule, double rate, double p0) {
     return Columns{
@@ -780,9 +778,7 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
     fields.emplace_back("status", x.status);
     return fields;
   };
-  for (const ExtensionStep& x : study.extension_steps) steps.Add(step_fields(x));
-  steps.SetHeader(step_fields(ExtensionStep{}));
-  steps.Write(directory + "/" + kRateExtensionFile);
+  steps.WriteRows(study.extension_steps, step_fields, directory + "/" + kRateExtensionFile);
 
   CsvWriter limits(
       {"the end of each extension sweep: limit_d (psi_epsilon(d), where sigma_r/p is zero within "
@@ -802,9 +798,7 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
     fields.emplace_back("text", CsvText(l.result.empty() ? std::string() : l.Text()));
     return fields;
   };
-  for (const ExtensionLimit& l : study.extension_limits) limits.Add(limit_fields(l));
-  limits.SetHeader(limit_fields(ExtensionLimit{}));
-  limits.Write(directory + "/" + kRateExtensionLimitFile);
+  limits.WriteRows(study.extension_limits, limit_fields, directory + "/" + kRateExtensionLimitFile);
 }
 
 QuasiStaticSelection SelectQuasiStatic(const RateStudy& study,
