@@ -309,6 +309,8 @@ void Simulation::AddRow() {
 }
 
 std::optional<std::string> Simulation::LiquefiedStop() {
+  const Stage& current = stage();
+  if (!current.stop.liquefied) return std::nullopt;
   StageClock& clock = runner_.clock;
   const double p = series_.Last(record::kColumnMeanStress);
   const double z = series_.Last(record::kColumnMechanicalCoordination);
@@ -317,9 +319,7 @@ std::optional<std::string> Simulation::LiquefiedStop() {
     return std::nullopt;
   }
   if (std::isnan(clock.gas_since_strain)) clock.gas_since_strain = clock.strain_norm;
-  const Stage& current = stage();
-  const double window = current.asymptote.window_strain;
-  if (!current.stop.liquefied || clock.strain_norm - clock.gas_since_strain < window) {
+  if (clock.strain_norm - clock.gas_since_strain < current.asymptote.window_strain) {
     return std::nullopt;
   }
   return fmt::format(

@@ -556,12 +556,12 @@ static void AnalyseExtension(RateStudy* study) {
         }
         std::vector<double> x, y;
         for (const RateState& s : study->states) {
-          if (s.youngs_modulus_mpa != limit.youngs_modulus_mpa || s.rule != limit.rule ||
-              s.rate() != limit.rate || s.start_p_kpa != limit.start_p_kpa ||
-              std::find(through.begin(), through.end(), s.psi_epsilon_deg) == through.end() ||
-              !study->Usable(s) || !std::isfinite(s.q_over_p)) {
-            continue;
-          }
+          const bool in_step =
+              std::any_of(through.begin(), through.end(), [&](double step_psi) {
+                return KeyOf(s) == RateKey{limit.youngs_modulus_mpa, step_psi,
+                                           limit.start_p_kpa, limit.rule, limit.rate};
+              });
+          if (!in_step || !study->Usable(s) || !std::isfinite(s.q_over_p)) continue;
           x.push_back(s.psi_epsilon_deg);
           y.push_back(1.0 - s.q_over_p / 3.0);
         }
