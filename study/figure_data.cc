@@ -1408,12 +1408,14 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
            fmt::format(
                "M = q/p of the ψ_ε = 90° asymptotic states against their measured I(d_max) (means "
                "over the replicates with 95 % intervals of both; circles: fixed I*, diamonds: the "
-               "paper's constant ‖D‖), one colour per start p_0; {}. Lines: the quasi-static fit "
-               "M = M_0 + b·I through the states of the {} smallest I* (least squares: the "
+               "paper's constant ‖D‖; triangles: drained triaxial compression at σ_r = p_0 and a "
+               "constant axial rate, rate_drained.csv), one colour per start p_0; {}. Lines: the "
+               "quasi-static fit M = M_0 + b·I through the states of the {} smallest I* (of every "
+               "axial rate for the drained cases; least squares: the "
                "small-I form of the μ(I) laws of the paper's refs. [10], da Cruz et al. 2005, "
                "and [29], Jop et al. 2006); the "
                "points at the left edge are M_0 = M(I → 0) with its 95 % interval "
-               "(rate_quasi_static.csv). Band: M = {}–{}, the range issue 10 gives for frictional "
+               "(rate_quasi_static.csv, rate_drained_limit.csv). Band: M = {}–{}, the range issue 10 gives for frictional "
                "spheres at μ ≈ 0.5 without rolling resistance in triaxial compression; a source "
                "for its numbers was not verified here (Goncu & Luding, 'Effect of particle "
                "friction and polydispersity on the macroscopic stress-strain relations of "
@@ -1429,7 +1431,12 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   for (const RateGroup& g : rate.groups) {
     if (std::abs(g.key.psi_epsilon_deg - 90) < 1e-6 && g.used > 0) starts.insert(g.key.start_p_kpa);
   }
-  if (starts.empty()) return NotDrawn(spec, "no ψ_ε = 90° rate case has a usable asymptotic state");
+  for (const DrainedGroup& g : rate.drained.groups) {
+    if (g.used > 0) starts.insert(g.radial_stress_kpa);
+  }
+  if (starts.empty()) {
+    return NotDrawn(spec, "no ψ_ε = 90° or drained rate case has a usable asymptotic state");
+  }
   std::map<double, int> colour_of;
   std::string start_titles;
   for (double p : starts) {
@@ -1452,7 +1459,23 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
          g.q_over_p.mean, Zeroed(g.q_over_p.half_width), static_cast<double>(point),
          static_cast<double>(colour_of.at(g.key.start_p_kpa))});
   }
-  if (by_curve.empty()) return NotDrawn(spec, "no ψ_ε = 90° rate state has a measured I");
+  // The drained cases (constant σ_r = p_0): triangles, one block per (E, σ_r).
+  std::map<std::pair<double, double>, std::vector<std::vector<double>>> drained_curves;
+  for (const DrainedGroup& g : rate.drained.groups) {
+    if (g.used == 0 || !(g.inertial_number_dmax.mean > 0) || !std::isfinite(g.q_over_p.mean)) {
+      continue;
+    }
+    const bool ref = g.youngs_modulus_mpa == reference;
+    i_min = std::min(i_min, g.inertial_number_dmax.mean);
+    drained_curves[{g.youngs_modulus_mpa, g.radial_stress_kpa}].push_back(
+        {g.inertial_number_dmax.mean,
+         LogHalfWidth(g.inertial_number_dmax.mean, g.inertial_number_dmax.half_width),
+         g.q_over_p.mean, Zeroed(g.q_over_p.half_width), ref ? 9.0 : 8.0,
+         static_cast<double>(colour_of.at(g.radial_stress_kpa))});
+  }
+  if (by_curve.empty() && drained_curves.empty()) {
+    return NotDrawn(spec, "no ψ_ε = 90° or drained rate state has a measured I");
+  }
   AxisRange x{}, y{};
   x.log = true;
   y.Add(low);
@@ -1463,9 +1486,21 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
       y.Add(row[2], row[3]);
     }
   }
+  for (const auto& [curve, rows] : drained_curves) {
+    for (const std::vector<double>& row : rows) {
+      x.Add(row[0], row[1]);
+      y.Add(row[2], row[3]);
+    }
+  }
   for (auto& [curve, rows] : by_curve) {
     std::sort(rows.begin(), rows.end());
     groups.Add(fmt::format("E = {} MPa, NC {} kPa", Short(curve.first), Short(curve.second)), rows);
+  }
+  for (auto& [curve, rows] : drained_curves) {
+    std::sort(rows.begin(), rows.end());
+    groups.Add(fmt::format("E = {} MPa, drained at sigma_r = {} kPa", Short(curve.first),
+                           Short(curve.second)),
+               rows);
   }
   groups.Write(ctx.File("rate_critical_state_groups.tsv"));
   // The quasi-static lines and limits, drawn from a left edge a third of
@@ -1492,6 +1527,26 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
     limits.Add(title, {{i_left, f.limit.mean, Zeroed(f.limit.half_width), ref ? 5.0 : 4.0,
                         static_cast<double>(colour->second)}});
     y.Add(f.limit.mean, f.limit.half_width);
+    y.Add(rows.back()[1]);
+  }
+  for (const DrainedLimit& l : rate.drained.limits) {
+    if (!l.valid()) continue;
+    const auto colour = colour_of.find(l.radial_stress_kpa);
+    if (colour == colour_of.end()) continue;
+    const bool ref = l.youngs_modulus_mpa == reference;
+    const std::string title =
+        fmt::format("E = {} MPa, drained at sigma_r = {} kPa: M_0 = {:.3f}",
+                    Short(l.youngs_modulus_mpa), Short(l.radial_stress_kpa), l.m.mean);
+    std::vector<std::vector<double>> rows;
+    for (int k = 0; k <= 20; ++k) {
+      const double i = std::exp(std::log(i_left) + (std::log(l.i_max) - std::log(i_left)) * k / 20);
+      rows.push_back({i, l.m.mean + l.m_slope.mean * i, 0.0, ref ? 9.0 : 8.0,
+                      static_cast<double>(colour->second)});
+    }
+    fits.Add(title, rows);
+    limits.Add(title, {{i_left, l.m.mean, Zeroed(l.m.half_width), ref ? 9.0 : 8.0,
+                        static_cast<double>(colour->second)}});
+    y.Add(l.m.mean, l.m.half_width);
     y.Add(rows.back()[1]);
   }
   if (fits.blocks() > 0) {
@@ -1782,8 +1837,10 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
       figures.end());
   // The rate study's figures, when it has rate cases.
   const std::vector<RateState> rate_states = ReadRateStates(directory);
-  if (!rate_states.empty()) {
-    const RateStudy rate = RateStudy::Analyse(rate_states);
+  std::vector<DrainedState> drained_states = ReadDrainedStates(directory);
+  if (!rate_states.empty() || !drained_states.empty()) {
+    RateStudy rate = RateStudy::Analyse(rate_states);
+    rate.drained = DrainedStudy::Analyse(std::move(drained_states), rate.options);
     figures.push_back(RatePsiSigma(ctx, rate));
     figures.push_back(RateLines(ctx, rate));
     figures.push_back(RateCriticalState(ctx, rate));

@@ -190,6 +190,108 @@ Columns StateFields(const RateState& s) {
           {"flags", CsvText(s.flags)}};
 }
 
+Columns DrainedStateFields(const DrainedState& s) {
+  return {{"replicate", std::to_string(s.replicate)},
+          {"case_name", CsvText(s.case_name)},
+          {"stage", CsvText(s.stage)},
+          {"status", s.status},
+          {"youngs_modulus_mpa", CsvNumber(s.youngs_modulus_mpa)},
+          {"radial_stress_kpa", CsvNumber(s.radial_stress_kpa)},
+          {"axial_strain_rate_per_s", CsvNumber(s.axial_strain_rate)},
+          {"p_kpa", CsvNumber(s.p_kpa)},
+          {"e", CsvNumber(s.e)},
+          {"ln_1_plus_e", CsvNumber(s.ln_1_plus_e)},
+          {"psi_sigma_deg", CsvNumber(s.psi_sigma_deg)},
+          {"q_over_p", CsvNumber(s.q_over_p)},
+          {"inertial_number_dmin", CsvNumber(s.inertial_number_dmin)},
+          {"inertial_number_dmax", CsvNumber(s.inertial_number_dmax)},
+          {"flags", CsvText(s.flags)}};
+}
+
+// The four drained files (rate_drained*.csv).
+void WriteDrainedFiles(const std::string& directory, const DrainedStudy& d,
+                       const RateStudyOptions& o, const std::string& usable) {
+  CsvWriter states({"the asymptotic states of the drained triaxial rate cases (constant sigma_r, "
+                    "constant axial rate), one row per case and detector stage"});
+  states.WriteRows(d.states, DrainedStateFields, directory + "/" + kRateDrainedStatesFile);
+
+  CsvWriter groups({"per (E, sigma_r, axial rate): the mean over the replicates' usable states "
+                    "and the half-width of its 95 % interval (Student t, n - 1 degrees of "
+                    "freedom); q_over_p is the critical-state ratio M",
+                    usable});
+  auto group_fields = [](const DrainedGroup& g) {
+    Columns fields = {{"youngs_modulus_mpa", CsvNumber(g.youngs_modulus_mpa)},
+                      {"radial_stress_kpa", CsvNumber(g.radial_stress_kpa)},
+                      {"axial_strain_rate_per_s", CsvNumber(g.axial_strain_rate)},
+                      {"states", std::to_string(g.states)},
+                      {"used", std::to_string(g.used)}};
+    AddEstimate(&fields, "p_kpa", g.p_kpa);
+    AddEstimate(&fields, "e", g.e);
+    AddEstimate(&fields, "ln_1_plus_e", g.ln_1_plus_e);
+    AddEstimate(&fields, "psi_sigma_deg", g.psi_sigma_deg);
+    AddEstimate(&fields, "q_over_p", g.q_over_p);
+    AddEstimate(&fields, "inertial_number_dmax", g.inertial_number_dmax);
+    return fields;
+  };
+  groups.WriteRows(d.groups, group_fields, directory + "/" + kRateDrainedFile);
+
+  CsvWriter limits({"per (E, sigma_r): y = a + b I(d_max) by least squares through the usable "
+                    "states of every axial rate (I(d_max) as measured over each asymptote's "
+                    "window): the limits as I -> 0 of M = q/p, ln(1+e) and ln p with 95 % "
+                    "intervals (Student t, points - 2 degrees of freedom); the two slowest "
+                    "rates compared in M and ln(1+e): rate_independent when both agree within "
+                    "the 95 % interval of their difference",
+                    usable});
+  auto limit_fields = [](const DrainedLimit& l) {
+    Columns fields = {{"youngs_modulus_mpa", CsvNumber(l.youngs_modulus_mpa)},
+                      {"radial_stress_kpa", CsvNumber(l.radial_stress_kpa)},
+                      {"rates", std::to_string(l.rates)},
+                      {"points", std::to_string(l.points)},
+                      {"i_min", CsvNumber(l.i_min)},
+                      {"i_max", CsvNumber(l.i_max)}};
+    AddEstimate(&fields, "m", l.m);
+    AddEstimate(&fields, "m_slope", l.m_slope);
+    AddEstimate(&fields, "ln_1_plus_e", l.ln_1_plus_e);
+    AddEstimate(&fields, "ln_p_kpa", l.ln_p_kpa);
+    fields.emplace_back("slowest_rate_per_s", CsvNumber(l.slowest));
+    fields.emplace_back("next_rate_per_s", CsvNumber(l.next));
+    fields.emplace_back("m_difference", CsvNumber(l.m_change.difference));
+    fields.emplace_back("m_difference_ci95", CsvNumber(l.m_change.half_width));
+    fields.emplace_back("m_agreement", ToString(l.m_change.agreement));
+    fields.emplace_back("ln_1_plus_e_difference", CsvNumber(l.ln_1_plus_e_change.difference));
+    fields.emplace_back("ln_1_plus_e_difference_ci95", CsvNumber(l.ln_1_plus_e_change.half_width));
+    fields.emplace_back("ln_1_plus_e_agreement", ToString(l.ln_1_plus_e_change.agreement));
+    fields.emplace_back("verdict", l.verdict);
+    fields.emplace_back("reason", CsvText(l.reason));
+    return fields;
+  };
+  limits.WriteRows(d.limits, limit_fields, directory + "/" + kRateDrainedLimitFile);
+
+  CsvWriter critical(
+      {fmt::format("per E: the quasi-static critical state from the limits of every sigma_r: M "
+                   "the mean of their M (Student t, starts - 1 degrees of freedom), phi_c = "
+                   "asin(3M/(6+M)) (interval by the delta method), dM/d ln p the least-squares "
+                   "slope of their M against ln p (zero within its interval: M independent of "
+                   "p), and the CSL ln(1+e) = Gamma - lambda ln(p / 1 kPa) through their (ln p, "
+                   "ln(1+e)) with its position at p = {:g} kPa (Student t, starts - 2 degrees "
+                   "of freedom; from the scatter of the limits, not their own intervals)",
+                   o.reference_p_kpa),
+       usable});
+  auto critical_fields = [&o](const DrainedCriticalState& c) {
+    Columns fields = {{"youngs_modulus_mpa", CsvNumber(c.youngs_modulus_mpa)},
+                      {"starts", std::to_string(c.starts)}};
+    AddEstimate(&fields, "m", c.m);
+    AddEstimate(&fields, "phi_c_deg", c.phi_c_deg);
+    AddEstimate(&fields, "m_per_ln_p", c.m_per_ln_p);
+    AddEstimate(&fields, "lambda", c.lambda);
+    fields.emplace_back("gamma", CsvNumber(c.gamma));
+    fields.emplace_back("reference_p_kpa", CsvNumber(o.reference_p_kpa));
+    AddEstimate(&fields, "position", c.position);
+    return fields;
+  };
+  critical.WriteRows(d.critical, critical_fields, directory + "/" + kRateDrainedCriticalFile);
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- analysis
@@ -613,6 +715,189 @@ std::string ExtensionLimit::Text() const {
   return fmt::format("undetermined up to psi_epsilon = {:g} deg ({})", psi_max_deg, last);
 }
 
+// ---------------------------------------------------------------- drained triaxial cases
+
+namespace {
+
+bool DrainedUsable(const DrainedState& s, const RateStudyOptions& options) {
+  if (!Contains(options.statuses, s.status)) return false;
+  for (const std::string& flag : options.excluded_flags) {
+    if (HasFlag(s.flags, flag)) return false;
+  }
+  return s.p_kpa > 0 && std::isfinite(s.ln_1_plus_e) && std::isfinite(s.q_over_p);
+}
+
+// φ_c of a triaxial-compression stress ratio M: sin φ = 3M / (6 + M).
+double FrictionAngleDeg(double m) { return std::asin(3 * m / (6 + m)) / kDegree; }
+
+}  // namespace
+
+DrainedStudy DrainedStudy::Analyse(std::vector<DrainedState> states,
+                                   const RateStudyOptions& options) {
+  DrainedStudy study;
+  study.states = std::move(states);
+  using GroupKey = std::tuple<double, double, double>;  // E, σ_r, ε̇_a
+  std::map<GroupKey, std::vector<const DrainedState*>> members;
+  for (const DrainedState& s : study.states) {
+    members[{s.youngs_modulus_mpa, s.radial_stress_kpa, s.axial_strain_rate}].push_back(&s);
+  }
+  for (const auto& [key, list] : members) {
+    DrainedGroup g;
+    std::tie(g.youngs_modulus_mpa, g.radial_stress_kpa, g.axial_strain_rate) = key;
+    g.states = static_cast<int>(list.size());
+    std::vector<const DrainedState*> used;
+    for (const DrainedState* s : list) {
+      if (DrainedUsable(*s, options)) used.push_back(s);
+    }
+    g.used = static_cast<int>(used.size());
+    auto estimate = [&used](double DrainedState::*member) {
+      std::vector<double> values;
+      for (const DrainedState* s : used) {
+        if (std::isfinite(s->*member)) values.push_back(s->*member);
+      }
+      return Estimate::Of(values);
+    };
+    g.p_kpa = estimate(&DrainedState::p_kpa);
+    g.e = estimate(&DrainedState::e);
+    g.ln_1_plus_e = estimate(&DrainedState::ln_1_plus_e);
+    g.psi_sigma_deg = estimate(&DrainedState::psi_sigma_deg);
+    g.q_over_p = estimate(&DrainedState::q_over_p);
+    g.inertial_number_dmax = estimate(&DrainedState::inertial_number_dmax);
+    study.groups.push_back(g);
+  }
+
+  // Per (E, σ_r): the groups in ascending ε̇_a (map order).
+  std::map<std::pair<double, double>, std::vector<const DrainedGroup*>> by_start;
+  for (const DrainedGroup& g : study.groups) {
+    by_start[{g.youngs_modulus_mpa, g.radial_stress_kpa}].push_back(&g);
+  }
+  for (const auto& [start, groups] : by_start) {
+    DrainedLimit l;
+    std::tie(l.youngs_modulus_mpa, l.radial_stress_kpa) = start;
+    std::vector<double> x, m, lnv, lnp;
+    for (const DrainedGroup* g : groups) {
+      if (g->used > 0) ++l.rates;
+      for (const DrainedState& s : study.states) {
+        if (s.youngs_modulus_mpa != g->youngs_modulus_mpa ||
+            s.radial_stress_kpa != g->radial_stress_kpa ||
+            s.axial_strain_rate != g->axial_strain_rate || !DrainedUsable(s, options) ||
+            !(s.inertial_number_dmax > 0)) {
+          continue;
+        }
+        x.push_back(s.inertial_number_dmax);
+        m.push_back(s.q_over_p);
+        lnv.push_back(s.ln_1_plus_e);
+        lnp.push_back(std::log(s.p_kpa));
+      }
+    }
+    l.points = static_cast<int>(x.size());
+    if (!x.empty()) {
+      l.i_min = *std::min_element(x.begin(), x.end());
+      l.i_max = *std::max_element(x.begin(), x.end());
+    }
+    if (l.rates >= 2) {
+      const LineFit fm = FitLine(x, m), fv = FitLine(x, lnv), fp = FitLine(x, lnp);
+      if (fm.valid() && fv.valid() && fp.valid()) {
+        l.m = Estimate::Fitted(fm.intercept, fm.intercept_error, fm.points);
+        l.m_slope = Estimate::Fitted(fm.slope, fm.slope_error, fm.points);
+        l.ln_1_plus_e = Estimate::Fitted(fv.intercept, fv.intercept_error, fv.points);
+        l.ln_p_kpa = Estimate::Fitted(fp.intercept, fp.intercept_error, fp.points);
+      }
+    }
+    if (groups.size() >= 2) {
+      const DrainedGroup& a = *groups[0];
+      const DrainedGroup& b = *groups[1];
+      l.slowest = a.axial_strain_rate;
+      l.next = b.axial_strain_rate;
+      l.m_change = Compare(a.q_over_p, b.q_over_p);
+      l.ln_1_plus_e_change = Compare(a.ln_1_plus_e, b.ln_1_plus_e);
+      const bool differs = l.m_change.agreement == Agreement::kDiffer ||
+                           l.ln_1_plus_e_change.agreement == Agreement::kDiffer;
+      const bool agree = l.m_change.agreement == Agreement::kAgree &&
+                         l.ln_1_plus_e_change.agreement == Agreement::kAgree;
+      l.verdict = differs ? "rate_dependent" : agree ? "rate_independent" : "undetermined";
+      std::vector<std::string> reasons;
+      for (const auto& [name, c] : {std::pair{"M", &l.m_change},
+                                    std::pair{"ln(1+e)", &l.ln_1_plus_e_change}}) {
+        if (differs && c->agreement == Agreement::kDiffer) {
+          reasons.push_back(fmt::format("{} differs by {:.4g} (95 % interval +-{:.2g})", name,
+                                        c->difference, c->half_width));
+        }
+      }
+      if (!differs && !agree) {
+        for (const DrainedGroup* g : {&a, &b}) {
+          if (g->used < 2) {
+            reasons.push_back(fmt::format("axial rate {:g} 1/s: {} usable of {} states (an "
+                                          "interval needs 2)",
+                                          g->axial_strain_rate, g->used, g->states));
+          }
+        }
+      }
+      for (const std::string& r : reasons) l.reason += (l.reason.empty() ? "" : "; ") + r;
+    } else {
+      l.verdict = "undetermined";
+      l.reason = "fewer than two axial rates";
+    }
+    study.limits.push_back(l);
+  }
+
+  // Per E: the quasi-static critical state through the limits.
+  std::map<double, std::vector<const DrainedLimit*>> by_modulus;
+  for (const DrainedLimit& l : study.limits) {
+    if (l.valid() && std::isfinite(l.ln_p_kpa.mean) && std::isfinite(l.ln_1_plus_e.mean)) {
+      by_modulus[l.youngs_modulus_mpa].push_back(&l);
+    }
+  }
+  const double ln_reference = std::log(options.reference_p_kpa);
+  for (const auto& [modulus, limits] : by_modulus) {
+    DrainedCriticalState c;
+    c.youngs_modulus_mpa = modulus;
+    c.starts = static_cast<int>(limits.size());
+    std::vector<double> ms, x, y;
+    for (const DrainedLimit* l : limits) {
+      ms.push_back(l->m.mean);
+      x.push_back(l->ln_p_kpa.mean - ln_reference);
+      y.push_back(l->ln_1_plus_e.mean);
+    }
+    c.m = Estimate::Of(ms);
+    if (std::isfinite(c.m.mean)) {
+      // dφ/dM = 18 / ((6 + M)² cos φ).
+      const double phi = FrictionAngleDeg(c.m.mean);
+      const double derivative =
+          18.0 / ((6 + c.m.mean) * (6 + c.m.mean) * std::cos(phi * kDegree)) / kDegree;
+      c.phi_c_deg = c.m;
+      c.phi_c_deg.mean = phi;
+      c.phi_c_deg.standard_error = derivative * c.m.standard_error;
+      c.phi_c_deg.half_width = derivative * c.m.half_width;
+    }
+    const LineFit fm = FitLine(x, ms);
+    if (fm.valid()) c.m_per_ln_p = Estimate::Fitted(fm.slope, fm.slope_error, fm.points);
+    const LineFit csl = FitLine(x, y);
+    if (csl.valid()) {
+      c.lambda = Estimate::Fitted(-csl.slope, csl.slope_error, csl.points);
+      c.gamma = csl.intercept - csl.slope * ln_reference;
+      c.position = Estimate::Fitted(csl.intercept, csl.intercept_error, csl.points);
+    }
+    study.critical.push_back(c);
+  }
+  return study;
+}
+
+std::string DrainedCriticalState::Text(double reference_p_kpa) const {
+  auto pm = [](const Estimate& e, int digits) {
+    return e.has_interval() ? fmt::format("{:.{}f} +- {:.{}f}", e.mean, digits, e.half_width, digits)
+                            : fmt::format("{:.{}f} (no interval)", e.mean, digits);
+  };
+  std::string text = fmt::format("M = {}, phi_c = {} deg from {} radial stresses", pm(m, 3),
+                                 pm(phi_c_deg, 1), starts);
+  if (std::isfinite(m_per_ln_p.mean)) text += fmt::format("; dM/d ln p = {}", pm(m_per_ln_p, 3));
+  if (std::isfinite(lambda.mean)) {
+    text += fmt::format("; CSL lambda = {}, ln(1+e) at {:g} kPa = {}", pm(lambda, 4),
+                        reference_p_kpa, pm(position, 4));
+  }
+  return text;
+}
+
 std::string RateStudy::Text() const {
   std::map<std::string, int> verdict_counts;
   for (const RateVerdict& v : verdicts) ++verdict_counts[v.verdict];
@@ -628,6 +913,10 @@ std::string RateStudy::Text() const {
   for (const ExtensionLimit& l : extension_limits) {
     text += fmt::format("  extension, E {:g} MPa, {}, from {:g} kPa: {}\n", l.youngs_modulus_mpa,
                         RateText(l.rule, l.rate), l.start_p_kpa, l.Text());
+  }
+  for (const DrainedCriticalState& c : drained.critical) {
+    text += fmt::format("  drained critical state as I -> 0, E {:g} MPa: {}\n",
+                        c.youngs_modulus_mpa, c.Text(options.reference_p_kpa));
   }
   return text;
 }
@@ -799,6 +1088,7 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
     return fields;
   };
   limits.WriteRows(study.extension_limits, limit_fields, directory + "/" + kRateExtensionLimitFile);
+  WriteDrainedFiles(directory, study.drained, o, usable);
 }
 
 QuasiStaticSelection SelectQuasiStatic(const RateStudy& study,
@@ -884,6 +1174,7 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
                                         const std::vector<StateRow>& rows,
                                         const RateStudyOptions& options) {
   std::vector<RateState> states;
+  std::vector<DrainedState> drained;
   bool any = false;
   for (const StateRow& row : rows) {
     if (!ServesRateStudy(row.figures)) continue;
@@ -901,8 +1192,31 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
     }
     if (index == stages.size()) continue;
     const std::string group = dem::StageGroup(index);
+    const auto canonical = CanonicalLines(dem::ReadProvenance(file).scene_canonical);
+    const double modulus =
+        CanonicalNumber(canonical, "material.youngs_modulus_mpa").value_or(kNaN);
+    if (file.HasAttribute(group, dem::record::kStageAxialStrainRate)) {
+      DrainedState d;  // a drained triaxial stage
+      d.replicate = row.replicate;
+      d.case_name = row.case_name;
+      d.stage = row.stage;
+      d.status = row.status;
+      d.flags = row.flags;
+      d.youngs_modulus_mpa = modulus;
+      d.radial_stress_kpa = file.ReadDoubleAttribute(group, dem::record::kStageRadialStressKpa);
+      d.axial_strain_rate = file.ReadDoubleAttribute(group, dem::record::kStageAxialStrainRate);
+      d.p_kpa = row.p_kpa;
+      d.e = row.e;
+      d.ln_1_plus_e = row.ln_1_plus_e;
+      d.psi_sigma_deg = row.psi_sigma_deg;
+      d.q_over_p = row.q_over_p;
+      d.inertial_number_dmin = row.inertial_number_dmin;
+      d.inertial_number_dmax = row.inertial_number_dmax;
+      drained.push_back(d);
+      continue;
+    }
     if (!file.HasAttribute(group, dem::record::kStageStretchingRate))
-      continue;  // not a strain path
+      continue;  // neither a strain path nor a drained triaxial stage
     RateState s;
     s.replicate = row.replicate;
     s.case_name = row.case_name;
@@ -924,8 +1238,7 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
     if (s.rule == dem::RateRule::kInertial) {
       s.inertial_number = file.ReadDoubleAttribute(group, dem::record::kStageRateInertialNumber);
     }
-    const auto canonical = CanonicalLines(dem::ReadProvenance(file).scene_canonical);
-    s.youngs_modulus_mpa = CanonicalNumber(canonical, "material.youngs_modulus_mpa").value_or(kNaN);
+    s.youngs_modulus_mpa = modulus;
     s.start_p_kpa =
         parent.empty()
             ? kNaN
@@ -945,14 +1258,66 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
   const std::vector<const char*> files = {kRateStatesFile,      kRateSummaryFile,
                                           kRateLinesFile,       kRateQuasiStaticFile,
                                           kRateIndependenceFile, kRateExtensionFile,
-                                          kRateExtensionLimitFile};
+                                          kRateExtensionLimitFile, kRateDrainedStatesFile,
+                                          kRateDrainedFile,     kRateDrainedLimitFile,
+                                          kRateDrainedCriticalFile};
   if (!any) {
     for (const char* name : files) fs::remove(fs::path(directory) / name);
     return std::nullopt;
   }
   RateStudy study = RateStudy::Analyse(std::move(states), options);
+  study.drained = DrainedStudy::Analyse(std::move(drained), options);
   WriteRateFiles(directory, study);
   return study;
+}
+
+namespace {
+
+// A number column of a rate file's row (empty: NaN), or an InputError naming
+// the file, the line, the column and the text.
+double CsvCell(const CsvTextTable& table, const std::string& path,
+               const std::vector<std::string>& row, size_t r, const char* column) {
+  const std::string& text = row[table.Column(column)];
+  if (text.empty()) return kNaN;
+  try {
+    size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used == text.size()) return value;
+  } catch (const std::exception&) {
+  }
+  throw InputError(fmt::format("{}: line {}: column {}: '{}' is not a number", path,
+                               table.line_numbers[r], column, text));
+}
+
+}  // namespace
+
+std::vector<DrainedState> ReadDrainedStates(const std::string& directory) {
+  const std::string path = directory + "/" + kRateDrainedStatesFile;
+  std::vector<DrainedState> states;
+  if (!fs::exists(path)) return states;
+  const CsvTextTable table = CsvTextTable::ReadFile(path);
+  for (size_t r = 0; r < table.rows.size(); ++r) {
+    const std::vector<std::string>& row = table.rows[r];
+    auto number = [&](const char* column) { return CsvCell(table, path, row, r, column); };
+    DrainedState s;
+    s.replicate = static_cast<int>(number("replicate"));
+    s.case_name = row[table.Column("case_name")];
+    s.stage = row[table.Column("stage")];
+    s.status = row[table.Column("status")];
+    s.flags = row[table.Column("flags")];
+    s.youngs_modulus_mpa = number("youngs_modulus_mpa");
+    s.radial_stress_kpa = number("radial_stress_kpa");
+    s.axial_strain_rate = number("axial_strain_rate_per_s");
+    s.p_kpa = number("p_kpa");
+    s.e = number("e");
+    s.ln_1_plus_e = number("ln_1_plus_e");
+    s.psi_sigma_deg = number("psi_sigma_deg");
+    s.q_over_p = number("q_over_p");
+    s.inertial_number_dmin = number("inertial_number_dmin");
+    s.inertial_number_dmax = number("inertial_number_dmax");
+    states.push_back(s);
+  }
+  return states;
 }
 
 std::vector<RateState> ReadRateStates(const std::string& directory) {
@@ -961,16 +1326,7 @@ std::vector<RateState> ReadRateStates(const std::string& directory) {
   if (!fs::exists(path)) return states;
   const CsvTextTable table = CsvTextTable::ReadFile(path);
   auto number = [&table, &path](const std::vector<std::string>& row, size_t r, const char* column) {
-    const std::string& text = row[table.Column(column)];
-    if (text.empty()) return kNaN;
-    try {
-      size_t used = 0;
-      const double value = std::stod(text, &used);
-      if (used == text.size()) return value;
-    } catch (const std::exception&) {
-    }
-    throw InputError(fmt::format("{}: line {}: column {}: '{}' is not a number", path,
-                                 table.line_numbers[r], column, text));
+    return CsvCell(table, path, row, r, column);
   };
   for (size_t r = 0; r < table.rows.size(); ++r) {
     const std::vector<std::string>& row = table.rows[r];

@@ -23,6 +23,10 @@
 //   rate_independence.csv  per (E, ψ_ε, p_0): the two smallest I* compared, and the verdict
 //   rate_extension.csv     per (E, rate, p_0, ψ_ε ≥ 90°): σ_r/p, ψ_σ, liquefied replicates
 //   rate_extension_limit.csv per (E, rate, p_0): ψ_ε(d) ± 95 %, or where it liquefies
+//   rate_drained_states.csv  one row per drained triaxial rate case (constant σ_r)
+//   rate_drained.csv         per (E, σ_r, ε̇_a): means and 95 % intervals
+//   rate_drained_limit.csv   per (E, σ_r): M, ln(1+e), ln p as I → 0; the two slowest rates
+//   rate_drained_critical_state.csv per E: quasi-static M, φ_c, the CSL and M's p-dependence
 #pragma once
 
 #include <cmath>
@@ -214,6 +218,67 @@ struct ExtensionLimit {
   std::string Text() const;  // "psi_epsilon(d) = 127.2 +- 3.1 deg", "liquefied at ..."
 };
 
+// Drained triaxial compression (constant σ_r, constant ε̇_a) from the NC
+// states: the critical state under stress control. The isochoric paths from
+// loose NC states liquefy as I* → 0, so the quasi-static M, φ_c and CSL come
+// from these cases. On a drained path p moves only from σ_r to about
+// 1.4 σ_r, so a constant ε̇_a keeps I nearly fixed; the analysis uses the
+// I(d_max) measured over each asymptote's window.
+struct DrainedState {
+  int replicate = 1;
+  std::string case_name, stage, status, flags;
+  double youngs_modulus_mpa = 0, radial_stress_kpa = 0, axial_strain_rate = 0;  // ε̇_a (1/s)
+  double p_kpa = 0, e = 0, ln_1_plus_e = 0, psi_sigma_deg = 0, q_over_p = 0;
+  double inertial_number_dmin = 0, inertial_number_dmax = 0;
+};
+
+// Per (E, σ_r, ε̇_a): the replicates' means.
+struct DrainedGroup {
+  double youngs_modulus_mpa = 0, radial_stress_kpa = 0, axial_strain_rate = 0;
+  int states = 0, used = 0;
+  Estimate p_kpa, e, ln_1_plus_e, psi_sigma_deg, q_over_p, inertial_number_dmax;
+};
+
+// Per (E, σ_r): y = a + b·I(d_max) through the usable states of every rate
+// (at least two rates): M = q/p, ln(1+e) and ln p as I → 0; and the two
+// slowest rates compared in M and ln(1+e) (rate_independent when both
+// agree within the 95 % interval of their difference).
+struct DrainedLimit {
+  double youngs_modulus_mpa = 0, radial_stress_kpa = 0;
+  int rates = 0, points = 0;
+  double i_min = std::numeric_limits<double>::quiet_NaN();
+  double i_max = std::numeric_limits<double>::quiet_NaN();
+  Estimate m, ln_1_plus_e, ln_p_kpa;  // the limits a
+  Estimate m_slope;                   // b of M
+  double slowest = std::numeric_limits<double>::quiet_NaN();  // ε̇_a (1/s)
+  double next = std::numeric_limits<double>::quiet_NaN();
+  Comparison m_change, ln_1_plus_e_change;  // next − slowest
+  std::string verdict, reason;              // rate_independent, rate_dependent, undetermined
+  bool valid() const { return std::isfinite(m.mean); }
+};
+
+// Per E: the quasi-static critical state from the limits of every σ_r.
+struct DrainedCriticalState {
+  double youngs_modulus_mpa = 0;
+  int starts = 0;             // σ_r with a limit
+  Estimate m;                 // mean of the limits' M (Student t, starts − 1 dof)
+  Estimate phi_c_deg;         // φ_c = asin(3M/(6 + M)), its interval by the delta method
+  Estimate m_per_ln_p;        // slope of the limits' M against ln p: M's p-dependence
+  Estimate lambda;            // the CSL ln(1+e) = Γ − λ ln(p / 1 kPa) through the limits
+  double gamma = std::numeric_limits<double>::quiet_NaN();
+  Estimate position;          // ln(1+e) on it at the reference p
+  std::string Text(double reference_p_kpa) const;
+};
+
+struct DrainedStudy {
+  std::vector<DrainedState> states;
+  std::vector<DrainedGroup> groups;                // by (E, σ_r, ε̇_a)
+  std::vector<DrainedLimit> limits;                // by (E, σ_r)
+  std::vector<DrainedCriticalState> critical;      // by E
+  // `usable`: the rate study's rule for a state's status and flags.
+  static DrainedStudy Analyse(std::vector<DrainedState> states, const RateStudyOptions& options);
+};
+
 struct RateStudy {
   RateStudyOptions options;
   std::vector<RateState> states;  // every row, usable or not
@@ -223,6 +288,7 @@ struct RateStudy {
   std::vector<RateVerdict> verdicts;
   std::vector<ExtensionStep> extension_steps;    // by (E, rate, p_0), ψ_ε ascending
   std::vector<ExtensionLimit> extension_limits;  // one per (E, rate, p_0) with a ψ_ε > 90° step
+  DrainedStudy drained;                          // the drained triaxial cases
   bool Usable(const RateState& state) const;
   const RateGroup* Find(const RateKey& key) const;
   // The Young's modulus of most groups (ties: the largest), the study's main
@@ -264,12 +330,14 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
                                         const std::vector<StateRow>& rows,
                                         const RateStudyOptions& options = {});
 
-// Writes the seven rate files of an analysed study into `directory`.
+// Writes the rate files of an analysed study into `directory`.
 void WriteRateFiles(const std::string& directory, const RateStudy& study);
 
 // DIR/rate_states.csv back (InputError naming the file when malformed); empty
 // when the study has no rate cases (no file).
 std::vector<RateState> ReadRateStates(const std::string& directory);
+// DIR/rate_drained_states.csv back (the same rules).
+std::vector<DrainedState> ReadDrainedStates(const std::string& directory);
 
 // The file names, for the report and the figures.
 inline constexpr char kRateStatesFile[] = "rate_states.csv";
@@ -279,5 +347,9 @@ inline constexpr char kRateQuasiStaticFile[] = "rate_quasi_static.csv";
 inline constexpr char kRateIndependenceFile[] = "rate_independence.csv";
 inline constexpr char kRateExtensionFile[] = "rate_extension.csv";
 inline constexpr char kRateExtensionLimitFile[] = "rate_extension_limit.csv";
+inline constexpr char kRateDrainedStatesFile[] = "rate_drained_states.csv";
+inline constexpr char kRateDrainedFile[] = "rate_drained.csv";
+inline constexpr char kRateDrainedLimitFile[] = "rate_drained_limit.csv";
+inline constexpr char kRateDrainedCriticalFile[] = "rate_drained_critical_state.csv";
 
 }  // namespace granasym::study

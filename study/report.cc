@@ -1091,6 +1091,21 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
        "(the NCL at ψ_ε = 0°, the CSL at 90°, the NEL beyond) and its position at the "
        "reference p.",
        false},
+      {kRateDrainedCriticalFile, "Quasi-static critical state from drained tests",
+       "Per E: drained triaxial compression (constant σ_r = p_0, constant axial rate) from the "
+       "NC states, extrapolated as I → 0 at each σ_r and then combined: the critical-state "
+       "ratio M (mean over σ_r), φ_c = asin(3M/(6+M)), the slope of M against ln p (zero "
+       "within its interval: M does not depend on p) and the CSL through the limits. These "
+       "are the study's quasi-static M, φ_c and CSL where the isochoric paths liquefy.",
+       false},
+      {kRateDrainedLimitFile, "Drained critical states as I → 0, per σ_r",
+       "Per (E, σ_r): the limits of M, ln(1+e) and ln p of y = a + b·I(d_max) through the "
+       "states of every axial rate, and the two slowest rates compared in M and ln(1+e).",
+       false},
+      {kRateDrainedFile, "Drained critical states per σ_r and rate",
+       "Per (E, σ_r, axial rate): the asymptotic state's means over the replicates (q_over_p "
+       "is M).",
+       true},
       {kRateExtensionLimitFile, "How far the extension states go",
        "Per (E, rate, p_0): the sweep of ψ_ε from 90° upwards ends at the limit d, where the "
        "asymptotic σ_r/p is zero within its 95 % interval (ψ_ε(d) is the root of the "
@@ -1127,7 +1142,7 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
     }
     Block block =
         MeanIntervalTable(table, {"verdict", "ln_1_plus_e_agreement", "psi_sigma_deg_agreement",
-                                  "csl_position_agreement", "result", "status"});
+                                  "csl_position_agreement", "m_agreement", "result", "status"});
     if (!t.folded) {
       section.blocks.push_back(std::move(block));
       continue;

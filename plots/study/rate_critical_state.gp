@@ -36,6 +36,7 @@ plot @fit_layer \
      for [s=1:n_starts] keyentry with points pt 7 lt s title word(start_titles, s), \
      keyentry with points pt 7 lc rgb "black" title "fixed I*", \
      keyentry with points pt 13 lc rgb "black" title "constant ‖D‖", \
+     keyentry with points pt 9 lc rgb "black" title "drained, constant σ_r", \
      keyentry with points pt 5 lc rgb "black" title "M_0 = M(I → 0)", \
      keyentry with boxes fc rgb "#e8e8e8" fs solid title sprintf("M = %g–%g (issue 10's range)", band_low, band_high), \
      keyentry with points pt -1 lc rgb "white" title modulus_note

@@ -277,6 +277,39 @@ int Count(const std::string& text, const std::string& part) {
   return n;
 }
 
+TEST(WriteFigureData, TheDrainedCriticalStatesJoinTheMFigure) {
+  const fs::path dir = BareStudy("rate_drained");
+  RateStudy rate = RateStudy::Analyse(rate_fixture::CriticalStates());
+  rate.drained = DrainedStudy::Analyse(rate_fixture::DrainedStates(4.0), rate.options);
+  WriteRateFiles(dir.string(), rate);
+  const std::vector<FigureSpec> figures = WriteFigureData(dir.string());
+  const FigureSpec* m = nullptr;
+  for (const FigureSpec& f : figures) {
+    if (f.stem == "rate_critical_state_ratio") m = &f;
+  }
+  ASSERT_NE(m, nullptr);
+  EXPECT_TRUE(m->not_drawn.empty()) << m->not_drawn;
+  auto variable = [m](const std::string& name) {
+    for (const auto& [key, value] : m->variables) {
+      if (key == name) return value;
+    }
+    return std::string("absent");
+  };
+  // Two 90° fits (20 and 100 kPa) and one drained fit per σ_r (5, 20, 100, 500 kPa).
+  EXPECT_EQ(variable("n_fits"), "6");
+  EXPECT_EQ(variable("n_starts"), "4");
+  const std::string limits =
+      ReadTextFile((dir / "figures/data/rate_critical_state_limits.tsv").string());
+  EXPECT_NE(limits.find("drained at sigma_r = 5 kPa: M_0 = 0.920"), std::string::npos) << limits;
+  const std::string groups =
+      ReadTextFile((dir / "figures/data/rate_critical_state_groups.tsv").string());
+  EXPECT_EQ(Count(groups, "drained at sigma_r"), 4) << groups;
+  // Drained cases alone still make the rate figures.
+  fs::remove(dir / kRateStatesFile);
+  EXPECT_FALSE(WriteFigureData(dir.string()).empty());
+}
+
+
 TEST(WriteFigureData, TheQuasiStaticSetStandsBesideThePaperRate) {
   const fs::path dir = BareStudy("rate_models");
   const RateStudy rate = RateStudy::Analyse(rate_fixture::CriticalStates());

@@ -3,12 +3,14 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <map>
 #include <set>
 #include <string>
 
 #include "common/error.h"
 #include "dem/scene.h"
 #include "dem/strain_path_stage.h"
+#include "dem/triaxial_stage.h"
 #include "study/plan.h"
 
 namespace granasym::study {
@@ -331,7 +333,24 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
             std::string::npos);
   EXPECT_NE(small.Find("nc100_psi100_I0.003")->scene_body.find("liquefied = true"),
             std::string::npos);
-  EXPECT_EQ(rate_cases, 4 * 6 * 3 + 4 * 4 + 1 + 11);
+  // Drained triaxial compression at σ_r = p_0 and three axial rates (I ≈
+  // 1e-2, 1e-3, 3e-4 at the critical state): ε̇_a ∝ √p_0.
+  const std::map<std::string, std::vector<std::string>> drained = {
+      {"5", {"9.4789", "0.9479", "0.2844"}},
+      {"20", {"18.9577", "1.8958", "0.5687"}},
+      {"100", {"42.3908", "4.2391", "1.2717"}},
+      {"500", {"94.7887", "9.4789", "2.8437"}}};
+  for (const auto& [p, rates] : drained) {
+    for (const std::string& rate : rates) {
+      const std::string name = "nc" + p + "_drained_ea" + rate;
+      rate_cases += expect(name, p);
+    }
+  }
+  // Every 90° case stops once it has liquefied (a slow isochoric path from
+  // these NC states turns into a gas and does not rebuild its network).
+  EXPECT_NE(small.Find("nc100_psi90_I0.0003_E500")->scene_body.find("liquefied = true"),
+            std::string::npos);
+  EXPECT_EQ(rate_cases, 4 * 6 * 3 + 4 * 4 + 1 + 11 + 12);
   EXPECT_EQ(small.cases.size(), static_cast<size_t>(rate_cases + 2));
   // The 90° cases of the softer material start from its own NCL.
   EXPECT_EQ(small.Find("nc20_psi90_I0.001_E100")->parent, "ncl_E100");
@@ -342,6 +361,17 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
   // Every scene of every scale is a valid scene (Plan::Make parses them).
   const Plan plan = Plan::Make(small, 1, "out");
   EXPECT_EQ(plan.cases.size(), 3 * small.cases.size());
+  const int drained_case = plan.Find("r2/nc100_drained_ea4.2391");
+  ASSERT_GE(drained_case, 0);
+  const dem::Scene drained_scene = dem::Scene::Parse(
+      plan.cases[static_cast<size_t>(drained_case)].scene_text, "scene.toml", ".");
+  ASSERT_EQ(drained_scene.stages.size(), 1u);
+  const auto* triaxial = drained_scene.stages[0].As<dem::TriaxialStage>();
+  ASSERT_NE(triaxial, nullptr);
+  EXPECT_DOUBLE_EQ(triaxial->radial_stress_kpa, 100);
+  EXPECT_DOUBLE_EQ(triaxial->axial_strain_rate, 4.2391);
+  EXPECT_DOUBLE_EQ(*drained_scene.stages[0].stop.axial_strain, 0.6);
+  EXPECT_TRUE(drained_scene.stages[0].stop.asymptote);
   const int d167 = plan.Find("r1/nc20_psi90_D167_E500");
   ASSERT_GE(d167, 0);
   EXPECT_EQ(dem::Scene::Parse(plan.cases[static_cast<size_t>(d167)].scene_text, "scene.toml", ".")
@@ -368,11 +398,12 @@ TEST(RateProgramme, TinyScaleKeepsOneStartTwoRatesAndTheConstantRate) {
   for (const CaseSpec& c : tiny.cases) names.push_back(c.name);
   EXPECT_EQ(names, (std::vector<std::string>{"ncl_E500", "nc100_psi0_I0.1", "nc100_psi0_I0.03",
                                              "nc100_psi0_D167", "nc100_psi90_I0.1_E500",
-                                             "nc100_psi90_I0.03_E500", "nc100_psi90_D167_E500",
-                                             "nc100_psi120_I0.1", "nc100_psi150_I0.1"}));
+                                             "nc100_psi90_I0.03_E500", "nc100_drained_ea42.3908",
+                                             "nc100_psi90_D167_E500", "nc100_psi120_I0.1",
+                                             "nc100_psi150_I0.1"}));
   EXPECT_EQ(tiny.Find("ncl_E500")->stage_names, (std::vector<std::string>{"p100"}));
   const Plan plan = Plan::Make(tiny, 1, "out");
-  EXPECT_EQ(plan.cases.size(), 18u);  // two replicates
+  EXPECT_EQ(plan.cases.size(), 20u);  // two replicates
   EXPECT_EQ(plan.samples[0].options.count, 800u);
   // The tiny caps and rates reach the scenes.
   const int k = plan.Find("r1/nc100_psi90_I0.03_E500");

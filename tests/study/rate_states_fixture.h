@@ -2,6 +2,8 @@
 // the analysis, the figures and the report (tests/study/).
 #pragma once
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <vector>
 
@@ -96,6 +98,41 @@ inline std::vector<RateState> ExtensionSweep() {
         s.p_kpa = 0.3;
       }
       states.push_back(s);
+    }
+  }
+  return states;
+}
+
+// Drained triaxial states with known limits: at each σ_r and rate, M = M_0 +
+// b·I and ln(1+e), ln p linear in I towards a quasi-static critical state on
+// the CSL ln(1+e) = Γ − λ ln p, p_0 = 3σ_r/(3 − M_0); three replicates at
+// ±scatter and 0 about each value, so that the least-squares intercepts are
+// exact.
+inline constexpr double kM0 = 0.92, kGamma = 0.62, kLambda = 0.012;
+inline std::vector<DrainedState> DrainedStates(double m_slope, double scatter = 0.004) {
+  std::vector<DrainedState> states;
+  const double offsets[] = {-scatter, 0.0, scatter};
+  for (double radial : {5.0, 20.0, 100.0, 500.0}) {
+    const double ln_p0 = std::log(3 * radial / (3 - kM0));
+    for (double inertial : {3e-4, 1e-3, 1e-2}) {
+      for (int r = 0; r < 3; ++r) {
+        DrainedState s;
+        s.replicate = r + 1;
+        s.case_name = fmt::format("nc{:g}_drained_I{:g}", radial, inertial);
+        s.stage = "drained";
+        s.status = "detected";
+        s.youngs_modulus_mpa = 500;
+        s.radial_stress_kpa = radial;
+        s.axial_strain_rate = inertial * 4000;  // ascending with I
+        s.inertial_number_dmax = inertial;
+        s.inertial_number_dmin = inertial / 5;
+        s.q_over_p = kM0 + m_slope * inertial + offsets[r];
+        s.ln_1_plus_e = kGamma - kLambda * ln_p0 + 0.5 * inertial + offsets[r];
+        s.p_kpa = std::exp(ln_p0 + 2.0 * inertial + offsets[r]);
+        s.e = std::exp(s.ln_1_plus_e) - 1;
+        s.psi_sigma_deg = 20;
+        states.push_back(s);
+      }
     }
   }
   return states;

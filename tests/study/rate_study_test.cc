@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,10 @@ namespace granasym::study {
 namespace {
 namespace fs = std::filesystem;
 using rate_fixture::CriticalStates;
+using rate_fixture::DrainedStates;
+using rate_fixture::kGamma;
+using rate_fixture::kLambda;
+using rate_fixture::kM0;
 using rate_fixture::kDelta;
 using rate_fixture::kScatter;
 using rate_fixture::State;
@@ -363,6 +368,126 @@ TEST(QuasiStatic, TheSmallestRateWithACslFromTwoStartsIsTheCalibratedSet) {
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->inertial_number, 1e-3);
   EXPECT_EQ(back->cases, chosen.cases);
+}
+
+TEST(DrainedStudy, LimitsAsIGoesToZeroAndTheQuasiStaticCriticalState) {
+  const DrainedStudy d = DrainedStudy::Analyse(DrainedStates(4.0), RateStudyOptions{});
+  ASSERT_EQ(d.groups.size(), 12u);
+  EXPECT_EQ(d.groups[0].used, 3);
+  ASSERT_EQ(d.limits.size(), 4u);
+  for (const DrainedLimit& l : d.limits) {
+    EXPECT_EQ(l.rates, 3);
+    EXPECT_EQ(l.points, 9);
+    EXPECT_NEAR(l.m.mean, kM0, 1e-10);
+    EXPECT_NEAR(l.m_slope.mean, 4.0, 1e-7);
+    EXPECT_TRUE(l.m.has_interval());
+    EXPECT_EQ(l.m.dof, 7);
+    EXPECT_NEAR(l.ln_p_kpa.mean, std::log(3 * l.radial_stress_kpa / (3 - kM0)), 1e-10);
+    EXPECT_NEAR(l.ln_1_plus_e.mean, kGamma - kLambda * l.ln_p_kpa.mean, 1e-10);
+  }
+  ASSERT_EQ(d.critical.size(), 1u);
+  const DrainedCriticalState& c = d.critical[0];
+  EXPECT_EQ(c.starts, 4);
+  EXPECT_NEAR(c.m.mean, kM0, 1e-10);
+  EXPECT_NEAR(c.phi_c_deg.mean, std::asin(3 * kM0 / (6 + kM0)) * 180 / M_PI, 1e-8);
+  EXPECT_NEAR(c.m_per_ln_p.mean, 0, 1e-9);
+  EXPECT_NEAR(c.lambda.mean, kLambda, 1e-9);
+  EXPECT_NEAR(c.gamma, kGamma, 1e-9);
+  EXPECT_NEAR(c.position.mean, kGamma - kLambda * std::log(100.0), 1e-9);
+  EXPECT_EQ(c.lambda.dof, 2);
+  EXPECT_NE(c.Text(100).find("phi_c = 23.5 +- 0.0 deg"), std::string::npos) << c.Text(100);
+}
+
+TEST(DrainedStudy, PhiIntervalIsTheDeltaMethodOfM) {
+  std::vector<DrainedState> states = DrainedStates(0.0);
+  for (DrainedState& s : states) {  // M_0 = 0.90, 0.92, 0.94, 0.96 by σ_r
+    s.q_over_p += s.radial_stress_kpa == 5     ? -0.02
+                  : s.radial_stress_kpa == 20  ? 0.0
+                  : s.radial_stress_kpa == 100 ? 0.02
+                                               : 0.04;
+  }
+  const DrainedCriticalState c = DrainedStudy::Analyse(states, {}).critical.at(0);
+  EXPECT_NEAR(c.m.mean, 0.93, 1e-10);
+  EXPECT_EQ(c.m.dof, 3);
+  const double sin_phi = 3 * 0.93 / 6.93;
+  const double derivative = 18.0 / (6.93 * 6.93 * std::sqrt(1 - sin_phi * sin_phi)) * 180 / M_PI;
+  EXPECT_NEAR(c.phi_c_deg.half_width, derivative * c.m.half_width, 1e-9);
+  EXPECT_GT(c.m_per_ln_p.mean, 0);  // M rises with p here
+  EXPECT_GT(c.m_per_ln_p.mean - c.m_per_ln_p.half_width, 0);
+}
+
+TEST(DrainedStudy, TheTwoSlowestRatesDecideRateIndependence) {
+  // b = 4: M differs by 4 · 7e-4 = 0.0028 between I = 3e-4 and 1e-3, against
+  // a scatter of 0.004 (interval about ±0.008): they agree; b = 40 differs.
+  for (const DrainedLimit& l : DrainedStudy::Analyse(DrainedStates(4.0), {}).limits) {
+    EXPECT_EQ(l.verdict, "rate_independent") << l.reason;
+    EXPECT_DOUBLE_EQ(l.slowest, 3e-4 * 4000);
+    EXPECT_DOUBLE_EQ(l.next, 1e-3 * 4000);
+  }
+  for (const DrainedLimit& l : DrainedStudy::Analyse(DrainedStates(40.0), {}).limits) {
+    EXPECT_EQ(l.verdict, "rate_dependent");
+    EXPECT_EQ(l.m_change.agreement, Agreement::kDiffer);
+    EXPECT_NE(l.reason.find("M differs"), std::string::npos) << l.reason;
+  }
+}
+
+TEST(DrainedStudy, UnusableStatesAreLeftOutAndAStartNeedsTwoRates) {
+  std::vector<DrainedState> states = DrainedStates(4.0);
+  for (DrainedState& s : states) {
+    if (s.radial_stress_kpa == 5 && s.inertial_number_dmax < 5e-3) s.status = "drifting";
+    if (s.radial_stress_kpa == 20 && s.replicate == 1) s.flags = "gas";
+  }
+  const DrainedStudy d = DrainedStudy::Analyse(states, {});
+  ASSERT_EQ(d.limits.size(), 4u);
+  EXPECT_EQ(d.limits[0].rates, 1);  // 5 kPa: only I = 1e-2 left
+  EXPECT_FALSE(d.limits[0].valid());
+  EXPECT_EQ(d.limits[0].verdict, "undetermined");
+  EXPECT_NE(d.limits[0].reason.find("0 usable of 3"), std::string::npos) << d.limits[0].reason;
+  EXPECT_EQ(d.limits[1].points, 6);  // 20 kPa without replicate 1
+  EXPECT_EQ(d.critical.at(0).starts, 3);
+}
+
+TEST(DrainedStudy, TheFilesReadBackAndMalformedNumbersNameTheLine) {
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "drained";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  EXPECT_TRUE(ReadDrainedStates(dir.string()).empty());
+  RateStudy study = RateStudy::Analyse(CriticalStates());
+  study.drained = DrainedStudy::Analyse(DrainedStates(4.0), study.options);
+  WriteRateFiles(dir.string(), study);
+  const std::vector<DrainedState> back = ReadDrainedStates(dir.string());
+  ASSERT_EQ(back.size(), study.drained.states.size());
+  const DrainedStudy again = DrainedStudy::Analyse(back, study.options);
+  EXPECT_NEAR(again.critical.at(0).m.mean, kM0, 1e-8);
+  EXPECT_NEAR(again.critical.at(0).lambda.mean, kLambda, 1e-7);
+  auto table = [&dir](const char* name) { return CsvTextTable::ReadFile((dir / name).string()); };
+  EXPECT_EQ(table(kRateDrainedFile).rows.size(), 12u);
+  EXPECT_EQ(table(kRateDrainedLimitFile).rows.size(), 4u);
+  const CsvTextTable critical = table(kRateDrainedCriticalFile);
+  ASSERT_EQ(critical.rows.size(), 1u);
+  EXPECT_NEAR(std::stod(critical.rows[0][critical.Column("m_mean")]), kM0, 1e-8);
+  EXPECT_NE(study.Text().find("drained critical state as I -> 0, E 500 MPa: M = 0.920"),
+            std::string::npos)
+      << study.Text();
+  // A malformed number names the file, its line and the column.
+  std::string text;
+  {
+    std::ifstream in(dir / kRateDrainedStatesFile);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const size_t at = text.find(",500,5,");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 7, ",500,five,");
+  std::ofstream(dir / kRateDrainedStatesFile) << text;
+  try {
+    ReadDrainedStates(dir.string());
+    FAIL() << "accepted a malformed number";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(kRateDrainedStatesFile), std::string::npos) << message;
+    EXPECT_NE(message.find("line 3"), std::string::npos) << message;
+    EXPECT_NE(message.find("radial_stress_kpa"), std::string::npos) << message;
+  }
 }
 
 TEST(ReadRateStates, MalformedNumbersNameTheFileAndLine) {
