@@ -529,14 +529,22 @@ StateTableSummary WriteStateTable(const std::string& directory,
     }
   }
   // An NCL per replicate and NCL-carrying case (the study's NCL, and the
-  // NCLs of samples with another material or time step), through the
-  // stage-end states that are load-bearing and reliable: detected or
-  // drifting (the detector's ψ_σ and slope tests are at the noise of a small
-  // sample on a ψ_ε = 0° path), not a gas, overlaps below 10 %.
+  // NCLs of samples with another material or time step: cases with NCL
+  // states at two stages or more; a case that continues an NC state to one
+  // isotropic asymptote, as the rate study's ψ_ε = 0° cases do, refers to
+  // its ancestor's NCL), through the stage-end states that are load-bearing
+  // and reliable: detected or drifting (the detector's ψ_σ and slope tests
+  // are at the noise of a small sample on a ψ_ε = 0° path), not a gas,
+  // overlaps below 10 %.
+  std::map<std::pair<int, std::string>, int> ncl_states;  // (replicate, case) → NCL rows
+  for (const StateRow& row : rows) {
+    if (row.kind == "ncl") ++ncl_states[{row.replicate, row.case_name}];
+  }
   std::map<std::pair<int, std::string>, size_t> fit_of;  // (replicate, case) → summary.ncl
   for (const StateRow& row : rows) {
     const auto key = std::make_pair(row.replicate, row.case_name);
     if (row.kind != "ncl" || fit_of.count(key)) continue;
+    if (ncl_states[key] < 2 && row.case_name != ncl_case) continue;
     NclFit fit;
     fit.replicate = row.replicate;
     fit.case_name = row.case_name;

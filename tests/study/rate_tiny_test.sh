@@ -48,9 +48,17 @@ if grep -v '^#' "$out/rate_independence.csv" | tail -n +2 |
    grep -vE ',(rate_independent|rate_dependent|undetermined),' | grep -q .; then
   fail "a verdict is not one of rate_independent, rate_dependent, undetermined"
 fi
-# Every rate case of the state table is in rate_states.csv, with its start and rate.
+# The drained case (triaxial at σ_r = 100 kPa, ε̇_a = 42.3908 1/s), two
+# replicates, in its own files: one group, one σ_r.
+[ "$(rows "$out/rate_drained_states.csv")" -eq 2 ] || fail "rate_drained_states.csv: not 2 rows"
+[ "$(rows "$out/rate_drained.csv")" -eq 1 ] || fail "rate_drained.csv: not 1 group"
+[ "$(rows "$out/rate_drained_limit.csv")" -eq 1 ] || fail "rate_drained_limit.csv: not 1 start"
+grep -v '^#' "$out/rate_drained_states.csv" | tail -n +2 | grep -q '^1,nc100_drained_ea42.3908,drained,' ||
+  fail "rate_drained_states.csv: no row for r1/nc100_drained_ea42.3908"
+# Every rate case of the state table is in rate_states.csv or
+# rate_drained_states.csv, with its start and rate.
 in_table=$(grep -c ',rate,' "$out/asymptotic_states.csv" || true)
-[ "$in_table" -eq 16 ] || fail "the state table has $in_table rate rows, not 16"
+[ "$in_table" -eq 18 ] || fail "the state table has $in_table rate rows, not 18"
 if grep -v '^#' "$out/rate_states.csv" | tail -n +2 | awk -F, '$8 != 100' | grep -q .; then
   fail "a rate state does not start from NC 100 kPa"
 fi
@@ -67,7 +75,7 @@ for stem in fig09_ncl rate_psi_sigma_p rate_csl_ncl rate_extension; do
 done
 # M against I needs a detected 90° state: drawn, or the index says why not.
 if [ ! -s "$out/figures/rate_critical_state_ratio.png" ]; then
-  grep -P "^rate_critical_state_ratio\t.*Not drawn: no ψ_ε = 90° rate" "$index" ||
+  grep -P "^rate_critical_state_ratio\t.*Not drawn: no ψ_ε = 90° or drained rate" "$index" ||
     fail "rate_critical_state_ratio neither drawn nor explained"
 fi
 
@@ -85,6 +93,8 @@ grep -q "a rate study, but no I\* has usable" "$work/calibrate.txt" || fail "cal
 grep -q "^## Rate study" "$out/report.md" || fail "report.md has no Rate study section"
 grep -q 'id="rate-study"' "$out/index.html" || fail "index.html has no Rate study section"
 grep -q "Figure rate (a)" "$out/report.md" || fail "the report does not show figure rate (a)"
+grep -q "Quasi-static critical state from drained tests" "$out/report.md" ||
+  fail "the report has no table of the drained critical state"
 
 cp "$out/rate_summary.csv" "$work/summary_first.csv"
 start=$(date +%s%N)
