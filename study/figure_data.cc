@@ -1509,45 +1509,39 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   x.Add(i_left);
   BlockFile fits({"inertial_number", "q_over_p", "q_over_p_ci95", "point_type", "colour"});
   BlockFile limits({"inertial_number", "q_over_p", "q_over_p_ci95", "point_type", "colour"});
+  // A quasi-static line M_0 + b·I from the left edge to the largest I
+  // fitted, and its limit M_0 at the edge.
+  auto add_fit = [&](const std::string& title, double m0, double half_width, double slope,
+                     double i_max, double line_point, double limit_point, int colour) {
+    std::vector<std::vector<double>> rows;
+    for (int k = 0; k <= 20; ++k) {
+      const double i = std::exp(std::log(i_left) + (std::log(i_max) - std::log(i_left)) * k / 20);
+      rows.push_back({i, m0 + slope * i, 0.0, line_point, static_cast<double>(colour)});
+    }
+    fits.Add(title, rows);
+    limits.Add(title, {{i_left, m0, Zeroed(half_width), limit_point, static_cast<double>(colour)}});
+    y.Add(m0, half_width);
+    y.Add(rows.back()[1]);
+  };
   for (const QuasiStaticFit& f : rate.quasi_static) {
     if (f.quantity != "q_over_p" || std::abs(f.psi_epsilon_deg - 90) > 1e-6 || !f.valid()) continue;
     const auto colour = colour_of.find(f.start_p_kpa);
     if (colour == colour_of.end()) continue;
     const bool ref = f.youngs_modulus_mpa == reference;
-    const std::string title =
-        fmt::format("E = {} MPa, NC {} kPa: M_0 = {:.3f}", Short(f.youngs_modulus_mpa),
-                    Short(f.start_p_kpa), f.limit.mean);
-    std::vector<std::vector<double>> rows;
-    for (int k = 0; k <= 20; ++k) {
-      const double i = std::exp(std::log(i_left) + (std::log(f.i_max) - std::log(i_left)) * k / 20);
-      rows.push_back({i, f.limit.mean + f.slope.mean * i, 0.0, ref ? 7.0 : 6.0,
-                      static_cast<double>(colour->second)});
-    }
-    fits.Add(title, rows);
-    limits.Add(title, {{i_left, f.limit.mean, Zeroed(f.limit.half_width), ref ? 5.0 : 4.0,
-                        static_cast<double>(colour->second)}});
-    y.Add(f.limit.mean, f.limit.half_width);
-    y.Add(rows.back()[1]);
+    add_fit(fmt::format("E = {} MPa, NC {} kPa: M_0 = {:.3f}", Short(f.youngs_modulus_mpa),
+                        Short(f.start_p_kpa), f.limit.mean),
+            f.limit.mean, f.limit.half_width, f.slope.mean, f.i_max, ref ? 7.0 : 6.0,
+            ref ? 5.0 : 4.0, colour->second);
   }
   for (const DrainedLimit& l : rate.drained.limits) {
     if (!l.valid()) continue;
     const auto colour = colour_of.find(l.radial_stress_kpa);
     if (colour == colour_of.end()) continue;
     const bool ref = l.youngs_modulus_mpa == reference;
-    const std::string title =
-        fmt::format("E = {} MPa, drained at sigma_r = {} kPa: M_0 = {:.3f}",
-                    Short(l.youngs_modulus_mpa), Short(l.radial_stress_kpa), l.m.mean);
-    std::vector<std::vector<double>> rows;
-    for (int k = 0; k <= 20; ++k) {
-      const double i = std::exp(std::log(i_left) + (std::log(l.i_max) - std::log(i_left)) * k / 20);
-      rows.push_back({i, l.m.mean + l.m_slope.mean * i, 0.0, ref ? 9.0 : 8.0,
-                      static_cast<double>(colour->second)});
-    }
-    fits.Add(title, rows);
-    limits.Add(title, {{i_left, l.m.mean, Zeroed(l.m.half_width), ref ? 9.0 : 8.0,
-                        static_cast<double>(colour->second)}});
-    y.Add(l.m.mean, l.m.half_width);
-    y.Add(rows.back()[1]);
+    add_fit(fmt::format("E = {} MPa, drained at sigma_r = {} kPa: M_0 = {:.3f}",
+                        Short(l.youngs_modulus_mpa), Short(l.radial_stress_kpa), l.m.mean),
+            l.m.mean, l.m.half_width, l.m_slope.mean, l.i_max, ref ? 9.0 : 8.0, ref ? 9.0 : 8.0,
+            colour->second);
   }
   if (fits.blocks() > 0) {
     fits.Write(ctx.File("rate_critical_state_fits.tsv"));
