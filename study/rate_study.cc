@@ -184,6 +184,7 @@ Columns StateFields(const RateState& s) {
           {"psi_sigma_deg", CsvNumber(s.psi_sigma_deg)},
           {"q_over_p", CsvNumber(s.q_over_p)},
           {"ocr", CsvNumber(s.ocr)},
+          {"ocr_same_rate", CsvNumber(s.ocr_same_rate)},
           {"inertial_number_dmin", CsvNumber(s.inertial_number_dmin)},
           {"inertial_number_dmax", CsvNumber(s.inertial_number_dmax)},
           {"stiffness_number", CsvNumber(s.stiffness_number)},
@@ -406,37 +407,6 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
   study.options = options;
   study.states = std::move(states);
 
-  // Groups: the replicates of one (E, ψ_ε, p_0, rate).
-  std::map<RateKey, std::vector<const RateState*>> members;
-  for (const RateState& s : study.states) members[KeyOf(s)].push_back(&s);
-  for (const auto& [key, list] : members) {
-    RateGroup group;
-    group.key = key;
-    group.states = static_cast<int>(list.size());
-    std::vector<const RateState*> used;
-    for (const RateState* s : list) {
-      if (study.Usable(*s)) used.push_back(s);
-    }
-    group.used = static_cast<int>(used.size());
-    auto estimate = [&used](double RateState::*member) {
-      std::vector<double> values;
-      for (const RateState* s : used) {
-        if (std::isfinite(s->*member)) values.push_back(s->*member);
-      }
-      return Estimate::Of(values);
-    };
-    group.p_kpa = estimate(&RateState::p_kpa);
-    group.e = estimate(&RateState::e);
-    group.ln_1_plus_e = estimate(&RateState::ln_1_plus_e);
-    group.psi_sigma_deg = estimate(&RateState::psi_sigma_deg);
-    group.q_over_p = estimate(&RateState::q_over_p);
-    group.ocr = estimate(&RateState::ocr);
-    group.inertial_number_dmin = estimate(&RateState::inertial_number_dmin);
-    group.inertial_number_dmax = estimate(&RateState::inertial_number_dmax);
-    group.stiffness_number = estimate(&RateState::stiffness_number);
-    study.groups.push_back(group);
-  }
-
   // Lines per (E, ψ_ε, rate) through the usable states of every start.
   using LineKey = std::tuple<double, double, dem::RateRule, double>;
   std::map<LineKey, std::vector<const RateState*>> line_members;
@@ -467,6 +437,50 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
     }
     study.lines.push_back(line);
   }
+  // OCR against the NCL of the same E and rate (the ψ_ε = 0° line of that
+  // rate): p_e*/p with ln(1+e) = N − λ ln(p_e* / 1 kPa) at the state's ln(1+e).
+  for (RateState& s : study.states) {
+    s.ocr_same_rate = kNaN;
+    for (const RateLine& l : study.lines) {
+      if (l.valid() && l.lambda > 0 && l.youngs_modulus_mpa == s.youngs_modulus_mpa &&
+          l.psi_epsilon_deg == 0 && l.rule == s.rule && l.rate == s.rate() && s.p_kpa > 0) {
+        s.ocr_same_rate = std::exp((l.n - s.ln_1_plus_e) / l.lambda) / s.p_kpa;
+      }
+    }
+  }
+
+  // Groups: the replicates of one (E, ψ_ε, p_0, rate).
+  std::map<RateKey, std::vector<const RateState*>> members;
+  for (const RateState& s : study.states) members[KeyOf(s)].push_back(&s);
+  for (const auto& [key, list] : members) {
+    RateGroup group;
+    group.key = key;
+    group.states = static_cast<int>(list.size());
+    std::vector<const RateState*> used;
+    for (const RateState* s : list) {
+      if (study.Usable(*s)) used.push_back(s);
+    }
+    group.used = static_cast<int>(used.size());
+    auto estimate = [&used](double RateState::*member) {
+      std::vector<double> values;
+      for (const RateState* s : used) {
+        if (std::isfinite(s->*member)) values.push_back(s->*member);
+      }
+      return Estimate::Of(values);
+    };
+    group.p_kpa = estimate(&RateState::p_kpa);
+    group.e = estimate(&RateState::e);
+    group.ln_1_plus_e = estimate(&RateState::ln_1_plus_e);
+    group.psi_sigma_deg = estimate(&RateState::psi_sigma_deg);
+    group.q_over_p = estimate(&RateState::q_over_p);
+    group.ocr = estimate(&RateState::ocr);
+    group.ocr_same_rate = estimate(&RateState::ocr_same_rate);
+    group.inertial_number_dmin = estimate(&RateState::inertial_number_dmin);
+    group.inertial_number_dmax = estimate(&RateState::inertial_number_dmax);
+    group.stiffness_number = estimate(&RateState::stiffness_number);
+    study.groups.push_back(group);
+  }
+
   auto find_line = [&study](double e, double psi, double rate) -> const RateLine* {
     for (const RateLine& l : study.lines) {
       if (l.youngs_modulus_mpa == e && l.psi_epsilon_deg == psi &&
@@ -935,7 +949,9 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
   CsvWriter states(
       {"the asymptotic states of the rate cases (figures key 'rate'), one row per "
        "case and detector stage; start_p_kpa: the p target of the state the case "
-       "started from; stiffness_number: kappa of the contact law at p"});
+       "started from; stiffness_number: kappa of the contact law at p; ocr: against the "
+       "study's NCL, ocr_same_rate: against the NCL of the same E and rate (its psi_epsilon "
+       "= 0 line in rate_lines.csv)"});
   states.WriteRows(study.states, StateFields, directory + "/" + kRateStatesFile);
 
   CsvWriter summary(
@@ -953,6 +969,7 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
     AddEstimate(&fields, "psi_sigma_deg", g.psi_sigma_deg);
     AddEstimate(&fields, "q_over_p", g.q_over_p);
     AddEstimate(&fields, "ocr", g.ocr);
+    AddEstimate(&fields, "ocr_same_rate", g.ocr_same_rate);
     AddEstimate(&fields, "inertial_number_dmin", g.inertial_number_dmin);
     AddEstimate(&fields, "inertial_number_dmax", g.inertial_number_dmax);
     AddEstimate(&fields, "stiffness_number", g.stiffness_number);

@@ -109,7 +109,11 @@ struct RateState {
   double inertial_number = std::numeric_limits<double>::quiet_NaN();  // I* (inertial rule)
   double stretching_rate = 0;  // ‖D‖ (constant), its cap (inertial), 1/s
   // The asymptotic state (the state table's row).
-  double p_kpa = 0, e = 0, ln_1_plus_e = 0, psi_sigma_deg = 0, q_over_p = 0, ocr = 0;
+  double p_kpa = 0, e = 0, ln_1_plus_e = 0, psi_sigma_deg = 0, q_over_p = 0;
+  double ocr = 0;  // against the study's NCL (the state table's)
+  // Against the NCL of the same E and rate (its ψ_ε = 0° line in
+  // rate_lines.csv), set by RateStudy::Analyse; NaN without that line.
+  double ocr_same_rate = std::numeric_limits<double>::quiet_NaN();
   double inertial_number_dmin = 0, inertial_number_dmax = 0;
   double stiffness_number = 0;  // κ at the asymptote's p (SPEC §8.2)
   // The rate of the case: I* for the inertial rule, ‖D‖ for a constant one.
@@ -134,7 +138,7 @@ struct RateGroup {
   RateKey key;
   int states = 0;  // rows of the group
   int used = 0;    // of them usable (statuses, flags)
-  Estimate p_kpa, e, ln_1_plus_e, psi_sigma_deg, q_over_p, ocr, inertial_number_dmin,
+  Estimate p_kpa, e, ln_1_plus_e, psi_sigma_deg, q_over_p, ocr, ocr_same_rate, inertial_number_dmin,
       inertial_number_dmax, stiffness_number;
 };
 

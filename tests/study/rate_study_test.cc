@@ -151,6 +151,37 @@ TEST(RateStudy, LinesThroughEveryStartGiveTheCslAndItsPosition) {
   for (const RateLine& l : RateStudy::Analyse(one_start).lines) EXPECT_FALSE(l.valid());
 }
 
+TEST(RateStudy, OcrIsAlsoMeasuredAgainstTheNclOfTheSameRate) {
+  // NCL states at I* = 1e-3 on ln(1+e) = 1.0 − 0.04 ln p from two starts;
+  // the CSL states (ln(1+e) = 0.9 − 0.03 ln p) then lie below it.
+  std::vector<RateState> states = CriticalStates();
+  for (double p0 : {20.0, 100.0}) {
+    for (int r = 1; r <= 3; ++r) {
+      RateState s = State(0, p0, dem::RateRule::kInertial, 1e-3, r);
+      s.kind = "ncl";
+      s.p_kpa = 2 * p0 * (1 + 0.01 * kScatter[r - 1]);
+      s.ln_1_plus_e = 1.0 - 0.04 * std::log(s.p_kpa);
+      states.push_back(s);
+    }
+  }
+  const RateStudy study = RateStudy::Analyse(states);
+  int checked = 0;
+  for (const RateState& s : study.states) {
+    if (s.rule == dem::RateRule::kInertial && s.rate() == 1e-3) {
+      const double p_e = std::exp((1.0 - s.ln_1_plus_e) / 0.04);
+      EXPECT_NEAR(s.ocr_same_rate, p_e / s.p_kpa, 1e-6 * p_e / s.p_kpa) << s.case_name;
+      ++checked;
+    } else {
+      EXPECT_TRUE(std::isnan(s.ocr_same_rate)) << s.case_name;  // no NCL at that rate
+    }
+  }
+  EXPECT_EQ(checked, 12);
+  // On its own NCL an NCL state has OCR 1.
+  const RateGroup* ncl = study.Find(RateKey{500, 0, 20, dem::RateRule::kInertial, 1e-3});
+  ASSERT_NE(ncl, nullptr);
+  EXPECT_NEAR(ncl->ocr_same_rate.mean, 1.0, 1e-9);
+}
+
 TEST(RateStudy, TwoSmallestRatesDecideRateIndependence) {
   // ψ_σ differs between 3e-4 and 1e-3 by 400 · 7e-4 = 0.28°, against a
   // Welch interval of t_4 · δ sqrt(2/3) = 0.23°: rate-dependent.
