@@ -38,6 +38,48 @@ bool HasFlag(const std::string& flags, const std::string& flag) {
   return false;
 }
 
+// Whether a state's status is one of `statuses` and it carries none of the
+// options' excluded flags (the part of usability that proportional and
+// drained states share).
+bool PassesFilters(const std::string& status, const std::string& flags,
+                   const std::vector<std::string>& statuses, const RateStudyOptions& options) {
+  if (!Contains(statuses, status)) return false;
+  for (const std::string& flag : options.excluded_flags) {
+    if (HasFlag(flags, flag)) return false;
+  }
+  return true;
+}
+
+// The verdict of named comparisons: rate_dependent when one differs (the
+// reason names each that does), rate_independent when all agree, else
+// undetermined (the reason: `missing`, what lacks an interval).
+std::string VerdictOf(const std::vector<std::pair<const char*, const Comparison*>>& comparisons,
+                      const std::vector<std::string>& missing, std::string* reason) {
+  bool differs = false, agree = true;
+  std::vector<std::string> reasons;
+  for (const auto& [name, c] : comparisons) {
+    agree = agree && c->agreement == Agreement::kAgree;
+    if (c->agreement == Agreement::kDiffer) {
+      differs = true;
+      reasons.push_back(fmt::format("{} differs by {:.4g} (95 % interval +-{:.2g})", name,
+                                    c->difference, c->half_width));
+    }
+  }
+  if (!differs && !agree) reasons = missing;
+  for (const std::string& r : reasons) *reason += (reason->empty() ? "" : "; ") + r;
+  return differs ? "rate_dependent" : agree ? "rate_independent" : "undetermined";
+}
+
+// The mean with its interval of one member over the finite values of `used`.
+template <typename State>
+Estimate MeanOver(const std::vector<const State*>& used, double State::*member) {
+  std::vector<double> values;
+  for (const State* s : used) {
+    if (std::isfinite(s->*member)) values.push_back(s->*member);
+  }
+  return Estimate::Of(values);
+}
+
 std::string RateText(dem::RateRule rule, double rate) {
   return rule == dem::RateRule::kInertial ? fmt::format("I* = {:g}", rate)
                                           : fmt::format("‖D‖ = {:g} 1/s", rate);
@@ -370,9 +412,9 @@ RateKey KeyOf(const RateState& state) {
 
 bool RateStudy::Usable(const RateState& s) const {
   const bool isotropic = s.kind == "ncl";
-  if (!Contains(isotropic ? options.ncl_statuses : options.statuses, s.status)) return false;
-  for (const std::string& flag : options.excluded_flags) {
-    if (HasFlag(s.flags, flag)) return false;
+  if (!PassesFilters(s.status, s.flags, isotropic ? options.ncl_statuses : options.statuses,
+                     options)) {
+    return false;
   }
   return s.p_kpa > 0 && std::isfinite(s.ln_1_plus_e) && std::isfinite(s.psi_sigma_deg);
 }
@@ -461,13 +503,7 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
       if (study.Usable(*s)) used.push_back(s);
     }
     group.used = static_cast<int>(used.size());
-    auto estimate = [&used](double RateState::*member) {
-      std::vector<double> values;
-      for (const RateState* s : used) {
-        if (std::isfinite(s->*member)) values.push_back(s->*member);
-      }
-      return Estimate::Of(values);
-    };
+    auto estimate = [&used](double RateState::*member) { return MeanOver(used, member); };
     group.p_kpa = estimate(&RateState::p_kpa);
     group.e = estimate(&RateState::e);
     group.ln_1_plus_e = estimate(&RateState::ln_1_plus_e);
@@ -575,26 +611,10 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
             rate, e_mpa));
       }
     }
-    const std::vector<const Comparison*> all = {&v.ln_1_plus_e, &v.psi_sigma, &v.csl_position};
-    const bool differs = std::any_of(all.begin(), all.end(), [](const Comparison* c) {
-      return c->agreement == Agreement::kDiffer;
-    });
-    const bool agree = std::all_of(all.begin(), all.end(), [](const Comparison* c) {
-      return c->agreement == Agreement::kAgree;
-    });
-    v.verdict = differs ? "rate_dependent" : agree ? "rate_independent" : "undetermined";
-    std::vector<std::string> reasons;
-    if (differs) {
-      const char* names[] = {"ln(1+e)", "psi_sigma", "the CSL position"};
-      for (size_t k = 0; k < all.size(); ++k) {
-        if (all[k]->agreement == Agreement::kDiffer) {
-          reasons.push_back(fmt::format("{} differs by {:.4g} (95 % interval +-{:.2g})", names[k],
-                                        all[k]->difference, all[k]->half_width));
-        }
-      }
-    }
-    if (!differs && !agree) reasons = missing;
-    for (const std::string& r : reasons) v.reason += (v.reason.empty() ? "" : "; ") + r;
+    v.verdict = VerdictOf({{"ln(1+e)", &v.ln_1_plus_e},
+                           {"psi_sigma", &v.psi_sigma},
+                           {"the CSL position", &v.csl_position}},
+                          missing, &v.reason);
     study.verdicts.push_back(v);
   }
   AnalyseExtension(&study);
@@ -734,11 +754,7 @@ std::string ExtensionLimit::Text() const {
 namespace {
 
 bool DrainedUsable(const DrainedState& s, const RateStudyOptions& options) {
-  if (!Contains(options.statuses, s.status)) return false;
-  for (const std::string& flag : options.excluded_flags) {
-    if (HasFlag(s.flags, flag)) return false;
-  }
-  return s.p_kpa > 0 && std::isfinite(s.ln_1_plus_e) && std::isfinite(s.q_over_p);
+  return PassesFilters(s.status, s.flags, options.statuses, options) && s.p_kpa > 0 && std::isfinite(s.ln_1_plus_e) && std::isfinite(s.q_over_p);
 }
 
 // φ_c of a triaxial-compression stress ratio M: sin φ = 3M / (6 + M).
@@ -764,13 +780,7 @@ DrainedStudy DrainedStudy::Analyse(std::vector<DrainedState> states,
       if (DrainedUsable(*s, options)) used.push_back(s);
     }
     g.used = static_cast<int>(used.size());
-    auto estimate = [&used](double DrainedState::*member) {
-      std::vector<double> values;
-      for (const DrainedState* s : used) {
-        if (std::isfinite(s->*member)) values.push_back(s->*member);
-      }
-      return Estimate::Of(values);
-    };
+    auto estimate = [&used](double DrainedState::*member) { return MeanOver(used, member); };
     g.p_kpa = estimate(&DrainedState::p_kpa);
     g.e = estimate(&DrainedState::e);
     g.ln_1_plus_e = estimate(&DrainedState::ln_1_plus_e);
@@ -825,29 +835,16 @@ DrainedStudy DrainedStudy::Analyse(std::vector<DrainedState> states,
       l.next = b.axial_strain_rate;
       l.m_change = Compare(a.q_over_p, b.q_over_p);
       l.ln_1_plus_e_change = Compare(a.ln_1_plus_e, b.ln_1_plus_e);
-      const bool differs = l.m_change.agreement == Agreement::kDiffer ||
-                           l.ln_1_plus_e_change.agreement == Agreement::kDiffer;
-      const bool agree = l.m_change.agreement == Agreement::kAgree &&
-                         l.ln_1_plus_e_change.agreement == Agreement::kAgree;
-      l.verdict = differs ? "rate_dependent" : agree ? "rate_independent" : "undetermined";
-      std::vector<std::string> reasons;
-      for (const auto& [name, c] : {std::pair{"M", &l.m_change},
-                                    std::pair{"ln(1+e)", &l.ln_1_plus_e_change}}) {
-        if (differs && c->agreement == Agreement::kDiffer) {
-          reasons.push_back(fmt::format("{} differs by {:.4g} (95 % interval +-{:.2g})", name,
-                                        c->difference, c->half_width));
+      std::vector<std::string> missing;
+      for (const DrainedGroup* g : {&a, &b}) {
+        if (g->used < 2) {
+          missing.push_back(fmt::format("axial rate {:g} 1/s: {} usable of {} states (an "
+                                        "interval needs 2)",
+                                        g->axial_strain_rate, g->used, g->states));
         }
       }
-      if (!differs && !agree) {
-        for (const DrainedGroup* g : {&a, &b}) {
-          if (g->used < 2) {
-            reasons.push_back(fmt::format("axial rate {:g} 1/s: {} usable of {} states (an "
-                                          "interval needs 2)",
-                                          g->axial_strain_rate, g->used, g->states));
-          }
-        }
-      }
-      for (const std::string& r : reasons) l.reason += (l.reason.empty() ? "" : "; ") + r;
+      l.verdict = VerdictOf({{"M", &l.m_change}, {"ln(1+e)", &l.ln_1_plus_e_change}}, missing,
+                            &l.reason);
     } else {
       l.verdict = "undetermined";
       l.reason = "fewer than two axial rates";
