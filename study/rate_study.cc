@@ -1184,6 +1184,30 @@ bool ServesRateStudy(const std::string& figures) {
   return false;
 }
 
+namespace {
+
+// What a rate state (proportional or drained) takes from its row of the
+// state table: the case, the detector's verdict and the asymptotic state.
+template <typename State>
+State FromRow(const StateRow& row) {
+  State s;
+  s.replicate = row.replicate;
+  s.case_name = row.case_name;
+  s.stage = row.stage;
+  s.status = row.status;
+  s.flags = row.flags;
+  s.p_kpa = row.p_kpa;
+  s.e = row.e;
+  s.ln_1_plus_e = row.ln_1_plus_e;
+  s.psi_sigma_deg = row.psi_sigma_deg;
+  s.q_over_p = row.q_over_p;
+  s.inertial_number_dmin = row.inertial_number_dmin;
+  s.inertial_number_dmax = row.inertial_number_dmax;
+  return s;
+}
+
+}  // namespace
+
 std::optional<RateStudy> WriteRateStudy(const std::string& directory,
                                         const std::vector<StateRow>& rows,
                                         const RateStudyOptions& options) {
@@ -1210,34 +1234,17 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
     const double modulus =
         CanonicalNumber(canonical, "material.youngs_modulus_mpa").value_or(kNaN);
     if (file.HasAttribute(group, dem::record::kStageAxialStrainRate)) {
-      DrainedState d;  // a drained triaxial stage
-      d.replicate = row.replicate;
-      d.case_name = row.case_name;
-      d.stage = row.stage;
-      d.status = row.status;
-      d.flags = row.flags;
+      DrainedState d = FromRow<DrainedState>(row);  // a drained triaxial stage
       d.youngs_modulus_mpa = modulus;
       d.radial_stress_kpa = file.ReadDoubleAttribute(group, dem::record::kStageRadialStressKpa);
       d.axial_strain_rate = file.ReadDoubleAttribute(group, dem::record::kStageAxialStrainRate);
-      d.p_kpa = row.p_kpa;
-      d.e = row.e;
-      d.ln_1_plus_e = row.ln_1_plus_e;
-      d.psi_sigma_deg = row.psi_sigma_deg;
-      d.q_over_p = row.q_over_p;
-      d.inertial_number_dmin = row.inertial_number_dmin;
-      d.inertial_number_dmax = row.inertial_number_dmax;
       drained.push_back(d);
       continue;
     }
     if (!file.HasAttribute(group, dem::record::kStageStretchingRate))
       continue;  // neither a strain path nor a drained triaxial stage
-    RateState s;
-    s.replicate = row.replicate;
-    s.case_name = row.case_name;
-    s.stage = row.stage;
+    RateState s = FromRow<RateState>(row);
     s.kind = row.kind;
-    s.status = row.status;
-    s.flags = row.flags;
     s.psi_epsilon_deg = file.ReadDoubleAttribute(group, dem::record::kStagePsiEpsilonDeg);
     s.stretching_rate = file.ReadDoubleAttribute(group, dem::record::kStageStretchingRate);
     const std::string rule = file.HasAttribute(group, dem::record::kStageRateRule)
@@ -1258,14 +1265,7 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
             ? kNaN
             : StartStress((fs::path(directory) / "cases" / parent / "result.h5").string(),
                           parent_stage);
-    s.p_kpa = row.p_kpa;
-    s.e = row.e;
-    s.ln_1_plus_e = row.ln_1_plus_e;
-    s.psi_sigma_deg = row.psi_sigma_deg;
-    s.q_over_p = row.q_over_p;
     s.ocr = row.ocr;
-    s.inertial_number_dmin = row.inertial_number_dmin;
-    s.inertial_number_dmax = row.inertial_number_dmax;
     s.stiffness_number = StiffnessNumber(canonical, row.p_kpa);
     states.push_back(s);
   }
