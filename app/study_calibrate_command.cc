@@ -32,42 +32,63 @@ namespace fs = std::filesystem;
 #ifdef GRANASYM_HAVE_CALIBRATION
 
 // The generated input: the study's table two folders up, the default
-// selections spelled out so that a user sees (and can edit) them.
+// selections spelled out so that a user sees (and can edit) them. A rate
+// study's quasi-static set is two datasets: its ψ_ε = 0° states also when
+// drifting (the rate study's rule for the isotropic path, study/rate_study.h)
+// and its other states, with the drained cases, when detected; the case
+// names select them, so no NCL reference does (the rate states' OCR refers
+// to NCLs that a short NCL stage may leave undetermined).
 std::string CalibrationToml(const std::string& directory, const std::string& model,
                             const study::QuasiStaticSelection* quasi_static) {
-  std::string ncl;
-  const std::string study_file = directory + "/study.toml";
-  if (fs::exists(study_file)) ncl = ConfigTable::ParseFile(study_file).GetString("ncl", "");
   std::string s = fmt::format(
       "# Written by `granasym study calibrate`; edit and rerun with\n"
       "#   granasym calibrate calibration.toml\n"
       "# (calibration/calibration_config.h documents every key).\n"
-      "[model]\nkind = \"{}\"\n\n"
-      "[[dataset]]\nname = \"study\"\nstudy = \"../..\"\n"
-      "kinds = [\"ncl\", \"csl\", \"compression\", \"extension\", \"triaxial\"]\n"
-      "statuses = [\"detected\"]  # add \"drifting\" for more NCL states\n"
-      "exclude_flags = [\"overlap_above_10pct\", \"gas\"]\n",
+      "[model]\nkind = \"{}\"\n\n",
       model);
-  if (!ncl.empty()) {
-    s += fmt::format(
-        "# only states whose OCR refers to the study's NCL (other samples, e.g. phi = 0, stay "
-        "out)\nncl_references = [{}]\n",
-        TomlQuoted(ncl));
-  }
+  const std::string common =
+      "study = \"../..\"\nexclude_flags = [\"overlap_above_10pct\", \"gas\"]\n"
+      "psi_sigma_uncertainty_deg = 0.5\nln_1_plus_e_uncertainty = 0.002\n";
+  auto names = [](const std::vector<std::string>& cases) {
+    std::string list;
+    for (const std::string& c : cases) list += (list.empty() ? "" : ", ") + TomlQuoted(c);
+    return "[" + list + "]";
+  };
   if (quasi_static) {
+    std::vector<std::string> all = quasi_static->cases;
+    all.insert(all.end(), quasi_static->drained_cases.begin(), quasi_static->drained_cases.end());
     s += fmt::format(
-        "# a rate study: only its quasi-static states, the rate cases at I* = {:g} and E = {:g} "
-        "MPa (calibration/quasi_static.toml; `study calibrate --inertial-number` chooses I*)\n"
-        "cases = [",
-        quasi_static->inertial_number, quasi_static->youngs_modulus_mpa);
-    for (size_t k = 0; k < quasi_static->cases.size(); ++k) {
-      s += (k ? ", " : "") + TomlQuoted(quasi_static->cases[k]);
+        "# a rate study: only its quasi-static states (calibration/quasi_static.toml; `study "
+        "calibrate --inertial-number` chooses I*): the rate cases at I* = {:g} and E = {:g} MPa, "
+        "and the drained triaxial cases at the slowest axial rate of each sigma_r\n"
+        "[[dataset]]\nname = \"quasi_static_ncl\"\n{}kinds = [\"ncl\"]\n"
+        "statuses = [\"detected\", \"drifting\"]  # the isotropic path: drifting too\n"
+        "cases = {}\n\n"
+        "[[dataset]]\nname = \"quasi_static\"\n{}"
+        "kinds = [\"csl\", \"compression\", \"extension\", \"triaxial\"]\n"
+        "statuses = [\"detected\"]\ncases = {}\n",
+        quasi_static->inertial_number, quasi_static->youngs_modulus_mpa, common,
+        names(quasi_static->cases), common, names(all));
+  } else {
+    std::string ncl;
+    const std::string study_file = directory + "/study.toml";
+    if (fs::exists(study_file)) ncl = ConfigTable::ParseFile(study_file).GetString("ncl", "");
+    s += "[[dataset]]\nname = \"study\"\n" + common +
+         "kinds = [\"ncl\", \"csl\", \"compression\", \"extension\", \"triaxial\"]\n"
+         "statuses = [\"detected\"]  # add \"drifting\" for more NCL states\n";
+    if (!ncl.empty()) {
+      s += fmt::format(
+          "# only states whose OCR refers to the study's NCL (other samples, e.g. phi = 0, stay "
+          "out)\nncl_references = [{}]\n",
+          TomlQuoted(ncl));
     }
-    s += "]\n";
   }
-  s += "psi_sigma_uncertainty_deg = 0.5\nln_1_plus_e_uncertainty = 0.002\n\n"
-       "[fitter]\nmethod = \"ceres\"\nfix_undetermined = true\n\n"
-       "[output]\nhdf5 = \"calibration.h5\"\nsummary = \"summary.txt\"\nplot_data = \"plot_data\"\n";
+  // A rate study's quasi-static states lie on nearly flat lines (frictional
+  // spheres do not crush) where a local fit from the starting values can
+  // leave the models' domain: the global NLopt search as well, the better fit used.
+  s += fmt::format("\n[fitter]\nmethod = \"{}\"\nfix_undetermined = true\n\n",
+                   quasi_static ? "both" : "ceres");
+  s += "[output]\nhdf5 = \"calibration.h5\"\nsummary = \"summary.txt\"\nplot_data = \"plot_data\"\n";
   return s;
 }
 
@@ -127,12 +148,18 @@ std::string CalibrateOne(const std::string& directory, ModelKind model,
   WriteTextFileAtomically(config.summary_path, calibration::SummaryText(run));
   const std::string warnings = calibration::WarningsText(run);
   WriteTextFileAtomically(folder + "/warnings.txt", warnings);
-  if (run.fits.empty() || !run.fits.front().summary.success()) {
+  // The successful fit of lowest cost (a rate study runs Ceres and NLopt:
+  // CalibrationToml).
+  const calibration::FitResult* best = nullptr;
+  for (const calibration::FitResult& f : run.fits) {
+    if (f.summary.success() && (!best || f.summary.final_cost < best->summary.final_cost)) best = &f;
+  }
+  if (!best) {
     throw RuntimeError(fmt::format("{}: the fit failed: {} (see {})", name,
                                    run.fits.empty() ? "no fit" : run.fits.front().summary.Report(),
                                    config.summary_path));
   }
-  const calibration::FitResult& fit = run.fits.front();
+  const calibration::FitResult& fit = *best;
   WriteTextFileAtomically(folder + "/parameters.csv", calibration::ParametersCsv(run, fit));
   WriteTextFileAtomically(folder + "/model.toml", calibration::ModelToml(run, fit));
   calibration::WritePlotData(run, fit, config.plot_data_dir);
@@ -198,19 +225,19 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
     }
     // A rate study: the models are fitted to its quasi-static states only.
     std::optional<study::QuasiStaticSelection> quasi_static;
-    const std::vector<study::RateState> rate_states = study::ReadRateStates(directory);
-    if (!rate_states.empty()) {
-      const study::RateStudy rate = study::RateStudy::Analyse(rate_states);
+    if (const std::optional<study::RateStudy> rate = study::ReadRateStudy(directory)) {
       quasi_static = study::SelectQuasiStatic(
-          rate, inertial_number > 0 ? std::optional<double>(inertial_number) : std::nullopt);
+          *rate, inertial_number > 0 ? std::optional<double>(inertial_number) : std::nullopt);
       if (!quasi_static->valid()) {
         throw InputError(directory + ": a rate study, but " + quasi_static->reason +
                          (inertial_number > 0 ? "" : "; choose one with --inertial-number"));
       }
       study::WriteQuasiStaticSelection(directory, *quasi_static);
-      std::printf("rate study: fitting the %zu rate cases at I* = %g, E = %g MPa\n",
-                  quasi_static->cases.size(), quasi_static->inertial_number,
-                  quasi_static->youngs_modulus_mpa);
+      std::printf(
+          "rate study: fitting the %zu rate cases at I* = %g and the %zu drained cases at the "
+          "slowest axial rates, E = %g MPa\n",
+          quasi_static->cases.size(), quasi_static->inertial_number,
+          quasi_static->drained_cases.size(), quasi_static->youngs_modulus_mpa);
     } else if (inertial_number > 0) {
       throw InputError("--inertial-number " + fmt::format("{:g}", inertial_number) + ": " +
                        directory + " is not a rate study (no rate_states.csv)");

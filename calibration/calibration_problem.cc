@@ -68,17 +68,24 @@ CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
         "than free parameters; fix parameters or add states)",
         num_residuals_, num_free()));
   }
-  CheckIdentifiable();
+  const std::vector<std::pair<int, std::string>> unidentified = Unidentifiable(datasets_, parameters_);
+  if (!unidentified.empty()) {
+    throw InputError(
+        fmt::format("calibration: parameter {} cannot be identified by these data: {} (fix it with "
+                    "free = false and a value, or add states)",
+                    parameters_.specs()[unidentified.front().first].name,
+                    unidentified.front().second));
+  }
 }
 
-void CalibrationProblem::CheckIdentifiable() const {
-  // The sand's eight parameters are judged from the Jacobian instead
-  // (DeterminedFit, calibration_report.h).
-  if (!HasLinearNcl(parameters_.kind())) return;
+std::vector<std::pair<int, std::string>> Unidentifiable(const std::vector<StateDataset>& datasets,
+                                                        const ModelParameters& parameters) {
+  std::vector<std::pair<int, std::string>> found;
+  if (!HasLinearNcl(parameters.kind())) return found;
   std::set<double> ln_p_with_line;  // distinct p among points on asymptotic lines
   int non_isotropic = 0;            // points with ψ_ε ≠ 0 or ASBS points
   std::set<double> non_isotropic_directions;
-  for (const StateDataset& dataset : datasets_) {
+  for (const StateDataset& dataset : datasets) {
     for (const AsymptoticStatePoint& point : dataset.points) {
       if (!point.IsFitted()) continue;
       ln_p_with_line.insert(std::round(std::log(point.mean_stress) * 1e6));
@@ -90,29 +97,20 @@ void CalibrationProblem::CheckIdentifiable() const {
       }
     }
   }
-  auto is_free = [this](int index) { return parameters_.specs()[index].free; };
-  auto fail = [this](int index, const std::string& need) {
-    throw InputError(
-        fmt::format("calibration: parameter {} cannot be identified by these data: {} (fix it with "
-                    "free = false and a value, or add states)",
-                    parameters_.specs()[index].name, need));
+  auto check = [&](int index, bool identified, const std::string& need) {
+    if (parameters.specs()[index].free && !identified) found.emplace_back(index, need);
   };
-  if (is_free(kLambdaStar) && ln_p_with_line.size() < 2) {
-    fail(kLambdaStar, "lambda_star needs asymptotic states at two or more mean stresses");
-  }
-  if (is_free(kCriticalFrictionAngle) && non_isotropic == 0) {
-    fail(kCriticalFrictionAngle,
-         "phi_c needs states away from the isotropic axis (CSL, compression, extension or ASBS)");
-  }
-  if (is_free(kKappaStar) && non_isotropic == 0) {
-    fail(kKappaStar,
-         "kappa_star acts on asymptotes only through the OCR of non-isotropic states; none given");
-  }
-  if (is_free(kShearParameter) && non_isotropic_directions.size() < 2) {
-    fail(kShearParameter, fmt::format("{} needs non-isotropic states in two or more directions "
-                                      "besides the critical state",
-                                      parameters_.specs()[kShearParameter].name));
-  }
+  check(kLambdaStar, ln_p_with_line.size() >= 2,
+        "lambda_star needs asymptotic states at two or more mean stresses");
+  check(kCriticalFrictionAngle, non_isotropic > 0,
+        "phi_c needs states away from the isotropic axis (CSL, compression, extension or ASBS)");
+  check(kKappaStar, non_isotropic > 0,
+        "kappa_star acts on asymptotes only through the OCR of non-isotropic states; none given");
+  check(kShearParameter, non_isotropic_directions.size() >= 2,
+        fmt::format("{} needs non-isotropic states in two or more directions besides the "
+                    "critical state",
+                    parameters.specs()[kShearParameter].name));
+  return found;
 }
 
 std::vector<double> CalibrationProblem::FreeLower() const {

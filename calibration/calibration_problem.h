@@ -15,6 +15,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "calibration/asymptote_predictor.h"
@@ -33,6 +34,15 @@ struct PointResidual {
   double ln_volume_residual = 0.0;      // model − data; NaN for unloading points
   bool clamped = false;                 // ψ_ε outside the model's asymptote range
 };
+
+// The free parameters that these data cannot identify whatever the fit
+// (structurally: e.g. lambda* without states at two mean stresses, r or ν
+// without non-isotropic states in two directions besides the critical
+// state), each with what data it needs, in parameter order. The sand's
+// parameters are judged from the Jacobian instead (DeterminedFit,
+// calibration_report.h), so none is listed for it.
+std::vector<std::pair<int, std::string>> Unidentifiable(const std::vector<StateDataset>& datasets,
+                                                        const ModelParameters& parameters);
 
 class CalibrationProblem {
  public:
@@ -67,7 +77,6 @@ class CalibrationProblem {
   long evaluations() const { return evaluations_; }
 
  private:
-  void CheckIdentifiable() const;
   bool EvaluateSand(const std::vector<double>& values, std::vector<PointResidual>* residuals,
                     std::string* why) const;
 

@@ -172,6 +172,18 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   ModelParameters parameters =
       ChooseParameters(config.model, config.parameters, run.starting_values, datasets);
   std::vector<bool> undetermined(parameters.specs().size(), false);
+  if (config.fix_undetermined) {
+    // What these data cannot identify whatever the fit (no states in the
+    // directions a parameter acts on) is fixed before the first fit.
+    for (const auto& [index, need] : Unidentifiable(datasets, parameters)) {
+      ParameterSpec& spec = parameters.mutable_specs()[index];
+      spec.free = false;
+      undetermined[index] = true;
+      run.undetermined.push_back(fmt::format(
+          "{} fixed at its start value {:.6g}: these data cannot identify it ({})", spec.name,
+          spec.value, need));
+    }
+  }
   run.problem =
       std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor);
   if (config.fix_undetermined) {

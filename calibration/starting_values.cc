@@ -37,7 +37,7 @@ std::string StartingValues::Report() const {
 
 StartingValues EstimateStartingValues(const std::vector<StateDataset>& datasets) {
   StartingValues start;
-  std::vector<double> ln_p, ln_v, csl_psi;
+  std::vector<double> ln_p, ln_v, csl_psi, csl_ln_p, csl_ln_v;
   // Unloading branches pooled with one intercept each: centre each branch.
   std::vector<double> unload_x, unload_y;
   for (const StateDataset& dataset : datasets) {
@@ -48,6 +48,8 @@ StartingValues EstimateStartingValues(const std::vector<StateDataset>& datasets)
         ln_v.push_back(std::log1p(point.void_ratio));
       } else if (point.kind == StateKind::kCsl) {
         csl_psi.push_back(point.psi_sigma);
+        csl_ln_p.push_back(std::log(point.mean_stress));
+        csl_ln_v.push_back(std::log1p(point.void_ratio));
       } else if (point.kind == StateKind::kUnloading) {
         bx.push_back(std::log(point.mean_stress));
         by.push_back(std::log1p(point.void_ratio));
@@ -73,10 +75,30 @@ StartingValues EstimateStartingValues(const std::vector<StateDataset>& datasets)
     start.n_intercept = {true, ncl.intercept, ncl.intercept_error, ncl.points,
                          "NCL regression at p_r = 1 kPa"};
   } else {
+    // The NCL gives no slope (its states at one p, as a rate study's
+    // ψ_ε = 0° paths, which all end at the same stress cap): the CSL's, which
+    // is parallel to it in the three models, when it falls; else assumed.
+    // The intercept then goes through the NCL points at that slope.
     const std::string why = ln_p.size() < 2 ? "fewer than 2 NCL points"
                                             : "NCL points do not decrease in ln(1+e) with ln p";
-    start.lambda_star = {false, 0.1, kNaN, ncl.points, why};
-    start.n_intercept = {false, 1.0, kNaN, ncl.points, why};
+    const LineFit csl = FitLine(csl_ln_p, csl_ln_v);
+    if (std::isfinite(csl.slope) && csl.slope < 0) {
+      start.lambda_star = {true, -csl.slope, csl.slope_error, csl.points,
+                           why + ": the CSL regression in ln(1+e)-ln p (parallel to the NCL)"};
+    } else {
+      start.lambda_star = {false, 0.1, kNaN, ncl.points, why};
+    }
+    if (!ln_p.empty()) {
+      double mean_p = 0, mean_v = 0;
+      for (size_t i = 0; i < ln_p.size(); ++i) {
+        mean_p += ln_p[i] / ln_p.size();
+        mean_v += ln_v[i] / ln_v.size();
+      }
+      start.n_intercept = {false, mean_v + start.lambda_star.value * mean_p, kNaN, ncl.points,
+                           why + ": through their mean at the starting lambda_star"};
+    } else {
+      start.n_intercept = {false, 1.0, kNaN, ncl.points, why};
+    }
   }
 
   if (!csl_psi.empty()) {

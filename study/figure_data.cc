@@ -1314,7 +1314,9 @@ FigureSpec RateAgainstModels(const Context& ctx, const RateStudy& rate) {
           "The asymptotic states of the rate cases at {} (filled circles: the quasi-static "
           "set{}) and at the paper's constant ‖D‖ (open diamonds), E = {} MPa, all ψ_ε: (a) ψ_σ "
           "against ψ_ε, the means over the replicates of each start with their 95 % intervals; "
-          "(b) ln(1+e) against p, every usable state, one colour per ψ_ε. Lines: the models "
+          "(b) ln(1+e) against p, every usable state, one colour per ψ_ε, with the drained "
+          "triaxial states of the quasi-static set (filled triangles: the slowest axial rate of "
+          "each σ_r, rate_drained_states.csv). Lines: the models "
           "calibrated in this folder to the quasi-static set (`granasym study calibrate`), "
           "their ψ_σ(ψ_ε) in (a) and their asymptotic lines in (b). Data: rate_summary.csv, "
           "rate_states.csv.",
@@ -1355,12 +1357,27 @@ FigureSpec RateAgainstModels(const Context& ctx, const RateStudy& rate) {
     directions.insert(s.psi_epsilon_deg);
     by_psi[s.psi_epsilon_deg].push_back({s.p_kpa, s.ln_1_plus_e, is_quasi ? 7.0 : 12.0});
   }
-  if (by_psi.empty()) return NotDrawn(spec, "no usable state at the selected rates");
+  // The drained cases of the quasi-static set: the critical state under stress control.
+  std::vector<std::vector<double>> drained_rows;
+  for (const DrainedState& s : rate.drained.states) {
+    if (std::find(selection->drained_cases.begin(), selection->drained_cases.end(),
+                  s.case_name) != selection->drained_cases.end() &&
+        s.youngs_modulus_mpa == e_mpa && rate.Usable(s)) {
+      drained_rows.push_back({s.p_kpa, s.ln_1_plus_e, 9.0});
+    }
+  }
+  if (by_psi.empty() && drained_rows.empty()) {
+    return NotDrawn(spec, "no usable state at the selected rates");
+  }
   BlockFile states({"p_kpa", "ln_1_plus_e", "point_type"});
   std::string psi_titles;
   for (const auto& [psi, rows] : by_psi) {
     states.Add(fmt::format("ψ_ε = {}°", Short(psi)), rows);
     psi_titles += fmt::format("{}\"ψ_ε = {}°\"", psi_titles.empty() ? "" : " ", Short(psi));
+  }
+  if (!drained_rows.empty()) {
+    states.Add("drained triaxial, slowest axial rate", drained_rows);
+    psi_titles += fmt::format("{}\"drained\"", psi_titles.empty() ? "" : " ");
   }
   states.Write(ctx.File("rate_models_states.tsv"));
   // The models: ψ_σ(ψ_ε) over the swept range, lines at the study's directions.
@@ -1830,11 +1847,8 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
                      }),
       figures.end());
   // The rate study's figures, when it has rate cases.
-  const std::vector<RateState> rate_states = ReadRateStates(directory);
-  std::vector<DrainedState> drained_states = ReadDrainedStates(directory);
-  if (!rate_states.empty() || !drained_states.empty()) {
-    RateStudy rate = RateStudy::Analyse(rate_states);
-    rate.drained = DrainedStudy::Analyse(std::move(drained_states), rate.options);
+  if (const std::optional<RateStudy> read = ReadRateStudy(directory)) {
+    const RateStudy& rate = *read;
     figures.push_back(RatePsiSigma(ctx, rate));
     figures.push_back(RateLines(ctx, rate));
     figures.push_back(RateCriticalState(ctx, rate));

@@ -762,6 +762,8 @@ double FrictionAngleDeg(double m) { return std::asin(3 * m / (6 + m)) / kDegree;
 
 }  // namespace
 
+bool RateStudy::Usable(const DrainedState& s) const { return DrainedUsable(s, options); }
+
 DrainedStudy DrainedStudy::Analyse(std::vector<DrainedState> states,
                                    const RateStudyOptions& options) {
   DrainedStudy study;
@@ -1149,6 +1151,20 @@ QuasiStaticSelection SelectQuasiStatic(const RateStudy& study,
       selection.cases.push_back(s.case_name);
     }
   }
+  // The drained cases at the slowest axial rate of each σ_r with usable states.
+  std::map<double, double> slowest;  // σ_r → ε̇_a
+  for (const DrainedState& s : study.drained.states) {
+    if (s.youngs_modulus_mpa != e_mpa || !DrainedUsable(s, study.options)) continue;
+    auto [it, added] = slowest.emplace(s.radial_stress_kpa, s.axial_strain_rate);
+    if (!added) it->second = std::min(it->second, s.axial_strain_rate);
+  }
+  for (const DrainedState& s : study.drained.states) {
+    const auto it = slowest.find(s.radial_stress_kpa);
+    if (s.youngs_modulus_mpa == e_mpa && it != slowest.end() &&
+        s.axial_strain_rate == it->second && seen.insert(s.case_name).second) {
+      selection.drained_cases.push_back(s.case_name);
+    }
+  }
   return selection;
 }
 
@@ -1159,6 +1175,10 @@ void WriteQuasiStaticSelection(const std::string& directory, const QuasiStaticSe
       "inertial_number = {}\nyoungs_modulus_mpa = {}\ncases = [",
       CsvNumber(s.inertial_number), CsvNumber(s.youngs_modulus_mpa));
   for (size_t k = 0; k < s.cases.size(); ++k) text += (k ? ", " : "") + TomlQuoted(s.cases[k]);
+  text += "]\n# the drained triaxial cases at the slowest axial rate of each sigma_r\ndrained_cases = [";
+  for (size_t k = 0; k < s.drained_cases.size(); ++k) {
+    text += (k ? ", " : "") + TomlQuoted(s.drained_cases[k]);
+  }
   fs::create_directories(fs::path(directory) / "calibration");
   WriteTextFileAtomically((fs::path(directory) / kQuasiStaticSelectionFile).string(), text + "]\n");
 }
@@ -1172,7 +1192,17 @@ std::optional<QuasiStaticSelection> ReadQuasiStaticSelection(const std::string& 
   s.youngs_modulus_mpa = table.GetDouble("youngs_modulus_mpa", Range::Open(0, 1e7));
   s.cases = table.GetStrings("cases");
   if (s.cases.empty()) table.Fail("cases", "is empty: expected the calibrated case names");
+  if (table.Has("drained_cases")) s.drained_cases = table.GetStrings("drained_cases");
   return s;
+}
+
+std::optional<RateStudy> ReadRateStudy(const std::string& directory) {
+  std::vector<RateState> states = ReadRateStates(directory);
+  std::vector<DrainedState> drained = ReadDrainedStates(directory);
+  if (states.empty() && drained.empty()) return std::nullopt;
+  RateStudy study = RateStudy::Analyse(std::move(states));
+  study.drained = DrainedStudy::Analyse(std::move(drained), study.options);
+  return study;
 }
 
 bool ServesRateStudy(const std::string& figures) {

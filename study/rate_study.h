@@ -294,6 +294,7 @@ struct RateStudy {
   std::vector<ExtensionLimit> extension_limits;  // one per (E, rate, p_0) with a ψ_ε > 90° step
   DrainedStudy drained;                          // the drained triaxial cases
   bool Usable(const RateState& state) const;
+  bool Usable(const DrainedState& state) const;  // the same rule for drained states
   const RateGroup* Find(const RateKey& key) const;
   // The Young's modulus of most groups (ties: the largest), the study's main
   // material; the others are its stiffness variants. NaN without groups.
@@ -307,10 +308,15 @@ struct RateStudy {
 // paper-rate ones: the rate cases at one I* and the reference modulus. By
 // default the smallest I* whose ψ_ε = 90° cases have usable states from at
 // least two starts (so that it has a CSL); `inertial_number` chooses it.
+// With them, the drained triaxial cases of the reference modulus at the
+// slowest axial rate of each σ_r that has usable states: the critical state
+// under stress control, which the isochoric paths from loose NC states do
+// not reach as I* → 0 (they liquefy).
 struct QuasiStaticSelection {
   double inertial_number = std::numeric_limits<double>::quiet_NaN();
   double youngs_modulus_mpa = std::numeric_limits<double>::quiet_NaN();
-  std::vector<std::string> cases;  // case names, each once, in the states' order
+  std::vector<std::string> cases;          // case names, each once, in the states' order
+  std::vector<std::string> drained_cases;  // likewise, the drained cases
   std::string reason;              // why there is none (empty when valid)
   bool valid() const { return !cases.empty(); }
 };
@@ -322,6 +328,11 @@ inline constexpr char kQuasiStaticSelectionFile[] = "calibration/quasi_static.to
 void WriteQuasiStaticSelection(const std::string& directory, const QuasiStaticSelection& s);
 // The selection written there, or nullopt without the file (InputError when malformed).
 std::optional<QuasiStaticSelection> ReadQuasiStaticSelection(const std::string& directory);
+
+// The rate study of a study folder from its rate_states.csv and
+// rate_drained_states.csv (ReadRateStates, ReadDrainedStates), analysed with
+// the default options; nullopt when it has neither.
+std::optional<RateStudy> ReadRateStudy(const std::string& directory);
 
 // Whether a case's `figures` key ("10, rate") names the rate study.
 bool ServesRateStudy(const std::string& figures);

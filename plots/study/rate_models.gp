@@ -4,7 +4,8 @@
 # data/rate_models_paper_rate.tsv (psi_epsilon_deg, psi_sigma_deg,
 # psi_sigma_ci95; each when n_quasi_static, n_paper_rate > 0) and the models' curves
 # (data/rate_models_curves.tsv); (b) ln(1+e) against p: data/rate_models_states.tsv
-# (one block per psi_epsilon) and the models' lines (data/rate_models_lines.tsv).
+# (one block per psi_epsilon, then the drained states of the quasi-static set,
+# point_type 9) and the models' lines (data/rate_models_lines.tsv).
 # Variables: n_models, n_psi, psi_titles (words), quasi_title, n_quasi_static,
 # n_paper_rate.
 width = 11.0; height = 4.8
@@ -36,5 +37,6 @@ set ylabel label_lnv
 set title "(b)"
 plot @models_b for [i=0:n_psi-1] states index i using "p_kpa":"ln_1_plus_e":"point_type" \
        with points pt variable ps 0.8 lt (i+1) notitle, \
-     for [i=0:n_psi-1] keyentry with points pt 7 ps 0.8 lt (i+1) title word(psi_titles, i+1)
+     for [i=0:n_psi-1] keyentry with points pt (word(psi_titles, i+1) eq "drained" ? 9 : 7) ps 0.8 lt (i+1) \
+       title word(psi_titles, i+1)
 unset multiplot

@@ -212,6 +212,44 @@ TEST(CalibrationConfig, RunsAWholeCalibrationAndWritesItsRecord) {
   std::filesystem::remove_all(dir);
 }
 
+// Only the NCL and the CSL (what a rate study's quasi-static set holds when
+// its extension paths liquefy): r acts on neither, so fix_undetermined fixes
+// it before the fit and says why; without fix_undetermined the run refuses.
+TEST(CalibrationConfig, FixesWhatTheDataCannotIdentifyBeforeTheFit) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "granasym_calibration_axes";
+  std::filesystem::create_directories(dir);
+  const std::vector<double> truth = testing::LondonClay();
+  testing::SyntheticOptions data;
+  data.psi_epsilons_deg = {0, 90};
+  WriteStatesCsv(testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, data),
+                 (dir / "states.csv").string());
+  const std::string text = Replace(Replace(kConfig, "free = false\nvalue = 0.4", "value = 0.4"),
+                                   "method = \"both\"", "method = \"ceres\"");
+  std::ofstream(dir / "calib.toml") << text;
+  const CalibrationRun run = RunCalibration(ReadCalibrationConfigFile((dir / "calib.toml").string()));
+  ASSERT_EQ(run.fits.size(), 1u);
+  EXPECT_TRUE(run.fits[0].summary.success()) << run.fits[0].summary.Report();
+  EXPECT_EQ(run.status[kShearParameter], ParameterStatus::kUndetermined);
+  EXPECT_DOUBLE_EQ(run.fits[0].values[kShearParameter], 0.4);
+  ASSERT_FALSE(run.undetermined.empty());
+  EXPECT_NE(run.undetermined.front().find("r fixed at its start value 0.4: these data cannot "
+                                          "identify it (r needs non-isotropic states in two"),
+            std::string::npos)
+      << run.undetermined.front();
+  EXPECT_NEAR(run.fits[0].values[kCriticalFrictionAngle], truth[kCriticalFrictionAngle], 0.1);
+  std::ofstream(dir / "calib.toml")
+      << Replace(text, "method = \"ceres\"", "method = \"ceres\"\nfix_undetermined = false");
+  try {
+    RunCalibration(ReadCalibrationConfigFile((dir / "calib.toml").string()));
+    ADD_FAILURE() << "fitted an r that the data cannot identify";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("parameter r cannot be identified"), std::string::npos)
+        << error.what();
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CalibrationConfig, RefusesTooFewPointsForTheFreeParameters) {
   CsvReadOptions options;
   const StateDataset tiny = ParseStatesCsv("p_kpa,e,psi_sigma_deg,psi_epsilon_deg\n100,0.8,0,0\n",

@@ -65,5 +65,31 @@ TEST(StartingValues, SayWhatIsAssumedWithoutData) {
   EXPECT_NE(s.kappa_star.note.find("no unloading"), std::string::npos);
 }
 
+// The NCL at one p (a rate study's ψ_ε = 0° paths all end at the stress
+// cap): the slope from the falling CSL, the intercept through the NCL point.
+TEST(StartingValues, TakeTheCslSlopeWhenTheNclHasOnePressure) {
+  StateDataset d;
+  const double lambda = 0.05, n = 0.9, phi = 21 * kDegree;
+  d.points.push_back(Point(StateKind::kNcl, 2500, n - lambda * std::log(2500), 0.0));
+  for (double p : {30.0, 130.0, 700.0}) {
+    d.points.push_back(
+        Point(StateKind::kCsl, p, n - lambda * std::log(2 * p), CriticalStatePsiSigma(phi)));
+  }
+  StartingValues s = EstimateStartingValues({d});
+  EXPECT_TRUE(s.lambda_star.from_data);
+  EXPECT_NEAR(s.lambda_star.value, lambda, 1e-12);
+  EXPECT_NE(s.lambda_star.note.find("the CSL regression"), std::string::npos) << s.lambda_star.note;
+  EXPECT_FALSE(s.n_intercept.from_data);
+  EXPECT_NEAR(s.n_intercept.value, n, 1e-12);
+  // A CSL that does not fall gives no slope: assumed, the intercept still
+  // through the NCL point.
+  for (AsymptoticStatePoint& point : d.points) {
+    if (point.kind == StateKind::kCsl) point.void_ratio = 0.6;
+  }
+  s = EstimateStartingValues({d});
+  EXPECT_FALSE(s.lambda_star.from_data);
+  EXPECT_NEAR(s.n_intercept.value, n - lambda * std::log(2500) + 0.1 * std::log(2500), 1e-12);
+}
+
 }  // namespace
 }  // namespace granasym::calibration

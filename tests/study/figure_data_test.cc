@@ -312,7 +312,8 @@ TEST(WriteFigureData, TheDrainedCriticalStatesJoinTheMFigure) {
 
 TEST(WriteFigureData, TheQuasiStaticSetStandsBesideThePaperRate) {
   const fs::path dir = BareStudy("rate_models");
-  const RateStudy rate = RateStudy::Analyse(rate_fixture::CriticalStates());
+  RateStudy rate = RateStudy::Analyse(rate_fixture::CriticalStates());
+  rate.drained = DrainedStudy::Analyse(rate_fixture::DrainedStates(0.0), rate.options);
   WriteRateFiles(dir.string(), rate);
   auto find = [](const std::vector<FigureSpec>& figures) {
     for (const FigureSpec& f : figures) {
@@ -343,6 +344,14 @@ TEST(WriteFigureData, TheQuasiStaticSetStandsBesideThePaperRate) {
   EXPECT_EQ(Count(quasi, "\n89.4\t26.2"), 2) << quasi;
   const std::string paper = ReadTextFile((dir / "figures/data/rate_models_paper_rate.tsv").string());
   EXPECT_EQ(Count(paper, "\n90.6\t35\t"), 2) << paper;
+  // (b): the drained states of the quasi-static set, the slowest axial rate
+  // of each of the four σ_r, three replicates, as filled triangles (9).
+  const std::string states = ReadTextFile((dir / "figures/data/rate_models_states.tsv").string());
+  const size_t block = states.find("drained triaxial, slowest axial rate");
+  ASSERT_NE(block, std::string::npos) << states;
+  EXPECT_EQ(Count(states.substr(block), "\t9\n"), 12) << states.substr(block);
+  v = std::map<std::string, std::string>(f.variables.begin(), f.variables.end());
+  EXPECT_NE(v["psi_titles"].find("\"drained\""), std::string::npos) << v["psi_titles"];
 }
 
 TEST(WriteFigureData, TheExtensionSweepHasItsFigureWhenItHasAnExtensionStep) {

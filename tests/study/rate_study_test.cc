@@ -378,12 +378,27 @@ TEST(QuasiStatic, TheSmallestRateWithACslFromTwoStartsIsTheCalibratedSet) {
       s.flags = "gas";
     }
   }
-  const RateStudy study = RateStudy::Analyse(states);
+  RateStudy study = RateStudy::Analyse(states);
+  // The drained cases: at the slowest axial rate of each σ_r, except at
+  // 20 kPa, where the slowest has no usable state (a gas) and the next is
+  // taken; another modulus stays out.
+  std::vector<DrainedState> drained = DrainedStates(0.0);
+  for (DrainedState& s : drained) {
+    if (s.radial_stress_kpa == 20 && s.inertial_number_dmax == 3e-4) s.flags = "gas";
+  }
+  DrainedState soft = drained.front();
+  soft.youngs_modulus_mpa = 100;
+  soft.case_name = "nc5_drained_soft";
+  drained.push_back(soft);
+  study.drained = DrainedStudy::Analyse(drained, study.options);
   const QuasiStaticSelection chosen = SelectQuasiStatic(study);
   ASSERT_TRUE(chosen.valid()) << chosen.reason;
   EXPECT_EQ(chosen.inertial_number, 1e-3);
   EXPECT_EQ(chosen.youngs_modulus_mpa, 500);
   EXPECT_EQ(chosen.cases, (std::vector<std::string>{"nc20_psi90_I0.001", "nc100_psi90_I0.001"}));
+  EXPECT_EQ(chosen.drained_cases,
+            (std::vector<std::string>{"nc5_drained_I0.0003", "nc20_drained_I0.001",
+                                      "nc100_drained_I0.0003", "nc500_drained_I0.0003"}));
   // Asked for: any I* the study has, also one without a CSL.
   EXPECT_EQ(SelectQuasiStatic(study, 3e-4).cases.size(), 2u);
   const QuasiStaticSelection none = SelectQuasiStatic(study, 0.5);
@@ -399,6 +414,7 @@ TEST(QuasiStatic, TheSmallestRateWithACslFromTwoStartsIsTheCalibratedSet) {
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->inertial_number, 1e-3);
   EXPECT_EQ(back->cases, chosen.cases);
+  EXPECT_EQ(back->drained_cases, chosen.drained_cases);
 }
 
 TEST(DrainedStudy, LimitsAsIGoesToZeroAndTheQuasiStaticCriticalState) {

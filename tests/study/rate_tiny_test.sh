@@ -88,6 +88,21 @@ if "$granasym" study calibrate "$out" > "$work/calibrate.txt" 2>&1; then
   fail "study calibrate fitted a rate study without a quasi-static CSL"
 fi
 grep -q "a rate study, but no I\* has usable" "$work/calibrate.txt" || fail "calibrate gave no reason"
+# Asked for I* = 0.1: the quasi-static set is two datasets, the ψ_ε = 0°
+# states (drifting too) and the others with the drained cases; the tiny
+# scale's short paths detect no CSL, so each model says which dataset is empty.
+if "$granasym" study calibrate "$out" --inertial-number 0.1 > "$work/calibrate01.txt" 2>&1; then
+  fail "study calibrate fitted the tiny rate study without a detected CSL"
+fi
+grep -q "fitting the 4 rate cases at I\* = 0.1 and the 0 drained cases" "$work/calibrate01.txt" ||
+  fail "calibrate --inertial-number 0.1 did not name its quasi-static set"
+grep -q "hypoplastic_clay: FAILED: dataset 'quasi_static': .*no state passes the selections (kinds csl, compression, extension, triaxial; statuses detected" \
+  "$work/calibrate01.txt" || fail "calibrate did not say that the quasi-static dataset is empty"
+for name in quasi_static_ncl quasi_static; do
+  grep -q "^name = \"$name\"" "$out/calibration/hypoplastic_clay/calibration.toml" ||
+    fail "calibration.toml has no dataset $name"
+done
+rm -rf "$out/calibration"
 
 "$granasym" study report "$out" | tee "$work/report.txt"
 grep -q "^## Rate study" "$out/report.md" || fail "report.md has no Rate study section"
