@@ -1168,7 +1168,10 @@ FigureSpec RateLines(const Context& ctx, const RateStudy& rate) {
                "replicates and starts: ψ_ε = 0° (triangles: the NCL at that rate), 90° (circles: "
                "the CSL), other directions (squares: e.g. the NEL of 100°); {}; one colour per "
                "rate. Lines: ln(1+e) = N − λ ln p fitted through the states of one direction and "
-               "rate (at least two starts), drawn over their p range; rate_lines.csv gives N, λ "
+               "rate (at least two starts; at ψ_ε = 0°, whose states all lie at the stress cap, "
+               "the mean of the paths' own lines past their first unit of ln p: a least-squares "
+               "secant of an NCL that steepens with p), drawn over their p range; rate_lines.csv "
+               "gives N, λ "
                "and ln(1+e) at {} kPa with its 95 % interval. Data: rate_states.csv.",
                ModulusNote(rate, reference), Short(rate.options.reference_p_kpa)),
            "rate_lines.gp");

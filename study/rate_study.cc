@@ -16,6 +16,7 @@
 #include "common/hdf5_file.h"
 #include "common/statistics.h"
 #include "common/text_file.h"
+#include "common/time_series.h"
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
 
@@ -230,6 +231,10 @@ Columns StateFields(const RateState& s) {
           {"inertial_number_dmin", CsvNumber(s.inertial_number_dmin)},
           {"inertial_number_dmax", CsvNumber(s.inertial_number_dmax)},
           {"stiffness_number", CsvNumber(s.stiffness_number)},
+          {"path_N", CsvNumber(s.path_n)},
+          {"path_lambda", CsvNumber(s.path_lambda)},
+          {"path_p_min_kpa", CsvNumber(s.path_p_min_kpa)},
+          {"path_p_max_kpa", CsvNumber(s.path_p_max_kpa)},
           {"flags", CsvText(s.flags)}};
 }
 
@@ -461,6 +466,29 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
   for (const auto& [key, list] : line_members) {
     RateLine line;
     std::tie(line.youngs_modulus_mpa, line.psi_epsilon_deg, line.rule, line.rate) = key;
+    if (std::any_of(list.begin(), list.end(), [](const RateState* s) { return s->HasPathLine(); })) {
+      // ψ_ε = 0°: the mean of the paths' own lines; the position over the
+      // paths whose range holds the reference p.
+      std::vector<double> ns, lambdas, positions;
+      line.p_min_kpa = std::numeric_limits<double>::infinity();
+      for (const RateState* s : list) {
+        if (!s->HasPathLine()) continue;
+        ns.push_back(s->path_n);
+        lambdas.push_back(s->path_lambda);
+        line.p_min_kpa = std::min(line.p_min_kpa, s->path_p_min_kpa);
+        line.p_max_kpa = std::max(line.p_max_kpa, s->path_p_max_kpa);
+        if (s->path_p_min_kpa <= options.reference_p_kpa &&
+            options.reference_p_kpa <= s->path_p_max_kpa) {
+          positions.push_back(s->path_n - s->path_lambda * ln_reference);
+        }
+      }
+      line.points = static_cast<int>(ns.size());
+      line.n = Estimate::Of(ns).mean;
+      line.lambda = Estimate::Of(lambdas).mean;
+      line.position = Estimate::Of(positions);
+      study.lines.push_back(line);
+      continue;
+    }
     std::set<double> starts;
     std::vector<double> x, y;
     for (const RateState* s : list) {
@@ -480,13 +508,16 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
     study.lines.push_back(line);
   }
   // OCR against the NCL of the same E and rate (the ψ_ε = 0° line of that
-  // rate): p_e*/p with ln(1+e) = N − λ ln(p_e* / 1 kPa) at the state's ln(1+e).
+  // rate): p_e*/p with ln(1+e) = N − λ ln(p_e* / 1 kPa) at the state's
+  // ln(1+e), where p_e* lies in the line's p range (the NCL of frictional
+  // spheres is curved: the line is no NCL outside it).
   for (RateState& s : study.states) {
     s.ocr_same_rate = kNaN;
     for (const RateLine& l : study.lines) {
       if (l.valid() && l.lambda > 0 && l.youngs_modulus_mpa == s.youngs_modulus_mpa &&
           l.psi_epsilon_deg == 0 && l.rule == s.rule && l.rate == s.rate() && s.p_kpa > 0) {
-        s.ocr_same_rate = std::exp((l.n - s.ln_1_plus_e) / l.lambda) / s.p_kpa;
+        const double p_e = std::exp((l.n - s.ln_1_plus_e) / l.lambda);
+        if (p_e >= l.p_min_kpa && p_e <= l.p_max_kpa) s.ocr_same_rate = p_e / s.p_kpa;
       }
     }
   }
@@ -950,7 +981,9 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
        "case and detector stage; start_p_kpa: the p target of the state the case "
        "started from; stiffness_number: kappa of the contact law at p; ocr: against the "
        "study's NCL, ocr_same_rate: against the NCL of the same E and rate (its psi_epsilon "
-       "= 0 line in rate_lines.csv)"});
+       "= 0 line in rate_lines.csv; empty where p_e* falls outside the line's p range); "
+       "path_N, path_lambda: a psi_epsilon = 0 path's own NCL past its first unit of ln p, "
+       "over [path_p_min_kpa, path_p_max_kpa]"});
   states.WriteRows(study.states, StateFields, directory + "/" + kRateStatesFile);
 
   CsvWriter summary(
@@ -982,6 +1015,11 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
                                "at p = {:g} kPa with the 95 % interval of the prediction "
                                "(Student t, points - 2 degrees of freedom)",
                                o.reference_p_kpa),
+                   "psi_epsilon = 0 (whose states all lie at the stress cap): N and lambda the "
+                   "means of the paths' own lines (rate_states.csv path_N, path_lambda: each path "
+                   "past its first unit of ln p), points the paths, position the mean of their "
+                   "ln(1+e) at the reference p over the paths that reach it (Student t, n - 1 "
+                   "degrees of freedom)",
                    usable});
   auto line_fields = [&o](const RateLine& l) {
     Columns fields = {{"youngs_modulus_mpa", CsvNumber(l.youngs_modulus_mpa)},
@@ -1236,6 +1274,31 @@ State FromRow(const StateRow& row) {
   return s;
 }
 
+// A ψ_ε = 0° path's own NCL (RateState::path_n): its rows [first, last]
+// once p exceeds e times the first row's.
+void FitPathLine(const TimeSeries& series, int64_t first, int64_t last, RateState* s) {
+  const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
+  const std::vector<double>& ln_v = series.Values("ln_1_plus_e");
+  first = std::max<int64_t>(first, 0);
+  last = std::min<int64_t>(last, static_cast<int64_t>(p.size()) - 1);
+  if (last <= first || !(p[first] > 0)) return;
+  const double from = std::exp(1.0) * p[first];
+  std::vector<double> x, y;
+  for (int64_t k = first; k <= last; ++k) {
+    if (p[k] >= from && std::isfinite(ln_v[k])) {
+      x.push_back(std::log(p[k]));
+      y.push_back(ln_v[k]);
+    }
+  }
+  if (x.size() < 3) return;
+  const LineFit fit = FitLine(x, y);
+  if (!fit.valid()) return;
+  s->path_n = fit.intercept;
+  s->path_lambda = -fit.slope;
+  s->path_p_min_kpa = std::exp(*std::min_element(x.begin(), x.end()));
+  s->path_p_max_kpa = std::exp(*std::max_element(x.begin(), x.end()));
+}
+
 }  // namespace
 
 std::optional<RateStudy> WriteRateStudy(const std::string& directory,
@@ -1297,6 +1360,10 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
                           parent_stage);
     s.ocr = row.ocr;
     s.stiffness_number = StiffnessNumber(canonical, row.p_kpa);
+    if (s.kind == "ncl") {
+      FitPathLine(TimeSeries::Read(file, dem::record::kSeries), stages[index].first_row,
+                  stages[index].last_row, &s);
+    }
     states.push_back(s);
   }
   const std::vector<const char*> files = {kRateStatesFile,      kRateSummaryFile,
@@ -1402,6 +1469,12 @@ std::vector<RateState> ReadRateStates(const std::string& directory) {
     s.inertial_number_dmin = number(row, r, "inertial_number_dmin");
     s.inertial_number_dmax = number(row, r, "inertial_number_dmax");
     s.stiffness_number = number(row, r, "stiffness_number");
+    if (table.Find("path_N") >= 0) {  // absent in the files of older versions
+      s.path_n = number(row, r, "path_N");
+      s.path_lambda = number(row, r, "path_lambda");
+      s.path_p_min_kpa = number(row, r, "path_p_min_kpa");
+      s.path_p_max_kpa = number(row, r, "path_p_max_kpa");
+    }
     states.push_back(s);
   }
   return states;

@@ -18,7 +18,8 @@
 //   rate_states.csv        one row per rate case and detector stage: its E, ψ_ε, start
 //                          p_0, rule, I* or ‖D‖, and the asymptotic state of the state table
 //   rate_summary.csv       per (E, ψ_ε, p_0, rate): means and 95 % intervals over replicates
-//   rate_lines.csv         per (E, ψ_ε, rate): N, λ and ln(1+e) at the reference p (± 95 %)
+//   rate_lines.csv         per (E, ψ_ε, rate): N, λ and ln(1+e) at the reference p (± 95 %);
+//                          at ψ_ε = 0° the mean of the paths' own lines (RateState::path_n)
 //   rate_quasi_static.csv  per (E, ψ_ε, p_0, quantity): the limit a ± 95 %, the slope b ± 95 %
 //   rate_independence.csv  per (E, ψ_ε, p_0): the two smallest I* compared, and the verdict
 //   rate_extension.csv     per (E, rate, p_0, ψ_ε ≥ 90°): σ_r/p, ψ_σ, liquefied replicates
@@ -116,6 +117,18 @@ struct RateState {
   double ocr_same_rate = std::numeric_limits<double>::quiet_NaN();
   double inertial_number_dmin = 0, inertial_number_dmax = 0;
   double stiffness_number = 0;  // κ at the asymptote's p (SPEC §8.2)
+  // A ψ_ε = 0° path's own NCL at its rate: ln(1+e) = N − λ ln(p / 1 kPa) by
+  // least squares through the stage's rows once p has grown by a factor e
+  // from its first row (one unit of ln p, the compression detector's window:
+  // past the change of rate at the start), over [path_p_min_kpa,
+  // path_p_max_kpa]; NaN for other paths and for fewer than 3 such rows. The
+  // asymptotic states of these paths all lie at the stress cap, so the NCL of
+  // a rate (rate_lines.csv) comes from these lines.
+  double path_n = std::numeric_limits<double>::quiet_NaN();
+  double path_lambda = std::numeric_limits<double>::quiet_NaN();
+  double path_p_min_kpa = std::numeric_limits<double>::quiet_NaN();
+  double path_p_max_kpa = std::numeric_limits<double>::quiet_NaN();
+  bool HasPathLine() const { return std::isfinite(path_n) && std::isfinite(path_lambda); }
   // The rate of the case: I* for the inertial rule, ‖D‖ for a constant one.
   double rate() const {
     return rule == dem::RateRule::kInertial ? inertial_number : stretching_rate;

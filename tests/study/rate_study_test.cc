@@ -165,21 +165,79 @@ TEST(RateStudy, OcrIsAlsoMeasuredAgainstTheNclOfTheSameRate) {
     }
   }
   const RateStudy study = RateStudy::Analyse(states);
-  int checked = 0;
+  const RateLine* line = nullptr;
+  for (const RateLine& l : study.lines) {
+    if (l.psi_epsilon_deg == 0 && l.rule == dem::RateRule::kInertial && l.rate == 1e-3) line = &l;
+  }
+  ASSERT_NE(line, nullptr);
+  int checked = 0, outside = 0;
   for (const RateState& s : study.states) {
     if (s.rule == dem::RateRule::kInertial && s.rate() == 1e-3) {
       const double p_e = std::exp((1.0 - s.ln_1_plus_e) / 0.04);
-      EXPECT_NEAR(s.ocr_same_rate, p_e / s.p_kpa, 1e-6 * p_e / s.p_kpa) << s.case_name;
-      ++checked;
+      if (p_e >= line->p_min_kpa && p_e <= line->p_max_kpa) {
+        EXPECT_NEAR(s.ocr_same_rate, p_e / s.p_kpa, 1e-6 * p_e / s.p_kpa) << s.case_name;
+        ++checked;
+      } else {  // beyond the p range of the NCL's states: no NCL there
+        EXPECT_TRUE(std::isnan(s.ocr_same_rate)) << s.case_name << " p_e* = " << p_e;
+        ++outside;
+      }
     } else {
       EXPECT_TRUE(std::isnan(s.ocr_same_rate)) << s.case_name;  // no NCL at that rate
     }
   }
-  EXPECT_EQ(checked, 12);
+  EXPECT_EQ(checked + outside, 12);
+  EXPECT_GE(checked, 6);  // the NCL states themselves
+  EXPECT_GE(outside, 1);
   // On its own NCL an NCL state has OCR 1.
   const RateGroup* ncl = study.Find(RateKey{500, 0, 20, dem::RateRule::kInertial, 1e-3});
   ASSERT_NE(ncl, nullptr);
   EXPECT_NEAR(ncl->ocr_same_rate.mean, 1.0, 1e-9);
+}
+
+TEST(RateStudy, TheNclOfARateIsTheMeanOfItsPathsOwnLines) {
+  // ψ_ε = 0° paths whose asymptotic states all lie at the stress cap (one p:
+  // no line through them), each with its own line past its start: from
+  // 20 kPa over [60, 4000] kPa, from 100 kPa over [300, 4000] kPa.
+  std::vector<RateState> states;
+  const double n[] = {0.70, 0.71, 0.72}, lambda[] = {0.027, 0.028, 0.029};
+  for (double p0 : {20.0, 100.0}) {
+    for (int r = 1; r <= 3; ++r) {
+      RateState s = State(0, p0, dem::RateRule::kInertial, 1e-3, r);
+      s.kind = "ncl";
+      s.status = "drifting";
+      s.p_kpa = 2500 * (1 + 0.001 * r);
+      s.ln_1_plus_e = 0.465 + 0.001 * r;
+      s.path_n = n[r - 1] + (p0 == 100 ? 0.003 : 0.0);
+      s.path_lambda = lambda[r - 1];
+      s.path_p_min_kpa = 3 * p0;
+      s.path_p_max_kpa = 4000;
+      states.push_back(s);
+    }
+  }
+  const RateStudy study = RateStudy::Analyse(states);
+  ASSERT_EQ(study.lines.size(), 1u);
+  const RateLine& l = study.lines.front();
+  EXPECT_EQ(l.points, 6);
+  EXPECT_NEAR(l.n, 0.7115, 1e-12);
+  EXPECT_NEAR(l.lambda, 0.028, 1e-12);
+  EXPECT_DOUBLE_EQ(l.p_min_kpa, 60);
+  EXPECT_DOUBLE_EQ(l.p_max_kpa, 4000);
+  // The position at 100 kPa: the three paths from 20 kPa reach it.
+  const double at[] = {0.70 - 0.027 * std::log(100.0), 0.71 - 0.028 * std::log(100.0),
+                       0.72 - 0.029 * std::log(100.0)};
+  EXPECT_EQ(l.position.n, 3);
+  EXPECT_NEAR(l.position.mean, (at[0] + at[1] + at[2]) / 3, 1e-12);
+  EXPECT_TRUE(l.position.has_interval());
+  // Through rate_states.csv and back.
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "path_lines";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  WriteRateFiles(dir.string(), study);
+  const std::vector<RateState> back = ReadRateStates(dir.string());
+  ASSERT_EQ(back.size(), 6u);
+  EXPECT_DOUBLE_EQ(back[0].path_n, study.states[0].path_n);
+  EXPECT_DOUBLE_EQ(back[0].path_p_min_kpa, 60);
+  EXPECT_NEAR(RateStudy::Analyse(back).lines.front().lambda, 0.028, 1e-12);
 }
 
 TEST(RateStudy, TwoSmallestRatesDecideRateIndependence) {
