@@ -55,7 +55,8 @@ bool PassesFilters(const std::string& status, const std::string& flags,
 // reason names each that does), rate_independent when all agree, else
 // undetermined (the reason: `missing`, what lacks an interval).
 std::string VerdictOf(const std::vector<std::pair<const char*, const Comparison*>>& comparisons,
-                      const std::vector<std::string>& missing, std::string* reason) {
+                      const std::vector<std::string>& missing, std::string* reason,
+                      const std::string& subject = "rate") {
   bool differs = false, agree = true;
   std::vector<std::string> reasons;
   for (const auto& [name, c] : comparisons) {
@@ -68,7 +69,7 @@ std::string VerdictOf(const std::vector<std::pair<const char*, const Comparison*
   }
   if (!differs && !agree) reasons = missing;
   for (const std::string& r : reasons) *reason += (reason->empty() ? "" : "; ") + r;
-  return differs ? "rate_dependent" : agree ? "rate_independent" : "undetermined";
+  return differs ? subject + "_dependent" : agree ? subject + "_independent" : "undetermined";
 }
 
 // The mean with its interval of one member over the finite values of `used`.
@@ -445,7 +446,8 @@ double RateStudy::ReferenceModulus() const {
   return best;
 }
 
-static void AnalyseExtension(RateStudy* study);  // §3: extension_steps and extension_limits
+static void AnalyseExtension(RateStudy* study);
+static void AnalyseStiffness(RateStudy* study);  // §3: extension_steps and extension_limits
 
 RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptions& options) {
   std::string why;
@@ -649,7 +651,62 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
     study.verdicts.push_back(v);
   }
   AnalyseExtension(&study);
+  AnalyseStiffness(&study);
   return study;
+}
+
+static void AnalyseStiffness(RateStudy* study) {
+  const double reference = study->ReferenceModulus();
+  auto line_at = [study](double e_mpa, dem::RateRule rule, double rate) -> const RateLine* {
+    for (const RateLine& l : study->lines) {
+      if (l.youngs_modulus_mpa == e_mpa && l.psi_epsilon_deg == 90 && l.rule == rule &&
+          l.rate == rate) {
+        return &l;
+      }
+    }
+    return nullptr;
+  };
+  for (const RateGroup& g : study->groups) {
+    if (g.key.youngs_modulus_mpa == reference) continue;
+    RateKey key = g.key;
+    key.youngs_modulus_mpa = reference;
+    const RateGroup* r = study->Find(key);
+    if (!r) continue;
+    StiffnessComparison c;
+    c.youngs_modulus_mpa = g.key.youngs_modulus_mpa;
+    c.reference_modulus_mpa = reference;
+    c.psi_epsilon_deg = g.key.psi_epsilon_deg;
+    c.start_p_kpa = g.key.start_p_kpa;
+    c.rule = g.key.rule;
+    c.rate = g.key.rate;
+    c.psi_reference = r->psi_sigma_deg;
+    c.psi_other = g.psi_sigma_deg;
+    c.kappa_reference = r->stiffness_number;
+    c.kappa_other = g.stiffness_number;
+    c.psi_sigma = Compare(c.psi_reference, c.psi_other);
+    std::vector<std::string> missing;
+    for (const RateGroup* x : {r, &g}) {
+      if (x->used < 2) {
+        missing.push_back(fmt::format("E = {:g} MPa: {} usable of {} states (an interval needs 2)",
+                                      x->key.youngs_modulus_mpa, x->used, x->states));
+      }
+    }
+    const RateLine* line_r = line_at(reference, c.rule, c.rate);
+    const RateLine* line_o = line_at(c.youngs_modulus_mpa, c.rule, c.rate);
+    if (line_r) c.csl_reference = line_r->position;
+    if (line_o) c.csl_other = line_o->position;
+    c.csl_position = Compare(c.csl_reference, c.csl_other);
+    for (const auto& [line, e_mpa] :
+         {std::pair{line_r, reference}, std::pair{line_o, c.youngs_modulus_mpa}}) {
+      if (!line || !line->position.has_interval()) {
+        missing.push_back(fmt::format("no CSL with an interval at E = {:g} MPa, {}", e_mpa,
+                                      RateText(c.rule, c.rate)));
+      }
+    }
+    c.verdict = VerdictOf({{"psi_sigma", &c.psi_sigma}, {"the CSL position", &c.csl_position}},
+                          missing, &c.reason, "stiffness");
+    study->stiffness.push_back(c);
+  }
 }
 
 static void AnalyseExtension(RateStudy* study) {
@@ -954,6 +1011,18 @@ std::string RateStudy::Text() const {
   if (verdicts.empty()) text += " no verdict (fewer than two I* per start)";
   for (const auto& [verdict, count] : verdict_counts) text += fmt::format(" {} {}", count, verdict);
   text += "\n";
+  std::map<std::pair<double, std::string>, int> stiffness_counts;  // (E, verdict)
+  for (const StiffnessComparison& c : stiffness) ++stiffness_counts[{c.youngs_modulus_mpa, c.verdict}];
+  for (auto it = stiffness_counts.begin(); it != stiffness_counts.end();) {
+    const double e_mpa = it->first.first;
+    text += fmt::format("  stiffness, E {:g} against {:g} MPa (psi_sigma and the CSL per start and "
+                        "rate):",
+                        e_mpa, ReferenceModulus());
+    for (; it != stiffness_counts.end() && it->first.first == e_mpa; ++it) {
+      text += fmt::format(" {} {}", it->second, it->first.second);
+    }
+    text += "\n";
+  }
   for (const ExtensionLimit& l : extension_limits) {
     text += fmt::format("  extension, E {:g} MPa, {}, from {:g} kPa: {}\n", l.youngs_modulus_mpa,
                         RateText(l.rule, l.rate), l.start_p_kpa, l.Text());
@@ -1091,6 +1160,39 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
     return fields;
   };
   verdicts.WriteRows(study.verdicts, verdict_fields, directory + "/" + kRateIndependenceFile);
+
+  CsvWriter stiffness(
+      {fmt::format("stiffness scaling (issue 10): per (E, psi_epsilon, start p, rate) with groups "
+                   "at the main modulus (reference) and at E, E against the reference in psi_sigma "
+                   "and in the position of the CSL of that rate (ln(1+e) at {:g} kPa); they agree "
+                   "when the difference is inside its 95 % interval (Welch); kappa: the stiffness "
+                   "numbers at the asymptotes",
+                   o.reference_p_kpa),
+       usable});
+  auto stiffness_fields = [](const StiffnessComparison& c) {
+    Columns fields = {{"youngs_modulus_mpa", CsvNumber(c.youngs_modulus_mpa)},
+                      {"reference_modulus_mpa", CsvNumber(c.reference_modulus_mpa)},
+                      {"psi_epsilon_deg", CsvNumber(c.psi_epsilon_deg)},
+                      {"start_p_kpa", CsvNumber(c.start_p_kpa)},
+                      {"rate_rule", ToString(c.rule)},
+                      {"rate", CsvNumber(c.rate)}};
+    AddEstimate(&fields, "kappa_reference", c.kappa_reference);
+    AddEstimate(&fields, "kappa", c.kappa_other);
+    auto add = [&fields](const std::string& name, const Estimate& a, const Estimate& b,
+                         const Comparison& d) {
+      AddEstimate(&fields, name + "_reference", a);
+      AddEstimate(&fields, name, b);
+      fields.emplace_back(name + "_difference", CsvNumber(d.difference));
+      fields.emplace_back(name + "_difference_ci95", CsvNumber(d.half_width));
+      fields.emplace_back(name + "_agreement", ToString(d.agreement));
+    };
+    add("psi_sigma_deg", c.psi_reference, c.psi_other, c.psi_sigma);
+    add("csl_position", c.csl_reference, c.csl_other, c.csl_position);
+    fields.emplace_back("verdict", c.verdict);
+    fields.emplace_back("reason", CsvText(c.reason));
+    return fields;
+  };
+  stiffness.WriteRows(study.stiffness, stiffness_fields, directory + "/" + kRateStiffnessFile);
 
   auto sweep_fields = [](double e_mpa, dem::RateRule rule, double rate, double p0) {
     return Columns{
@@ -1368,7 +1470,8 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
   }
   const std::vector<const char*> files = {kRateStatesFile,      kRateSummaryFile,
                                           kRateLinesFile,       kRateQuasiStaticFile,
-                                          kRateIndependenceFile, kRateExtensionFile,
+                                          kRateIndependenceFile, kRateStiffnessFile,
+                                          kRateExtensionFile,
                                           kRateExtensionLimitFile, kRateDrainedStatesFile,
                                           kRateDrainedFile,     kRateDrainedLimitFile,
                                           kRateDrainedCriticalFile};

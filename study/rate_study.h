@@ -22,6 +22,7 @@
 //                          at ψ_ε = 0° the mean of the paths' own lines (RateState::path_n)
 //   rate_quasi_static.csv  per (E, ψ_ε, p_0, quantity): the limit a ± 95 %, the slope b ± 95 %
 //   rate_independence.csv  per (E, ψ_ε, p_0): the two smallest I* compared, and the verdict
+//   rate_stiffness.csv     per (other E, ψ_ε, p_0, rate): ψ_σ and the CSL against the main E
 //   rate_extension.csv     per (E, rate, p_0, ψ_ε ≥ 90°): σ_r/p, ψ_σ, liquefied replicates
 //   rate_extension_limit.csv per (E, rate, p_0): ψ_ε(d) ± 95 %, or where it liquefies
 //   rate_drained_states.csv  one row per drained triaxial rate case (constant σ_r)
@@ -197,6 +198,24 @@ struct RateVerdict {
   std::string reason;
 };
 
+// Stiffness scaling (issue 10 §1): per (ψ_ε, p_0, rate) with groups at the
+// reference modulus and at another E, the other E against the reference in
+// ψ_σ and in the position of the CSL of that rate (its ln(1+e) at the
+// reference p; on an isochoric path e is the start's, which the modulus
+// changes, so the CSL's position is compared, not e), with the stiffness
+// numbers κ = E/p-like of both. stiffness_independent when both agree within
+// the 95 % interval of their difference (Welch), stiffness_dependent when one
+// differs, undetermined otherwise (`reason`).
+struct StiffnessComparison {
+  double youngs_modulus_mpa = 0, reference_modulus_mpa = 0, psi_epsilon_deg = 0,
+         start_p_kpa = 0;
+  dem::RateRule rule = dem::RateRule::kConstant;
+  double rate = 0;
+  Estimate psi_reference, psi_other, csl_reference, csl_other, kappa_reference, kappa_other;
+  Comparison psi_sigma, csl_position;  // other − reference
+  std::string verdict, reason;
+};
+
 // §3 (issue 10): the extension sweep. Per (E, rate, p_0), the groups with
 // ψ_ε ≥ 90° in ascending ψ_ε, each with the asymptotic σ_r/p = 1 − (q/p)/3
 // (zero at the limit "d", where ψ_σ = atan √2 = 54.74°, SPEC §2) and how
@@ -305,6 +324,7 @@ struct RateStudy {
   std::vector<RateVerdict> verdicts;
   std::vector<ExtensionStep> extension_steps;    // by (E, rate, p_0), ψ_ε ascending
   std::vector<ExtensionLimit> extension_limits;  // one per (E, rate, p_0) with a ψ_ε > 90° step
+  std::vector<StiffnessComparison> stiffness;    // per other E, ψ_ε, p_0 and rate
   DrainedStudy drained;                          // the drained triaxial cases
   bool Usable(const RateState& state) const;
   bool Usable(const DrainedState& state) const;  // the same rule for drained states
@@ -371,6 +391,7 @@ std::vector<DrainedState> ReadDrainedStates(const std::string& directory);
 inline constexpr char kRateStatesFile[] = "rate_states.csv";
 inline constexpr char kRateSummaryFile[] = "rate_summary.csv";
 inline constexpr char kRateLinesFile[] = "rate_lines.csv";
+inline constexpr char kRateStiffnessFile[] = "rate_stiffness.csv";
 inline constexpr char kRateQuasiStaticFile[] = "rate_quasi_static.csv";
 inline constexpr char kRateIndependenceFile[] = "rate_independence.csv";
 inline constexpr char kRateExtensionFile[] = "rate_extension.csv";

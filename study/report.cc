@@ -972,8 +972,12 @@ Section StatesSection(const StudyFolder& study) {
 // The style of a comparison or verdict of the rate study (the stylesheet's
 // status colours: green, amber, red).
 std::string VerdictCss(const std::string& value) {
-  if (value == "agree" || value == "rate_independent") return "status-detected";
-  if (value == "differ" || value == "rate_dependent") return "status-invalid";
+  if (value == "agree" || value == "rate_independent" || value == "stiffness_independent") {
+    return "status-detected";
+  }
+  if (value == "differ" || value == "rate_dependent" || value == "stiffness_dependent") {
+    return "status-invalid";
+  }
   if (value == "undetermined") return "status-drifting";
   // The extension sweep (rate_extension*.csv).
   if (value == "asymptote" || value == "limit_d") return "status-detected";
@@ -1089,8 +1093,14 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
        false},
       {kRateLinesFile, "Lines at each rate",
        "Per (E, ψ_ε, rate): ln(1+e) = N − λ ln(p / 1 kPa) through the states of every start "
-       "(the NCL at ψ_ε = 0°, the CSL at 90°, the NEL beyond) and its position at the "
-       "reference p.",
+       "(the CSL at 90°, the NEL beyond; at ψ_ε = 0° the NCL as the mean of the paths' own "
+       "lines, whose states all lie at the stress cap) and its position at the reference p.",
+       false},
+      {kRateStiffnessFile, "Stiffness scaling",
+       "Per other Young's modulus, ψ_ε, p_0 and rate: ψ_σ and the position of the CSL of that "
+       "rate against those at the main modulus, with the stiffness numbers κ of both; "
+       "stiffness_independent when both agree within the 95 % interval of the difference. "
+       "Stiffness scaling shortens a run (steps per unit strain ∝ √(E/p)/I) where this holds.",
        false},
       {kRateDrainedCriticalFile, "Quasi-static critical state from drained tests",
        "Per E: drained triaxial compression (constant σ_r = p_0, constant axial rate) from the "

@@ -240,6 +240,64 @@ TEST(RateStudy, TheNclOfARateIsTheMeanOfItsPathsOwnLines) {
   EXPECT_NEAR(RateStudy::Analyse(back).lines.front().lambda, 0.028, 1e-12);
 }
 
+TEST(RateStudy, StiffnessScalingIsComparedAtEachStartAndRate) {
+  // E = 100 MPa repeats the 90° cases at I* = 1e-3 (the same states) and at
+  // 3e-3 (ψ_σ one degree higher, the same CSL): independent at 1e-3,
+  // dependent in ψ_σ at 3e-3; E = 500 MPa has more groups and is the reference.
+  std::vector<RateState> states = CriticalStates();
+  for (const RateState& s : CriticalStates()) {
+    if (s.rule != dem::RateRule::kInertial || (s.rate() != 1e-3 && s.rate() != 3e-3)) continue;
+    RateState soft = s;
+    soft.youngs_modulus_mpa = 100;
+    soft.stiffness_number = 1000;
+    if (s.rate() == 3e-3) soft.psi_sigma_deg += 1.0;
+    states.push_back(soft);
+  }
+  const RateStudy study = RateStudy::Analyse(states);
+  ASSERT_EQ(study.stiffness.size(), 4u);
+  for (const StiffnessComparison& c : study.stiffness) {
+    EXPECT_EQ(c.youngs_modulus_mpa, 100);
+    EXPECT_EQ(c.reference_modulus_mpa, 500);
+    EXPECT_NEAR(c.kappa_other.mean, 1000, 1e-9);
+    EXPECT_EQ(c.csl_position.agreement, Agreement::kAgree);
+    EXPECT_NEAR(c.csl_position.difference, 0.0, 1e-12);
+    if (c.rate == 1e-3) {
+      EXPECT_EQ(c.verdict, "stiffness_independent") << c.reason;
+      EXPECT_NEAR(c.psi_sigma.difference, 0.0, 1e-12);
+    } else {
+      EXPECT_EQ(c.verdict, "stiffness_dependent");
+      EXPECT_NEAR(c.psi_sigma.difference, 1.0, 1e-9);
+      EXPECT_NE(c.reason.find("psi_sigma differs by 1"), std::string::npos) << c.reason;
+    }
+  }
+  EXPECT_NE(study.Text().find("stiffness, E 100 against 500 MPa (psi_sigma and the CSL per start "
+                              "and rate): 2 stiffness_dependent 2 stiffness_independent"),
+            std::string::npos)
+      << study.Text();
+  // One replicate at E = 100 MPa: no interval, undetermined, and the reason says so.
+  std::vector<RateState> few = CriticalStates();
+  for (const RateState& s : CriticalStates()) {
+    if (s.rule == dem::RateRule::kInertial && s.rate() == 1e-3 && s.replicate == 1) {
+      RateState soft = s;
+      soft.youngs_modulus_mpa = 100;
+      few.push_back(soft);
+    }
+  }
+  const RateStudy one = RateStudy::Analyse(few);
+  ASSERT_EQ(one.stiffness.size(), 2u);
+  EXPECT_EQ(one.stiffness[0].verdict, "undetermined");
+  EXPECT_NE(one.stiffness[0].reason.find("E = 100 MPa: 1 usable of 1 states"), std::string::npos)
+      << one.stiffness[0].reason;
+  // The file: one row per comparison.
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "stiffness";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  WriteRateFiles(dir.string(), study);
+  const CsvTextTable table = CsvTextTable::ReadFile((dir / kRateStiffnessFile).string());
+  ASSERT_EQ(table.rows.size(), 4u);
+  EXPECT_EQ(table.rows[0][table.Column("verdict")], "stiffness_independent");
+}
+
 TEST(RateStudy, TwoSmallestRatesDecideRateIndependence) {
   // ψ_σ differs between 3e-4 and 1e-3 by 400 · 7e-4 = 0.28°, against a
   // Welch interval of t_4 · δ sqrt(2/3) = 0.23°: rate-dependent.

@@ -24,7 +24,7 @@ grep -q "rate study: " "$work/first.txt" || fail "study run printed no rate-stud
 # Rows of a CSV without its '#' comments and header.
 rows() { grep -v '^#' "$1" | tail -n +2 | wc -l; }
 for file in rate_states.csv rate_summary.csv rate_lines.csv rate_quasi_static.csv \
-            rate_independence.csv rate_extension.csv rate_extension_limit.csv; do
+            rate_independence.csv rate_stiffness.csv rate_extension.csv rate_extension_limit.csv; do
   [ -s "$out/$file" ] || { fail "$out/$file is missing or empty"; continue; }
 done
 # Two replicates of eight rate cases (ψ_ε = 0° and 90° at I* = 0.1, 0.03 and

@@ -281,16 +281,28 @@ TEST(StudyReport, TheRateStudySectionAppearsOnlyWithRateFiles) {
   const std::string before = ReadTextFile(WriteReport(dir.string()).html_path);
   EXPECT_EQ(before.find("Rate study"), std::string::npos);
   EXPECT_EQ(before.find("rate_summary.csv"), std::string::npos);
-  WriteRateFiles(dir.string(), RateStudy::Analyse(rate_fixture::CriticalStates()));
+  // With a stiffness variant at I* = 1e-3 (ψ_σ one degree higher): its table.
+  std::vector<RateState> states = rate_fixture::CriticalStates();
+  for (const RateState& s : rate_fixture::CriticalStates()) {
+    if (s.rule == dem::RateRule::kInertial && s.rate() == 1e-3) {
+      RateState soft = s;
+      soft.youngs_modulus_mpa = 100;
+      soft.psi_sigma_deg += 1.0;
+      states.push_back(soft);
+    }
+  }
+  WriteRateFiles(dir.string(), RateStudy::Analyse(states));
   const ReportSummary summary = WriteReport(dir.string());
   const std::string html = ReadTextFile(summary.html_path);
   const std::string md = ReadTextFile(summary.markdown_path);
   EXPECT_NE(html.find("<h2 id=\"rate-study\">Rate study</h2>"), std::string::npos);
   EXPECT_NE(md.find("## Rate study"), std::string::npos);
   for (const char* file :
-       {kRateIndependenceFile, kRateQuasiStaticFile, kRateLinesFile, kRateSummaryFile}) {
+       {kRateIndependenceFile, kRateQuasiStaticFile, kRateLinesFile, kRateSummaryFile,
+        kRateStiffnessFile}) {
     EXPECT_NE(html.find(std::string("href=\"") + file + "\""), std::string::npos) << file;
   }
+  EXPECT_EQ(Count(html, "<td class=\"status-invalid\">stiffness_dependent</td>"), 2);
   // Verdicts and comparisons in the status colours; means with their intervals.
   EXPECT_EQ(Count(html, "<td class=\"status-invalid\">rate_dependent</td>"), 2);
   EXPECT_NE(html.find("<td class=\"status-invalid\">differ</td>"), std::string::npos);
