@@ -999,6 +999,91 @@ std::string DrainedCriticalState::Text(double reference_p_kpa) const {
   return text;
 }
 
+std::vector<std::string> RateStudy::Answers() const {
+  std::vector<std::string> answers;
+  auto pm = [](const Estimate& e, int digits) {
+    return e.has_interval() ? fmt::format("{:.{}f} ± {:.{}f}", e.mean, digits, e.half_width, digits)
+                            : fmt::format("{:.{}f} (no interval)", e.mean, digits);
+  };
+  for (const DrainedCriticalState& c : drained.critical) {
+    answers.push_back(fmt::format(
+        "Quasi-static critical state (drained triaxial compression extrapolated to I → 0 at {} "
+        "radial stresses, E = {:g} MPa): M = {}, φ_c = {}°{}.",
+        c.starts, c.youngs_modulus_mpa, pm(c.m, 3), pm(c.phi_c_deg, 1),
+        std::isfinite(c.lambda.mean)
+            ? fmt::format("; CSL λ = {}, ln(1+e) at {:g} kPa = {}", pm(c.lambda, 4),
+                          options.reference_p_kpa, pm(c.position, 4))
+            : std::string()));
+    if (c.m_per_ln_p.has_interval()) {
+      const bool zero = std::abs(c.m_per_ln_p.mean) <= c.m_per_ln_p.half_width;
+      answers.push_back(fmt::format(
+          "p-dependence as I → 0 (E = {:g} MPa): dM/d ln p = {}, {}.", c.youngs_modulus_mpa,
+          pm(c.m_per_ln_p, 3),
+          zero ? "zero within its interval: the quasi-static stress ratio does not depend on p"
+               : "not zero: the quasi-static stress ratio depends on p"));
+    }
+  }
+  const double reference = ReferenceModulus();
+  std::string limits;
+  for (const QuasiStaticFit& f : quasi_static) {
+    if (f.youngs_modulus_mpa != reference || f.psi_epsilon_deg != 90 ||
+        f.quantity != "psi_sigma_deg" || !f.valid()) {
+      continue;
+    }
+    std::string rates;
+    for (double r : f.rates) rates += (rates.empty() ? "" : ", ") + fmt::format("{:g}", r);
+    limits += fmt::format("{}from {:g} kPa {}° (I* = {})", limits.empty() ? "" : "; ",
+                          f.start_p_kpa, pm(f.limit, 1), rates);
+  }
+  // Where every replicate of an isochoric group was a gas (liquefied).
+  std::map<std::pair<double, double>, std::pair<int, int>> gas;  // (I*, p_0) → (gas, states)
+  for (const RateState& s : states) {
+    if (s.youngs_modulus_mpa != reference || s.psi_epsilon_deg != 90 ||
+        s.rule != dem::RateRule::kInertial) {
+      continue;
+    }
+    auto& [g, n] = gas[{s.inertial_number, s.start_p_kpa}];
+    g += s.status == "gas" || HasFlag(s.flags, "gas");
+    ++n;
+  }
+  std::string liquefied;
+  for (const auto& [key, count] : gas) {
+    if (count.first == count.second) {
+      liquefied += fmt::format("{}I* = {:g} from {:g} kPa", liquefied.empty() ? "" : ", ",
+                               key.first, key.second);
+    }
+  }
+  if (!limits.empty() || !liquefied.empty()) {
+    answers.push_back(fmt::format(
+        "Isochoric paths (ψ_ε = 90°, E = {:g} MPa): ψ_σ as I → 0 {}{}.", reference,
+        limits.empty() ? std::string("not determined") : limits,
+        liquefied.empty() ? std::string()
+                          : "; every replicate liquefied (no asymptotic state) at " + liquefied));
+  }
+  for (const ExtensionLimit& l : extension_limits) {
+    answers.push_back(fmt::format("Extension (E = {:g} MPa, {}, from {:g} kPa): {}.",
+                                  l.youngs_modulus_mpa, RateText(l.rule, l.rate), l.start_p_kpa,
+                                  l.Text()));
+  }
+  auto counts = [](const auto& list) {
+    std::map<std::string, int> n;
+    for (const auto& v : list) ++n[v.verdict];
+    std::string text;
+    for (const auto& [verdict, k] : n) text += fmt::format("{}{} {}", text.empty() ? "" : ", ", k, verdict);
+    return text;
+  };
+  if (!verdicts.empty()) {
+    answers.push_back("Rate independence between the two smallest I* (per E, ψ_ε, p_0): " +
+                      counts(verdicts) + ".");
+  }
+  if (!stiffness.empty()) {
+    answers.push_back(fmt::format(
+        "Stiffness scaling against E = {:g} MPa (ψ_σ and the CSL per start and rate): {}.",
+        reference, counts(stiffness)));
+  }
+  return answers;
+}
+
 std::string RateStudy::Text() const {
   std::map<std::string, int> verdict_counts;
   for (const RateVerdict& v : verdicts) ++verdict_counts[v.verdict];

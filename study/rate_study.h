@@ -333,6 +333,12 @@ struct RateStudy {
   // material; the others are its stiffness variants. NaN without groups.
   double ReferenceModulus() const;
   std::string Text() const;  // a few lines for the console
+  // The study's answers to issue 10's questions, one sentence each, with
+  // their intervals: the quasi-static critical state and whether it depends
+  // on p (drained), ψ_σ of the isochoric paths as I → 0 per start and where
+  // they liquefy, how far the extension states go, and the verdicts on rate
+  // and stiffness independence (the report's first paragraphs).
+  std::vector<std::string> Answers() const;
   static RateStudy Analyse(std::vector<RateState> states, const RateStudyOptions& options = {});
 };
 

@@ -1062,6 +1062,11 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
             "‖D‖, from NC states at several p_0, by Young's modulus E. Usable states are those "
             "the tables' comments name; every number below has its 95 % interval (Student t). "
             "Figures rate (a)–(e) above draw them.")));
+  if (const std::optional<RateStudy> rate = ReadRateStudy(study.directory)) {
+    const std::vector<std::string> answers = rate->Answers();
+    if (!answers.empty()) section.blocks.push_back(Paragraph(Plain("The answers, from the tables below:")));
+    for (const std::string& answer : answers) section.blocks.push_back(Paragraph(Plain(answer)));
+  }
   if (const std::optional<QuasiStaticSelection> selection =
           ReadQuasiStaticSelection(study.directory)) {
     section.blocks.push_back(Paragraph(

@@ -298,6 +298,48 @@ TEST(RateStudy, StiffnessScalingIsComparedAtEachStartAndRate) {
   EXPECT_EQ(table.rows[0][table.Column("verdict")], "stiffness_independent");
 }
 
+TEST(RateStudy, AnswersStateTheQuestionsOfTheIssueWithIntervals) {
+  std::vector<RateState> states = CriticalStates();
+  for (const RateState& s : rate_fixture::ExtensionSweep()) {
+    if (s.psi_epsilon_deg > 90) states.push_back(s);  // the sweep's 90° step: CriticalStates'
+  }
+  // At 3e-4 from 20 kPa every replicate liquefied.
+  for (RateState& s : states) {
+    if (s.psi_epsilon_deg == 90 && s.rule == dem::RateRule::kInertial &&
+        s.inertial_number == 3e-4 && s.start_p_kpa == 20) {
+      s.status = "gas";
+      s.flags = "gas";
+    }
+  }
+  RateStudy study = RateStudy::Analyse(states);
+  study.drained = DrainedStudy::Analyse(DrainedStates(0.0), study.options);
+  const std::vector<std::string> answers = study.Answers();
+  auto find = [&answers](const std::string& start) -> std::string {
+    for (const std::string& a : answers) {
+      if (a.rfind(start, 0) == 0) return a;
+    }
+    ADD_FAILURE() << "no answer starting '" << start << "'";
+    return "";
+  };
+  EXPECT_NE(find("Quasi-static critical state").find("M = 0.920 ± "), std::string::npos)
+      << find("Quasi-static critical state");
+  EXPECT_NE(find("p-dependence as I → 0").find("zero within its interval: the quasi-static "
+                                                "stress ratio does not depend on p"),
+            std::string::npos);
+  const std::string isochoric = find("Isochoric paths");
+  // From 100 kPa: ψ_σ = 25 + 400 I, so 25° at I → 0.
+  EXPECT_NE(isochoric.find("from 100 kPa 25.0 ± 0.1° (I* = 0.0003, 0.001, 0.003)"), std::string::npos)
+      << isochoric;
+  EXPECT_NE(isochoric.find("every replicate liquefied (no asymptotic state) at I* = 0.0003 from "
+                           "20 kPa"),
+            std::string::npos)
+      << isochoric;
+  EXPECT_NE(find("Extension (E = 500 MPa, I* = 0.003, from 100 kPa): ").find("psi_epsilon(d) = 120.0"),
+            std::string::npos);
+  EXPECT_NE(find("Rate independence between the two smallest I*").find("rate_dependent"),
+            std::string::npos);
+}
+
 TEST(RateStudy, TwoSmallestRatesDecideRateIndependence) {
   // ψ_σ differs between 3e-4 and 1e-3 by 400 · 7e-4 = 0.28°, against a
   // Welch interval of t_4 · δ sqrt(2/3) = 0.23°: rate-dependent.

@@ -303,6 +303,12 @@ TEST(StudyReport, TheRateStudySectionAppearsOnlyWithRateFiles) {
     EXPECT_NE(html.find(std::string("href=\"") + file + "\""), std::string::npos) << file;
   }
   EXPECT_EQ(Count(html, "<td class=\"status-invalid\">stiffness_dependent</td>"), 2);
+  // The answers first: the isochoric limits and the verdict counts.
+  EXPECT_NE(md.find("The answers, from the tables below:"), std::string::npos);
+  EXPECT_NE(md.find("Stiffness scaling against E = 500 MPa (ψ\\_σ and the CSL per start and rate): "
+                    "2 stiffness_dependent."),
+            std::string::npos)
+      << md.substr(md.find("The answers"), 2000);
   // Verdicts and comparisons in the status colours; means with their intervals.
   EXPECT_EQ(Count(html, "<td class=\"status-invalid\">rate_dependent</td>"), 2);
   EXPECT_NE(html.find("<td class=\"status-invalid\">differ</td>"), std::string::npos);
