@@ -89,8 +89,9 @@ class Simulation {
   void AddRow();
   // The guards checked on every output row: a failure message, or nullopt.
   std::optional<std::string> CheckRowGuards(bool stage_ends);
-  // stop.liquefied: the reason when the stage's rows have been a gas over the
-  // detector's window; tracks the start of the latest run of gas rows.
+  // stop.liquefied: the reason when the stage's rows have been a gas over
+  // stop.liquefied_strain (default the detector's window); tracks the start
+  // of the latest run of gas rows.
   std::optional<std::string> LiquefiedStop();
   // Ends the current stage with its record; `failed`: the run fails in it.
   void FinishStage(const std::string& reason, bool failed = false);
@@ -319,7 +320,8 @@ std::optional<std::string> Simulation::LiquefiedStop() {
     return std::nullopt;
   }
   if (std::isnan(clock.gas_since_strain)) clock.gas_since_strain = clock.strain_norm;
-  if (clock.strain_norm - clock.gas_since_strain < current.asymptote.window_strain) {
+  if (clock.strain_norm - clock.gas_since_strain <
+      current.stop.liquefied_strain.value_or(current.asymptote.window_strain)) {
     return std::nullopt;
   }
   return fmt::format(

@@ -38,6 +38,10 @@ StopConditions StopConditions::Parse(const ConfigTable& stop) {
   if (stop.Has("steps")) s.steps = stop.GetInt("steps", Range::Closed(1, kMaxStageSteps));
   s.asymptote = stop.GetBool("asymptote", false);
   s.liquefied = stop.GetBool("liquefied", false);
+  s.liquefied_strain = OptionalDouble(stop, "liquefied_strain", {0.0, 1e3, false, true});
+  if (s.liquefied_strain && !s.liquefied) {
+    stop.Fail("liquefied_strain", "is the gas window of liquefied = true, which is not set");
+  }
   return s;
 }
 
@@ -64,6 +68,7 @@ void StopConditions::Canonical(CanonicalText& text, const std::string& prefix) c
   if (steps) text.Add(prefix + "steps", *steps);
   text.Add(prefix + "asymptote", asymptote);
   if (liquefied) text.Add(prefix + "liquefied", true);  // absent: the keys of older scenes hold
+  optional("liquefied_strain", liquefied_strain);
 }
 
 ControlOptions ControlOptions::Parse(const ConfigTable& control) {

@@ -73,6 +73,12 @@ struct StopConditions {
   // or no stress) on every output row over the detector's window_strain: it
   // has liquefied and no asymptote follows on a path that keeps dilating.
   bool liquefied = false;
+  // The gas window of `liquefied` (strain norm; default the detector's
+  // window_strain). Measured on the rate study's 5 000-sphere paths: no
+  // dilating path (ψ_ε > 90°) at I* ≤ 3e-2 rebuilt its network after any gas
+  // row (63 cases), while isochoric paths and ψ_ε = 100° at I* = 0.1 did after
+  // up to 0.12 of strain of gas (studies/programmes/rate.toml).
+  std::optional<double> liquefied_strain;
   bool any() const;
   static StopConditions Parse(const ConfigTable& stop);  // a [stage.stop] table
   void Canonical(CanonicalText& text, const std::string& prefix) const;

@@ -79,6 +79,19 @@ TEST(Scene, StopOnLiquefactionNeedsAnotherConditionAndADetector) {
       "good.toml", "");
   EXPECT_TRUE(scene.stages[0].stop.liquefied);
   EXPECT_TRUE(scene.stages[0].detect_asymptote);
+  EXPECT_FALSE(scene.stages[0].stop.liquefied_strain.has_value());
+  // Its own gas window: positive, and only with liquefied = true.
+  const Scene windowed = Scene::Parse(Replace(kValid, "mean_stress_kpa = 100.0",
+                                              "mean_stress_kpa = 100.0\nliquefied = true\n"
+                                              "liquefied_strain = 0.02"),
+                                      "good.toml", "");
+  EXPECT_EQ(windowed.stages[0].stop.liquefied_strain, 0.02);
+  ExpectMentions(ErrorOf(Replace(kValid, "mean_stress_kpa = 100.0",
+                                 "mean_stress_kpa = 100.0\nliquefied_strain = 0.02")),
+                 {"bad.toml", "stop.liquefied_strain", "liquefied = true"});
+  ExpectMentions(ErrorOf(Replace(kValid, "mean_stress_kpa = 100.0",
+                                 "mean_stress_kpa = 100.0\nliquefied = true\nliquefied_strain = 0")),
+                 {"bad.toml", "stop.liquefied_strain", "0"});
 }
 
 TEST(Scene, WrongTypeIsRejected) {

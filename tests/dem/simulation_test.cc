@@ -455,6 +455,20 @@ strain_norm = 0.5
   const Result capped = RunText(base, "liquefied_capped");
   ASSERT_EQ(capped.summary.termination, Termination::kCompleted) << capped.summary.message;
   EXPECT_LT(2 * result.summary.steps, capped.summary.steps);
+  // A gas window of its own, shorter than the detector's: the same path, the
+  // same gas rows up to there, stopped after 0.006 of strain of gas.
+  const Result short_window =
+      RunText(base + "liquefied = true\nliquefied_strain = 0.006\n", "liquefied_short");
+  ASSERT_EQ(short_window.summary.termination, Termination::kCompleted)
+      << short_window.summary.message;
+  const std::vector<StageRecord> short_records =
+      ReadStageRecords(Hdf5File::OpenRead(TempPath("liquefied_short.h5")));
+  ASSERT_EQ(short_records.size(), 2u);
+  const StageRecord& s = short_records[1];
+  EXPECT_NE(s.stop_reason.find("liquefied: a gas"), std::string::npos) << s.stop_reason;
+  EXPECT_NE(s.stop_reason.find("over 0.006"), std::string::npos) << s.stop_reason;
+  EXPECT_LT(short_window.summary.steps, result.summary.steps);
+  EXPECT_EQ(short_window.series.Values("p_kpa").size() + 7, p.size());  // 0.014 of strain sooner
 }
 
 TEST(ValidityGuards, AnExtensionPathAskedToReachAThousandKpaFails) {
