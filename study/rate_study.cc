@@ -200,6 +200,22 @@ void AddEstimate(Columns* fields, const std::string& name, const Estimate& estim
   fields->emplace_back(name + "_ci95", CsvNumber(estimate.half_width));
 }
 
+// A comparison's difference, its 95 % half-width and the agreement.
+void AddDifference(Columns* fields, const std::string& name, const Comparison& c) {
+  fields->emplace_back(name + "_difference", CsvNumber(c.difference));
+  fields->emplace_back(name + "_difference_ci95", CsvNumber(c.half_width));
+  fields->emplace_back(name + "_agreement", ToString(c.agreement));
+}
+
+// Two estimates, NAME + suffix_a / suffix_b, and their comparison (b − a).
+void AddComparison(Columns* fields, const std::string& name, const std::string& suffix_a,
+                   const std::string& suffix_b, const Estimate& a, const Estimate& b,
+                   const Comparison& c) {
+  AddEstimate(fields, name + suffix_a, a);
+  AddEstimate(fields, name + suffix_b, b);
+  AddDifference(fields, name, c);
+}
+
 Columns KeyFields(const RateKey& key) {
   return {
       {"youngs_modulus_mpa", CsvNumber(key.youngs_modulus_mpa)},
@@ -304,12 +320,8 @@ void WriteDrainedFiles(const std::string& directory, const DrainedStudy& d,
     AddEstimate(&fields, "ln_p_kpa", l.ln_p_kpa);
     fields.emplace_back("slowest_rate_per_s", CsvNumber(l.slowest));
     fields.emplace_back("next_rate_per_s", CsvNumber(l.next));
-    fields.emplace_back("m_difference", CsvNumber(l.m_change.difference));
-    fields.emplace_back("m_difference_ci95", CsvNumber(l.m_change.half_width));
-    fields.emplace_back("m_agreement", ToString(l.m_change.agreement));
-    fields.emplace_back("ln_1_plus_e_difference", CsvNumber(l.ln_1_plus_e_change.difference));
-    fields.emplace_back("ln_1_plus_e_difference_ci95", CsvNumber(l.ln_1_plus_e_change.half_width));
-    fields.emplace_back("ln_1_plus_e_agreement", ToString(l.ln_1_plus_e_change.agreement));
+    AddDifference(&fields, "m", l.m_change);
+    AddDifference(&fields, "ln_1_plus_e", l.ln_1_plus_e_change);
     fields.emplace_back("verdict", l.verdict);
     fields.emplace_back("reason", CsvText(l.reason));
     return fields;
@@ -1231,11 +1243,7 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
                       {"i_next", CsvNumber(v.next)}};
     auto add = [&fields](const std::string& name, const Estimate& a, const Estimate& b,
                          const Comparison& c) {
-      AddEstimate(&fields, name + "_smallest", a);
-      AddEstimate(&fields, name + "_next", b);
-      fields.emplace_back(name + "_difference", CsvNumber(c.difference));
-      fields.emplace_back(name + "_difference_ci95", CsvNumber(c.half_width));
-      fields.emplace_back(name + "_agreement", ToString(c.agreement));
+      AddComparison(&fields, name, "_smallest", "_next", a, b, c);
     };
     add("ln_1_plus_e", v.ln_v_smallest, v.ln_v_next, v.ln_1_plus_e);
     add("psi_sigma_deg", v.psi_smallest, v.psi_next, v.psi_sigma);
@@ -1263,16 +1271,10 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
                       {"rate", CsvNumber(c.rate)}};
     AddEstimate(&fields, "kappa_reference", c.kappa_reference);
     AddEstimate(&fields, "kappa", c.kappa_other);
-    auto add = [&fields](const std::string& name, const Estimate& a, const Estimate& b,
-                         const Comparison& d) {
-      AddEstimate(&fields, name + "_reference", a);
-      AddEstimate(&fields, name, b);
-      fields.emplace_back(name + "_difference", CsvNumber(d.difference));
-      fields.emplace_back(name + "_difference_ci95", CsvNumber(d.half_width));
-      fields.emplace_back(name + "_agreement", ToString(d.agreement));
-    };
-    add("psi_sigma_deg", c.psi_reference, c.psi_other, c.psi_sigma);
-    add("csl_position", c.csl_reference, c.csl_other, c.csl_position);
+    AddComparison(&fields, "psi_sigma_deg", "_reference", "", c.psi_reference, c.psi_other,
+                  c.psi_sigma);
+    AddComparison(&fields, "csl_position", "_reference", "", c.csl_reference, c.csl_other,
+                  c.csl_position);
     fields.emplace_back("verdict", c.verdict);
     fields.emplace_back("reason", CsvText(c.reason));
     return fields;
