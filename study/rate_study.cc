@@ -548,6 +548,7 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
       if (study.Usable(*s)) used.push_back(s);
     }
     group.used = static_cast<int>(used.size());
+    for (const RateState* s : list) group.liquefied += s->status == "gas" || HasFlag(s->flags, "gas");
     auto estimate = [&used](double RateState::*member) { return MeanOver(used, member); };
     group.p_kpa = estimate(&RateState::p_kpa);
     group.e = estimate(&RateState::e);
@@ -639,8 +640,8 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
     std::vector<std::string> missing;
     for (const RateGroup* g : {&a, &b}) {
       if (g->used < 2) {
-        missing.push_back(fmt::format("I* = {:g}: {} usable of {} states (an interval needs 2)",
-                                      g->key.rate, g->used, g->states));
+        missing.push_back(fmt::format("I* = {:g}: {} (an interval needs 2)", g->key.rate,
+                                      g->UsableText()));
       }
     }
     const RateLine* csl_a = find_line(e_mpa, 90.0, a.key.rate);
@@ -665,6 +666,11 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
   AnalyseExtension(&study);
   AnalyseStiffness(&study);
   return study;
+}
+
+std::string RateGroup::UsableText() const {
+  return fmt::format("{} usable of {} states{}", used, states,
+                     liquefied > 0 ? fmt::format(" ({} liquefied)", liquefied) : std::string());
 }
 
 static void AnalyseStiffness(RateStudy* study) {
@@ -699,8 +705,8 @@ static void AnalyseStiffness(RateStudy* study) {
     std::vector<std::string> missing;
     for (const RateGroup* x : {r, &g}) {
       if (x->used < 2) {
-        missing.push_back(fmt::format("E = {:g} MPa: {} usable of {} states (an interval needs 2)",
-                                      x->key.youngs_modulus_mpa, x->used, x->states));
+        missing.push_back(fmt::format("E = {:g} MPa: {} (an interval needs 2)",
+                                      x->key.youngs_modulus_mpa, x->UsableText()));
       }
     }
     const RateLine* line_r = line_at(reference, c.rule, c.rate);
@@ -1161,6 +1167,7 @@ void WriteRateFiles(const std::string& directory, const RateStudy& study) {
     Columns fields = KeyFields(g.key);
     fields.emplace_back("states", std::to_string(g.states));
     fields.emplace_back("used", std::to_string(g.used));
+    fields.emplace_back("liquefied", std::to_string(g.liquefied));
     AddEstimate(&fields, "p_kpa", g.p_kpa);
     AddEstimate(&fields, "e", g.e);
     AddEstimate(&fields, "ln_1_plus_e", g.ln_1_plus_e);

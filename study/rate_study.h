@@ -152,6 +152,9 @@ struct RateGroup {
   RateKey key;
   int states = 0;  // rows of the group
   int used = 0;    // of them usable (statuses, flags)
+  int liquefied = 0;  // of them a gas (status or flag "gas": no asymptotic state)
+  // "2 usable of 3 states" and, when some liquefied, "(1 liquefied)".
+  std::string UsableText() const;
   Estimate p_kpa, e, ln_1_plus_e, psi_sigma_deg, q_over_p, ocr, ocr_same_rate, inertial_number_dmin,
       inertial_number_dmax, stiffness_number;
 };

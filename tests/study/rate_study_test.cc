@@ -338,6 +338,16 @@ TEST(RateStudy, AnswersStateTheQuestionsOfTheIssueWithIntervals) {
             std::string::npos);
   EXPECT_NE(find("Rate independence between the two smallest I*").find("rate_dependent"),
             std::string::npos);
+  // The verdict from 20 kPa says why it is undetermined.
+  bool said = false;
+  for (const RateVerdict& v : study.verdicts) {
+    if (v.psi_epsilon_deg == 90 && v.start_p_kpa == 20) {
+      EXPECT_EQ(v.verdict, "undetermined");
+      said = v.reason.find("I* = 0.0003: 0 usable of 3 states (3 liquefied)") != std::string::npos;
+      EXPECT_TRUE(said) << v.reason;
+    }
+  }
+  EXPECT_TRUE(said);
 }
 
 TEST(RateStudy, TwoSmallestRatesDecideRateIndependence) {
