@@ -333,6 +333,18 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
             std::string::npos);
   EXPECT_NE(small.Find("nc100_psi100_I0.003")->scene_body.find("liquefied = true"),
             std::string::npos);
+  // Dilating paths at I* <= 3e-2 stop after 0.02 of strain of gas; at I* = 0.1,
+  // at 167 1/s and at 90° (where gas phases were seen to recover) the
+  // detector's window holds.
+  for (const char* name : {"nc100_psi150_I0.003", "nc100_psi95_I0.003", "nc5_psi100_I0.03",
+                           "nc500_psi100_I0.001"}) {
+    EXPECT_NE(small.Find(name)->scene_body.find("liquefied_strain = 0.02"), std::string::npos)
+        << name;
+  }
+  for (const char* name : {"nc100_psi100_I0.1", "nc100_psi100_D167", "nc100_psi90_I0.001_E500",
+                           "nc20_psi90_D167_E100"}) {
+    EXPECT_EQ(small.Find(name)->scene_body.find("liquefied_strain"), std::string::npos) << name;
+  }
   // Drained triaxial compression at σ_r = p_0 and three axial rates (I ≈
   // 1e-2, 1e-3, 3e-4 at the critical state): ε̇_a ∝ √p_0.
   const std::map<std::string, std::vector<std::string>> drained = {
