@@ -1097,8 +1097,11 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
            "states), one colour per rate (the fixed inertial numbers I* and the paper's constant "
            "‖D‖), lines joining the starts of one rate; " +
                ModulusNote(rate, reference) +
-               ". If the paper's p-dependence of ψ_σ (its Sec. 5.3) is a rate effect, the curves "
-               "flatten and coincide as I* falls. Data: rate_summary.csv.",
+               ". The last panel: the drained triaxial cases (σ_r = p_0, triangles), one curve "
+               "per rank of the axial rate at each σ_r, coloured as the I* nearest their measured "
+               "I (rate_drained.csv): where the isochoric paths liquefy as I* falls, these keep "
+               "a critical state. If the paper's p-dependence of ψ_σ (its Sec. 5.3) is a rate "
+               "effect, the curves flatten and coincide as I* falls. Data: rate_summary.csv.",
            "rate_psi_sigma.gp");
   const auto colours = RateColours(rate);
   std::map<double,
@@ -1110,9 +1113,48 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
           [{g.key.youngs_modulus_mpa, {static_cast<int>(g.key.rule), g.key.rate}}]
               .push_back(&g);
   }
-  if (panels.empty()) return NotDrawn(spec, "no rate case has a usable asymptotic state");
+  // The drained cases (σ_r = p_0): one curve per (E, rank of the axial rate
+  // at each σ_r, slowest first), coloured as the I* nearest its measured I.
+  std::map<std::pair<double, int>, std::vector<const DrainedGroup*>> drained;
+  {
+    std::map<std::pair<double, double>, std::vector<const DrainedGroup*>> by_start;
+    for (const DrainedGroup& g : rate.drained.groups) {
+      if (g.used > 0 && std::isfinite(g.psi_sigma_deg.mean)) {
+        by_start[{g.youngs_modulus_mpa, g.radial_stress_kpa}].push_back(&g);
+      }
+    }
+    for (auto& [start, groups] : by_start) {
+      std::sort(groups.begin(), groups.end(), [](const DrainedGroup* a, const DrainedGroup* b) {
+        return a->axial_strain_rate < b->axial_strain_rate;
+      });
+      for (size_t r = 0; r < groups.size(); ++r) {
+        drained[{start.first, static_cast<int>(r)}].push_back(groups[r]);
+      }
+    }
+  }
+  auto nearest_colour = [&colours](double inertial) {
+    int best = 1;
+    double distance = std::numeric_limits<double>::infinity();
+    for (const auto& [key, colour] : colours) {
+      if (key.first != static_cast<int>(dem::RateRule::kInertial) || !(inertial > 0)) continue;
+      const double d = std::abs(std::log(inertial / key.second));
+      if (d < distance) distance = d, best = colour;
+    }
+    return best;
+  };
+  if (panels.empty() && drained.empty()) {
+    return NotDrawn(spec, "no rate case has a usable asymptotic state");
+  }
   std::string panel_titles, panel_blocks, ranges[4];
   int k = 0;
+  auto add_ranges = [&ranges](const AxisRange& x, const AxisRange& y) {
+    const auto [x_lo, x_hi] = x.Padded();
+    const auto [y_lo, y_hi] = y.Padded();
+    const double values[4] = {x_lo, x_hi, y_lo, y_hi};
+    for (int r = 0; r < 4; ++r) {
+      ranges[r] += fmt::format("{}{:.8g}", ranges[r].empty() ? "" : " ", values[r]);
+    }
+  };
   for (const auto& [psi, curves] : panels) {
     ++k;
     AxisRange x{}, y{};
@@ -1139,12 +1181,32 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
     file.Write(ctx.File(fmt::format("rate_psi_sigma_{}.tsv", k)));
     panel_titles += fmt::format("{}\"ψ_ε = {}°\"", panel_titles.empty() ? "" : " ", Short(psi));
     panel_blocks += fmt::format("{}{}", panel_blocks.empty() ? "" : " ", file.blocks());
-    const auto [x_lo, x_hi] = x.Padded();
-    const auto [y_lo, y_hi] = y.Padded();
-    const double values[4] = {x_lo, x_hi, y_lo, y_hi};
-    for (int r = 0; r < 4; ++r) {
-      ranges[r] += fmt::format("{}{:.8g}", ranges[r].empty() ? "" : " ", values[r]);
+    add_ranges(x, y);
+  }
+  if (!drained.empty()) {
+    ++k;
+    AxisRange x{}, y{};
+    x.log = true;
+    BlockFile file({"p_kpa", "p_ci95", "psi_sigma_deg", "psi_sigma_ci95", "point_type", "colour"});
+    for (const auto& [curve, groups] : drained) {
+      std::vector<double> inertial;
+      for (const DrainedGroup* g : groups) inertial.push_back(g->inertial_number_dmax.mean);
+      const double i_mean = Estimate::Of(inertial).mean;
+      std::vector<std::vector<double>> rows;
+      for (const DrainedGroup* g : groups) {  // ascending σ_r
+        x.Add(g->p_kpa.mean, LogHalfWidth(g->p_kpa.mean, g->p_kpa.half_width));
+        y.Add(g->psi_sigma_deg.mean, g->psi_sigma_deg.half_width);
+        rows.push_back({g->p_kpa.mean, LogHalfWidth(g->p_kpa.mean, g->p_kpa.half_width),
+                        g->psi_sigma_deg.mean, Zeroed(g->psi_sigma_deg.half_width),
+                        curve.first == reference ? 9.0 : 8.0,
+                        static_cast<double>(nearest_colour(i_mean))});
+      }
+      file.Add(fmt::format("drained, I ≈ {:.2g}, E = {} MPa", i_mean, Short(curve.first)), rows);
     }
+    file.Write(ctx.File(fmt::format("rate_psi_sigma_{}.tsv", k)));
+    panel_titles += fmt::format("{}\"drained, σ_r = p_0\"", panel_titles.empty() ? "" : " ");
+    panel_blocks += fmt::format("{}{}", panel_blocks.empty() ? "" : " ", file.blocks());
+    add_ranges(x, y);
   }
   Set(&spec, "panel_x_min", ranges[0]);
   Set(&spec, "panel_x_max", ranges[1]);

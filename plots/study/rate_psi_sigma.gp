@@ -1,6 +1,7 @@
 # The rate study (a): the asymptotic psi_sigma against p, one panel per
-# psi_epsilon (data/rate_psi_sigma_<k>.tsv, k = 1..n_panels: one block per
-# Young's modulus and rate, rows by start; columns p_kpa, p_ci95,
+# psi_epsilon and a last one of the drained cases when the study has them
+# (data/rate_psi_sigma_<k>.tsv, k = 1..n_panels: one block per Young's
+# modulus and rate, rows by start; columns p_kpa, p_ci95,
 # psi_sigma_deg, psi_sigma_ci95, point_type, colour), means with their 95 %
 # intervals, one colour per rate.
 # Variables: n_panels, panel_titles, panel_blocks and the axis ranges

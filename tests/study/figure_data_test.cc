@@ -304,6 +304,17 @@ TEST(WriteFigureData, TheDrainedCriticalStatesJoinTheMFigure) {
   const std::string groups =
       ReadTextFile((dir / "figures/data/rate_critical_state_groups.tsv").string());
   EXPECT_EQ(Count(groups, "drained at sigma_r"), 4) << groups;
+  // (a) gets a panel of the drained ψ_σ against p: one curve per rank of the
+  // axial rate (three), each through the four σ_r, coloured as the nearest I*.
+  const FigureSpec& a = figures.front();
+  ASSERT_EQ(a.stem, "rate_psi_sigma_p");
+  std::map<std::string, std::string> v(a.variables.begin(), a.variables.end());
+  EXPECT_EQ(v["n_panels"], "2");
+  EXPECT_EQ(v["panel_blocks"], "'5 3'");
+  EXPECT_NE(v["panel_titles"].find("\"drained, σ_r = p_0\""), std::string::npos) << v["panel_titles"];
+  const std::string panel = ReadTextFile((dir / "figures/data/rate_psi_sigma_2.tsv").string());
+  EXPECT_NE(panel.find("drained, I ≈ 0.0003, E = 500 MPa"), std::string::npos) << panel;
+  EXPECT_EQ(Count(panel, "\t9\t"), 12) << panel;
   // Drained cases alone still make the rate figures.
   fs::remove(dir / kRateStatesFile);
   EXPECT_FALSE(WriteFigureData(dir.string()).empty());
