@@ -18,6 +18,7 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/state_measures.h"
+#include "common/statistics.h"
 #include "common/text_file.h"
 #include "constitutive/constitutive_model.h"
 
@@ -673,12 +674,6 @@ namespace {
 // axis (London clay: OCR 0.9997 at psi_epsilon = 11 deg).
 constexpr double kAsbsTolerance = 0.01;
 
-double MeanOf(const std::vector<double>& v) {
-  double sum = 0;
-  for (double x : v) sum += x;
-  return v.empty() ? std::nan("") : sum / static_cast<double>(v.size());
-}
-
 }  // namespace
 
 std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResult& fit,
@@ -825,7 +820,7 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
       }
     }
     if (!dem_csl_ocr.empty()) {
-      const double dem = std::exp(MeanOf(dem_csl_ocr)), fitted = std::exp(MeanOf(model_csl_ocr));
+      const double dem = std::exp(Mean(dem_csl_ocr)), fitted = std::exp(Mean(model_csl_ocr));
       diagnosis->push_back(fmt::format("critical state: data OCR {:.3g} ({}), model OCR {:.3g}",
                                        dem, against, fitted));
       if (std::abs(std::log(dem / fitted)) > std::log(1.25)) {
@@ -862,7 +857,7 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
       }
     }
     if (dv.empty()) continue;
-    const double mv = MeanOf(dv), mpsi = MeanOf(dpsi);
+    const double mv = Mean(dv), mpsi = Mean(dpsi);
     std::string line = fmt::format(
         "{}: {} states, mean model - data d_ln(1+e) {:+.4g} ({} of {} positive)", ToString(k),
         dv.size(), mv, positive_v, dv.size());
@@ -871,8 +866,8 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
                           dpsi.size());
     }
     diagnosis->push_back(line);
-    const bool volume = std::abs(mv) > 2 * MeanOf(uv);
-    const bool stress = !dpsi.empty() && std::abs(mpsi) > 2 * MeanOf(upsi);
+    const bool volume = std::abs(mv) > 2 * Mean(uv);
+    const bool stress = !dpsi.empty() && std::abs(mpsi) > 2 * Mean(upsi);
     if (volume || stress) {
       findings.push_back(
           {"structural_misfit",

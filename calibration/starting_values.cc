@@ -89,13 +89,8 @@ StartingValues EstimateStartingValues(const std::vector<StateDataset>& datasets)
       start.lambda_star = {false, 0.1, kNaN, ncl.points, why};
     }
     if (!ln_p.empty()) {
-      double mean_p = 0, mean_v = 0;
-      for (size_t i = 0; i < ln_p.size(); ++i) {
-        mean_p += ln_p[i] / ln_p.size();
-        mean_v += ln_v[i] / ln_v.size();
-      }
-      start.n_intercept = {false, mean_v + start.lambda_star.value * mean_p, kNaN, ncl.points,
-                           why + ": through their mean at the starting lambda_star"};
+      start.n_intercept = {false, Mean(ln_v) + start.lambda_star.value * Mean(ln_p), kNaN,
+                           ncl.points, why + ": through their mean at the starting lambda_star"};
     } else {
       start.n_intercept = {false, 1.0, kNaN, ncl.points, why};
     }

@@ -106,21 +106,6 @@ std::vector<Row> ReadRows(const std::string& path) {
   return rows;
 }
 
-double Mean(const std::vector<double>& v) {
-  double sum = 0;
-  for (double x : v) sum += x;
-  return sum / static_cast<double>(v.size());
-}
-
-// Standard error of the mean (NaN below two values).
-double StandardError(const std::vector<double>& v) {
-  if (v.size() < 2) return std::nan("");
-  const double m = Mean(v);
-  double ss = 0;
-  for (double x : v) ss += (x - m) * (x - m);
-  return std::sqrt(ss / static_cast<double>(v.size() - 1) / static_cast<double>(v.size()));
-}
-
 }  // namespace
 
 const std::vector<std::string>& StudyTableKinds() {

@@ -55,6 +55,20 @@ double StudentT95(int dof) {
   return StudentQuantile(0.975, dof);
 }
 
+double Mean(const std::vector<double>& v) {
+  double sum = 0;
+  for (double x : v) sum += x;
+  return v.empty() ? std::nan("") : sum / static_cast<double>(v.size());
+}
+
+double StandardError(const std::vector<double>& v) {
+  if (v.size() < 2) return std::nan("");
+  const double m = Mean(v);
+  double ss = 0;
+  for (double x : v) ss += (x - m) * (x - m);
+  return std::sqrt(ss / static_cast<double>(v.size() - 1) / static_cast<double>(v.size()));
+}
+
 LineFit FitLine(const std::vector<double>& x, const std::vector<double>& y) {
   LineFit fit;
   fit.points = static_cast<int>(x.size());

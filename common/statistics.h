@@ -1,5 +1,5 @@
 // Small statistics shared by the study tables and the calibration: the
-// Student-t quantile of confidence intervals and the least-squares line.
+// Student-t quantile of confidence intervals, means and the least-squares line.
 #pragma once
 
 #include <limits>
@@ -14,6 +14,10 @@ double StudentQuantile(double probability, int degrees_of_freedom);
 // t_{0.975, dof}, the factor of a 95 % interval of a mean: tabulated for
 // dof 1-4 (where the expansion is least accurate), StudentQuantile beyond.
 double StudentT95(int degrees_of_freedom);
+
+// The mean (NaN when empty) and the standard error of the mean (NaN below two values).
+double Mean(const std::vector<double>& v);
+double StandardError(const std::vector<double>& v);
 
 // Ordinary least squares y = intercept + slope x with standard errors (NaN
 // with fewer than 2 distinct x; the errors need 3 points).

@@ -16,6 +16,7 @@
 #include "common/csv_table.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
+#include "common/statistics.h"
 #include "common/text_file.h"
 #include "common/time_series.h"
 #include "dem/run_record.h"
@@ -742,12 +743,6 @@ FigureSpec Fig17(const Context& ctx) {
   Set(&spec, "level_titles", dem_file.titles());
   Set(&spec, "n_models", model_file.blocks() / static_cast<int>(drawn.size()));
   return spec;
-}
-
-double Mean(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x;
-  return v.empty() ? std::numeric_limits<double>::quiet_NaN() : s / v.size();
 }
 
 FigureSpec Fig18(const Context& ctx) {

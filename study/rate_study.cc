@@ -82,6 +82,35 @@ Estimate MeanOver(const std::vector<const State*>& used, double State::*member) 
   return Estimate::Of(values);
 }
 
+// A state that liquefied: a gas (status or flag), no asymptotic state.
+bool IsLiquefied(const std::string& status, const std::string& flags) {
+  return status == "gas" || HasFlag(flags, "gas");
+}
+
+// The line of (E, ψ_ε, rule, rate), or nullptr.
+const RateLine* FindLine(const std::vector<RateLine>& lines, double youngs_modulus_mpa,
+                         double psi_epsilon_deg, dem::RateRule rule, double rate) {
+  for (const RateLine& l : lines) {
+    if (l.youngs_modulus_mpa == youngs_modulus_mpa && l.psi_epsilon_deg == psi_epsilon_deg &&
+        l.rule == rule && l.rate == rate) {
+      return &l;
+    }
+  }
+  return nullptr;
+}
+
+// "2 rate_dependent, 1 undetermined": the verdicts of a list, counted.
+template <typename List>
+std::string VerdictCounts(const List& list, const char* separator) {
+  std::map<std::string, int> n;
+  for (const auto& v : list) ++n[v.verdict];
+  std::string text;
+  for (const auto& [verdict, k] : n) {
+    text += fmt::format("{}{} {}", text.empty() ? "" : separator, k, verdict);
+  }
+  return text;
+}
+
 std::string RateText(dem::RateRule rule, double rate) {
   return rule == dem::RateRule::kInertial ? fmt::format("I* = {:g}", rate)
                                           : fmt::format("‖D‖ = {:g} 1/s", rate);
@@ -458,8 +487,8 @@ double RateStudy::ReferenceModulus() const {
   return best;
 }
 
-static void AnalyseExtension(RateStudy* study);
-static void AnalyseStiffness(RateStudy* study);  // §3: extension_steps and extension_limits
+static void AnalyseExtension(RateStudy* study);  // §3: extension_steps and extension_limits
+static void AnalyseStiffness(RateStudy* study);  // §1: stiffness
 
 RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptions& options) {
   std::string why;
@@ -527,12 +556,10 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
   // spheres is curved: the line is no NCL outside it).
   for (RateState& s : study.states) {
     s.ocr_same_rate = kNaN;
-    for (const RateLine& l : study.lines) {
-      if (l.valid() && l.lambda > 0 && l.youngs_modulus_mpa == s.youngs_modulus_mpa &&
-          l.psi_epsilon_deg == 0 && l.rule == s.rule && l.rate == s.rate() && s.p_kpa > 0) {
-        const double p_e = std::exp((l.n - s.ln_1_plus_e) / l.lambda);
-        if (p_e >= l.p_min_kpa && p_e <= l.p_max_kpa) s.ocr_same_rate = p_e / s.p_kpa;
-      }
+    const RateLine* l = FindLine(study.lines, s.youngs_modulus_mpa, 0, s.rule, s.rate());
+    if (l && l->valid() && l->lambda > 0 && s.p_kpa > 0) {
+      const double p_e = std::exp((l->n - s.ln_1_plus_e) / l->lambda);
+      if (p_e >= l->p_min_kpa && p_e <= l->p_max_kpa) s.ocr_same_rate = p_e / s.p_kpa;
     }
   }
 
@@ -548,7 +575,7 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
       if (study.Usable(*s)) used.push_back(s);
     }
     group.used = static_cast<int>(used.size());
-    for (const RateState* s : list) group.liquefied += s->status == "gas" || HasFlag(s->flags, "gas");
+    for (const RateState* s : list) group.liquefied += IsLiquefied(s->status, s->flags);
     auto estimate = [&used](double RateState::*member) { return MeanOver(used, member); };
     group.p_kpa = estimate(&RateState::p_kpa);
     group.e = estimate(&RateState::e);
@@ -562,16 +589,6 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
     group.stiffness_number = estimate(&RateState::stiffness_number);
     study.groups.push_back(group);
   }
-
-  auto find_line = [&study](double e, double psi, double rate) -> const RateLine* {
-    for (const RateLine& l : study.lines) {
-      if (l.youngs_modulus_mpa == e && l.psi_epsilon_deg == psi &&
-          l.rule == dem::RateRule::kInertial && l.rate == rate) {
-        return &l;
-      }
-    }
-    return nullptr;
-  };
 
   // Per (E, ψ_ε, p_0): the inertial groups in ascending I*.
   using StartKey = std::tuple<double, double, double>;
@@ -644,8 +661,8 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
                                       g->UsableText()));
       }
     }
-    const RateLine* csl_a = find_line(e_mpa, 90.0, a.key.rate);
-    const RateLine* csl_b = find_line(e_mpa, 90.0, b.key.rate);
+    const RateLine* csl_a = FindLine(study.lines, e_mpa, 90.0, dem::RateRule::kInertial, a.key.rate);
+    const RateLine* csl_b = FindLine(study.lines, e_mpa, 90.0, dem::RateRule::kInertial, b.key.rate);
     if (csl_a) v.csl_smallest = csl_a->position;
     if (csl_b) v.csl_next = csl_b->position;
     v.csl_position = Compare(v.csl_smallest, v.csl_next);
@@ -675,15 +692,6 @@ std::string RateGroup::UsableText() const {
 
 static void AnalyseStiffness(RateStudy* study) {
   const double reference = study->ReferenceModulus();
-  auto line_at = [study](double e_mpa, dem::RateRule rule, double rate) -> const RateLine* {
-    for (const RateLine& l : study->lines) {
-      if (l.youngs_modulus_mpa == e_mpa && l.psi_epsilon_deg == 90 && l.rule == rule &&
-          l.rate == rate) {
-        return &l;
-      }
-    }
-    return nullptr;
-  };
   for (const RateGroup& g : study->groups) {
     if (g.key.youngs_modulus_mpa == reference) continue;
     RateKey key = g.key;
@@ -709,8 +717,8 @@ static void AnalyseStiffness(RateStudy* study) {
                                       x->key.youngs_modulus_mpa, x->UsableText()));
       }
     }
-    const RateLine* line_r = line_at(reference, c.rule, c.rate);
-    const RateLine* line_o = line_at(c.youngs_modulus_mpa, c.rule, c.rate);
+    const RateLine* line_r = FindLine(study->lines, reference, 90, c.rule, c.rate);
+    const RateLine* line_o = FindLine(study->lines, c.youngs_modulus_mpa, 90, c.rule, c.rate);
     if (line_r) c.csl_reference = line_r->position;
     if (line_o) c.csl_other = line_o->position;
     c.csl_position = Compare(c.csl_reference, c.csl_other);
@@ -762,11 +770,7 @@ static void AnalyseExtension(RateStudy* study) {
       step.rate = limit.rate;
       step.states = g->states;
       step.used = g->used;
-      for (const RateState& s : study->states) {
-        if (KeyOf(s) == g->key && (s.status == "gas" || HasFlag(s.flags, "gas"))) {
-          ++step.liquefied;
-        }
-      }
+      step.liquefied = g->liquefied;
       step.sigma_r_over_p = sigma_r(g->q_over_p);
       step.psi_sigma_deg = g->psi_sigma_deg;
       step.p_kpa = g->p_kpa;
@@ -860,7 +864,8 @@ std::string ExtensionLimit::Text() const {
 namespace {
 
 bool DrainedUsable(const DrainedState& s, const RateStudyOptions& options) {
-  return PassesFilters(s.status, s.flags, options.statuses, options) && s.p_kpa > 0 && std::isfinite(s.ln_1_plus_e) && std::isfinite(s.q_over_p);
+  return PassesFilters(s.status, s.flags, options.statuses, options) && s.p_kpa > 0 &&
+         std::isfinite(s.ln_1_plus_e) && std::isfinite(s.q_over_p);
 }
 
 // φ_c of a triaxial-compression stress ratio M: sin φ = 3M / (6 + M).
@@ -1053,23 +1058,18 @@ std::vector<std::string> RateStudy::Answers() const {
     limits += fmt::format("{}from {:g} kPa {}° (I* = {})", limits.empty() ? "" : "; ",
                           f.start_p_kpa, pm(f.limit, 1), rates);
   }
-  // Where every replicate of an isochoric group was a gas (liquefied).
-  std::map<std::pair<double, double>, std::pair<int, int>> gas;  // (I*, p_0) → (gas, states)
-  for (const RateState& s : states) {
-    if (s.youngs_modulus_mpa != reference || s.psi_epsilon_deg != 90 ||
-        s.rule != dem::RateRule::kInertial) {
-      continue;
+  // Where every replicate of an isochoric group liquefied (in I*, then p_0 order).
+  std::map<std::pair<double, double>, bool> all_liquefied;  // (I*, p_0)
+  for (const RateGroup& g : groups) {
+    if (g.key.youngs_modulus_mpa == reference && g.key.psi_epsilon_deg == 90 &&
+        g.key.rule == dem::RateRule::kInertial && g.states > 0 && g.liquefied == g.states) {
+      all_liquefied[{g.key.rate, g.key.start_p_kpa}] = true;
     }
-    auto& [g, n] = gas[{s.inertial_number, s.start_p_kpa}];
-    g += s.status == "gas" || HasFlag(s.flags, "gas");
-    ++n;
   }
   std::string liquefied;
-  for (const auto& [key, count] : gas) {
-    if (count.first == count.second) {
-      liquefied += fmt::format("{}I* = {:g} from {:g} kPa", liquefied.empty() ? "" : ", ",
-                               key.first, key.second);
-    }
+  for (const auto& [key, yes] : all_liquefied) {
+    liquefied += fmt::format("{}I* = {:g} from {:g} kPa", liquefied.empty() ? "" : ", ",
+                             key.first, key.second);
   }
   if (!limits.empty() || !liquefied.empty()) {
     answers.push_back(fmt::format(
@@ -1083,48 +1083,34 @@ std::vector<std::string> RateStudy::Answers() const {
                                   l.youngs_modulus_mpa, RateText(l.rule, l.rate), l.start_p_kpa,
                                   l.Text()));
   }
-  auto counts = [](const auto& list) {
-    std::map<std::string, int> n;
-    for (const auto& v : list) ++n[v.verdict];
-    std::string text;
-    for (const auto& [verdict, k] : n) text += fmt::format("{}{} {}", text.empty() ? "" : ", ", k, verdict);
-    return text;
-  };
   if (!verdicts.empty()) {
     answers.push_back("Rate independence between the two smallest I* (per E, ψ_ε, p_0): " +
-                      counts(verdicts) + ".");
+                      VerdictCounts(verdicts, ", ") + ".");
   }
   if (!stiffness.empty()) {
     answers.push_back(fmt::format(
         "Stiffness scaling against E = {:g} MPa (ψ_σ and the CSL per start and rate): {}.",
-        reference, counts(stiffness)));
+        reference, VerdictCounts(stiffness, ", ")));
   }
   return answers;
 }
 
 std::string RateStudy::Text() const {
-  std::map<std::string, int> verdict_counts;
-  for (const RateVerdict& v : verdicts) ++verdict_counts[v.verdict];
   int fits = 0;
   for (const QuasiStaticFit& f : quasi_static) fits += f.valid() ? 1 : 0;
   std::string text = fmt::format(
       "  rate study: {} states in {} groups of (E, psi_epsilon, start p, rate), {} lines, {} of "
       "{} quasi-static limits determined;",
       states.size(), groups.size(), lines.size(), fits, quasi_static.size());
-  if (verdicts.empty()) text += " no verdict (fewer than two I* per start)";
-  for (const auto& [verdict, count] : verdict_counts) text += fmt::format(" {} {}", count, verdict);
+  text += verdicts.empty() ? std::string(" no verdict (fewer than two I* per start)")
+                           : " " + VerdictCounts(verdicts, " ");
   text += "\n";
-  std::map<std::pair<double, std::string>, int> stiffness_counts;  // (E, verdict)
-  for (const StiffnessComparison& c : stiffness) ++stiffness_counts[{c.youngs_modulus_mpa, c.verdict}];
-  for (auto it = stiffness_counts.begin(); it != stiffness_counts.end();) {
-    const double e_mpa = it->first.first;
+  std::map<double, std::vector<StiffnessComparison>> by_modulus;
+  for (const StiffnessComparison& c : stiffness) by_modulus[c.youngs_modulus_mpa].push_back(c);
+  for (const auto& [e_mpa, list] : by_modulus) {
     text += fmt::format("  stiffness, E {:g} against {:g} MPa (psi_sigma and the CSL per start and "
-                        "rate):",
-                        e_mpa, ReferenceModulus());
-    for (; it != stiffness_counts.end() && it->first.first == e_mpa; ++it) {
-      text += fmt::format(" {} {}", it->second, it->first.second);
-    }
-    text += "\n";
+                        "rate): {}\n",
+                        e_mpa, ReferenceModulus(), VerdictCounts(list, " "));
   }
   for (const ExtensionLimit& l : extension_limits) {
     text += fmt::format("  extension, E {:g} MPa, {}, from {:g} kPa: {}\n", l.youngs_modulus_mpa,
