@@ -253,9 +253,13 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     // Three passes over blocks of the pair list. (1) Find the touching pairs
     // without a data-dependent branch (compaction by index increment): the
     // contact/no-contact decision is close to a coin toss in a dense packing
-    // and would otherwise cost a branch misprediction per pair. (2) Gather
-    // their kinematics into structure-of-arrays form and evaluate the
-    // contact law in one vectorised loop. (3) Scatter forces and torques.
+    // and would otherwise cost a branch misprediction per pair. It stores one
+    // byte per listed pair, its offset in the block: stores, not arithmetic,
+    // bound these passes (one per cycle on some cores), and in a loose sample
+    // most listed pairs do not touch. (2) Gather the touching pairs'
+    // kinematics into structure-of-arrays form (the branch vector again: the
+    // same expression, so the same rounding) and evaluate the contact law in
+    // one vectorised loop. (3) Scatter forces and torques.
     ContactBlock& b = blocks_[t];
     ContactBatch& batch = b.batch;
     const int64_t pair_end = offsets[end];
@@ -267,46 +271,75 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         const int32_t i = owner[p], j = neighbor[p];
         const Vec4 pi = position[i], pj = position[j];
         const Vec3 l = Branch(pi, pj, lx, ly, lz);
-        const double bx = l.x, by = l.y, bz = l.z;
-        const double distance2 = bx * bx + by * by + bz * bz;
+        const double distance2 = l.x * l.x + l.y * l.y + l.z * l.z;
         const double reach = pi.w + pj.w;
         const bool touching = distance2 < reach * reach;
-        b.i[count] = i;
-        b.j[count] = j;
-        b.pair[count] = p;
-        batch.bx[count] = bx;
-        batch.by[count] = by;
-        batch.bz[count] = bz;
-        batch.d2[count] = distance2;
-        batch.ri[count] = pi.w;
-        batch.rj[count] = pj.w;
+        b.offset[count] = static_cast<uint8_t>(p - p0);
         count += touching;
         if constexpr (kUseFriction && !kReevaluate) {
           // A broken contact forgets its shear force (and rolling moment).
           // The one-byte flag of a pair that may hold a history, not the
           // 24-byte history itself, is what the many never-touching pairs
-          // read. Bitwise, not short-circuit: the branch is then taken only
-          // at a separation (rare, well predicted), never on the coin toss
-          // of `touching` itself.
-          if (loaded[p] & !touching) {
-            shear[p] = Vec3{};
-            if constexpr (kRolling) rolling[p] = Vec3{};
+          // read; it is written only when it changes (a contact made or
+          // broken: rare, so the branch is well predicted, never the coin
+          // toss of `touching` itself).
+          if (loaded[p] != static_cast<uint8_t>(touching)) {
+            if (!touching) {
+              shear[p] = Vec3{};
+              if constexpr (kRolling) rolling[p] = Vec3{};
+            }
+            loaded[p] = touching;
           }
-          loaded[p] = touching;
+        }
+      }
+      for (int k = 0; k < count; ++k) {
+        const int64_t p = p0 + b.offset[k];
+        const int32_t i = owner[p], j = neighbor[p];
+        const Vec4 pi = position[i], pj = position[j];
+        const Vec3 l = Branch(pi, pj, lx, ly, lz);
+        batch.bx[k] = l.x;
+        batch.by[k] = l.y;
+        batch.bz[k] = l.z;
+        batch.d2[k] = l.x * l.x + l.y * l.y + l.z * l.z;
+        batch.ri[k] = pi.w;
+        batch.rj[k] = pj.w;
+        if constexpr (kUseFriction && !kReevaluate) {
+          const Vec3 stored = shear[p];
+          batch.sx[k] = stored.x;
+          batch.sy[k] = stored.y;
+          batch.sz[k] = stored.z;
+          if constexpr (kRolling) {
+            const Vec3 moment = rolling[p];
+            batch.rmx[k] = moment.x;
+            batch.rmy[k] = moment.y;
+            batch.rmz[k] = moment.z;
+          }
+          const Vec4 vi = velocity[i], vj = velocity[j];
+          batch.vx[k] = vj.x - vi.x + gx * l.x;
+          batch.vy[k] = vj.y - vi.y + gy * l.y;
+          batch.vz[k] = vj.z - vi.z + gz * l.z;
+          const Vec4 wi = spin[i], wj = spin[j];
+          batch.wix[k] = wi.x;
+          batch.wiy[k] = wi.y;
+          batch.wiz[k] = wi.z;
+          batch.wjx[k] = wj.x;
+          batch.wjy[k] = wj.y;
+          batch.wjz[k] = wj.z;
         }
       }
       if constexpr (kReevaluate) {
         // Forces again at unchanged positions (rare): the scalar evaluator
         // with the stored shear forces.
         for (int k = 0; k < count; ++k) {
+          const int64_t p = p0 + b.offset[k];
           ContactPair pair;
           pair.branch = {batch.bx[k], batch.by[k], batch.bz[k]};
           pair.distance = std::sqrt(batch.d2[k]);
           pair.radius_i = batch.ri[k];
           pair.radius_j = batch.rj[k];
           ContactHistory stored;
-          if constexpr (kUseFriction) stored.shear = shear[b.pair[k]];
-          if constexpr (kRolling) stored.rolling = rolling[b.pair[k]];
+          if constexpr (kUseFriction) stored.shear = shear[p];
+          if constexpr (kRolling) stored.rolling = rolling[p];
           const ContactResult r = law.template Evaluate<kUseFriction, true>(pair, stored);
           batch.fx[k] = r.force_i.x;
           batch.fy[k] = r.force_i.y;
@@ -319,36 +352,11 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
           batch.tjz[k] = r.torque_j.z;
         }
       } else {
-        if constexpr (kUseFriction) {
-          for (int k = 0; k < count; ++k) {
-            const int32_t i = b.i[k], j = b.j[k];
-            const Vec3 stored = shear[b.pair[k]];
-            batch.sx[k] = stored.x;
-            batch.sy[k] = stored.y;
-            batch.sz[k] = stored.z;
-            if constexpr (kRolling) {
-              const Vec3 moment = rolling[b.pair[k]];
-              batch.rmx[k] = moment.x;
-              batch.rmy[k] = moment.y;
-              batch.rmz[k] = moment.z;
-            }
-            const Vec4 vi = velocity[i], vj = velocity[j];
-            batch.vx[k] = vj.x - vi.x + gx * batch.bx[k];
-            batch.vy[k] = vj.y - vi.y + gy * batch.by[k];
-            batch.vz[k] = vj.z - vi.z + gz * batch.bz[k];
-            const Vec4 wi = spin[i], wj = spin[j];
-            batch.wix[k] = wi.x;
-            batch.wiy[k] = wi.y;
-            batch.wiz[k] = wi.z;
-            batch.wjx[k] = wj.x;
-            batch.wjy[k] = wj.y;
-            batch.wjz[k] = wj.z;
-          }
-        }
         law.template EvaluateBatch<kUseFriction>(batch, count);
       }
       for (int k = 0; k < count; ++k) {
-        const int32_t i = b.i[k], j = b.j[k];
+        const int64_t p = p0 + b.offset[k];
+        const int32_t i = owner[p], j = neighbor[p];
         const Vec3 f = {batch.fx[k], batch.fy[k], batch.fz[k]};  // on i
         force[i].x += f.x;
         force[i].y += f.y;
@@ -358,8 +366,8 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         force[j].z -= f.z;
         if constexpr (kUseFriction) {
           if constexpr (!kReevaluate) {
-            shear[b.pair[k]] = {batch.sx[k], batch.sy[k], batch.sz[k]};
-            if constexpr (kRolling) rolling[b.pair[k]] = {batch.rmx[k], batch.rmy[k], batch.rmz[k]};
+            shear[p] = {batch.sx[k], batch.sy[k], batch.sz[k]};
+            if constexpr (kRolling) rolling[p] = {batch.rmx[k], batch.rmy[k], batch.rmz[k]};
           }
           torque[i].x += batch.tix[k];
           torque[i].y += batch.tiy[k];

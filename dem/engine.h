@@ -201,11 +201,13 @@ class Engine {
   std::vector<std::vector<Vec4>> thread_force_, thread_torque_;
   std::vector<Sums> thread_sums_;
   std::vector<double> thread_max2_;  // per thread: the largest |v|² it advanced
-  // Per-thread scratch of the pair loop: a block of touching pairs.
+  // Per-thread scratch of the pair loop: a block of touching pairs, each
+  // named by its place in the block of the list (the pair is block start +
+  // offset; its i and j are read back from the list).
   struct ContactBlock {
     static constexpr int kSize = ContactBatch::kSize;
-    int32_t i[kSize], j[kSize];
-    int64_t pair[kSize];
+    static_assert(kSize <= 256, "offsets in a block are bytes");
+    uint8_t offset[kSize];
     ContactBatch batch;
   };
   std::vector<ContactBlock> blocks_;
