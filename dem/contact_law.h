@@ -84,6 +84,9 @@ struct ContactBatch {
   // Out: force on i, torques on i and j.
   double fx[kSize], fy[kSize], fz[kSize];
   double tix[kSize], tiy[kSize], tiz[kSize], tjx[kSize], tjy[kSize], tjz[kSize];
+  // Scratch of IncrementalShearLaw::EvaluateBatch: 1 where the Coulomb cap
+  // may act (the lane is finished by its second loop), else 0.
+  double capped[kSize];
 };
 
 // Normal force and tangent stiffness of a normal law at one overlap.
@@ -206,76 +209,158 @@ class IncrementalShearLaw {
     return result;
   }
 
-  // Same physics as Evaluate (tests compare the two) on `count` pairs of `b`;
-  // the Coulomb cap is branch-free.
+  // Same physics as Evaluate (tests compare the two) on `count` pairs of `b`.
+  // The Coulomb cap costs a square root and a division per pair, the dearest
+  // operations of the law, yet acts only on the sliding contacts, usually a
+  // small share. The first, vectorised loop therefore finishes every pair as
+  // if the cap were 1 and marks the pairs where it may not be: those whose
+  // |F_s|² is not clearly below (μ F_n)² (or not a number). A second, scalar
+  // loop finishes the marked pairs with the cap as Evaluate computes it. The
+  // mark is conservative: an unmarked pair's |F_s| rounds below μ F_n, so
+  // the quotient μ F_n/|F_s| would round to at least 1 and the cap to
+  // exactly 1, and both loops compute every value by the same operations in
+  // the same order (no contraction), so the results are those of one loop
+  // with the cap everywhere, bit for bit.
   template <bool kFriction>
   void EvaluateBatch(ContactBatch& b, int count) const {
     const Law& law = static_cast<const Law&>(*this);
     const double ratio = law.tangential_ratio();
     const double mu = law.friction_coefficient();
     const double dt = law.time_step();
+    // Below 1 by far more than the rounding of |F_s| and (μ F_n)²; limits
+    // under 1e-150 N (whose square may be subnormal and lose its relative
+    // precision) are always marked.
+    constexpr double kClearlyBelow = 1.0 - 0x1p-20;
+    constexpr double kSmallestLimit = 1e-150;
 #pragma omp simd
     for (int k = 0; k < count; ++k) {
-      const LaneGeometry g = ContactGeometryLane(b, k);
-      const double distance = g.distance, overlap = g.overlap, reciprocal = g.reciprocal;
-      const double inverse_distance = g.inverse_distance, nx = g.nx, ny = g.ny, nz = g.nz;
-      const NormalResponse response = law.Normal(b.ri[k], b.rj[k], distance, reciprocal, overlap);
-      const double normal_force = response.force;
-      double fx = -normal_force * nx, fy = -normal_force * ny, fz = -normal_force * nz;
+      const ShearLane lane = AdvanceShearLane<kFriction>(law, b, k, ratio, dt);
+      double fx = -lane.normal_force * lane.nx, fy = -lane.normal_force * lane.ny,
+             fz = -lane.normal_force * lane.nz;
       if constexpr (kFriction) {
-        const double arm_i = b.ri[k] - 0.5 * overlap;
-        const double arm_j = b.rj[k] - 0.5 * overlap;
-        const double vx = b.vx[k], vy = b.vy[k], vz = b.vz[k];
-        double rx, ry, rz;
-        ContactRotationLane(b, k, nx, ny, nz, inverse_distance, dt, rx, ry, rz);
+        const double sx = lane.sx, sy = lane.sy, sz = lane.sz;
+        const double limit = mu * lane.normal_force;
+        const double magnitude2 = sx * sx + sy * sy + sz * sz;
+        const bool below = magnitude2 <= kClearlyBelow * (limit * limit) && limit > kSmallestLimit;
+        b.capped[k] = below ? 0.0 : 1.0;
+        FinishShearLane(b, k, lane, sx, sy, sz, fx, fy, fz);
+      } else {
+        b.fx[k] = fx;
+        b.fy[k] = fy;
+        b.fz[k] = fz;
+      }
+    }
+    if constexpr (kFriction) {
+      // The marked pairs, compacted (a loop over all pairs with a skip would
+      // be vectorised with the skip as a mask: the cap for every pair again).
+      int marked[ContactBatch::kSize];
+      int marked_count = 0;
+      for (int k = 0; k < count; ++k) {
+        marked[marked_count] = k;
+        marked_count += b.capped[k] != 0.0;
+      }
+      for (int q = 0; q < marked_count; ++q) {
+        const int k = marked[q];
+        // b.sx.. now hold this pair's shear force before the cap; the lane's
+        // geometry and normal force again, by the same operations.
+        const LaneGeometry g = ContactGeometryLane(b, k);
+        const NormalResponse response =
+            law.Normal(b.ri[k], b.rj[k], g.distance, g.reciprocal, g.overlap);
+        ShearLane lane;
+        lane.nx = g.nx;
+        lane.ny = g.ny;
+        lane.nz = g.nz;
+        lane.normal_force = response.force;
+        lane.arm_i = b.ri[k] - 0.5 * g.overlap;
+        lane.arm_j = b.rj[k] - 0.5 * g.overlap;
         double sx = b.sx[k], sy = b.sy[k], sz = b.sz[k];
-        const double ux = sx + (ry * sz - rz * sy);
-        const double uy = sy + (rz * sx - rx * sz);
-        const double uz = sz + (rx * sy - ry * sx);
-        const double un = ux * nx + uy * ny + uz * nz;
-        sx = ux - un * nx;
-        sy = uy - un * ny;
-        sz = uz - un * nz;
-        // Relative velocity at the contact point, tangential part.
-        const double ax = arm_i * b.wix[k] + arm_j * b.wjx[k];
-        const double ay = arm_i * b.wiy[k] + arm_j * b.wjy[k];
-        const double az = arm_i * b.wiz[k] + arm_j * b.wjz[k];
-        const double cx = vx - (ay * nz - az * ny);
-        const double cy = vy - (az * nx - ax * nz);
-        const double cz = vz - (ax * ny - ay * nx);
-        const double cn = cx * nx + cy * ny + cz * nz;
-        const double k_t_dt = ratio * response.stiffness * dt;
-        sx += k_t_dt * (cx - cn * nx);
-        sy += k_t_dt * (cy - cn * ny);
-        sz += k_t_dt * (cz - cn * nz);
-        // Coulomb cap without a branch: the factor is exactly 1 below the
-        // limit (and for a zero force, where the quotient is inf or NaN and
-        // the comparison keeps 1).
-        const double limit = mu * normal_force;
+        const double limit = mu * lane.normal_force;
         const double magnitude = std::sqrt(sx * sx + sy * sy + sz * sz);
         const double quotient = limit / magnitude;
         const double cap = quotient < 1.0 ? quotient : 1.0;
         sx *= cap;
         sy *= cap;
         sz *= cap;
-        b.sx[k] = sx;
-        b.sy[k] = sy;
-        b.sz[k] = sz;
-        fx += sx;
-        fy += sy;
-        fz += sz;
-        const double mx = ny * sz - nz * sy, my = nz * sx - nx * sz, mz = nx * sy - ny * sx;
-        b.tix[k] = arm_i * mx;
-        b.tiy[k] = arm_i * my;
-        b.tiz[k] = arm_i * mz;
-        b.tjx[k] = arm_j * mx;
-        b.tjy[k] = arm_j * my;
-        b.tjz[k] = arm_j * mz;
+        double fx = -lane.normal_force * lane.nx, fy = -lane.normal_force * lane.ny,
+               fz = -lane.normal_force * lane.nz;
+        FinishShearLane(b, k, lane, sx, sy, sz, fx, fy, fz);
       }
-      b.fx[k] = fx;
-      b.fy[k] = fy;
-      b.fz[k] = fz;
     }
+  }
+
+ private:
+  // One pair of a batch up to its shear force before the Coulomb cap.
+  struct ShearLane {
+    double nx, ny, nz, normal_force, arm_i, arm_j;
+    double sx, sy, sz;  // the stored shear force carried and incremented (kFriction)
+  };
+  template <bool kFriction>
+  static GRANASYM_ALWAYS_INLINE ShearLane AdvanceShearLane(const Law& law, const ContactBatch& b,
+                                                           int k, double ratio, double dt) {
+    ShearLane lane;
+    const LaneGeometry g = ContactGeometryLane(b, k);
+    const double distance = g.distance, overlap = g.overlap, reciprocal = g.reciprocal;
+    const double inverse_distance = g.inverse_distance, nx = g.nx, ny = g.ny, nz = g.nz;
+    const NormalResponse response = law.Normal(b.ri[k], b.rj[k], distance, reciprocal, overlap);
+    lane.nx = nx;
+    lane.ny = ny;
+    lane.nz = nz;
+    lane.normal_force = response.force;
+    lane.arm_i = b.ri[k] - 0.5 * overlap;
+    lane.arm_j = b.rj[k] - 0.5 * overlap;
+    if constexpr (kFriction) {
+      const double arm_i = lane.arm_i, arm_j = lane.arm_j;
+      const double vx = b.vx[k], vy = b.vy[k], vz = b.vz[k];
+      double rx, ry, rz;
+      ContactRotationLane(b, k, nx, ny, nz, inverse_distance, dt, rx, ry, rz);
+      double sx = b.sx[k], sy = b.sy[k], sz = b.sz[k];
+      const double ux = sx + (ry * sz - rz * sy);
+      const double uy = sy + (rz * sx - rx * sz);
+      const double uz = sz + (rx * sy - ry * sx);
+      const double un = ux * nx + uy * ny + uz * nz;
+      sx = ux - un * nx;
+      sy = uy - un * ny;
+      sz = uz - un * nz;
+      // Relative velocity at the contact point, tangential part.
+      const double ax = arm_i * b.wix[k] + arm_j * b.wjx[k];
+      const double ay = arm_i * b.wiy[k] + arm_j * b.wjy[k];
+      const double az = arm_i * b.wiz[k] + arm_j * b.wjz[k];
+      const double cx = vx - (ay * nz - az * ny);
+      const double cy = vy - (az * nx - ax * nz);
+      const double cz = vz - (ax * ny - ay * nx);
+      const double cn = cx * nx + cy * ny + cz * nz;
+      const double k_t_dt = ratio * response.stiffness * dt;
+      sx += k_t_dt * (cx - cn * nx);
+      sy += k_t_dt * (cy - cn * ny);
+      sz += k_t_dt * (cz - cn * nz);
+      lane.sx = sx;
+      lane.sy = sy;
+      lane.sz = sz;
+    }
+    return lane;
+  }
+  // Stores the (capped) shear force (sx, sy, sz), the force on i (its normal
+  // part fx.. plus the shear force) and the torques of pair k.
+  static GRANASYM_ALWAYS_INLINE void FinishShearLane(ContactBatch& b, int k, const ShearLane& lane,
+                                                     double sx, double sy, double sz, double fx,
+                                                     double fy, double fz) {
+    b.sx[k] = sx;
+    b.sy[k] = sy;
+    b.sz[k] = sz;
+    fx += sx;
+    fy += sy;
+    fz += sz;
+    const double nx = lane.nx, ny = lane.ny, nz = lane.nz;
+    const double mx = ny * sz - nz * sy, my = nz * sx - nx * sz, mz = nx * sy - ny * sx;
+    b.tix[k] = lane.arm_i * mx;
+    b.tiy[k] = lane.arm_i * my;
+    b.tiz[k] = lane.arm_i * mz;
+    b.tjx[k] = lane.arm_j * mx;
+    b.tjy[k] = lane.arm_j * my;
+    b.tjz[k] = lane.arm_j * mz;
+    b.fx[k] = fx;
+    b.fy[k] = fy;
+    b.fz[k] = fz;
   }
 };
 
