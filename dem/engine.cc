@@ -233,13 +233,18 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
   {
     const int t = omp_get_thread_num();
     const int64_t begin = n * t / threads, end = n * (t + 1) / threads;
-    Vec4* force = t == 0 ? force_.data() : thread_force_[t - 1].data();
-    Vec4* torque = nullptr;
-    if constexpr (kUseFriction) torque = t == 0 ? torque_.data() : thread_torque_[t - 1].data();
-    // Pairs (i, j > i) of this thread touch only particles >= begin.
-    const int64_t zero_from = t == 0 ? 0 : begin;
-    std::fill(force + zero_from, force + n, Vec4{});
-    if constexpr (kUseFriction) std::fill(torque + zero_from, torque + n, Vec4{});
+    // Pairs (i, j > i) of this thread touch only particles >= begin. Each
+    // thread sums the forces on its own particles [begin, end) in force_
+    // and torque_, which no other thread writes, and those on later
+    // particles (j >= end) in its halo, which the threads owning them add
+    // after the barrier and zero again: no thread writes another's
+    // particles or zero-fills more than its own share.
+    Vec4* force = force_.data();
+    Vec4* torque = kUseFriction ? torque_.data() : nullptr;
+    Vec4* halo_force = t + 1 < threads ? thread_force_[t].data() : nullptr;
+    Vec4* halo_torque = kUseFriction && t + 1 < threads ? thread_torque_[t].data() : nullptr;
+    std::fill(force + begin, force + end, Vec4{});
+    if constexpr (kUseFriction) std::fill(torque + begin, torque + end, Vec4{});
     Sums local;
     double max2 = 0.0;  // largest |v|² of the particles this thread advanced
     // On one thread a particle's force is complete once the pairs of every
@@ -358,12 +363,15 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         const int64_t p = p0 + b.offset[k];
         const int32_t i = owner[p], j = neighbor[p];
         const Vec3 f = {batch.fx[k], batch.fy[k], batch.fz[k]};  // on i
+        // j's sums: this thread's own, or its halo (a select, not a branch).
+        const bool own = j < end;
+        Vec4& force_j = (own ? force : halo_force)[j];
         force[i].x += f.x;
         force[i].y += f.y;
         force[i].z += f.z;
-        force[j].x -= f.x;
-        force[j].y -= f.y;
-        force[j].z -= f.z;
+        force_j.x -= f.x;
+        force_j.y -= f.y;
+        force_j.z -= f.z;
         if constexpr (kUseFriction) {
           if constexpr (!kReevaluate) {
             shear[p] = {batch.sx[k], batch.sy[k], batch.sz[k]};
@@ -372,9 +380,10 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
           torque[i].x += batch.tix[k];
           torque[i].y += batch.tiy[k];
           torque[i].z += batch.tiz[k];
-          torque[j].x += batch.tjx[k];
-          torque[j].y += batch.tjy[k];
-          torque[j].z += batch.tjz[k];
+          Vec4& torque_j = (own ? torque : halo_torque)[j];
+          torque_j.x += batch.tjx[k];
+          torque_j.y += batch.tjy[k];
+          torque_j.z += batch.tjz[k];
         }
         const Vec3 branch = {batch.bx[k], batch.by[k], batch.bz[k]};
         const double distance2 = batch.d2[k];
@@ -417,21 +426,37 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     thread_sums_[t] = local;
 #pragma omp barrier
     if (threads > 1) {
-      // Each thread adds the contributions of the threads before it (whose
-      // pairs reach its particles; those after it do not) to its own
-      // particles, in thread order, and with kAdvanceToo advances them.
-      for (int64_t i = begin; i < end; ++i) {
-        for (int u = 1; u <= t; ++u) {
-          const Vec4& f = thread_force_[u - 1][i];
-          force_[i].x += f.x;
-          force_[i].y += f.y;
-          force_[i].z += f.z;
-          if constexpr (kUseFriction) {
-            const Vec4& m = thread_torque_[u - 1][i];
-            torque_[i].x += m.x;
-            torque_[i].y += m.y;
-            torque_[i].z += m.z;
+      // Each thread adds to its own particles the halos of the threads
+      // before it, in the order of the sums before halos existed: the
+      // earlier threads' sums in thread order, then its own
+      // (((S_0 + S_1) + …) + S_t, addition being commutative), and zeroes
+      // the halo entries for the next evaluation.
+      for (int64_t i = begin; i < end && t > 0; ++i) {
+        Vec4 sum = thread_force_[0][i];
+        thread_force_[0][i] = Vec4{};
+        for (int u = 1; u < t; ++u) {
+          Vec4& f = thread_force_[u][i];
+          sum.x += f.x;
+          sum.y += f.y;
+          sum.z += f.z;
+          f = Vec4{};
+        }
+        force_[i].x = sum.x + force_[i].x;
+        force_[i].y = sum.y + force_[i].y;
+        force_[i].z = sum.z + force_[i].z;
+        if constexpr (kUseFriction) {
+          Vec4 moment = thread_torque_[0][i];
+          thread_torque_[0][i] = Vec4{};
+          for (int u = 1; u < t; ++u) {
+            Vec4& m = thread_torque_[u][i];
+            moment.x += m.x;
+            moment.y += m.y;
+            moment.z += m.z;
+            m = Vec4{};
           }
+          torque_[i].x = moment.x + torque_[i].x;
+          torque_[i].y = moment.y + torque_[i].y;
+          torque_[i].z = moment.z + torque_[i].z;
         }
       }
       if constexpr (kAdvanceToo) advance(begin, end, max2);

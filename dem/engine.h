@@ -197,7 +197,9 @@ class Engine {
 
   std::vector<Vec4> position_, velocity_, spin_, force_, torque_;
   std::vector<int64_t> id_;
-  // Forces and torques of threads 1..T−1 (thread 0 writes force_/torque_).
+  // Halos of threads 0..T−2: the forces and torques each sums on particles
+  // past its own (zero between evaluations; force_/torque_ hold each
+  // thread's own particles).
   std::vector<std::vector<Vec4>> thread_force_, thread_torque_;
   std::vector<Sums> thread_sums_;
   std::vector<double> thread_max2_;  // per thread: the largest |v|² it advanced
