@@ -235,19 +235,17 @@ class IncrementalShearLaw {
 #pragma omp simd
     for (int k = 0; k < count; ++k) {
       const ShearLane lane = AdvanceShearLane<kFriction>(law, b, k, ratio, dt);
-      double fx = -lane.normal_force * lane.nx, fy = -lane.normal_force * lane.ny,
-             fz = -lane.normal_force * lane.nz;
       if constexpr (kFriction) {
         const double sx = lane.sx, sy = lane.sy, sz = lane.sz;
         const double limit = mu * lane.normal_force;
         const double magnitude2 = sx * sx + sy * sy + sz * sz;
         const bool below = magnitude2 <= kClearlyBelow * (limit * limit) && limit > kSmallestLimit;
         b.capped[k] = below ? 0.0 : 1.0;
-        FinishShearLane(b, k, lane, sx, sy, sz, fx, fy, fz);
+        FinishShearLane(b, k, lane, sx, sy, sz);
       } else {
-        b.fx[k] = fx;
-        b.fy[k] = fy;
-        b.fz[k] = fz;
+        b.fx[k] = -lane.normal_force * lane.nx;
+        b.fy[k] = -lane.normal_force * lane.ny;
+        b.fz[k] = -lane.normal_force * lane.nz;
       }
     }
     if constexpr (kFriction) {
@@ -263,16 +261,8 @@ class IncrementalShearLaw {
         const int k = marked[q];
         // b.sx.. now hold this pair's shear force before the cap; the lane's
         // geometry and normal force again, by the same operations.
-        const LaneGeometry g = ContactGeometryLane(b, k);
-        const NormalResponse response =
-            law.Normal(b.ri[k], b.rj[k], g.distance, g.reciprocal, g.overlap);
-        ShearLane lane;
-        lane.nx = g.nx;
-        lane.ny = g.ny;
-        lane.nz = g.nz;
-        lane.normal_force = response.force;
-        lane.arm_i = b.ri[k] - 0.5 * g.overlap;
-        lane.arm_j = b.rj[k] - 0.5 * g.overlap;
+        double inverse_distance;
+        const ShearLane lane = NormalLane(law, b, k, inverse_distance);
         double sx = b.sx[k], sy = b.sy[k], sz = b.sz[k];
         const double limit = mu * lane.normal_force;
         const double magnitude = std::sqrt(sx * sx + sy * sy + sz * sz);
@@ -281,9 +271,7 @@ class IncrementalShearLaw {
         sx *= cap;
         sy *= cap;
         sz *= cap;
-        double fx = -lane.normal_force * lane.nx, fy = -lane.normal_force * lane.ny,
-               fz = -lane.normal_force * lane.nz;
-        FinishShearLane(b, k, lane, sx, sy, sz, fx, fy, fz);
+        FinishShearLane(b, k, lane, sx, sy, sz);
       }
     }
   }
@@ -291,23 +279,31 @@ class IncrementalShearLaw {
  private:
   // One pair of a batch up to its shear force before the Coulomb cap.
   struct ShearLane {
-    double nx, ny, nz, normal_force, arm_i, arm_j;
+    double nx, ny, nz, normal_force, normal_stiffness, arm_i, arm_j;
     double sx, sy, sz;  // the stored shear force carried and incremented (kFriction)
   };
+  // Its geometry, normal force and lever arms (and 1/|l|).
+  static GRANASYM_ALWAYS_INLINE ShearLane NormalLane(const Law& law, const ContactBatch& b, int k,
+                                                     double& inverse_distance) {
+    ShearLane lane;
+    const LaneGeometry g = ContactGeometryLane(b, k);
+    const NormalResponse response = law.Normal(b.ri[k], b.rj[k], g.distance, g.reciprocal, g.overlap);
+    inverse_distance = g.inverse_distance;
+    lane.nx = g.nx;
+    lane.ny = g.ny;
+    lane.nz = g.nz;
+    lane.normal_force = response.force;
+    lane.normal_stiffness = response.stiffness;
+    lane.arm_i = b.ri[k] - 0.5 * g.overlap;
+    lane.arm_j = b.rj[k] - 0.5 * g.overlap;
+    return lane;
+  }
   template <bool kFriction>
   static GRANASYM_ALWAYS_INLINE ShearLane AdvanceShearLane(const Law& law, const ContactBatch& b,
                                                            int k, double ratio, double dt) {
-    ShearLane lane;
-    const LaneGeometry g = ContactGeometryLane(b, k);
-    const double distance = g.distance, overlap = g.overlap, reciprocal = g.reciprocal;
-    const double inverse_distance = g.inverse_distance, nx = g.nx, ny = g.ny, nz = g.nz;
-    const NormalResponse response = law.Normal(b.ri[k], b.rj[k], distance, reciprocal, overlap);
-    lane.nx = nx;
-    lane.ny = ny;
-    lane.nz = nz;
-    lane.normal_force = response.force;
-    lane.arm_i = b.ri[k] - 0.5 * overlap;
-    lane.arm_j = b.rj[k] - 0.5 * overlap;
+    double inverse_distance;
+    ShearLane lane = NormalLane(law, b, k, inverse_distance);
+    const double nx = lane.nx, ny = lane.ny, nz = lane.nz;
     if constexpr (kFriction) {
       const double arm_i = lane.arm_i, arm_j = lane.arm_j;
       const double vx = b.vx[k], vy = b.vy[k], vz = b.vz[k];
@@ -329,7 +325,7 @@ class IncrementalShearLaw {
       const double cy = vy - (az * nx - ax * nz);
       const double cz = vz - (ax * ny - ay * nx);
       const double cn = cx * nx + cy * ny + cz * nz;
-      const double k_t_dt = ratio * response.stiffness * dt;
+      const double k_t_dt = ratio * lane.normal_stiffness * dt;
       sx += k_t_dt * (cx - cn * nx);
       sy += k_t_dt * (cy - cn * ny);
       sz += k_t_dt * (cz - cn * nz);
@@ -339,14 +335,15 @@ class IncrementalShearLaw {
     }
     return lane;
   }
-  // Stores the (capped) shear force (sx, sy, sz), the force on i (its normal
-  // part fx.. plus the shear force) and the torques of pair k.
+  // Stores the (capped) shear force (sx, sy, sz), the force on i (normal
+  // plus shear) and the torques of pair k.
   static GRANASYM_ALWAYS_INLINE void FinishShearLane(ContactBatch& b, int k, const ShearLane& lane,
-                                                     double sx, double sy, double sz, double fx,
-                                                     double fy, double fz) {
+                                                     double sx, double sy, double sz) {
     b.sx[k] = sx;
     b.sy[k] = sy;
     b.sz[k] = sz;
+    double fx = -lane.normal_force * lane.nx, fy = -lane.normal_force * lane.ny,
+           fz = -lane.normal_force * lane.nz;
     fx += sx;
     fy += sy;
     fz += sz;

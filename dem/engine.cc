@@ -431,33 +431,23 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
       // earlier threads' sums in thread order, then its own
       // (((S_0 + S_1) + …) + S_t, addition being commutative), and zeroes
       // the halo entries for the next evaluation.
-      for (int64_t i = begin; i < end && t > 0; ++i) {
-        Vec4 sum = thread_force_[0][i];
-        thread_force_[0][i] = Vec4{};
+      auto add_halos = [&](std::vector<std::vector<Vec4>>& halos, Vec4& own, int64_t i) {
+        Vec4 sum = halos[0][i];
+        halos[0][i] = Vec4{};
         for (int u = 1; u < t; ++u) {
-          Vec4& f = thread_force_[u][i];
-          sum.x += f.x;
-          sum.y += f.y;
-          sum.z += f.z;
-          f = Vec4{};
+          Vec4& h = halos[u][i];
+          sum.x += h.x;
+          sum.y += h.y;
+          sum.z += h.z;
+          h = Vec4{};
         }
-        force_[i].x = sum.x + force_[i].x;
-        force_[i].y = sum.y + force_[i].y;
-        force_[i].z = sum.z + force_[i].z;
-        if constexpr (kUseFriction) {
-          Vec4 moment = thread_torque_[0][i];
-          thread_torque_[0][i] = Vec4{};
-          for (int u = 1; u < t; ++u) {
-            Vec4& m = thread_torque_[u][i];
-            moment.x += m.x;
-            moment.y += m.y;
-            moment.z += m.z;
-            m = Vec4{};
-          }
-          torque_[i].x = moment.x + torque_[i].x;
-          torque_[i].y = moment.y + torque_[i].y;
-          torque_[i].z = moment.z + torque_[i].z;
-        }
+        own.x = sum.x + own.x;
+        own.y = sum.y + own.y;
+        own.z = sum.z + own.z;
+      };
+      for (int64_t i = begin; i < end && t > 0; ++i) {
+        add_halos(thread_force_, force_[i], i);
+        if constexpr (kUseFriction) add_halos(thread_torque_, torque_[i], i);
       }
       if constexpr (kAdvanceToo) advance(begin, end, max2);
     }
