@@ -506,12 +506,17 @@ void Engine::PrepareList() {
       neighbors_.NeedsRebuild(max_displacement_ * neighbors_.MetricFactor(), cell_)) {
     max_displacement_ = neighbors_.MaxDisplacement(position_, cell_, options_.threads);
   }
+  // The scaled positions are not wrapped back into the cell at a build (the
+  // list bins them wrapped, and the minimum image is exact for any of them):
+  // a wrap would change the rounding of later drifts at the build's step,
+  // so the results would depend on when the list is rebuilt, i.e. on the
+  // skin. Without it they do not: the skin and the rebuild times change
+  // only which non-touching pairs are listed (the history of every touching
+  // pair is carried, and the pairs are summed in the order (i, j)
+  // whichever others are listed). Scaled positions move only by the
+  // fluctuations (the affine motion is the cell's), so they stay within a
+  // few cell sides of [0, 1).
   if (!forces_current_ && neighbors_.NeedsRebuild(max_displacement_, cell_)) {
-    for (Vec4& s : position_) {
-      s.x -= std::floor(s.x);
-      s.y -= std::floor(s.y);
-      s.z -= std::floor(s.z);
-    }
     neighbors_.Build(position_, cell_, skin_, options_.threads);
     DeriveLoadedFlags();
     max_displacement_ = 0.0;
