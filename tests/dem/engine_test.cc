@@ -196,12 +196,17 @@ TEST(Engine, AffineStretchingOfAContactFreeGasProducesNoForce) {
 // The four doubles of a particle record, for exact comparison.
 std::array<double, 4> Bits(const Vec4& v) { return {v.x, v.y, v.z, v.w}; }
 
-TEST(Engine, TheFusedStepIsBitIdenticalToForcesThenIntegration) {
+// 600 spheres of the paper's GSD at the paper's density of the cell.
+Packing SmallSample(uint64_t seed) {
   GenerationOptions generation;
   generation.count = 600;
   generation.cell_size = 31e-3 * std::cbrt(600.0 / 150000.0);
-  generation.seed = 5;
-  const Packing packing = GeneratePacking(GrainSizeDistribution::Default(), generation);
+  generation.seed = seed;
+  return GeneratePacking(GrainSizeDistribution::Default(), generation);
+}
+
+TEST(Engine, TheFusedStepIsBitIdenticalToForcesThenIntegration) {
+  const Packing packing = SmallSample(5);
   struct Variant {
     const char* name;
     double friction_angle, local_damping, rolling;
@@ -258,11 +263,7 @@ TEST(Engine, TheFusedStepIsBitIdenticalToForcesThenIntegration) {
 // list is rebuilt (positions are not wrapped at a build): the results do not
 // depend on it, bit for bit, so it is a pure performance setting.
 TEST(Engine, ResultsDoNotDependOnTheSkin) {
-  GenerationOptions generation;
-  generation.count = 600;
-  generation.cell_size = 31e-3 * std::cbrt(600.0 / 150000.0);
-  generation.seed = 9;
-  const Packing packing = GeneratePacking(GrainSizeDistribution::Default(), generation);
+  const Packing packing = SmallSample(9);
   for (ContactLaw law : {ContactLaw::kLinear, ContactLaw::kHertzMindlin}) {
     for (int threads : {1, 2, 3}) {
       SCOPED_TRACE(std::string(ToString(law)) + ", " + std::to_string(threads) + " threads");
