@@ -370,6 +370,17 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
             std::string::npos);
   EXPECT_NE(small.Find("nc20_psi90_D167_E500")->scene_body.find("strain_norm = 0.8"),
             std::string::npos);
+  // The runs whose every case is slow and loose take the thinner skin (a
+  // speed setting: the results do not depend on it); the others the default.
+  for (const char* name : {"nc20_psi90_I0.001_E100", "nc100_psi90_I0.0003_E500",
+                           "nc5_psi100_I0.03", "nc100_psi150_I0.003"}) {
+    EXPECT_NE(small.Find(name)->scene_body.find("skin_fraction = 0.1"), std::string::npos)
+        << name;
+  }
+  for (const char* name : {"nc100_psi0_I0.001", "nc100_psi90_I0.001_E500", "nc100_psi100_I0.1",
+                           "nc100_psi100_D167", "nc20_drained_ea1.8958"}) {
+    EXPECT_EQ(small.Find(name)->scene_body.find("skin_fraction"), std::string::npos) << name;
+  }
   // Every scene of every scale is a valid scene (Plan::Make parses them).
   const Plan plan = Plan::Make(small, 1, "out");
   EXPECT_EQ(plan.cases.size(), 3 * small.cases.size());
