@@ -145,6 +145,32 @@ GRANASYM_ALWAYS_INLINE void ContactRotationLane(const ContactBatch& b, int k, do
   rz = scale * (nx * vy - ny * vx) + spin_n * nz;
 }
 
+// One lane of CarryWithContact: (x, y, z) rotated by (rx, ry, rz) and
+// projected back onto the plane normal to (nx, ny, nz).
+GRANASYM_ALWAYS_INLINE void CarryWithContactLane(double rx, double ry, double rz, double nx,
+                                                 double ny, double nz, double& x, double& y,
+                                                 double& z) {
+  const double ux = x + (ry * z - rz * y);
+  const double uy = y + (rz * x - rx * z);
+  const double uz = z + (rx * y - ry * x);
+  const double un = ux * nx + uy * ny + uz * nz;
+  x = ux - un * nx;
+  y = uy - un * ny;
+  z = uz - un * nz;
+}
+
+// The Coulomb-type cap of one lane without a branch: (x, y, z) scaled by
+// min(limit/|(x, y, z)|, 1), exactly 1 below the limit (and for a zero
+// vector, where the quotient is inf or NaN and the comparison keeps 1).
+GRANASYM_ALWAYS_INLINE void CapLane(double limit, double& x, double& y, double& z) {
+  const double magnitude = std::sqrt(x * x + y * y + z * z);
+  const double quotient = limit / magnitude;
+  const double cap = quotient < 1.0 ? quotient : 1.0;
+  x *= cap;
+  y *= cap;
+  z *= cap;
+}
+
 // The laws whose tangential force is the incremental spring of SPEC §4 with a
 // Coulomb cap. `Law` (CRTP) provides
 //   NormalResponse Normal(r_i, r_j, |l|, reciprocal, u_N) const
@@ -261,16 +287,9 @@ class IncrementalShearLaw {
         const int k = marked[q];
         // b.sx.. now hold this pair's shear force before the cap; the lane's
         // geometry and normal force again, by the same operations.
-        double inverse_distance;
-        const ShearLane lane = NormalLane(law, b, k, inverse_distance);
+        const ShearLane lane = NormalLane(law, b, k);
         double sx = b.sx[k], sy = b.sy[k], sz = b.sz[k];
-        const double limit = mu * lane.normal_force;
-        const double magnitude = std::sqrt(sx * sx + sy * sy + sz * sz);
-        const double quotient = limit / magnitude;
-        const double cap = quotient < 1.0 ? quotient : 1.0;
-        sx *= cap;
-        sy *= cap;
-        sz *= cap;
+        CapLane(mu * lane.normal_force, sx, sy, sz);
         FinishShearLane(b, k, lane, sx, sy, sz);
       }
     }
@@ -279,16 +298,15 @@ class IncrementalShearLaw {
  private:
   // One pair of a batch up to its shear force before the Coulomb cap.
   struct ShearLane {
-    double nx, ny, nz, normal_force, normal_stiffness, arm_i, arm_j;
+    double nx, ny, nz, inverse_distance, normal_force, normal_stiffness, arm_i, arm_j;
     double sx, sy, sz;  // the stored shear force carried and incremented (kFriction)
   };
-  // Its geometry, normal force and lever arms (and 1/|l|).
-  static GRANASYM_ALWAYS_INLINE ShearLane NormalLane(const Law& law, const ContactBatch& b, int k,
-                                                     double& inverse_distance) {
+  // Its geometry, normal force and lever arms.
+  static GRANASYM_ALWAYS_INLINE ShearLane NormalLane(const Law& law, const ContactBatch& b, int k) {
     ShearLane lane;
     const LaneGeometry g = ContactGeometryLane(b, k);
     const NormalResponse response = law.Normal(b.ri[k], b.rj[k], g.distance, g.reciprocal, g.overlap);
-    inverse_distance = g.inverse_distance;
+    lane.inverse_distance = g.inverse_distance;
     lane.nx = g.nx;
     lane.ny = g.ny;
     lane.nz = g.nz;
@@ -301,22 +319,15 @@ class IncrementalShearLaw {
   template <bool kFriction>
   static GRANASYM_ALWAYS_INLINE ShearLane AdvanceShearLane(const Law& law, const ContactBatch& b,
                                                            int k, double ratio, double dt) {
-    double inverse_distance;
-    ShearLane lane = NormalLane(law, b, k, inverse_distance);
+    ShearLane lane = NormalLane(law, b, k);
     const double nx = lane.nx, ny = lane.ny, nz = lane.nz;
     if constexpr (kFriction) {
       const double arm_i = lane.arm_i, arm_j = lane.arm_j;
       const double vx = b.vx[k], vy = b.vy[k], vz = b.vz[k];
       double rx, ry, rz;
-      ContactRotationLane(b, k, nx, ny, nz, inverse_distance, dt, rx, ry, rz);
+      ContactRotationLane(b, k, nx, ny, nz, lane.inverse_distance, dt, rx, ry, rz);
       double sx = b.sx[k], sy = b.sy[k], sz = b.sz[k];
-      const double ux = sx + (ry * sz - rz * sy);
-      const double uy = sy + (rz * sx - rx * sz);
-      const double uz = sz + (rx * sy - ry * sx);
-      const double un = ux * nx + uy * ny + uz * nz;
-      sx = ux - un * nx;
-      sy = uy - un * ny;
-      sz = uz - un * nz;
+      CarryWithContactLane(rx, ry, rz, nx, ny, nz, sx, sy, sz);
       // Relative velocity at the contact point, tangential part.
       const double ax = arm_i * b.wix[k] + arm_j * b.wjx[k];
       const double ay = arm_i * b.wiy[k] + arm_j * b.wjy[k];

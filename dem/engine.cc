@@ -276,7 +276,7 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         const int32_t i = owner[p], j = neighbor[p];
         const Vec4 pi = position[i], pj = position[j];
         const Vec3 l = Branch(pi, pj, lx, ly, lz);
-        const double distance2 = l.x * l.x + l.y * l.y + l.z * l.z;
+        const double distance2 = Dot(l, l);
         const double reach = pi.w + pj.w;
         const bool touching = distance2 < reach * reach;
         b.offset[count] = static_cast<uint8_t>(p - p0);
@@ -305,7 +305,7 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         batch.bx[k] = l.x;
         batch.by[k] = l.y;
         batch.bz[k] = l.z;
-        batch.d2[k] = l.x * l.x + l.y * l.y + l.z * l.z;
+        batch.d2[k] = Dot(l, l);
         batch.ri[k] = pi.w;
         batch.rj[k] = pj.w;
         if constexpr (kUseFriction && !kReevaluate) {
@@ -445,9 +445,11 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         own.y = sum.y + own.y;
         own.z = sum.z + own.z;
       };
-      for (int64_t i = begin; i < end && t > 0; ++i) {
-        add_halos(thread_force_, force_[i], i);
-        if constexpr (kUseFriction) add_halos(thread_torque_, torque_[i], i);
+      if (t > 0) {
+        for (int64_t i = begin; i < end; ++i) {
+          add_halos(thread_force_, force_[i], i);
+          if constexpr (kUseFriction) add_halos(thread_torque_, torque_[i], i);
+        }
       }
       if constexpr (kAdvanceToo) advance(begin, end, max2);
     }
@@ -606,7 +608,7 @@ double Engine::SmallestContactDuration() const {
           for (int64_t p = offsets[i]; p < offsets[i + 1]; ++p) {
             const Vec4 pj = position[neighbor[p]];
             const Vec3 l = Branch(pi, pj, lx, ly, lz);
-            const double distance2 = l.x * l.x + l.y * l.y + l.z * l.z;
+            const double distance2 = Dot(l, l);
             const double reach = pi.w + pj.w;
             if (!(distance2 < reach * reach)) continue;
             const double stiffness = law.NormalStiffness(pi.w, pj.w, std::sqrt(distance2));

@@ -116,13 +116,7 @@ class RollingResistance {
       double rx, ry, rz;
       ContactRotationLane(b, k, nx, ny, nz, inverse_distance, dt, rx, ry, rz);
       double mx = b.rmx[k], my = b.rmy[k], mz = b.rmz[k];
-      const double ux = mx + (ry * mz - rz * my);
-      const double uy = my + (rz * mx - rx * mz);
-      const double uz = mz + (rx * my - ry * mx);
-      const double un = ux * nx + uy * ny + uz * nz;
-      mx = ux - un * nx;
-      my = uy - un * ny;
-      mz = uz - un * nz;
+      CarryWithContactLane(rx, ry, rz, nx, ny, nz, mx, my, mz);
       // Relative rolling rate ω_i − ω_j, tangential part.
       const double wx = b.wix[k] - b.wjx[k], wy = b.wiy[k] - b.wjy[k], wz = b.wiz[k] - b.wjz[k];
       const double wn = wx * nx + wy * ny + wz * nz;
@@ -130,14 +124,7 @@ class RollingResistance {
       mx -= k_r_dt * (wx - wn * nx);
       my -= k_r_dt * (wy - wn * ny);
       mz -= k_r_dt * (wz - wn * nz);
-      // Branch-free cap as for the shear force (IncrementalShearLaw).
-      const double limit = mu_r * reduced_radius * response.force;
-      const double magnitude = std::sqrt(mx * mx + my * my + mz * mz);
-      const double quotient = limit / magnitude;
-      const double cap = quotient < 1.0 ? quotient : 1.0;
-      mx *= cap;
-      my *= cap;
-      mz *= cap;
+      CapLane(mu_r * reduced_radius * response.force, mx, my, mz);
       b.rmx[k] = mx;
       b.rmy[k] = my;
       b.rmz[k] = mz;

@@ -296,7 +296,9 @@ TEST(Engine, ResultsDoNotDependOnTheSkin) {
           ASSERT_EQ(a.sums().force_sum, b.sums().force_sum) << "step " << step;
           contacts = std::max(contacts, a.sums().contacts);
         }
-        if (request.stiffness) ASSERT_EQ(a.sums().stiffness, b.sums().stiffness) << "step " << step;
+        if (request.stiffness) {
+          ASSERT_EQ(a.sums().stiffness, b.sums().stiffness) << "step " << step;
+        }
       }
       EXPECT_GT(contacts, 600);  // a contact network (Z > 2) at the end of compression
       EXPECT_GT(b.neighbors().builds(), 2 * a.neighbors().builds());
