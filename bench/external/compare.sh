@@ -93,8 +93,6 @@ find_lmp() {
 need_pkgs=()
 if [[ $SKIP_L -eq 0 ]] && ! find_lmp > /dev/null; then need_pkgs+=(lammps); fi
 if [[ $SKIP_Y -eq 0 ]] && ! command -v yade > /dev/null 2>&1; then need_pkgs+=(yade); fi
-# h5dump reads granasym's /summary loop_wall_s (optional)
-if [[ $SKIP_G -eq 0 ]] && ! command -v h5dump > /dev/null 2>&1; then need_pkgs+=(hdf5-tools); fi
 if [[ ${#need_pkgs[@]} -gt 0 ]]; then
   if [[ $INSTALL -eq 1 ]]; then
     SUDO=""
@@ -163,33 +161,12 @@ EOF
       return 0
     fi
     t1="$(now)"
-    w=""
-    # loop wall time: /summary attribute loop_wall_s, via h5py or h5dump if present
-    w="$(python3 - "$dir/run.h5" 2> /dev/null <<'PY' || true
-import sys, h5py
-with h5py.File(sys.argv[1], "r") as f:
-    print(float(f["/summary"].attrs["loop_wall_s"]))
-PY
-)"
-    if [[ -z "$w" ]] && command -v h5dump > /dev/null 2>&1; then
-      w="$(h5dump -a /summary/loop_wall_s "$dir/run.h5" 2> /dev/null \
-           | sed -n 's/.*(0): *\([-0-9.eE+]*\).*/\1/p' | head -n1 || true)"
-    fi
-    if [[ -z "$w" ]]; then
-      # granasym's summary line "... (X us per particle-step) ..."
-      w="$(grep -ohE '[0-9.eE+-]+ us per particle-step' "$dir/stdout.txt" "$dir/stderr.txt" 2> /dev/null \
-           | tail -n1 | awk -v n="$NPART" -v k="$STEPS" '{printf "%.9g", $1 * 1e-6 * n * k}' || true)"
-      [[ -n "$w" && $i -eq 1 ]] && note "granasym: loop_wall_s not readable (no h5py/h5dump); derived it from the printed us per particle-step"
-    fi
-    if [[ -z "$w" ]]; then
-      # last resort: a "loop ... <seconds> s" line in granasym's own output
-      w="$(grep -iE 'loop' "$dir/stdout.txt" "$dir/stderr.txt" 2> /dev/null \
-           | grep -oE '[0-9]+(\.[0-9]+)?([eE][-+]?[0-9]+)? *s\b' | tail -n1 | grep -oE '^[0-9.eE+-]+' || true)"
-      [[ -n "$w" && $i -eq 1 ]] && note "granasym: loop_wall_s not readable (no h5py/h5dump); took the loop time from granasym's printed output"
-    fi
+    # loop wall time: the run file's /summary loop_wall_s, read by granasym itself
+    w="$("$GRANASYM" export "$dir/run.h5" --info 2> /dev/null \
+         | sed -n 's/^loop_wall_s: *\([-0-9.eE+]*\)$/\1/p' | head -n1 || true)"
     if [[ -z "$w" ]]; then
       w="$(python3 -c "print($t1 - $t0)")"
-      [[ $i -eq 1 ]] && note "granasym: loop_wall_s not readable (no h5py/h5dump); using whole-command wall time incl. setup"
+      [[ $i -eq 1 ]] && note "granasym: 'granasym export --info' gave no loop_wall_s; using whole-command wall time incl. setup"
     fi
     walls+=("$w")
   done

@@ -2,6 +2,7 @@
 // records shared by result files and checkpoints.
 #include "dem/run_record.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -422,6 +423,19 @@ TEST(RunRecord, TheDescriptionOfAResultSaysWhetherItIsFinal) {
   EXPECT_NE(info.find("\nstage 000: 'ncl' (strain_path), rows 0.."), std::string::npos) << info;
   EXPECT_NE(info.find("\nstage 001: 'triaxial' (triaxial), rows "), std::string::npos) << info;
   EXPECT_NE(info.find("stop: strain target reached"), std::string::npos) << info;
+  // The loop's time in full precision (bench/external/compare.sh reads it).
+  const RunSummary summary = ReadSummary(file);
+  EXPECT_NE(info.find(fmt::format("\nloop_wall_s: {:.6g}\n", summary.loop_seconds)),
+            std::string::npos)
+      << info;
+  ASSERT_GT(summary.particle_steps_per_second, 0);
+  EXPECT_NE(info.find(fmt::format("\nus_per_particle_step: {:.6g}\n",
+                                  1e6 / summary.particle_steps_per_second)),
+            std::string::npos)
+      << info;
+  EXPECT_NE(info.find(fmt::format("\nneighbor_builds: {}\n", summary.neighbor_builds)),
+            std::string::npos)
+      << info;
   // One item per line, each "key: value".
   size_t start = 0;
   while (start < info.size()) {
