@@ -1478,7 +1478,7 @@ FigureSpec RateAgainstModels(const Context& ctx, const RateStudy& rate) {
 
 FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   const double reference = rate.ReferenceModulus();
-  const double low = ctx.options.literature_m_low, high = ctx.options.literature_m_high;
+  const LiteratureBand& band = rate.options.literature_m;
   FigureSpec spec =
       Spec("rate_critical_state_ratio", "rate (c)",
            "Critical-state stress ratio M against the inertial number, and its quasi-static limit",
@@ -1492,16 +1492,10 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
                "small-I form of the μ(I) laws of the paper's refs. [10], da Cruz et al. 2005, "
                "and [29], Jop et al. 2006); the "
                "points at the left edge are M_0 = M(I → 0) with its 95 % interval "
-               "(rate_quasi_static.csv, rate_drained_limit.csv). Band: M = {}–{}, the range issue 10 gives for frictional "
-               "spheres at μ ≈ 0.5 without rolling resistance in triaxial compression; a source "
-               "for its numbers was not verified here (Goncu & Luding, 'Effect of particle "
-               "friction and polydispersity on the macroscopic stress-strain relations of "
-               "granular materials', Acta Geotechnica, report that the deviatoric stress ratio "
-               "of sphere packings rises with the contact friction from a non-zero value at "
-               "μ = 0 and saturates for large μ; compare with their values before relying on "
-               "the band). Dashed: I = 10^{{-2}} (quasi-static, paper Sec. 5.3) and "
+               "(rate_quasi_static.csv, rate_drained_limit.csv). Band: the published "
+               "critical-state ratio of frictional spheres without rolling resistance, {}. Dashed: I = 10^{{-2}} (quasi-static, paper Sec. 5.3) and "
                "10^{{-3}} (SPEC §8.2).",
-               ModulusNote(rate, reference), rate.options.fit_rates, Short(low), Short(high)),
+               ModulusNote(rate, reference), rate.options.fit_rates, band.source),
            "rate_critical_state.gp");
   // Colours by start; point types by modulus (filled reference) and rule.
   std::set<double> starts;
@@ -1555,8 +1549,8 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   }
   AxisRange x{}, y{};
   x.log = true;
-  y.Add(low);
-  y.Add(high);
+  y.Add(band.low);
+  y.Add(band.high);
   for (const auto& [curve, rows] : by_curve) {
     for (const std::vector<double>& row : rows) {
       x.Add(row[0], row[1]);
@@ -1631,8 +1625,8 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   Set(&spec, "n_starts", static_cast<int>(colour_of.size()));
   Set(&spec, "start_titles", start_titles);
   Set(&spec, "modulus_note", ModulusNote(rate, reference));
-  spec.variables.emplace_back("band_low", fmt::format("{:g}", low));
-  spec.variables.emplace_back("band_high", fmt::format("{:g}", high));
+  spec.variables.emplace_back("band_low", fmt::format("{:g}", band.low));
+  spec.variables.emplace_back("band_high", fmt::format("{:g}", band.high));
   spec.variables.emplace_back("i_left", fmt::format("{:.6g}", i_left));
   return spec;
 }
@@ -1656,10 +1650,6 @@ bool FigureDataOptions::IsValid(std::string* why) const {
   }
   if (psi_epsilon_half_rows < 1) {
     *why = "psi_epsilon_half_rows: must be at least 1";
-    return false;
-  }
-  if (!(literature_m_low > 0 && literature_m_high > literature_m_low)) {
-    *why = "literature_m_low, literature_m_high: need 0 < low < high";
     return false;
   }
   return true;

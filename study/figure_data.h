@@ -52,11 +52,6 @@ struct FigureDataOptions {
   // The calibrated models overlaid, DIR/calibration/<model>/plot_data/.
   std::vector<std::string> models = {"hypoplastic_clay", "modified_cam_clay",
                                      "hypoplastic_sand"};
-  // The band of the critical-state stress ratio M = q/p drawn with the rate
-  // study's quasi-static M (issue 10: about 0.8-0.95 in triaxial compression
-  // for frictional spheres at μ ≈ 0.5 without rolling resistance; the
-  // caption says what it rests on).
-  double literature_m_low = 0.8, literature_m_high = 0.95;
   bool IsValid(std::string* why) const;
 };
 

@@ -1037,6 +1037,19 @@ std::vector<std::string> RateStudy::Answers() const {
             ? fmt::format("; CSL λ = {}, ln(1+e) at {:g} kPa = {}", pm(c.lambda, 4),
                           options.reference_p_kpa, pm(c.position, 4))
             : std::string()));
+    if (std::isfinite(c.m.mean)) {
+      const LiteratureBand& band = options.literature_m;
+      const double lo = c.m.has_interval() ? c.m.mean - c.m.half_width : c.m.mean;
+      const double hi = c.m.has_interval() ? c.m.mean + c.m.half_width : c.m.mean;
+      const char* where = hi < band.low    ? "below the band"
+                          : lo > band.high ? "above the band"
+                          : lo >= band.low && hi <= band.high
+                              ? "inside the band"
+                              : "across an edge of the band";
+      answers.push_back(fmt::format(
+          "Against the literature (E = {:g} MPa): M = {} is {} M = {:g}–{:g}, {}.",
+          c.youngs_modulus_mpa, pm(c.m, 3), where, band.low, band.high, band.source));
+    }
     if (c.m_per_ln_p.has_interval()) {
       const bool zero = std::abs(c.m_per_ln_p.mean) <= c.m_per_ln_p.half_width;
       answers.push_back(fmt::format(

@@ -38,5 +38,5 @@ plot @fit_layer \
      keyentry with points pt 13 lc rgb "black" title "constant ‖D‖", \
      keyentry with points pt 9 lc rgb "black" title "drained, constant σ_r", \
      keyentry with points pt 5 lc rgb "black" title "M_0 = M(I → 0)", \
-     keyentry with boxes fc rgb "#e8e8e8" fs solid title sprintf("M = %g–%g (issue 10's range)", band_low, band_high), \
+     keyentry with boxes fc rgb "#e8e8e8" fs solid title sprintf("M = %g–%g (published, spheres)", band_low, band_high), \
      keyentry with points pt -1 lc rgb "white" title modulus_note

@@ -260,7 +260,12 @@ TEST(WriteFigureData, TheRateFiguresComeWithTheRateStudy) {
   // (b): a CSL per rate with two starts; (c): a quasi-static line per start.
   EXPECT_EQ(variable(figures[1], "n_lines"), "5");
   EXPECT_EQ(variable(figures[2], "n_fits"), "2");
-  EXPECT_EQ(variable(figures[2], "band_low"), "0.8");
+  EXPECT_EQ(variable(figures[2], "band_low"), "0.81");
+  EXPECT_EQ(variable(figures[2], "band_high"), "0.95");
+  EXPECT_NE(figures[2].caption.find("Latham, Abe & Mora (2005"), std::string::npos)
+      << figures[2].caption;
+  EXPECT_NE(figures[2].caption.find("Mair, Frye & Marone (2002"), std::string::npos)
+      << figures[2].caption;
   const std::string limits =
       ReadTextFile((dir / "figures/data/rate_critical_state_limits.tsv").string());
   EXPECT_NE(limits.find("NC 100 kPa: M_0 = "), std::string::npos) << limits;

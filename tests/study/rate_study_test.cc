@@ -323,6 +323,24 @@ TEST(RateStudy, AnswersStateTheQuestionsOfTheIssueWithIntervals) {
   };
   EXPECT_NE(find("Quasi-static critical state").find("M = 0.920 ± "), std::string::npos)
       << find("Quasi-static critical state");
+  // M = 0.920 ± 0.02x lies inside the published 0.81–0.95; moved band, below it.
+  EXPECT_NE(find("Against the literature").find("M = 0.920 ± "), std::string::npos);
+  EXPECT_NE(find("Against the literature").find("is inside the band M = 0.81–0.95"),
+            std::string::npos)
+      << find("Against the literature");
+  EXPECT_NE(find("Against the literature").find("Latham, Abe & Mora (2005"), std::string::npos);
+  study.options.literature_m = {1.0, 1.2, "a test band"};
+  EXPECT_NE(study.Answers()[1].find("is below the band M = 1–1.2, a test band."),
+            std::string::npos)
+      << study.Answers()[1];
+  // The fixture's M is exact (zero width): widen its interval across 0.95.
+  study.drained.critical.at(0).m.half_width = 0.05;
+  study.options.literature_m = {0.5, 0.95, "a test band"};
+  EXPECT_NE(study.Answers()[1].find("is across an edge of the band"), std::string::npos)
+      << study.Answers()[1];
+  study.options.literature_m = {0.5, 0.6, "a test band"};
+  EXPECT_NE(study.Answers()[1].find("is above the band"), std::string::npos)
+      << study.Answers()[1];
   EXPECT_NE(find("p-dependence as I → 0").find("zero within its interval: the quasi-static "
                                                 "stress ratio does not depend on p"),
             std::string::npos);
