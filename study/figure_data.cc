@@ -1493,8 +1493,8 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
                "and [29], Jop et al. 2006); the "
                "points at the left edge are M_0 = M(I → 0) with its 95 % interval "
                "(rate_quasi_static.csv, rate_drained_limit.csv). Band: the published "
-               "critical-state ratio of frictional spheres without rolling resistance, {}. Dashed: I = 10^{{-2}} (quasi-static, paper Sec. 5.3) and "
-               "10^{{-3}} (SPEC §8.2).",
+               "critical-state ratio of frictional spheres without rolling resistance, {}. "
+               "Dashed: I = 10^{{-2}} (quasi-static, paper Sec. 5.3) and 10^{{-3}} (SPEC §8.2).",
                ModulusNote(rate, reference), rate.options.fit_rates, band.source),
            "rate_critical_state.gp");
   // Colours by start; point types by modulus (filled reference) and rule.

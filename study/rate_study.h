@@ -60,22 +60,13 @@ namespace granasym::study {
 
 // The published critical-state stress ratio of frictional spheres without
 // rolling resistance that the study's quasi-static M is set against (issue 10
-// §2). No triaxial value at μ ≈ 0.5 was found in a retrievable text; the band
-// is bounded by two shear-zone measurements, each read as a Mohr–Coulomb
-// tan φ = τ/σ_n and turned into triaxial compression by M = 6 sin φ/(3 − sin φ):
-//   low:  Latham, Abe & Mora (2005), "Macroscopic friction response of
-//         rotational and non-rotational lattice solid gouge models in 2D and
-//         3D": 3D DEM of rotating polydisperse spheres sheared between plates,
-//         mean macroscopic friction 0.38 for every contact friction μ_P ≥ 0.3
-//         (φ = 20.8°, M = 0.81);
-//   high: Mair, Frye & Marone (2002), "Influence of grain characteristics on
-//         the friction of granular shear zones", J. Geophys. Res. 107(B10),
-//         2219, doi:10.1029/2001JB000516: glass beads in double direct shear,
-//         sliding friction 0.45 (φ = 24.2°, M = 0.95); Latham et al. note that
-//         their 3D DEM friction lies below these bead experiments.
-// Read as τ/σ_n = sin φ (a coaxial critical state in simple shear) the same
-// numbers give M = 0.87 and 1.06: the band is a bracket, not a like-for-like
-// check of a periodic triaxial cell.
+// §2); `source` says where the numbers come from and how they were converted.
+// No triaxial value at μ ≈ 0.5 was found in a retrievable text, so the band is
+// bounded by two shear-zone frictions read as tan φ = τ/σ_n:
+//   Latham, Abe & Mora (2005), "Macroscopic friction response of rotational
+//   and non-rotational lattice solid gouge models in 2D and 3D";
+//   Mair, Frye & Marone (2002), J. Geophys. Res. 107(B10), 2219,
+//   doi:10.1029/2001JB000516.
 struct LiteratureBand {
   double low, high;
   const char* source;  // one sentence, for captions and the report
