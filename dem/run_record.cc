@@ -578,6 +578,18 @@ std::vector<StageRecord> ReadStageRecords(const Hdf5File& file) {
   return records;
 }
 
+std::optional<int64_t> StageEndStep(const Hdf5File& file, const std::string& stage) {
+  if (!file.Exists(record::kStages)) return std::nullopt;
+  for (const std::string& name : file.List(record::kStages)) {
+    const std::string group = std::string(record::kStages) + "/" + name;
+    const std::string end = Join(group, record::kStageEndState);
+    if (file.ReadStringAttribute(group, record::kStageName) == stage && file.Exists(end)) {
+      return file.ReadIntAttribute(end, record::kStateStep);
+    }
+  }
+  return std::nullopt;
+}
+
 void WriteSummary(Hdf5File& file, const RunSummary& summary, const ContactDurations& durations) {
   using namespace record;
   const std::string s = kSummary;

@@ -163,6 +163,10 @@ StageRecord ReadStageRecord(const Hdf5File& file, const std::string& group);
 void WriteStageRecords(Hdf5File& file, const std::vector<StageRecord>& records,
                        const std::vector<Stage>& stages, int threads);
 std::vector<StageRecord> ReadStageRecords(const Hdf5File& file);
+// The engine step of the end state kept for the stage named `stage` (the
+// state a fork from it starts at), read from its attributes alone; nullopt
+// when no stage of that name kept one.
+std::optional<int64_t> StageEndStep(const Hdf5File& file, const std::string& stage);
 std::string StageGroup(size_t index);  // "/stages/007"
 
 void WriteSummary(Hdf5File& file, const RunSummary& summary, const ContactDurations& durations);

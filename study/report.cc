@@ -19,6 +19,7 @@
 #include "common/provenance.h"
 #include "common/text_file.h"
 #include "study/rate_study.h"
+#include "study/study_folder.h"
 
 namespace granasym::study {
 
@@ -587,7 +588,6 @@ std::vector<CaseRecord> ReadCases(const std::string& directory) {
   }
   std::sort(folders.begin(), folders.end());
   std::vector<CaseRecord> cases;
-  std::map<std::string, int64_t> steps_of;
   for (const fs::path& folder : folders) {
     const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
     CaseRecord c;
@@ -608,7 +608,6 @@ std::vector<CaseRecord> ReadCases(const std::string& directory) {
       c.status = c.done ? done.GetString("termination") : "stale";
       if (!c.done)
         c.message = "done.toml is for another key: the inputs changed since; " + c.message;
-      if (c.done) steps_of[c.id] = c.steps;
     } else if (fs::exists(folder / "result.h5.ckpt") || fs::exists(folder / "running.toml")) {
       c.status = "running";
       c.message = "a checkpoint: running, or interrupted (resumes on the next run)";
@@ -618,11 +617,11 @@ std::vector<CaseRecord> ReadCases(const std::string& directory) {
     }
     cases.push_back(std::move(c));
   }
-  // A case's own steps: its engine steps less its parent's (it continues them).
+  // A case's own steps: its engine steps less the step it started from.
+  const std::map<std::string, int64_t> own = OwnSteps(directory);
   for (CaseRecord& c : cases) {
-    c.own_steps = c.steps;
-    const auto parent = steps_of.find(c.parent);
-    if (c.done && parent != steps_of.end()) c.own_steps -= parent->second;
+    const auto found = own.find(c.id);
+    c.own_steps = c.done && found != own.end() ? found->second : c.steps;
   }
   return cases;
 }
@@ -1203,8 +1202,9 @@ Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRecord>&
         Plain("From each case's ") + Code("done.toml") + Plain(" (written when it ended) and ") +
         Code("case.toml") +
         Plain(": the key is the SHA-256 of its canonical scene, its parent's key, the program "
-              "version and the thread count. Steps: the case's own (its engine steps less its "
-              "parent's, which it continues) and the engine total.")));
+              "version and the thread count. Steps: the case's own (its engine steps less the "
+              "step it started from: the end of the parent's stage it forks from) and the "
+              "engine total.")));
     Block table;
     table.type = Block::Type::kTable;
     table.header = {"case",      "replicate",        "parent",    "status",

@@ -103,6 +103,39 @@ void WriteIfChanged(const std::string& path, const std::string& text) {
 // Refuses to write a study into a folder that holds something else, or a
 // study of another programme or scale.
 
+std::map<std::string, int64_t> OwnSteps(const std::string& directory) {
+  std::map<std::string, int64_t> total;  // id → done.toml's steps
+  std::map<std::string, fs::path> finished;
+  for (const std::string& folder : CaseFolders(directory, false)) {
+    const fs::path path(folder);
+    if (const std::optional<DoneRecord> done = ReadDone(folder)) {
+      const std::string id = path.parent_path().filename().string() + "/" + path.filename().string();
+      total[id] = done->steps;
+      finished[id] = path;
+    }
+  }
+  std::map<std::string, int64_t> own;
+  for (const auto& [id, folder] : finished) {
+    int64_t start = 0;
+    if (fs::exists(folder / "case.toml")) {
+      const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
+      const std::string parent = record.GetString("parent", "");
+      const std::string stage = record.GetString("parent_stage", "");
+      const auto parent_total = total.find(parent);
+      if (parent_total != total.end()) {
+        start = parent_total->second;
+        const fs::path result = fs::path(directory) / "cases" / parent / "result.h5";
+        if (!stage.empty() && fs::exists(result)) {
+          const Hdf5File file = Hdf5File::OpenRead(result.string());
+          if (const std::optional<int64_t> step = dem::StageEndStep(file, stage)) start = *step;
+        }
+      }
+    }
+    own[id] = total[id] - start;
+  }
+  return own;
+}
+
 std::string DescribeStudy(const std::string& directory) {
   if (!fs::exists(directory + "/study.toml")) {
     throw InputError(directory + ": not a study folder (no study.toml)");
@@ -112,14 +145,7 @@ std::string DescribeStudy(const std::string& directory) {
   std::vector<std::string> lines;
   std::vector<fs::path> folders;
   for (const std::string& folder : CaseFolders(directory, false)) folders.emplace_back(folder);
-  // Each case's own steps: its engine steps less its parent's.
-  std::map<std::string, int64_t> total_steps;
-  for (const fs::path& folder : folders) {
-    if (const std::optional<DoneRecord> done = ReadDone(folder.string())) {
-      total_steps[folder.parent_path().filename().string() + "/" + folder.filename().string()] =
-          done->steps;
-    }
-  }
+  const std::map<std::string, int64_t> own_steps = OwnSteps(directory);
   double particle_steps = 0, wall_seconds = 0;
   int64_t case_steps = 0;
   for (const fs::path& folder : folders) {
@@ -127,12 +153,8 @@ std::string DescribeStudy(const std::string& directory) {
     std::string status;
     if (const std::optional<DoneRecord> done = ReadDone(folder.string())) {
       status = ToString(done->termination);
-      int64_t own = done->steps;
-      if (fs::exists(folder / "case.toml")) {
-        const std::string parent =
-            ConfigTable::ParseFile((folder / "case.toml").string()).GetString("parent", "");
-        if (total_steps.count(parent)) own -= total_steps[parent];
-      }
+      const auto found = own_steps.find(id);
+      const int64_t own = found == own_steps.end() ? done->steps : found->second;
       case_steps += own;
       particle_steps += static_cast<double>(own) * static_cast<double>(done->particles);
       wall_seconds += done->wall_seconds;

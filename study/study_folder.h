@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,14 @@ std::string ResultMismatch(const std::string& result_path, const DoneRecord& don
 // The case folders DIR/cases/r<K>/<case> (those with a case.toml when
 // `with_record`), sorted.
 std::vector<std::string> CaseFolders(const std::string& directory, bool with_record = true);
+
+// The engine steps each finished case (one with a done.toml) took itself,
+// keyed by its id ("r1/nc100_psi0_I0.1"): its done.toml's steps less the
+// step it started from. A case forked from a stage of its parent
+// (case.toml's parent_stage) starts at the step of that stage's end state in
+// the parent's result.h5, one forked from the parent's end at the parent's
+// last step, one from a sample at 0.
+std::map<std::string, int64_t> OwnSteps(const std::string& directory);
 
 // Writes `text` to `path` (atomically) unless the file holds it already.
 void WriteIfChanged(const std::string& path, const std::string& text);

@@ -3,6 +3,7 @@
 // the same bytes as one run, and resuming an interrupted study.
 #include "study/runner.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -139,6 +140,28 @@ TEST(StudyRunner, SecondRunComputesNothingAndAChangeRerunsItsDescendantsOnly) {
   // Another thread count is another key: everything runs again.
   const StudyOutcome threads = RunProgramme(changed, dir, {}, 2);
   EXPECT_EQ(threads.Count(CaseStatus::kComputed), 5) << threads.OneLine();
+}
+
+// A case's own steps start where it forked: the end of a parent's stage
+// (ncl@p20, not the parent's last), or the parent's end. At Δt = 1.2e-7 s and
+// ‖D‖ = 167 1/s a path takes 0.04 / (167 × 1.2e-7) = 1996 steps to a strain
+// norm of 0.04, and 998 to 0.02.
+TEST(StudyRunner, OwnStepsCountFromTheForkPoint) {
+  const std::string dir = Dir("own_steps");
+  ASSERT_EQ(RunProgramme(kProgramme, dir).Count(CaseStatus::kComputed), 5);
+  const std::map<std::string, int64_t> own = OwnSteps(dir);
+  ASSERT_EQ(own.size(), 5u);
+  EXPECT_NEAR(static_cast<double>(own.at("r1/nc20_psi90")), 1996, 2);
+  EXPECT_NEAR(static_cast<double>(own.at("r1/nc50_psi90")), 1996, 2);
+  EXPECT_NEAR(static_cast<double>(own.at("r1/nc50_psi60")), 1497, 2);
+  EXPECT_NEAR(static_cast<double>(own.at("r1/after60")), 998, 2);
+  EXPECT_EQ(own.at("r1/ncl"), ReadDone(dir + "/cases/r1/ncl")->steps);  // from the sample
+  // `study status` totals the same counts.
+  int64_t sum = 0;
+  for (const auto& [id, steps] : own) sum += steps;
+  EXPECT_NE(DescribeStudy(dir).find(fmt::format("finished cases: {} steps of their own", sum)),
+            std::string::npos)
+      << DescribeStudy(dir);
 }
 
 TEST(StudyRunner, TwoShardsMergedGiveTheBytesOfOneRun) {
