@@ -1097,8 +1097,38 @@ std::vector<std::string> RateStudy::Answers() const {
                                   l.Text()));
   }
   if (!verdicts.empty()) {
-    answers.push_back("Rate independence between the two smallest I* (per E, ψ_ε, p_0): " +
-                      VerdictCounts(verdicts, ", ") + ".");
+    // Undetermined only for want of a CSL (a difference would have made it
+    // rate_dependent): where e and ψ_σ alone agree.
+    std::string state_only;
+    for (const RateVerdict& v : verdicts) {
+      if (v.verdict == "undetermined" && v.ln_1_plus_e.agreement == Agreement::kAgree &&
+          v.psi_sigma.agreement == Agreement::kAgree) {
+        state_only += fmt::format("{}E = {:g} MPa, ψ_ε = {:g}° from {:g} kPa",
+                                  state_only.empty() ? "" : "; ", v.youngs_modulus_mpa,
+                                  v.psi_epsilon_deg, v.start_p_kpa);
+      }
+    }
+    answers.push_back(
+        "Rate independence between the two smallest I* (per E, ψ_ε, p_0): " +
+        VerdictCounts(verdicts, ", ") +
+        (state_only.empty()
+             ? std::string()
+             : "; ln(1+e) and ψ_σ agree, with no CSL to compare at one of the two I*, at " +
+                   state_only) +
+        ".");
+  }
+  std::string drained_verdicts;
+  for (const DrainedLimit& l : drained.limits) {
+    if (l.verdict.empty()) continue;
+    drained_verdicts += fmt::format("{}E = {:g} MPa, σ_r = {:g} kPa: {}{}",
+                                    drained_verdicts.empty() ? "" : "; ", l.youngs_modulus_mpa,
+                                    l.radial_stress_kpa, l.verdict,
+                                    l.reason.empty() ? std::string() : " (" + l.reason + ")");
+  }
+  if (!drained_verdicts.empty()) {
+    answers.push_back(
+        "Drained critical state between the two slowest axial rates (M and ln(1+e)): " +
+        drained_verdicts + ".");
   }
   if (!stiffness.empty()) {
     answers.push_back(fmt::format(

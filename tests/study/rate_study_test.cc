@@ -356,6 +356,37 @@ TEST(RateStudy, AnswersStateTheQuestionsOfTheIssueWithIntervals) {
             std::string::npos);
   EXPECT_NE(find("Rate independence between the two smallest I*").find("rate_dependent"),
             std::string::npos);
+  EXPECT_NE(find("Drained critical state between the two slowest axial rates")
+                .find("E = 500 MPa, σ_r = 5 kPa: rate_independent; E = 500 MPa, σ_r = 20 kPa: "
+                      "rate_independent;"),
+            std::string::npos)
+      << find("Drained critical state");
+  study.drained = DrainedStudy::Analyse(DrainedStates(40.0), study.options);
+  const std::string drained = study.Answers().back();
+  EXPECT_NE(drained.find("σ_r = 500 kPa: rate_dependent (M differs by"), std::string::npos)
+      << drained;
+  // ψ_σ flat below 1e-3 (as in TwoSmallestRatesDecideRateIndependence) and
+  // without the 20 kPa states at 3e-4: the CSL of 3e-4 has one start, so the
+  // verdict from 100 kPa is undetermined although ln(1+e) and ψ_σ agree; the
+  // answer says so.
+  std::vector<RateState> one_start;
+  for (RateState s : CriticalStates()) {
+    if (s.rule == dem::RateRule::kInertial && s.inertial_number < 2e-3) {
+      s.psi_sigma_deg = 25 + kDelta * kScatter[s.replicate - 1];
+    }
+    if (s.start_p_kpa == 20 && s.rule == dem::RateRule::kInertial && s.inertial_number == 3e-4) {
+      continue;
+    }
+    one_start.push_back(s);
+  }
+  std::string verdicts;
+  for (const std::string& a : RateStudy::Analyse(one_start).Answers()) {
+    if (a.rfind("Rate independence", 0) == 0) verdicts = a;
+  }
+  EXPECT_NE(verdicts.find("1 undetermined; ln(1+e) and ψ_σ agree, with no CSL to compare at one "
+                          "of the two I*, at E = 500 MPa, ψ_ε = 90° from 100 kPa."),
+            std::string::npos)
+      << verdicts;
   // The verdict from 20 kPa says why it is undetermined.
   bool said = false;
   for (const RateVerdict& v : study.verdicts) {
