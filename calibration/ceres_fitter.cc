@@ -3,14 +3,28 @@
 
 #include <ceres/ceres.h>
 #include <fmt/format.h>
+#include <glog/logging.h>
 
 #include <chrono>
+#include <mutex>
 
 #include "common/error.h"
 
 namespace granasym::calibration {
 
 namespace {
+
+// Ceres logs through glog; uninitialised, glog prints a warning about that
+// and Ceres's own "Terminating: ..." lines on stderr. Every solve's
+// termination and message are reported by the fit itself (summary.txt,
+// warnings.txt), so glog is initialised once and keeps only fatal errors.
+void QuietCeresLogging() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (!google::IsGoogleLoggingInitialized()) google::InitGoogleLogging("granasym");
+    FLAGS_minloglevel = google::GLOG_FATAL;
+  });
+}
 
 struct ResidualFunctor {
   const CalibrationProblem* problem;
@@ -93,6 +107,7 @@ FitResult CeresFitter::Fit(const CalibrationProblem& problem,
     ceres_problem.SetParameterLowerBound(x.data(), k, lower[k]);
     ceres_problem.SetParameterUpperBound(x.data(), k, upper[k]);
   }
+  QuietCeresLogging();
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = options_.max_iterations;

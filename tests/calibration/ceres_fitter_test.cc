@@ -3,6 +3,7 @@
 // intervals and agree with each other.
 #include "calibration/ceres_fitter.h"
 
+#include <glog/logging.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -79,6 +80,24 @@ TEST(CeresFitter, RecoversCamClayParametersWithinTheirIntervals) {
       StartAwayFrom(ModelKind::kModifiedCamClay, truth), PredictorOptions());
   const FitResult fit = CeresFitter(CeresFitter::Options()).Fit(problem);
   ExpectRecovered(fit, truth);
+}
+
+// Ceres's own log lines ("Terminating: Residual and Jacobian evaluation
+// failed.", and glog's warning that it was not initialised) stay off stderr
+// once a fit ran: the fit reports every solve's termination itself.
+TEST(CeresFitter, CeresLogLinesStayOffStderr) {
+  const std::vector<double> truth = testing::CamClayTruth();
+  CalibrationProblem problem(
+      {testing::MakeSyntheticDataset(ModelKind::kModifiedCamClay, truth, {})},
+      StartAwayFrom(ModelKind::kModifiedCamClay, truth), PredictorOptions());
+  ::testing::internal::CaptureStderr();
+  CeresFitter(CeresFitter::Options()).Fit(problem);
+  LOG(ERROR) << "Terminating: a line as Ceres writes it";
+  LOG(WARNING) << "a warning as Ceres writes it";
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(err.find("Terminating"), std::string::npos) << err;
+  EXPECT_EQ(err.find("InitGoogleLogging"), std::string::npos) << err;
+  EXPECT_EQ(err.find("a warning"), std::string::npos) << err;
 }
 
 TEST(NloptFitter, DefaultOptionsAreValid) {
