@@ -100,9 +100,6 @@ void WriteIfChanged(const std::string& path, const std::string& text) {
   WriteTextFileAtomically(path, text);
 }
 
-// Refuses to write a study into a folder that holds something else, or a
-// study of another programme or scale.
-
 std::map<std::string, int64_t> OwnSteps(const std::string& directory) {
   std::map<std::string, int64_t> total;  // id → done.toml's steps
   std::map<std::string, fs::path> finished;
