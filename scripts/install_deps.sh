@@ -16,7 +16,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev libceres-dev libnlopt-cxx-dev libnlopt-dev libsundials-dev libhdf5-dev
+  libeigen3-dev libceres-dev libgoogle-glog-dev libnlopt-cxx-dev libnlopt-dev libsundials-dev libhdf5-dev
   libcli11-dev libtoml11-dev libfmt-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
