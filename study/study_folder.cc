@@ -100,35 +100,44 @@ void WriteIfChanged(const std::string& path, const std::string& text) {
   WriteTextFileAtomically(path, text);
 }
 
+namespace {
+
+// "r<K>/<case>" of a case folder DIR/cases/r<K>/<case>.
+std::string CaseId(const fs::path& folder) {
+  return folder.parent_path().filename().string() + "/" + folder.filename().string();
+}
+
+}  // namespace
+
 std::map<std::string, int64_t> OwnSteps(const std::string& directory) {
-  std::map<std::string, int64_t> total;  // id → done.toml's steps
-  std::map<std::string, fs::path> finished;
+  std::map<std::string, std::pair<int64_t, fs::path>> finished;  // id → done.toml's steps, folder
   for (const std::string& folder : CaseFolders(directory, false)) {
-    const fs::path path(folder);
     if (const std::optional<DoneRecord> done = ReadDone(folder)) {
-      const std::string id = path.parent_path().filename().string() + "/" + path.filename().string();
-      total[id] = done->steps;
-      finished[id] = path;
+      finished[CaseId(folder)] = {done->steps, folder};
     }
   }
+  // The step each (parent, stage) ends at, read once from the parent's result.
+  std::map<std::pair<std::string, std::string>, int64_t> fork_step;
   std::map<std::string, int64_t> own;
-  for (const auto& [id, folder] : finished) {
+  for (const auto& [id, done] : finished) {
+    const auto& [steps, folder] = done;
     int64_t start = 0;
     if (fs::exists(folder / "case.toml")) {
       const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
       const std::string parent = record.GetString("parent", "");
       const std::string stage = record.GetString("parent_stage", "");
-      const auto parent_total = total.find(parent);
-      if (parent_total != total.end()) {
-        start = parent_total->second;
-        const fs::path result = fs::path(directory) / "cases" / parent / "result.h5";
-        if (!stage.empty() && fs::exists(result)) {
+      const auto parent_done = finished.find(parent);
+      if (parent_done != finished.end()) {
+        const auto [at, added] = fork_step.try_emplace({parent, stage}, parent_done->second.first);
+        const fs::path result = parent_done->second.second / "result.h5";
+        if (added && !stage.empty() && fs::exists(result)) {
           const Hdf5File file = Hdf5File::OpenRead(result.string());
-          if (const std::optional<int64_t> step = dem::StageEndStep(file, stage)) start = *step;
+          if (const std::optional<int64_t> step = dem::StageEndStep(file, stage)) at->second = *step;
         }
+        start = at->second;
       }
     }
-    own[id] = total[id] - start;
+    own[id] = steps - start;
   }
   return own;
 }
@@ -146,12 +155,11 @@ std::string DescribeStudy(const std::string& directory) {
   double particle_steps = 0, wall_seconds = 0;
   int64_t case_steps = 0;
   for (const fs::path& folder : folders) {
-    const std::string id = folder.parent_path().filename().string() + "/" + folder.filename().string();
+    const std::string id = CaseId(folder);
     std::string status;
     if (const std::optional<DoneRecord> done = ReadDone(folder.string())) {
       status = ToString(done->termination);
-      const auto found = own_steps.find(id);
-      const int64_t own = found == own_steps.end() ? done->steps : found->second;
+      const int64_t own = own_steps.at(id);  // every case with a done.toml
       case_steps += own;
       particle_steps += static_cast<double>(own) * static_cast<double>(done->particles);
       wall_seconds += done->wall_seconds;
