@@ -180,13 +180,12 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
       ParameterSpec& spec = parameters.mutable_specs()[index];
       spec.free = false;
       undetermined[index] = true;
-      run.undetermined.push_back(fmt::format(
-          "{} fixed at its start value {:.6g}: these data cannot identify it ({})", spec.name,
-          spec.value, need));
+      run.undetermined.push_back(
+          fmt::format("{} fixed at its start value {:.6g}: these data cannot identify it ({})",
+                      spec.name, spec.value, need));
     }
   }
-  run.problem =
-      std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor);
+  run.problem = std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor);
   if (config.fix_undetermined) {
     // One parameter per round: fixing one of a correlated pair often
     // determines the other.
@@ -216,16 +215,8 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
     run.fits.push_back(NloptFitter(config.nlopt).Fit(*run.problem));
   }
   if (run.fits.size() == 2) {
-    const FitResult& a = run.fits[0];
-    const FitResult& b = run.fits[1];
-    double worst = 0;
-    for (size_t k = 0; k < a.free_indices.size() && k < a.standard_errors.size(); ++k) {
-      const int i = a.free_indices[k];
-      if (std::isfinite(a.standard_errors[k]) && a.standard_errors[k] > 0) {
-        worst = std::max(worst, std::abs(a.values[i] - b.values[i]) / a.standard_errors[k]);
-      }
-    }
-    run.agreement_in_standard_errors = worst;
+    run.agreement_in_standard_errors =
+        FitAgreementInStandardErrors(run.fits[0], run.fits[1], &run.agreement_not_compared);
   }
   const std::vector<ParameterSpec>& specs = run.problem->parameters().specs();
   const double tolerance = config.ceres.uncertainty.bound_tolerance;
@@ -238,7 +229,8 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
     } else if (!run.fits.empty() && !run.fits.front().values.empty()) {
       const double v = run.fits.front().values[i];
       const double band = tolerance * (specs[i].upper - specs[i].lower);
-      if (v - specs[i].lower <= band || specs[i].upper - v <= band) status = ParameterStatus::kAtBound;
+      if (v - specs[i].lower <= band || specs[i].upper - v <= band)
+        status = ParameterStatus::kAtBound;
     }
     run.status.push_back(status);
   }
@@ -336,6 +328,32 @@ std::string PointsText(const CalibrationRun& run, const FitResult& fit) {
 
 }  // namespace
 
+double FitAgreementInStandardErrors(const FitResult& a, const FitResult& b, std::string* why_not) {
+  why_not->clear();
+  for (const FitResult* fit : {&a, &b}) {
+    if (!fit->summary.success()) {
+      *why_not = fmt::format("{} failed ({}), so there is no fit of it to compare",
+                             fit->summary.fitter, fit->summary.message);
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  double worst = 0;
+  bool compared = false;
+  for (size_t k = 0; k < a.free_indices.size() && k < a.standard_errors.size(); ++k) {
+    const int i = a.free_indices[k];
+    if (std::isfinite(a.standard_errors[k]) && a.standard_errors[k] > 0) {
+      worst = std::max(worst, std::abs(a.values[i] - b.values[i]) / a.standard_errors[k]);
+      compared = true;
+    }
+  }
+  if (!compared) {
+    *why_not =
+        fmt::format("{} gives no finite standard error of any free parameter", a.summary.fitter);
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return worst;
+}
+
 std::string SummaryText(const CalibrationRun& run) {
   const CalibrationProblem& problem = *run.problem;
   std::string s =
@@ -374,8 +392,12 @@ std::string SummaryText(const CalibrationRun& run) {
     if (run.findings.empty()) s += "  no warnings\n";
   }
   if (run.fits.size() == 2) {
-    s += fmt::format("\nceres vs nlopt: largest parameter difference {:.3g} standard errors\n",
-                     run.agreement_in_standard_errors);
+    if (run.agreement_not_compared.empty()) {
+      s += fmt::format("\nceres vs nlopt: largest parameter difference {:.3g} standard errors\n",
+                       run.agreement_in_standard_errors);
+    } else {
+      s += "\nceres vs nlopt: not compared: " + run.agreement_not_compared + "\n";
+    }
   }
   if (!run.fits.empty()) {
     s += "\nresiduals per point (" + run.fits.front().summary.fitter + "):\n" +
@@ -403,8 +425,12 @@ void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path) {
   file.SetAttribute("/calibration", "residuals", int64_t{problem.num_residuals()});
   file.SetAttribute("/calibration", "starting_values", run.starting_values.Report());
   if (run.fits.size() == 2) {
-    file.SetAttribute("/calibration", "ceres_nlopt_largest_difference_in_standard_errors",
-                      run.agreement_in_standard_errors);
+    if (run.agreement_not_compared.empty()) {
+      file.SetAttribute("/calibration", "ceres_nlopt_largest_difference_in_standard_errors",
+                        run.agreement_in_standard_errors);
+    } else {
+      file.SetAttribute("/calibration", "ceres_nlopt_not_compared", run.agreement_not_compared);
+    }
   }
   std::string names, units;
   for (const ParameterSpec& spec : parameters.specs()) {
@@ -733,22 +759,22 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
         }
       }
       if (worst_ocr < 1 - kAsbsTolerance) {
-        findings.push_back({"ocr_below_one",
-                            fmt::format("the model's compression asymptote at psi_epsilon = "
-                                        "{:.3g} deg has OCR = {:.4g} < 1",
-                                        worst_psi / kDegree, worst_ocr)});
+        findings.push_back(
+            {"ocr_below_one", fmt::format("the model's compression asymptote at psi_epsilon = "
+                                          "{:.3g} deg has OCR = {:.4g} < 1",
+                                          worst_psi / kDegree, worst_ocr)});
       }
       if (missing > 0) {
-        findings.push_back({"asbs_outside",
-                            fmt::format("the model's ASBS cross-section is not closed: {} of {} "
-                                        "stress directions have no asymptote",
-                                        missing, curve.size())});
+        findings.push_back(
+            {"asbs_outside", fmt::format("the model's ASBS cross-section is not closed: {} of {} "
+                                         "stress directions have no asymptote",
+                                         missing, curve.size())});
       }
       if (widest > 1 + kAsbsTolerance) {
-        findings.push_back({"asbs_outside",
-                            fmt::format("the model's ASBS cross-section reaches p/p_e* = {:.4g} "
-                                        "> 1 (at psi_sigma = {:.3g} deg)",
-                                        widest, widest_psi / kDegree)});
+        findings.push_back(
+            {"asbs_outside", fmt::format("the model's ASBS cross-section reaches p/p_e* = {:.4g} "
+                                         "> 1 (at psi_sigma = {:.3g} deg)",
+                                         widest, widest_psi / kDegree)});
       }
     }
   }
@@ -786,16 +812,16 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
     }
   }
   if (ocr_low > 0) {
-    findings.push_back({"ocr_below_one",
-                        fmt::format("{} NCL/compression states lie above the fitted NCL by more "
-                                    "than twice their uncertainty (OCR down to {:.4g} < 1)",
-                                    ocr_low, ocr_low_worst)});
+    findings.push_back(
+        {"ocr_below_one", fmt::format("{} NCL/compression states lie above the fitted NCL by more "
+                                      "than twice their uncertainty (OCR down to {:.4g} < 1)",
+                                      ocr_low, ocr_low_worst)});
   }
   if (beyond > 0) {
-    findings.push_back({"asbs_outside",
-                        fmt::format("{} states lie beyond the fitted model's p/p_e* = 1 by more "
-                                    "than twice their uncertainty (p/p_e* up to {:.4g})",
-                                    beyond, 1.0 / beyond_worst)});
+    findings.push_back(
+        {"asbs_outside", fmt::format("{} states lie beyond the fitted model's p/p_e* = 1 by more "
+                                     "than twice their uncertainty (p/p_e* up to {:.4g})",
+                                     beyond, 1.0 / beyond_worst)});
   }
   // OCR at the critical state: the data's own (study table) or against the
   // data's NCL fit (starting values), against the model's.
@@ -858,9 +884,9 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
     }
     if (dv.empty()) continue;
     const double mv = Mean(dv), mpsi = Mean(dpsi);
-    std::string line = fmt::format(
-        "{}: {} states, mean model - data d_ln(1+e) {:+.4g} ({} of {} positive)", ToString(k),
-        dv.size(), mv, positive_v, dv.size());
+    std::string line =
+        fmt::format("{}: {} states, mean model - data d_ln(1+e) {:+.4g} ({} of {} positive)",
+                    ToString(k), dv.size(), mv, positive_v, dv.size());
     if (!dpsi.empty()) {
       line += fmt::format(", d_psi_sigma {:+.3g} deg ({} of {} positive)", mpsi, positive_psi,
                           dpsi.size());
@@ -889,7 +915,9 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
 std::string ParametersCsv(const CalibrationRun& run, const FitResult& fit) {
   std::string csv = "parameter,value,std_error,ci95_low,ci95_high,status\n";
   const std::vector<ParameterSpec>& specs = run.problem->parameters().specs();
-  auto number = [](double x) { return std::isfinite(x) ? fmt::format("{:.10g}", x) : std::string(); };
+  auto number = [](double x) {
+    return std::isfinite(x) ? fmt::format("{:.10g}", x) : std::string();
+  };
   for (size_t i = 0; i < specs.size(); ++i) {
     double se = std::nan(""), lo = std::nan(""), hi = std::nan("");
     for (size_t k = 0; k < fit.free_indices.size() && k < fit.standard_errors.size(); ++k) {
@@ -948,6 +976,5 @@ std::string ModelToml(const CalibrationRun& run, const FitResult& fit) {
       p_min, std::max(p_max, 1.5 * p_min));
   return s;
 }
-
 
 }  // namespace granasym::calibration

@@ -50,8 +50,11 @@ struct CalibrationRun {
   StartingValues starting_values;
   std::unique_ptr<CalibrationProblem> problem;
   std::vector<FitResult> fits;  // one per fitter, in the order run
-  // method = both: the largest |θ_ceres − θ_nlopt| / standard error (Ceres).
+  // method = both: the largest |θ_ceres − θ_nlopt| / standard error (Ceres);
+  // NaN with the reason in `agreement_not_compared` when a side failed or
+  // Ceres gives no standard error.
   double agreement_in_standard_errors = 0.0;
+  std::string agreement_not_compared;
   // Per parameter (model_parameters.h order), of the first fit.
   std::vector<ParameterStatus> status;
   // Parameters fixed because the data do not determine them, each with why.
@@ -60,6 +63,12 @@ struct CalibrationRun {
   std::vector<Finding> findings;
   std::vector<std::string> diagnosis;  // per-kind residual lines (always)
 };
+
+// The largest |θ_a − θ_b| over the free parameters in standard errors of
+// `a` (the Ceres fit), or NaN with `*why_not` saying why the two fits cannot
+// be compared: a fit failed (its values are then only where it stopped), or
+// no parameter of `a` has a finite standard error.
+double FitAgreementInStandardErrors(const FitResult& a, const FitResult& b, std::string* why_not);
 
 // The parameters for `kind` with the user's choices applied; parameters
 // without a value start from the data where an estimate exists.

@@ -94,10 +94,10 @@ TEST(CalibrationConfig, ReadsTheSandModelWithItsOwnParameterNames) {
       Replace(kConfig, "kind = \"hypoplastic_clay\"", "kind = \"hypoplastic_sand\"");
   // r belongs to the clay: an unknown key for the sand.
   ExpectRejected(sand, "parameters.r");
-  const CalibrationConfig c = ReadCalibrationConfig(ConfigTable::ParseString(
-      Replace(sand, "[parameters.r]\nfree = false\nvalue = 0.4",
-              "[parameters.beta]\nfree = false\nvalue = 1.2"),
-      "/d/calib.toml"));
+  const CalibrationConfig c = ReadCalibrationConfig(
+      ConfigTable::ParseString(Replace(sand, "[parameters.r]\nfree = false\nvalue = 0.4",
+                                       "[parameters.beta]\nfree = false\nvalue = 1.2"),
+                               "/d/calib.toml"));
   EXPECT_EQ(c.model, ModelKind::kHypoplasticSand);
   ASSERT_EQ(c.parameters.size(), 1u);
   EXPECT_EQ(c.parameters[0].name, "beta");
@@ -227,7 +227,8 @@ TEST(CalibrationConfig, FixesWhatTheDataCannotIdentifyBeforeTheFit) {
   const std::string text = Replace(Replace(kConfig, "free = false\nvalue = 0.4", "value = 0.4"),
                                    "method = \"both\"", "method = \"ceres\"");
   std::ofstream(dir / "calib.toml") << text;
-  const CalibrationRun run = RunCalibration(ReadCalibrationConfigFile((dir / "calib.toml").string()));
+  const CalibrationRun run =
+      RunCalibration(ReadCalibrationConfigFile((dir / "calib.toml").string()));
   ASSERT_EQ(run.fits.size(), 1u);
   EXPECT_TRUE(run.fits[0].summary.success()) << run.fits[0].summary.Report();
   EXPECT_EQ(run.status[kShearParameter], ParameterStatus::kUndetermined);
@@ -268,6 +269,41 @@ TEST(CalibrationConfig, RefusesTooFewPointsForTheFreeParameters) {
   } catch (const InputError& error) {
     EXPECT_NE(std::string(error.what()).find("no datasets"), std::string::npos);
   }
+}
+
+// A failed fit stops where its solver gave up: its values are not a fit, and
+// the summary must not report a "difference of 0 standard errors" against it
+// (the rate study's clay calibration did, with Ceres's Jacobian failing).
+TEST(CalibrationConfig, FitsAreComparedOnlyWhenBothSucceedWithStandardErrors) {
+  FitResult ceres;
+  ceres.summary.fitter = "ceres";
+  ceres.summary.termination = FitTermination::kConverged;
+  ceres.values = {1.0, 2.0, 3.0};
+  ceres.free_indices = {0, 2};
+  ceres.standard_errors = {0.5, 0.1};
+  FitResult nlopt = ceres;
+  nlopt.summary.fitter = "nlopt:crs2+bobyqa";
+  nlopt.values = {1.25, 7.0, 3.05};  // index 1 is fixed: not compared
+  std::string why_not;
+  EXPECT_DOUBLE_EQ(FitAgreementInStandardErrors(ceres, nlopt, &why_not), 0.5);
+  EXPECT_EQ(why_not, "");
+
+  FitResult failed = ceres;
+  failed.summary.termination = FitTermination::kFailure;
+  failed.summary.message = "Residual and Jacobian evaluation failed.";
+  EXPECT_TRUE(std::isnan(FitAgreementInStandardErrors(failed, nlopt, &why_not)));
+  EXPECT_EQ(why_not,
+            "ceres failed (Residual and Jacobian evaluation failed.), so there is no fit of it "
+            "to compare");
+  nlopt.summary.termination = FitTermination::kFailure;
+  nlopt.summary.message = "nlopt failure";
+  EXPECT_TRUE(std::isnan(FitAgreementInStandardErrors(ceres, nlopt, &why_not)));
+  EXPECT_NE(why_not.find("nlopt:crs2+bobyqa failed (nlopt failure)"), std::string::npos) << why_not;
+
+  nlopt.summary.termination = FitTermination::kNoConvergence;  // still a fit to compare
+  ceres.standard_errors = {std::nan(""), 0.0};
+  EXPECT_TRUE(std::isnan(FitAgreementInStandardErrors(ceres, nlopt, &why_not)));
+  EXPECT_EQ(why_not, "ceres gives no finite standard error of any free parameter");
 }
 
 }  // namespace
