@@ -91,6 +91,7 @@ void BM_DemStep(benchmark::State& state) {
   const AxisymmetricRate rate = AxisymmetricRate::FromAngle(0.0, 167.0);
   engine.SetVelocityGradient({-rate.axial, -rate.radial, -rate.radial});
   for (int step = 0; step < 50; ++step) engine.Step();  // build lists, warm caches
+  const int64_t near_builds = engine.near_pairs().builds();
   for (auto _ : state) engine.Step();
   const ContactStatistics contacts = MeasureContacts(engine, nullptr);
   const double particle_steps = static_cast<double>(state.iterations()) * count;
@@ -102,6 +103,13 @@ void BM_DemStep(benchmark::State& state) {
   state.counters["mechanical_coordination"] = contacts.mechanical_coordination;
   state.counters["pairs_per_particle"] =
       static_cast<double>(engine.neighbors().pair_count()) / count;
+  // The pairs the force pass walks (near_list.h) and how often that list is
+  // rebuilt.
+  state.counters["near_pairs_per_particle"] =
+      static_cast<double>(engine.near_pairs().pair_count()) / count;
+  state.counters["steps_per_near_build"] =
+      static_cast<double>(state.iterations()) /
+      std::max<int64_t>(1, engine.near_pairs().builds() - near_builds);
 }
 
 // Every law at 10 000 spheres; the paper's law and Hertz–Mindlin at 150 000.

@@ -8,9 +8,13 @@
 #include <numeric>
 
 #include "common/error.h"
+#include "dem/minimum_image.h"
 
 namespace granasym::dem {
 namespace {
+
+// The near list's skin adapts within [this, 1] times the Verlet skin.
+constexpr double kSmallestNearSkinRatio = 1.0 / 64;
 
 // What a force kernel also does besides the forces (friction is a separate
 // template parameter, see ComputeForcesWith).
@@ -19,21 +23,6 @@ namespace {
 enum ForceFlag : unsigned { kStress = 1, kStiffness = 2, kFrozen = 4, kAdvance = 8 };
 // What the integrator does besides the translations.
 enum IntegrateFlag : unsigned { kRotation = 1, kDamping = 2 };
-
-// Minimum image of a scaled separation: delta minus its nearest integer,
-// rounded by adding and subtracting 1.5·2^52 (exact for |delta| < 2^51 in the
-// default rounding mode; no int conversion and no SSE4.1 round needed).
-inline double MinimumImage(double delta) {
-  constexpr double kRound = 6755399441055744.0;
-  return delta - ((delta + kRound) - kRound);
-}
-
-// The branch vector l = x_j + s − x_i of the nearest image of j, from scaled
-// positions and the cell sides (m).
-inline Vec3 Branch(const Vec4& pi, const Vec4& pj, double lx, double ly, double lz) {
-  return {lx * MinimumImage(pj.x - pi.x), ly * MinimumImage(pj.y - pi.y),
-          lz * MinimumImage(pj.z - pi.z)};
-}
 
 inline double Sign(double x) { return static_cast<double>((x > 0) - (x < 0)); }
 
@@ -78,6 +67,8 @@ bool Engine::Options::IsValid(std::string* why) const {
   if (!(time_step > 0)) return *why = "time_step must be > 0", false;
   if (!(skin_fraction > 0 && skin_fraction <= 2))
     return *why = "skin_fraction must be in (0, 2]", false;
+  if (!(near_skin_ratio > 0 && near_skin_ratio <= 1))
+    return *why = "near_skin_ratio must be in (0, 1]", false;
   if (threads < 1) return *why = "threads must be >= 1", false;
   return true;
 }
@@ -119,6 +110,7 @@ Engine::Engine(const Packing& packing, const Material& material, const Options& 
   const size_t n = packing.size();
   const double min_radius = *std::min_element(packing.radii.begin(), packing.radii.end());
   skin_ = options.skin_fraction * 2.0 * min_radius;
+  near_skin_ = options.near_skin_ratio * skin_;
 
   // Order particles along the bins of the first neighbour-list build so that
   // neighbours are close in memory; ids keep the input order.
@@ -201,9 +193,6 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
   const int threads = options_.threads;
   const double lx = cell_[0], ly = cell_[1], lz = cell_[2];
   const double gx = gradient_[0], gy = gradient_[1], gz = gradient_[2];
-  const int64_t* offsets = neighbors_.offsets().data();
-  const int32_t* neighbor = neighbors_.neighbors().data();
-  const int32_t* owner = neighbors_.owners().data();
   Vec3* shear = kUseFriction ? neighbors_.shear().data() : nullptr;
   Vec3* rolling = kRolling ? neighbors_.rolling().data() : nullptr;
   uint8_t* loaded = kUseFriction ? loaded_.data() : nullptr;
@@ -267,19 +256,26 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     // one vectorised loop. (3) Scatter forces and torques.
     ContactBlock& b = blocks_[t];
     ContactBatch& batch = b.batch;
-    const int64_t pair_end = offsets[end];
+    // The pairs walked are the near list's (the listed pairs that may touch,
+    // in list order): q indexes them, near_p[q] is the pair in the list (its
+    // history), near_i[q] and near_j[q] its spheres.
+    const NearList::Pairs& near_pairs = near_.pairs(t);
+    const int32_t* near_i = near_pairs.i.data();
+    const int32_t* near_j = near_pairs.j.data();
+    const int64_t* near_p = near_pairs.p.data();
+    const int64_t near_end = near_pairs.size();
     constexpr int kBlock = ContactBatch::kSize;
-    for (int64_t p0 = offsets[begin]; p0 < pair_end; p0 += kBlock) {
-      const int64_t p1 = std::min<int64_t>(p0 + kBlock, pair_end);
+    for (int64_t q0 = 0; q0 < near_end; q0 += kBlock) {
+      const int64_t q1 = std::min<int64_t>(q0 + kBlock, near_end);
       int count = 0;
-      for (int64_t p = p0; p < p1; ++p) {
-        const int32_t i = owner[p], j = neighbor[p];
+      for (int64_t q = q0; q < q1; ++q) {
+        const int32_t i = near_i[q], j = near_j[q];
         const Vec4 pi = position[i], pj = position[j];
         const Vec3 l = Branch(pi, pj, lx, ly, lz);
         const double distance2 = Dot(l, l);
         const double reach = pi.w + pj.w;
         const bool touching = distance2 < reach * reach;
-        b.offset[count] = static_cast<uint8_t>(p - p0);
+        b.offset[count] = static_cast<uint8_t>(q - q0);
         count += touching;
         if constexpr (kUseFriction && !kReevaluate) {
           // A broken contact forgets its shear force (and rolling moment).
@@ -288,6 +284,7 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
           // read; it is written only when it changes (a contact made or
           // broken: rare, so the branch is well predicted, never the coin
           // toss of `touching` itself).
+          const int64_t p = near_p[q];
           if (loaded[p] != static_cast<uint8_t>(touching)) {
             if (!touching) {
               shear[p] = Vec3{};
@@ -298,8 +295,9 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         }
       }
       for (int k = 0; k < count; ++k) {
-        const int64_t p = p0 + b.offset[k];
-        const int32_t i = owner[p], j = neighbor[p];
+        const int64_t q = q0 + b.offset[k];
+        const int64_t p = near_p[q];
+        const int32_t i = near_i[q], j = near_j[q];
         const Vec4 pi = position[i], pj = position[j];
         const Vec3 l = Branch(pi, pj, lx, ly, lz);
         batch.bx[k] = l.x;
@@ -336,7 +334,7 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         // Forces again at unchanged positions (rare): the scalar evaluator
         // with the stored shear forces.
         for (int k = 0; k < count; ++k) {
-          const int64_t p = p0 + b.offset[k];
+          const int64_t p = near_p[q0 + b.offset[k]];
           ContactPair pair;
           pair.branch = {batch.bx[k], batch.by[k], batch.bz[k]};
           pair.distance = std::sqrt(batch.d2[k]);
@@ -360,8 +358,9 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         law.template EvaluateBatch<kUseFriction>(batch, count);
       }
       for (int k = 0; k < count; ++k) {
-        const int64_t p = p0 + b.offset[k];
-        const int32_t i = owner[p], j = neighbor[p];
+        const int64_t q = q0 + b.offset[k];
+        const int64_t p = near_p[q];
+        const int32_t i = near_i[q], j = near_j[q];
         const Vec3 f = {batch.fx[k], batch.fy[k], batch.fz[k]};  // on i
         // j's sums: this thread's own, or its halo (a select, not a branch).
         const bool own = j < end;
@@ -417,7 +416,7 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         }
       }
       if (advance_inline) {
-        const int64_t complete = p1 < pair_end ? owner[p1] : n;
+        const int64_t complete = q1 < near_end ? near_i[q1] : n;
         advance(advanced, complete, max2);
         advanced = complete;
       }
@@ -518,11 +517,46 @@ void Engine::PrepareList() {
   // whichever others are listed). Scaled positions move only by the
   // fluctuations (the affine motion is the cell's), so they stay within a
   // few cell sides of [0, 1).
+  bool rebuilt = false;
   if (!forces_current_ && neighbors_.NeedsRebuild(max_displacement_, cell_)) {
     neighbors_.Build(position_, cell_, skin_, options_.threads);
     DeriveLoadedFlags();
     max_displacement_ = 0.0;
+    rebuilt = true;
   }
+  // The near list likewise, from the neighbour list (after a restore it is
+  // built at the restored positions, also before a re-evaluation there).
+  bool rebuild_near = rebuilt || !near_.built();
+  bool measured = false;
+  if (!rebuild_near && !forces_current_ &&
+      near_.NeedsRebuild(near_displacement_ * near_.MetricFactor(), cell_)) {
+    near_displacement_ = near_.MaxDisplacement(position_, cell_, options_.threads);
+    measured = true;
+    ++near_measurements_;
+    rebuild_near = near_.NeedsRebuild(near_displacement_, cell_);
+  }
+  if (!rebuild_near) return;
+  if (near_.built() && step_ > near_build_step_) {
+    // Its skin for the next build: from how fast this one's was used up.
+    if (!measured) near_displacement_ = near_.MaxDisplacement(position_, cell_, options_.threads);
+    const double used_per_step =
+        near_.SkinUsed(near_displacement_, cell_) / static_cast<double>(step_ - near_build_step_);
+    const double overhead = NearList::BuildOverhead(near_.listed_at_build(), size(),
+                                                    near_measurements_ + (measured ? 0 : 1));
+    near_skin_ = NearList::CheapestSkin(near_.skin(), overhead, near_.pair_count(),
+                                        near_.touching_at_build(), used_per_step,
+                                        kSmallestNearSkinRatio * skin_, skin_);
+  }
+  NearList::History history;
+  if (friction_) {
+    history.loaded = loaded_.data();
+    history.shear = neighbors_.shear().data();
+    if (!neighbors_.rolling().empty()) history.rolling = neighbors_.rolling().data();
+  }
+  near_.Build(neighbors_, position_, cell_, near_skin_, options_.threads, history);
+  near_displacement_ = 0.0;
+  near_build_step_ = step_;
+  near_measurements_ = 0;
 }
 
 void Engine::Evaluate(Request request, bool advance) {
@@ -562,6 +596,7 @@ void Engine::IntegrateImpl() {
 void Engine::FinishAdvance(double max_speed2) {
   const double dt = options_.time_step;
   max_displacement_ += dt * std::sqrt(max_speed2);  // bound: Σ Δt max_i |v_i|
+  near_displacement_ += dt * std::sqrt(max_speed2);
   forces_current_ = false;
   // dH/dt = D H integrated exactly over the step for the constant diagonal D
   // (the forward-Euler H += Δt D H would change the volume of an isochoric
@@ -675,6 +710,7 @@ void Engine::Restore(State state) {
   forces_current_ = state.forces_current;
   neighbors_.Restore(std::move(state.neighbors));
   DeriveLoadedFlags();
+  near_.Clear();
 }
 
 void Engine::DeriveLoadedFlags() {

@@ -33,6 +33,7 @@
 #include "dem/hertz_mindlin.h"
 #include "dem/linear_cundall_strack.h"
 #include "dem/material.h"
+#include "dem/near_list.h"
 #include "dem/neighbor_list.h"
 #include "dem/packing.h"
 #include "dem/rolling_resistance.h"
@@ -47,6 +48,11 @@ class Engine {
     // Verlet skin as a fraction of the smallest diameter: larger skins
     // rebuild less often but list more non-touching pairs.
     double skin_fraction = 0.3;
+    // Skin of the near list (near_list.h) at its first build, as a fraction
+    // of the Verlet skin: the force pass walks only the listed pairs within
+    // it. Each later build adapts it to the cheapest step
+    // (NearList::CheapestSkin). Speed only: the results do not depend on it.
+    double near_skin_ratio = 0.25;
     int threads = 1;  // OpenMP threads; results are bit-identical for a given count
     bool IsValid(std::string* why) const;
   };
@@ -116,6 +122,7 @@ class Engine {
   const Material& material() const { return material_; }
   const Options& options() const { return options_; }
   const NeighborList& neighbors() const { return neighbors_; }
+  const NearList& near_pairs() const { return near_; }
 
   // Particle data (SoA): scaled positions with radius in w, fluctuating
   // velocities with inverse mass in w, spins with inverse inertia in w, and
@@ -162,7 +169,8 @@ class Engine {
                            RollingResistance<LinearCundallStrack>, RollingResistance<HertzMindlin>>;
   static Law MakeLaw(const Material& material, double time_step);
 
-  // Rebuilds the neighbour list when the displacements call for it.
+  // Rebuilds the neighbour list and the near list when the displacements
+  // call for it.
   void PrepareList();
   // Forces (and with `advance` the step's kick and drift in the same pass).
   void Evaluate(Request request, bool advance);
@@ -191,7 +199,12 @@ class Engine {
   double skin_ = 0;
   // Upper bound of the largest displacement since the last list build (m).
   double max_displacement_ = 0;
-  bool forces_current_ = false;  // forces evaluated at the current positions
+  double near_skin_ = 0;
+  // The same bound since the last near-list build (m), and its step.
+  double near_displacement_ = 0;
+  int64_t near_build_step_ = 0;
+  int64_t near_measurements_ = 0;  // exact displacement passes since then
+  bool forces_current_ = false;    // forces evaluated at the current positions
   bool friction_ = false;
   bool damping_ = false;
 
@@ -214,6 +227,8 @@ class Engine {
   };
   std::vector<ContactBlock> blocks_;
   NeighborList neighbors_;
+  // The pairs the force pass walks (derived state, not saved).
+  NearList near_;
   // Per listed pair (with friction): 1 when the pair may hold a shear force
   // or rolling moment, i.e. it touched at its last evaluation or carried a
   // history into the list; derived state, not saved.

@@ -1,7 +1,6 @@
 #include "dem/neighbor_list.h"
 
 #include <fmt/format.h>
-
 #include <omp.h>
 
 #include <algorithm>
@@ -143,31 +142,49 @@ std::vector<Vec3> NeighborList::CarryHistory(const std::vector<Vec3>& history,
   return carried;
 }
 
-bool NeighborList::NeedsRebuild(double max_displacement, const std::array<double, 3>& cell) const {
-  if (offsets_.empty()) return true;
+double VerletSkinUsed(double max_displacement, const std::array<double, 3>& cell,
+                      const std::array<double, 3>& build_cell, double max_radius, double skin) {
   double strain = 0.0;
-  for (int d = 0; d < 3; ++d) strain = std::max(strain, std::abs(cell[d] / build_cell_[d] - 1.0));
-  return 2.0 * max_displacement + strain * (2.0 * max_radius_ + skin_) >= skin_;
+  for (int d = 0; d < 3; ++d) strain = std::max(strain, std::abs(cell[d] / build_cell[d] - 1.0));
+  return 2.0 * max_displacement + strain * (2.0 * max_radius + skin);
 }
 
-double NeighborList::MaxDisplacement(const std::vector<Vec4>& s, const std::array<double, 3>& cell,
-                                     int threads) const {
+bool VerletListMayMissContact(double max_displacement, const std::array<double, 3>& cell,
+                              const std::array<double, 3>& build_cell, double max_radius,
+                              double skin) {
+  return VerletSkinUsed(max_displacement, cell, build_cell, max_radius, skin) >= skin;
+}
+
+double VerletMetricFactor(double max_radius, double skin) {
+  const double strain = skin / (2.0 * max_radius + skin);
+  return (1.0 + strain) / (1.0 - strain);
+}
+
+double LargestDisplacement(const std::vector<Vec4>& s, const std::vector<Vec4>& reference,
+                           const std::array<double, 3>& cell, int threads) {
   const int64_t n = static_cast<int64_t>(s.size());
   double max2 = 0.0;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(max : max2)
   for (int64_t i = 0; i < n; ++i) {
-    const double dx = cell[0] * (s[i].x - build_positions_[i].x);
-    const double dy = cell[1] * (s[i].y - build_positions_[i].y);
-    const double dz = cell[2] * (s[i].z - build_positions_[i].z);
+    const double dx = cell[0] * (s[i].x - reference[i].x);
+    const double dy = cell[1] * (s[i].y - reference[i].y);
+    const double dz = cell[2] * (s[i].z - reference[i].z);
     max2 = std::max(max2, dx * dx + dy * dy + dz * dz);
   }
   return std::sqrt(max2);
 }
 
-double NeighborList::MetricFactor() const {
-  const double strain = skin_ / (2.0 * max_radius_ + skin_);
-  return (1.0 + strain) / (1.0 - strain);
+bool NeighborList::NeedsRebuild(double max_displacement, const std::array<double, 3>& cell) const {
+  if (offsets_.empty()) return true;
+  return VerletListMayMissContact(max_displacement, cell, build_cell_, max_radius_, skin_);
 }
+
+double NeighborList::MaxDisplacement(const std::vector<Vec4>& s, const std::array<double, 3>& cell,
+                                     int threads) const {
+  return LargestDisplacement(s, build_positions_, cell, threads);
+}
+
+double NeighborList::MetricFactor() const { return VerletMetricFactor(max_radius_, skin_); }
 
 NeighborList::State NeighborList::Save() const {
   return {offsets_,    neighbors_, shear_,      rolling_, build_positions_,

@@ -20,6 +20,27 @@
 
 namespace granasym::dem {
 
+// The rebuild criterion of a Verlet list of `skin` built at `build_cell`
+// (rigorous for a diagonal cell): the list may miss a contact once
+//   2 max_displacement + ε (2 max_radius + skin) >= skin,
+// ε being the largest relative change of a cell side since the build.
+bool VerletListMayMissContact(double max_displacement, const std::array<double, 3>& cell,
+                              const std::array<double, 3>& build_cell, double max_radius,
+                              double skin);
+// The criterion's left side, 2 max_displacement + ε (2 max_radius + skin):
+// how much of the skin the pairs may have closed since the build (m).
+double VerletSkinUsed(double max_displacement, const std::array<double, 3>& cell,
+                      const std::array<double, 3>& build_cell, double max_radius, double skin);
+// Factor by which a displacement summed in the metrics of the steps since a
+// build can grow when measured in the current metric, while the criterion
+// above holds: the side ratios stay within 1 ± ε*, ε* = skin/(2 r_max + skin).
+double VerletMetricFactor(double max_radius, double skin);
+// max_i |H (s_i − reference_i)|: the largest non-affine displacement since
+// the reference positions, in the current metric (m).
+double LargestDisplacement(const std::vector<Vec4>& scaled_positions,
+                           const std::vector<Vec4>& reference, const std::array<double, 3>& cell,
+                           int threads);
+
 class NeighborList {
  public:
   // `scaled_positions` are positions divided by the cell sides (any real
@@ -52,6 +73,7 @@ class NeighborList {
   size_t pair_count() const { return neighbors_.size(); }
   int64_t builds() const { return builds_; }
   double skin() const { return skin_; }
+  double max_radius() const { return max_radius_; }
 
   // Keep or drop the shear history (a scene without friction keeps none) and
   // the rolling-moment history (kept only with rolling resistance).
