@@ -244,16 +244,17 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     const bool advance_inline = kAdvanceToo && threads == 1;
     int64_t advanced = 0;
 
-    // Three passes over blocks of the pair list. (1) Find the touching pairs
+    // Three passes over blocks of the near list. (1) Find the touching pairs
     // without a data-dependent branch (compaction by index increment): the
     // contact/no-contact decision is close to a coin toss in a dense packing
-    // and would otherwise cost a branch misprediction per pair. It stores one
-    // byte per listed pair, its offset in the block: stores, not arithmetic,
-    // bound these passes (one per cycle on some cores), and in a loose sample
-    // most listed pairs do not touch. (2) Gather the touching pairs'
-    // kinematics into structure-of-arrays form (the branch vector again: the
-    // same expression, so the same rounding) and evaluate the contact law in
-    // one vectorised loop. (3) Scatter forces and torques.
+    // and would otherwise cost a branch misprediction per pair. Each pair's
+    // branch vector, |l|² and radii go to the next free slot of the batch
+    // and its offset in the block beside them; the slot is kept only when
+    // the pair touches. (Stores bound these passes, one per cycle on some
+    // cores: the near list keeps the pairs that do not touch few, which the
+    // whole neighbour list did not.) (2) Gather the rest of the touching
+    // pairs' kinematics into the batch and evaluate the contact law in one
+    // vectorised loop. (3) Scatter forces and torques.
     ContactBlock& b = blocks_[t];
     ContactBatch& batch = b.batch;
     // The pairs walked are the near list's (the listed pairs that may touch,
@@ -276,6 +277,12 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         const double reach = pi.w + pj.w;
         const bool touching = distance2 < reach * reach;
         b.offset[count] = static_cast<uint8_t>(q - q0);
+        batch.bx[count] = l.x;
+        batch.by[count] = l.y;
+        batch.bz[count] = l.z;
+        batch.d2[count] = distance2;
+        batch.ri[count] = pi.w;
+        batch.rj[count] = pj.w;
         count += touching;
         if constexpr (kUseFriction && !kReevaluate) {
           // A broken contact forgets its shear force (and rolling moment).
@@ -298,14 +305,7 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
         const int64_t q = q0 + b.offset[k];
         const int64_t p = near_p[q];
         const int32_t i = near_i[q], j = near_j[q];
-        const Vec4 pi = position[i], pj = position[j];
-        const Vec3 l = Branch(pi, pj, lx, ly, lz);
-        batch.bx[k] = l.x;
-        batch.by[k] = l.y;
-        batch.bz[k] = l.z;
-        batch.d2[k] = Dot(l, l);
-        batch.ri[k] = pi.w;
-        batch.rj[k] = pj.w;
+        const Vec3 l = {batch.bx[k], batch.by[k], batch.bz[k]};
         if constexpr (kUseFriction && !kReevaluate) {
           const Vec3 stored = shear[p];
           batch.sx[k] = stored.x;
