@@ -20,13 +20,13 @@ TEST(Parallelism, StudiesRunSingleThreadCasesSideBySide) {
 }
 
 TEST(Parallelism, AsManyCasesAsTheMemoryHoldsTheRestAsThreads) {
-  // 10 million spheres take ~10 GB per case: 24 GB hold one (half for cases).
+  // 10 million spheres take ~11 GB per case: 24 GB hold one (half for cases).
   const Parallelism p = ChooseParallelism(2, 24 * kGiB, 10'000'000, 0, 0);
   EXPECT_EQ(p.jobs, 1);
   EXPECT_EQ(p.threads, 2);
   EXPECT_NE(p.reason.find("fit in memory"), std::string::npos) << p.reason;
   // 16 threads, memory for 4 cases: 4 jobs of 4 threads.
-  const Parallelism q = ChooseParallelism(16, 2.0 * 4 * 1024 * 1e6, 1000000, 0, 0);
+  const Parallelism q = ChooseParallelism(16, 2.0 * 4 * kCaseBytesPerSphere * 1e6, 1000000, 0, 0);
   EXPECT_EQ(q.jobs, 4);
   EXPECT_EQ(q.threads, 4);
 }
