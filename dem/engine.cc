@@ -24,6 +24,18 @@ enum ForceFlag : unsigned { kStress = 1, kStiffness = 2, kFrozen = 4, kAdvance =
 // What the integrator does besides the translations.
 enum IntegrateFlag : unsigned { kRotation = 1, kDamping = 2 };
 
+// The integrator accumulates a cheap upper bound of a Verlet list's
+// displacements, Σ Δt max_i |v_i|; only when that bound calls for a rebuild
+// is the exact displacement measured (one pass over the particles) and put in
+// its place. Returns whether it measured. For NeighborList and NearList.
+template <class VerletList>
+bool TightenDisplacement(const VerletList& list, const std::vector<Vec4>& positions,
+                         const std::array<double, 3>& cell, int threads, double* displacement) {
+  if (!list.NeedsRebuild(*displacement * list.MetricFactor(), cell)) return false;
+  *displacement = list.MaxDisplacement(positions, cell, threads);
+  return true;
+}
+
 inline double Sign(double x) { return static_cast<double>((x > 0) - (x < 0)); }
 
 // v ← v + Δt a with a = load · w (w = v.w: the inverse mass or inertia) and,
@@ -500,12 +512,8 @@ void Engine::RunKernel(const PairLaw& law, bool friction, unsigned flags,
 }
 
 void Engine::PrepareList() {
-  // The integrator accumulates a cheap upper bound of the displacements,
-  // Σ Δt max_i |v_i|; only when that bound calls for a rebuild is the exact
-  // displacement measured (one pass), and the list rebuilt if it must be.
-  if (!forces_current_ && neighbors_.built() &&
-      neighbors_.NeedsRebuild(max_displacement_ * neighbors_.MetricFactor(), cell_)) {
-    max_displacement_ = neighbors_.MaxDisplacement(position_, cell_, options_.threads);
+  if (!forces_current_ && neighbors_.built()) {
+    TightenDisplacement(neighbors_, position_, cell_, options_.threads, &max_displacement_);
   }
   // The scaled positions are not wrapped back into the cell at a build (the
   // list bins them wrapped, and the minimum image is exact for any of them):
@@ -527,11 +535,10 @@ void Engine::PrepareList() {
   // The near list likewise, from the neighbour list (after a restore it is
   // built at the restored positions, also before a re-evaluation there).
   bool rebuild_near = rebuilt || !near_.built();
-  bool measured = false;
-  if (!rebuild_near && !forces_current_ &&
-      near_.NeedsRebuild(near_displacement_ * near_.MetricFactor(), cell_)) {
-    near_displacement_ = near_.MaxDisplacement(position_, cell_, options_.threads);
-    measured = true;
+  const bool measured =
+      !rebuild_near && !forces_current_ &&
+      TightenDisplacement(near_, position_, cell_, options_.threads, &near_displacement_);
+  if (measured) {
     ++near_measurements_;
     rebuild_near = near_.NeedsRebuild(near_displacement_, cell_);
   }

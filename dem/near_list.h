@@ -64,10 +64,9 @@ class NearList {
   // `measurements` passes over the `particles` that measured the
   // displacement since the previous build. A build's visit of a pair (its
   // gather, distance test and the kept pair's three writes) took 63
-  // instructions and the copy of the positions about 24 more per pair,
-  // against about 46 for the step's visit (callgrind, a loose 5 000-sphere
-  // path): kBuildCost 2; a measurement reads two positions per particle:
-  // kMeasureCost 1.
+  // instructions against about 46 for the step's visit (callgrind, a loose
+  // 5 000-sphere path), and the build also copies the positions: kBuildCost
+  // 2; a measurement reads two positions per particle: kMeasureCost 1.
   static constexpr double kBuildCost = 2.0, kMeasureCost = 1.0;
   static double BuildOverhead(int64_t listed, int64_t particles, int64_t measurements) {
     return kBuildCost * static_cast<double>(listed) +
