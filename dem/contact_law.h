@@ -32,6 +32,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 
 #include "dem/vec.h"
 
@@ -86,7 +87,7 @@ struct ContactBatch {
   double tix[kSize], tiy[kSize], tiz[kSize], tjx[kSize], tjy[kSize], tjz[kSize];
   // Scratch of IncrementalShearLaw::EvaluateBatch: 1 where the Coulomb cap
   // may act (the lane is finished by its second loop), else 0.
-  double capped[kSize];
+  int64_t capped[kSize];
 };
 
 // Normal force and tangent stiffness of a normal law at one overlap.
@@ -266,7 +267,7 @@ class IncrementalShearLaw {
         const double limit = mu * lane.normal_force;
         const double magnitude2 = sx * sx + sy * sy + sz * sz;
         const bool below = magnitude2 <= kClearlyBelow * (limit * limit) && limit > kSmallestLimit;
-        b.capped[k] = below ? 0.0 : 1.0;
+        b.capped[k] = below ? 0 : 1;
         FinishShearLane(b, k, lane, sx, sy, sz);
       } else {
         b.fx[k] = -lane.normal_force * lane.nx;
@@ -281,7 +282,7 @@ class IncrementalShearLaw {
       int marked_count = 0;
       for (int k = 0; k < count; ++k) {
         marked[marked_count] = k;
-        marked_count += b.capped[k] != 0.0;
+        marked_count += static_cast<int>(b.capped[k]);
       }
       for (int q = 0; q < marked_count; ++q) {
         const int k = marked[q];

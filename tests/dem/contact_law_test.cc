@@ -360,7 +360,7 @@ TYPED_TEST(ShearLawBatch, SkippingTheCapBelowTheLimitIsBitIdenticalToOneLoop) {
       EXPECT_EQ(std::memcmp(&got[c], &want[c], sizeof(double)), 0)
           << "pair " << k << " value " << c << ": " << got[c] << " against " << want[c];
     }
-    capped += batch.capped[k] != 0.0;
+    capped += batch.capped[k] != 0;
   }
   // Both loops ran: some pairs were finished with the cap, most without.
   EXPECT_GT(capped, 10);
