@@ -74,7 +74,9 @@ TEST(AdaptiveTimeStep, TheDurationOfTwoHertzSpheresPressedTogetherIsTheAnalyticO
     // It shrinks as the overlap grows, as u_N^(-1/4): by sqrt(2) for 4 times the overlap.
     if (std::isfinite(previous)) {
       EXPECT_LT(duration, previous);
-      if (relative > 1e-3) EXPECT_NEAR(previous / duration, std::sqrt(2.0), 1e-6);
+      if (relative > 1e-3) {
+        EXPECT_NEAR(previous / duration, std::sqrt(2.0), 1e-6);
+      }
     }
     previous = duration;
   }
