@@ -18,7 +18,7 @@ namespace {
 constexpr double kSmallestNearSkinRatio = 1.0 / 64;
 
 // What a force kernel also does besides the forces (friction is a separate
-// template parameter, see ComputeForcesWith).
+// template parameter, see RunKernel).
 // kAdvance: the kick and drift of each particle follow in the same pass, as
 // soon as its net force is complete (Engine::Step).
 enum ForceFlag : unsigned { kStress = 1, kStiffness = 2, kFrozen = 4, kAdvance = 8 };
@@ -65,8 +65,7 @@ inline Lanes Kick(Lanes load, Lanes v, double dt, double chi) {
   // a's fourth component is 0, so v.w + Δt·0 keeps v.w.
   Lanes a = reinterpret_cast<Lanes>(reinterpret_cast<LaneMasks>(load * w) & kXyz);
   if constexpr (kDamping) {
-    const Lanes half_dt = Lanes{} + 0.5 * dt;
-    const Lanes t = a * (v + half_dt * a);
+    const Lanes t = a * (v + (0.5 * dt) * a);
     const LaneMasks plus = reinterpret_cast<LaneMasks>(Lanes{} + 1.0);
     const LaneMasks minus = reinterpret_cast<LaneMasks>(Lanes{} - 1.0);
     const Lanes sign = reinterpret_cast<Lanes>(((t > 0.0) & plus) | ((t < 0.0) & minus));
@@ -621,8 +620,10 @@ void Engine::IntegrateImpl() {
 
 void Engine::FinishAdvance(double max_speed2) {
   const double dt = options_.time_step;
-  max_displacement_ += dt * std::sqrt(max_speed2);  // bound: Σ Δt max_i |v_i|
-  near_displacement_ += dt * std::sqrt(max_speed2);
+  // Both lists' displacement bounds: Σ Δt max_i |v_i|.
+  const double largest_step = dt * std::sqrt(max_speed2);
+  max_displacement_ += largest_step;
+  near_displacement_ += largest_step;
   forces_current_ = false;
   // dH/dt = D H integrated exactly over the step for the constant diagonal D
   // (the forward-Euler H += Δt D H would change the volume of an isochoric

@@ -217,8 +217,8 @@ class Engine {
   std::vector<Sums> thread_sums_;
   std::vector<double> thread_max2_;  // per thread: the largest |v|² it advanced
   // Per-thread scratch of the pair loop: a block of touching pairs, each
-  // named by its place in the block of the list (the pair is block start +
-  // offset; its i and j are read back from the list).
+  // named by its place in the block of the near list (block start + offset
+  // is its index there, where its pair index, i and j are read back).
   struct ContactBlock {
     static constexpr int kSize = ContactBatch::kSize;
     static_assert(kSize <= 256, "offsets in a block are bytes");
