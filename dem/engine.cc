@@ -47,6 +47,26 @@ using Lanes = double __attribute__((vector_size(32)));
 using LaneMasks = int64_t __attribute__((vector_size(32)));
 static_assert(sizeof(Lanes) == sizeof(Vec4) && alignof(Vec4) >= alignof(Lanes));
 
+// Two doubles in one 128-bit register: the gather and scatter move the
+// data of two contacts at once, a Vec4 as its halves (x, y) and (z, w).
+using Pair = double __attribute__((vector_size(16)));
+inline Pair LoadPair(const double* a) {
+  Pair v;
+  std::memcpy(&v, a, sizeof v);
+  return v;
+}
+inline void StorePair(Pair v, double* a) { std::memcpy(a, &v, sizeof v); }
+// (a[0], b[0]) and (a[1], b[1]): one unpack instruction each (GCC compiles
+// the same built from elements into several).
+#if defined(__clang__)
+inline Pair Firsts(Pair a, Pair b) { return __builtin_shufflevector(a, b, 0, 2); }
+inline Pair Seconds(Pair a, Pair b) { return __builtin_shufflevector(a, b, 1, 3); }
+#else
+using PairIndices = int64_t __attribute__((vector_size(16)));
+inline Pair Firsts(Pair a, Pair b) { return __builtin_shuffle(a, b, PairIndices{0, 2}); }
+inline Pair Seconds(Pair a, Pair b) { return __builtin_shuffle(a, b, PairIndices{1, 3}); }
+#endif
+
 inline Lanes LoadLanes(const Vec4& a) {
   Lanes v;
   std::memcpy(&v, &a, sizeof v);
@@ -89,6 +109,111 @@ inline double AdvanceParticle(const Vec4& force, const Vec4& torque, double dt, 
   }
   const Lanes v2 = v * v;
   return v2[0] + v2[1] + v2[2];
+}
+
+// Pass (1) of the pair loop over the near pairs [q0, q1) of one thread:
+// each pair's branch vector, |l|² and radii to the next free slot of the
+// batch and its offset in the block beside them, the slot kept only when
+// the pair touches; returns the number of touching pairs. With kForget a
+// pair that stopped touching forgets its history. A function of its own
+// so that the compiler allocates the registers of this tight loop alone
+// (inlined into the kernel, it kept the list's pointers on the stack).
+template <bool kForget, bool kRolling>
+__attribute__((noinline)) int CollectTouching(const NearList::Pairs& pairs, int64_t q0,
+                                              int64_t q1, const Vec4* position, double lx,
+                                              double ly, double lz, uint8_t* loaded, Vec3* shear,
+                                              Vec3* rolling, uint8_t* offset,
+                                              ContactBatch& batch) {
+  const int32_t* near_i = pairs.i.data();
+  const int32_t* near_j = pairs.j.data();
+  const int64_t* near_p = pairs.p.data();
+  int count = 0;
+  for (int64_t q = q0; q < q1; ++q) {
+    const int32_t i = near_i[q], j = near_j[q];
+    const Vec4 pi = position[i], pj = position[j];
+    const Vec3 l = Branch(pi, pj, lx, ly, lz);
+    const double distance2 = Dot(l, l);
+    const double reach = pi.w + pj.w;
+    const bool touching = distance2 < reach * reach;
+    offset[count] = static_cast<uint8_t>(q - q0);
+    batch.bx[count] = l.x;
+    batch.by[count] = l.y;
+    batch.bz[count] = l.z;
+    batch.d2[count] = distance2;
+    batch.ri[count] = pi.w;
+    batch.rj[count] = pj.w;
+    count += touching;
+    if constexpr (kForget) {
+      // A broken contact forgets its shear force (and rolling moment).
+      // The one-byte flag of a pair that may hold a history, not the
+      // 24-byte history itself, is what the many never-touching pairs
+      // read; it is written only when it changes (a contact made or
+      // broken: rare, so the branch is well predicted, never the coin
+      // toss of `touching` itself).
+      const int64_t p = near_p[q];
+      if (loaded[p] != static_cast<uint8_t>(touching)) {
+        if (!touching) {
+          shear[p] = Vec3{};
+          if constexpr (kRolling) rolling[p] = Vec3{};
+        }
+        loaded[p] = touching;
+      }
+    }
+  }
+  return count;
+}
+
+// Pass (2a): the stored shear forces, the centre velocities v_j + D l − v_i
+// and the spins of the `count` touching pairs of the block at q0 into the
+// batch (a function of its own, as CollectTouching).
+template <bool kRolling>
+__attribute__((noinline)) void GatherKinematics(const NearList::Pairs& pairs, int64_t q0,
+                                                const uint8_t* offset, int count,
+                                                const Vec3* shear, const Vec3* rolling,
+                                                const Vec4* velocity, const Vec4* spin, double gx,
+                                                double gy, double gz, ContactBatch& batch) {
+  const int32_t* near_i = pairs.i.data();
+  const int32_t* near_j = pairs.j.data();
+  const int64_t* near_p = pairs.p.data();
+  // The stored shear forces, the centre velocities v_j + D l − v_i and
+  // the spins of the touching pairs, two at a time: each Vec4 read as
+  // two halves, the halves of two pairs interleaved into the batch's
+  // columns (one 128-bit store for two values).
+  // An odd last pair goes in both halves: its second copy lands in
+  // the unused slot `count` (count < kSize when odd).
+  for (int k = 0; k < count; k += 2) {
+    const int kb = k + 1 < count ? k + 1 : k;
+    const int64_t qa = q0 + offset[k], qb = q0 + offset[kb];
+    const int64_t pa = near_p[qa], pb = near_p[qb];
+    const int32_t ia = near_i[qa], ja = near_j[qa], ib = near_i[qb], jb = near_j[qb];
+    const Pair sa = LoadPair(&shear[pa].x), sb = LoadPair(&shear[pb].x);
+    StorePair(Firsts(sa, sb), batch.sx + k);
+    StorePair(Seconds(sa, sb), batch.sy + k);
+    StorePair(Pair{shear[pa].z, shear[pb].z}, batch.sz + k);
+    if constexpr (kRolling) {
+      for (int u = 0; u < 2; ++u) {
+        const Vec3 moment = rolling[u == 0 ? pa : pb];
+        batch.rmx[k + u] = moment.x;
+        batch.rmy[k + u] = moment.y;
+        batch.rmz[k + u] = moment.z;
+      }
+    }
+    const Pair dxy_a = LoadPair(&velocity[ja].x) - LoadPair(&velocity[ia].x);
+    const Pair dzw_a = LoadPair(&velocity[ja].z) - LoadPair(&velocity[ia].z);
+    const Pair dxy_b = LoadPair(&velocity[jb].x) - LoadPair(&velocity[ib].x);
+    const Pair dzw_b = LoadPair(&velocity[jb].z) - LoadPair(&velocity[ib].z);
+    StorePair(Firsts(dxy_a, dxy_b) + gx * LoadPair(batch.bx + k), batch.vx + k);
+    StorePair(Seconds(dxy_a, dxy_b) + gy * LoadPair(batch.by + k), batch.vy + k);
+    StorePair(Firsts(dzw_a, dzw_b) + gz * LoadPair(batch.bz + k), batch.vz + k);
+    const Pair wi_xy_a = LoadPair(&spin[ia].x), wi_xy_b = LoadPair(&spin[ib].x);
+    const Pair wj_xy_a = LoadPair(&spin[ja].x), wj_xy_b = LoadPair(&spin[jb].x);
+    StorePair(Firsts(wi_xy_a, wi_xy_b), batch.wix + k);
+    StorePair(Seconds(wi_xy_a, wi_xy_b), batch.wiy + k);
+    StorePair(Pair{spin[ia].z, spin[ib].z}, batch.wiz + k);
+    StorePair(Firsts(wj_xy_a, wj_xy_b), batch.wjx + k);
+    StorePair(Seconds(wj_xy_a, wj_xy_b), batch.wjy + k);
+    StorePair(Pair{spin[ja].z, spin[jb].z}, batch.wjz + k);
+  }
 }
 
 }  // namespace
@@ -248,7 +373,12 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     }
   };
 
-#pragma omp parallel num_threads(threads)
+  // The loop's pointers and constants are private copies in each thread
+  // (locals whose address is not taken): as shared variables they would be
+  // read again from memory after each one-byte store of the passes, which
+  // may alias anything.
+#pragma omp parallel num_threads(threads) \
+    firstprivate(lx, ly, lz, gx, gy, gz, shear, rolling, loaded, position, velocity, spin)
   {
     const int t = omp_get_thread_num();
     const int64_t begin = n * t / threads, end = n * (t + 1) / threads;
@@ -274,7 +404,8 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     const bool advance_inline = kAdvanceToo && threads == 1;
     int64_t advanced = 0;
 
-    // Three passes over blocks of the near list. (1) Find the touching pairs
+    // Three passes over blocks of the near list. (1) CollectTouching: find
+    // the touching pairs
     // without a data-dependent branch (compaction by index increment): the
     // contact/no-contact decision is close to a coin toss in a dense packing
     // and would otherwise cost a branch misprediction per pair. Each pair's
@@ -282,9 +413,9 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     // and its offset in the block beside them; the slot is kept only when
     // the pair touches. (Stores bound these passes, one per cycle on some
     // cores: the near list keeps the pairs that do not touch few, which the
-    // whole neighbour list did not.) (2) Gather the rest of the touching
-    // pairs' kinematics into the batch and evaluate the contact law in one
-    // vectorised loop. (3) Scatter forces and torques.
+    // whole neighbour list did not.) (2) GatherKinematics: the rest of the
+    // touching pairs' kinematics into the batch; the contact law on it in
+    // one vectorised loop. (3) Scatter forces, torques and shear forces.
     ContactBlock& b = blocks_[t];
     ContactBatch& batch = b.batch;
     // The pairs walked are the near list's (the listed pairs that may touch,
@@ -298,67 +429,11 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     constexpr int kBlock = ContactBatch::kSize;
     for (int64_t q0 = 0; q0 < near_end; q0 += kBlock) {
       const int64_t q1 = std::min<int64_t>(q0 + kBlock, near_end);
-      int count = 0;
-      for (int64_t q = q0; q < q1; ++q) {
-        const int32_t i = near_i[q], j = near_j[q];
-        const Vec4 pi = position[i], pj = position[j];
-        const Vec3 l = Branch(pi, pj, lx, ly, lz);
-        const double distance2 = Dot(l, l);
-        const double reach = pi.w + pj.w;
-        const bool touching = distance2 < reach * reach;
-        b.offset[count] = static_cast<uint8_t>(q - q0);
-        batch.bx[count] = l.x;
-        batch.by[count] = l.y;
-        batch.bz[count] = l.z;
-        batch.d2[count] = distance2;
-        batch.ri[count] = pi.w;
-        batch.rj[count] = pj.w;
-        count += touching;
-        if constexpr (kUseFriction && !kReevaluate) {
-          // A broken contact forgets its shear force (and rolling moment).
-          // The one-byte flag of a pair that may hold a history, not the
-          // 24-byte history itself, is what the many never-touching pairs
-          // read; it is written only when it changes (a contact made or
-          // broken: rare, so the branch is well predicted, never the coin
-          // toss of `touching` itself).
-          const int64_t p = near_p[q];
-          if (loaded[p] != static_cast<uint8_t>(touching)) {
-            if (!touching) {
-              shear[p] = Vec3{};
-              if constexpr (kRolling) rolling[p] = Vec3{};
-            }
-            loaded[p] = touching;
-          }
-        }
-      }
-      for (int k = 0; k < count; ++k) {
-        const int64_t q = q0 + b.offset[k];
-        const int64_t p = near_p[q];
-        const int32_t i = near_i[q], j = near_j[q];
-        const Vec3 l = {batch.bx[k], batch.by[k], batch.bz[k]};
-        if constexpr (kUseFriction && !kReevaluate) {
-          const Vec3 stored = shear[p];
-          batch.sx[k] = stored.x;
-          batch.sy[k] = stored.y;
-          batch.sz[k] = stored.z;
-          if constexpr (kRolling) {
-            const Vec3 moment = rolling[p];
-            batch.rmx[k] = moment.x;
-            batch.rmy[k] = moment.y;
-            batch.rmz[k] = moment.z;
-          }
-          const Vec4 vi = velocity[i], vj = velocity[j];
-          batch.vx[k] = vj.x - vi.x + gx * l.x;
-          batch.vy[k] = vj.y - vi.y + gy * l.y;
-          batch.vz[k] = vj.z - vi.z + gz * l.z;
-          const Vec4 wi = spin[i], wj = spin[j];
-          batch.wix[k] = wi.x;
-          batch.wiy[k] = wi.y;
-          batch.wiz[k] = wi.z;
-          batch.wjx[k] = wj.x;
-          batch.wjy[k] = wj.y;
-          batch.wjz[k] = wj.z;
-        }
+      const int count = CollectTouching<kUseFriction && !kReevaluate, kRolling>(
+          near_pairs, q0, q1, position, lx, ly, lz, loaded, shear, rolling, b.offset, batch);
+      if constexpr (kUseFriction && !kReevaluate) {
+        GatherKinematics<kRolling>(near_pairs, q0, b.offset, count, shear, rolling, velocity, spin,
+                                   gx, gy, gz, batch);
       }
       if constexpr (kReevaluate) {
         // Forces again at unchanged positions (rare): the scalar evaluator
@@ -387,33 +462,38 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
       } else {
         law.template EvaluateBatch<kUseFriction>(batch, count);
       }
-      for (int k = 0; k < count; ++k) {
+      // Forces, torques and shear forces back to the particles and pairs,
+      // two contacts at a time: the batch's columns read two values per
+      // load, (x, y) of each added as one half of the Vec4 and z alone.
+      // Each contact's sums are complete before the next's, in batch order:
+      // every particle receives its terms in the order of one contact at a
+      // time.
+      auto add = [](Pair xy, double z, Vec4& to) {
+        StorePair(LoadPair(&to.x) + xy, &to.x);
+        to.z += z;
+      };
+      auto subtract = [](Pair xy, double z, Vec4& to) {
+        StorePair(LoadPair(&to.x) - xy, &to.x);
+        to.z -= z;
+      };
+      auto scatter = [&](int k, Pair f_xy, Pair ti_xy, Pair tj_xy, Pair s_xy) {
         const int64_t q = q0 + b.offset[k];
-        const int64_t p = near_p[q];
         const int32_t i = near_i[q], j = near_j[q];
-        const Vec3 f = {batch.fx[k], batch.fy[k], batch.fz[k]};  // on i
         // j's sums: this thread's own, or its halo (a select, not a branch).
         const bool own = j < end;
-        Vec4& force_j = (own ? force : halo_force)[j];
-        force[i].x += f.x;
-        force[i].y += f.y;
-        force[i].z += f.z;
-        force_j.x -= f.x;
-        force_j.y -= f.y;
-        force_j.z -= f.z;
+        add(f_xy, batch.fz[k], force[i]);
+        subtract(f_xy, batch.fz[k], (own ? force : halo_force)[j]);
         if constexpr (kUseFriction) {
           if constexpr (!kReevaluate) {
-            shear[p] = {batch.sx[k], batch.sy[k], batch.sz[k]};
+            const int64_t p = near_p[q];
+            StorePair(s_xy, &shear[p].x);
+            shear[p].z = batch.sz[k];
             if constexpr (kRolling) rolling[p] = {batch.rmx[k], batch.rmy[k], batch.rmz[k]};
           }
-          torque[i].x += batch.tix[k];
-          torque[i].y += batch.tiy[k];
-          torque[i].z += batch.tiz[k];
-          Vec4& torque_j = (own ? torque : halo_torque)[j];
-          torque_j.x += batch.tjx[k];
-          torque_j.y += batch.tjy[k];
-          torque_j.z += batch.tjz[k];
+          add(ti_xy, batch.tiz[k], torque[i]);
+          add(tj_xy, batch.tjz[k], (own ? torque : halo_torque)[j]);
         }
+        const Vec3 f = {batch.fx[k], batch.fy[k], batch.fz[k]};  // on i
         const Vec3 branch = {batch.bx[k], batch.by[k], batch.bz[k]};
         const double distance2 = batch.d2[k];
         if constexpr (kSumStress) {
@@ -443,6 +523,29 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
           local.stiffness[3] = std::fma(weight * xx, yy, local.stiffness[3]);
           local.stiffness[4] = std::fma(weight * xx, zz, local.stiffness[4]);
           local.stiffness[5] = std::fma(weight * yy, zz, local.stiffness[5]);
+        }
+      };
+      int k = 0;
+      for (; k + 1 < count; k += 2) {
+        const Pair fx = LoadPair(batch.fx + k), fy = LoadPair(batch.fy + k);
+        Pair tix{}, tiy{}, tjx{}, tjy{}, sx{}, sy{};
+        if constexpr (kUseFriction) {
+          tix = LoadPair(batch.tix + k);
+          tiy = LoadPair(batch.tiy + k);
+          tjx = LoadPair(batch.tjx + k);
+          tjy = LoadPair(batch.tjy + k);
+          sx = LoadPair(batch.sx + k);
+          sy = LoadPair(batch.sy + k);
+        }
+        scatter(k, Firsts(fx, fy), Firsts(tix, tiy), Firsts(tjx, tjy), Firsts(sx, sy));
+        scatter(k + 1, Seconds(fx, fy), Seconds(tix, tiy), Seconds(tjx, tjy), Seconds(sx, sy));
+      }
+      if (k < count) {
+        if constexpr (kUseFriction) {
+          scatter(k, Pair{batch.fx[k], batch.fy[k]}, Pair{batch.tix[k], batch.tiy[k]},
+                  Pair{batch.tjx[k], batch.tjy[k]}, Pair{batch.sx[k], batch.sy[k]});
+        } else {
+          scatter(k, Pair{batch.fx[k], batch.fy[k]}, Pair{}, Pair{}, Pair{});
         }
       }
       if (advance_inline) {
