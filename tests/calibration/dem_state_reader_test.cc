@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <unistd.h>
 
 #include "common/error.h"
 #include "common/hdf5_file.h"
@@ -16,8 +17,11 @@
 namespace granasym::calibration {
 namespace {
 
+// Per process: ctest runs the tests of this file in parallel processes,
+// and each writes its file.
 std::string TempPath(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / name).string();
+  return (std::filesystem::temp_directory_path() / (std::to_string(getpid()) + "_" + name))
+      .string();
 }
 
 // Stage 0: ψ_ε = 0 from 1 to 1000 kPa (NCL); stage 1: ψ_ε = 180° unloading;
