@@ -165,7 +165,11 @@ __attribute__((noinline)) int CollectTouching(const NearList::Pairs& pairs, int6
 
 // Pass (2a): the stored shear forces, the centre velocities v_j + D l − v_i
 // and the spins of the `count` touching pairs of the block at q0 into the
-// batch (a function of its own, as CollectTouching).
+// batch (a function of its own, as CollectTouching). Two pairs at a time:
+// each Vec4 read as two halves, the halves of two pairs interleaved into
+// the batch's columns (one 128-bit store for two values). An odd last pair
+// goes in both halves: its second copy lands in the unused slot `count`
+// (count < kSize when odd).
 template <bool kRolling>
 __attribute__((noinline)) void GatherKinematics(const NearList::Pairs& pairs, int64_t q0,
                                                 const uint8_t* offset, int count,
@@ -175,12 +179,6 @@ __attribute__((noinline)) void GatherKinematics(const NearList::Pairs& pairs, in
   const int32_t* near_i = pairs.i.data();
   const int32_t* near_j = pairs.j.data();
   const int64_t* near_p = pairs.p.data();
-  // The stored shear forces, the centre velocities v_j + D l − v_i and
-  // the spins of the touching pairs, two at a time: each Vec4 read as
-  // two halves, the halves of two pairs interleaved into the batch's
-  // columns (one 128-bit store for two values).
-  // An odd last pair goes in both halves: its second copy lands in
-  // the unused slot `count` (count < kSize when odd).
   for (int k = 0; k < count; k += 2) {
     const int kb = k + 1 < count ? k + 1 : k;
     const int64_t qa = q0 + offset[k], qb = q0 + offset[kb];
@@ -404,18 +402,17 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     const bool advance_inline = kAdvanceToo && threads == 1;
     int64_t advanced = 0;
 
-    // Three passes over blocks of the near list. (1) CollectTouching: find
-    // the touching pairs
-    // without a data-dependent branch (compaction by index increment): the
-    // contact/no-contact decision is close to a coin toss in a dense packing
-    // and would otherwise cost a branch misprediction per pair. Each pair's
-    // branch vector, |l|² and radii go to the next free slot of the batch
-    // and its offset in the block beside them; the slot is kept only when
-    // the pair touches. (Stores bound these passes, one per cycle on some
-    // cores: the near list keeps the pairs that do not touch few, which the
-    // whole neighbour list did not.) (2) GatherKinematics: the rest of the
-    // touching pairs' kinematics into the batch; the contact law on it in
-    // one vectorised loop. (3) Scatter forces, torques and shear forces.
+    // Three passes over blocks of the near list. (1) CollectTouching: find the
+    // touching pairs without a data-dependent branch (compaction by index
+    // increment): the contact/no-contact decision is close to a coin toss in a
+    // dense packing and would otherwise cost a branch misprediction per pair. Each
+    // pair's branch vector, |l|² and radii go to the next free slot of the batch
+    // and its offset in the block beside them; the slot is kept only when the pair
+    // touches. (Stores bound these passes, one per cycle on some cores: the near
+    // list keeps the pairs that do not touch few, which the whole neighbour list
+    // did not.) (2) GatherKinematics: the rest of the touching pairs' kinematics
+    // into the batch; the contact law on it in one vectorised loop. (3) Scatter
+    // forces, torques and shear forces.
     ContactBlock& b = blocks_[t];
     ContactBatch& batch = b.batch;
     // The pairs walked are the near list's (the listed pairs that may touch,
@@ -525,8 +522,9 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
           local.stiffness[5] = std::fma(weight * yy, zz, local.stiffness[5]);
         }
       };
-      int k = 0;
-      for (; k + 1 < count; k += 2) {
+      // An odd last contact reads slot `count` as its column partner
+      // (count < kSize when odd) and scatters alone.
+      for (int k = 0; k < count; k += 2) {
         const Pair fx = LoadPair(batch.fx + k), fy = LoadPair(batch.fy + k);
         Pair tix{}, tiy{}, tjx{}, tjy{}, sx{}, sy{};
         if constexpr (kUseFriction) {
@@ -538,14 +536,8 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
           sy = LoadPair(batch.sy + k);
         }
         scatter(k, Firsts(fx, fy), Firsts(tix, tiy), Firsts(tjx, tjy), Firsts(sx, sy));
-        scatter(k + 1, Seconds(fx, fy), Seconds(tix, tiy), Seconds(tjx, tjy), Seconds(sx, sy));
-      }
-      if (k < count) {
-        if constexpr (kUseFriction) {
-          scatter(k, Pair{batch.fx[k], batch.fy[k]}, Pair{batch.tix[k], batch.tiy[k]},
-                  Pair{batch.tjx[k], batch.tjy[k]}, Pair{batch.sx[k], batch.sy[k]});
-        } else {
-          scatter(k, Pair{batch.fx[k], batch.fy[k]}, Pair{}, Pair{}, Pair{});
+        if (k + 1 < count) {
+          scatter(k + 1, Seconds(fx, fy), Seconds(tix, tiy), Seconds(tjx, tjy), Seconds(sx, sy));
         }
       }
       if (advance_inline) {
