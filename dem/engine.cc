@@ -114,25 +114,23 @@ inline double AdvanceParticle(const Vec4& force, const Vec4& torque, double dt, 
 // Pass (1) of the pair loop over the near pairs [q0, q1) of one thread:
 // each pair's branch vector, |l|² and radii to the next free slot of the
 // batch and its offset in the block beside them, the slot kept only when
-// the pair touches; returns the number of touching pairs. A sphere j at or
-// past `own_end` (another thread's) is read from the ghost copies. With
-// kForget a pair that stopped touching forgets its history. A function of
-// its own so that the compiler allocates the registers of this tight loop
-// alone (inlined into the kernel, it kept the list's pointers on the
-// stack).
+// the pair touches; returns the number of touching pairs. With kForget a
+// pair that stopped touching forgets its history. A function of its own
+// so that the compiler allocates the registers of this tight loop alone
+// (inlined into the kernel, it kept the list's pointers on the stack).
 template <bool kForget, bool kRolling>
-__attribute__((noinline)) int CollectTouching(const NearList::Pairs& pairs, int64_t q0, int64_t q1,
-                                              const Vec4* position, const Vec4* ghost_position,
-                                              int64_t own_end, double lx, double ly, double lz,
-                                              uint8_t* loaded, Vec3* shear, Vec3* rolling,
-                                              uint8_t* offset, ContactBatch& batch) {
+__attribute__((noinline)) int CollectTouching(const NearList::Pairs& pairs, int64_t q0,
+                                              int64_t q1, const Vec4* position, double lx,
+                                              double ly, double lz, uint8_t* loaded, Vec3* shear,
+                                              Vec3* rolling, uint8_t* offset,
+                                              ContactBatch& batch) {
   const int32_t* near_i = pairs.i.data();
   const int32_t* near_j = pairs.j.data();
   const int64_t* near_p = pairs.p.data();
   int count = 0;
   for (int64_t q = q0; q < q1; ++q) {
     const int32_t i = near_i[q], j = near_j[q];
-    const Vec4 pi = position[i], pj = (j < own_end ? position : ghost_position)[j];
+    const Vec4 pi = position[i], pj = position[j];
     const Vec3 l = Branch(pi, pj, lx, ly, lz);
     const double distance2 = Dot(l, l);
     const double reach = pi.w + pj.w;
@@ -174,10 +172,9 @@ __attribute__((noinline)) int CollectTouching(const NearList::Pairs& pairs, int6
 // (count < kSize when odd).
 template <bool kRolling>
 __attribute__((noinline)) void GatherKinematics(const NearList::Pairs& pairs, int64_t q0,
-                                                const uint8_t* offset, int count, const Vec3* shear,
-                                                const Vec3* rolling, const Vec4* velocity,
-                                                const Vec4* spin, const Vec4* ghost_velocity,
-                                                const Vec4* ghost_spin, int64_t own_end, double gx,
+                                                const uint8_t* offset, int count,
+                                                const Vec3* shear, const Vec3* rolling,
+                                                const Vec4* velocity, const Vec4* spin, double gx,
                                                 double gy, double gz, ContactBatch& batch) {
   const int32_t* near_i = pairs.i.data();
   const int32_t* near_j = pairs.j.data();
@@ -199,26 +196,21 @@ __attribute__((noinline)) void GatherKinematics(const NearList::Pairs& pairs, in
         batch.rmz[k + u] = moment.z;
       }
     }
-    // j's velocity and spin: its own arrays' or, another thread's sphere, the ghosts'.
-    const Vec4* vja = ja < own_end ? velocity : ghost_velocity;
-    const Vec4* vjb = jb < own_end ? velocity : ghost_velocity;
-    const Vec4* wja = ja < own_end ? spin : ghost_spin;
-    const Vec4* wjb = jb < own_end ? spin : ghost_spin;
-    const Pair dxy_a = LoadPair(&vja[ja].x) - LoadPair(&velocity[ia].x);
-    const Pair dzw_a = LoadPair(&vja[ja].z) - LoadPair(&velocity[ia].z);
-    const Pair dxy_b = LoadPair(&vjb[jb].x) - LoadPair(&velocity[ib].x);
-    const Pair dzw_b = LoadPair(&vjb[jb].z) - LoadPair(&velocity[ib].z);
+    const Pair dxy_a = LoadPair(&velocity[ja].x) - LoadPair(&velocity[ia].x);
+    const Pair dzw_a = LoadPair(&velocity[ja].z) - LoadPair(&velocity[ia].z);
+    const Pair dxy_b = LoadPair(&velocity[jb].x) - LoadPair(&velocity[ib].x);
+    const Pair dzw_b = LoadPair(&velocity[jb].z) - LoadPair(&velocity[ib].z);
     StorePair(Firsts(dxy_a, dxy_b) + gx * LoadPair(batch.bx + k), batch.vx + k);
     StorePair(Seconds(dxy_a, dxy_b) + gy * LoadPair(batch.by + k), batch.vy + k);
     StorePair(Firsts(dzw_a, dzw_b) + gz * LoadPair(batch.bz + k), batch.vz + k);
     const Pair wi_xy_a = LoadPair(&spin[ia].x), wi_xy_b = LoadPair(&spin[ib].x);
-    const Pair wj_xy_a = LoadPair(&wja[ja].x), wj_xy_b = LoadPair(&wjb[jb].x);
+    const Pair wj_xy_a = LoadPair(&spin[ja].x), wj_xy_b = LoadPair(&spin[jb].x);
     StorePair(Firsts(wi_xy_a, wi_xy_b), batch.wix + k);
     StorePair(Seconds(wi_xy_a, wi_xy_b), batch.wiy + k);
     StorePair(Pair{spin[ia].z, spin[ib].z}, batch.wiz + k);
     StorePair(Firsts(wj_xy_a, wj_xy_b), batch.wjx + k);
     StorePair(Seconds(wj_xy_a, wj_xy_b), batch.wjy + k);
-    StorePair(Pair{wja[ja].z, wjb[jb].z}, batch.wjz + k);
+    StorePair(Pair{spin[ja].z, spin[jb].z}, batch.wjz + k);
   }
 }
 
@@ -319,11 +311,6 @@ Engine::Engine(const Packing& packing, const Material& material, const Options& 
   const int extra = options.threads - 1;
   thread_force_.assign(extra, std::vector<Vec4>(n));
   thread_torque_.assign(friction_ ? extra : 0, std::vector<Vec4>(n));
-  if (extra > 0) {
-    ghost_position_.resize(n);
-    ghost_velocity_.resize(n);
-    ghost_spin_.resize(n);
-  }
   thread_sums_.assign(options.threads, Sums{});
   thread_max2_.assign(options.threads, 0.0);
   blocks_.resize(options.threads);
@@ -367,9 +354,6 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
   Vec4* position = position_.data();
   Vec4* velocity = velocity_.data();
   Vec4* spin = spin_.data();
-  Vec4* ghost_position = ghost_position_.data();
-  Vec4* ghost_velocity = ghost_velocity_.data();
-  Vec4* ghost_spin = ghost_spin_.data();
   const double dt = options_.time_step;
   const double chi = material_.local_damping;
   const bool damping = damping_;
@@ -391,9 +375,8 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
   // (locals whose address is not taken): as shared variables they would be
   // read again from memory after each one-byte store of the passes, which
   // may alias anything.
-#pragma omp parallel num_threads(threads)                                                  \
-    firstprivate(lx, ly, lz, gx, gy, gz, shear, rolling, loaded, position, velocity, spin, \
-                 ghost_position, ghost_velocity, ghost_spin)
+#pragma omp parallel num_threads(threads) \
+    firstprivate(lx, ly, lz, gx, gy, gz, shear, rolling, loaded, position, velocity, spin)
   {
     const int t = omp_get_thread_num();
     const int64_t begin = n * t / threads, end = n * (t + 1) / threads;
@@ -407,32 +390,6 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     Vec4* torque = kUseFriction ? torque_.data() : nullptr;
     Vec4* halo_force = t + 1 < threads ? thread_force_[t].data() : nullptr;
     Vec4* halo_torque = kUseFriction && t + 1 < threads ? thread_torque_[t].data() : nullptr;
-    // The pairs walked are the near list's (the listed pairs that may touch,
-    // in list order): q indexes them, near_p[q] is the pair in the list (its
-    // history), near_i[q] and near_j[q] its spheres.
-    const NearList::Pairs& near_pairs = near_.pairs(t);
-    if (threads > 1) {
-      // The ghost copies of this thread's particles that earlier threads'
-      // pairs reach (exact copies: the results do not change), and this
-      // thread's halo entries of its last pass, which their owners have
-      // added, back to zero.
-      for (int u = 0; u < t; ++u) {
-        const std::vector<int32_t>& later = near_.pairs(u).later;
-        for (auto j = std::lower_bound(later.begin(), later.end(), begin);
-             j != later.end() && *j < end; ++j) {
-          ghost_position[*j] = position[*j];
-          ghost_velocity[*j] = velocity[*j];
-          ghost_spin[*j] = spin[*j];
-        }
-      }
-      if (halo_force != nullptr) {
-        for (const int32_t j : near_pairs.later) {
-          halo_force[j] = Vec4{};
-          if constexpr (kUseFriction) halo_torque[j] = Vec4{};
-        }
-      }
-#pragma omp barrier
-    }
     std::fill(force + begin, force + end, Vec4{});
     if constexpr (kUseFriction) std::fill(torque + begin, torque + end, Vec4{});
     Sums local;
@@ -458,6 +415,10 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     // forces, torques and shear forces.
     ContactBlock& b = blocks_[t];
     ContactBatch& batch = b.batch;
+    // The pairs walked are the near list's (the listed pairs that may touch,
+    // in list order): q indexes them, near_p[q] is the pair in the list (its
+    // history), near_i[q] and near_j[q] its spheres.
+    const NearList::Pairs& near_pairs = near_.pairs(t);
     const int32_t* near_i = near_pairs.i.data();
     const int32_t* near_j = near_pairs.j.data();
     const int64_t* near_p = near_pairs.p.data();
@@ -465,13 +426,11 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     constexpr int kBlock = ContactBatch::kSize;
     for (int64_t q0 = 0; q0 < near_end; q0 += kBlock) {
       const int64_t q1 = std::min<int64_t>(q0 + kBlock, near_end);
-      constexpr bool kForget = kUseFriction && !kReevaluate;
-      const int count =
-          CollectTouching<kForget, kRolling>(near_pairs, q0, q1, position, ghost_position, end, lx,
-                                             ly, lz, loaded, shear, rolling, b.offset, batch);
+      const int count = CollectTouching<kUseFriction && !kReevaluate, kRolling>(
+          near_pairs, q0, q1, position, lx, ly, lz, loaded, shear, rolling, b.offset, batch);
       if constexpr (kUseFriction && !kReevaluate) {
         GatherKinematics<kRolling>(near_pairs, q0, b.offset, count, shear, rolling, velocity, spin,
-                                   ghost_velocity, ghost_spin, end, gx, gy, gz, batch);
+                                   gx, gy, gz, batch);
       }
       if constexpr (kReevaluate) {
         // Forces again at unchanged positions (rare): the scalar evaluator
@@ -594,15 +553,17 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
       // Each thread adds to its own particles the halos of the threads
       // before it, in the order of the sums before halos existed: the
       // earlier threads' sums in thread order, then its own
-      // (((S_0 + S_1) + …) + S_t, addition being commutative). The threads
-      // that wrote the halos zero them before their next pass.
-      auto add_halos = [&](const std::vector<std::vector<Vec4>>& halos, Vec4& own, int64_t i) {
+      // (((S_0 + S_1) + …) + S_t, addition being commutative), and zeroes
+      // the halo entries for the next evaluation.
+      auto add_halos = [&](std::vector<std::vector<Vec4>>& halos, Vec4& own, int64_t i) {
         Vec4 sum = halos[0][i];
+        halos[0][i] = Vec4{};
         for (int u = 1; u < t; ++u) {
-          const Vec4& h = halos[u][i];
+          Vec4& h = halos[u][i];
           sum.x += h.x;
           sum.y += h.y;
           sum.z += h.z;
+          h = Vec4{};
         }
         own.x = sum.x + own.x;
         own.y = sum.y + own.y;
@@ -663,16 +624,6 @@ void Engine::RunKernel(const PairLaw& law, bool friction, unsigned flags,
   }
 }
 
-void Engine::ClearHalos() {
-  if (!near_.built()) return;
-  for (size_t t = 0; t < thread_force_.size(); ++t) {
-    for (const int32_t j : near_.pairs(static_cast<int>(t)).later) {
-      thread_force_[t][j] = Vec4{};
-      if (!thread_torque_.empty()) thread_torque_[t][j] = Vec4{};
-    }
-  }
-}
-
 void Engine::PrepareList() {
   if (!forces_current_ && neighbors_.built()) {
     TightenDisplacement(neighbors_, position_, cell_, options_.threads, &max_displacement_);
@@ -722,7 +673,6 @@ void Engine::PrepareList() {
     history.shear = neighbors_.shear().data();
     if (!neighbors_.rolling().empty()) history.rolling = neighbors_.rolling().data();
   }
-  ClearHalos();  // written under the list about to be replaced
   near_.Build(neighbors_, position_, cell_, near_skin_, options_.threads, history);
   near_displacement_ = 0.0;
   near_build_step_ = step_;
@@ -882,7 +832,6 @@ void Engine::Restore(State state) {
   forces_current_ = state.forces_current;
   neighbors_.Restore(std::move(state.neighbors));
   DeriveLoadedFlags();
-  ClearHalos();  // written under the near list about to be forgotten
   near_.Clear();
 }
 

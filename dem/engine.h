@@ -211,21 +211,9 @@ class Engine {
   std::vector<Vec4> position_, velocity_, spin_, force_, torque_;
   std::vector<int64_t> id_;
   // Halos of threads 0..T−2: the forces and torques each sums on particles
-  // past its own (force_/torque_ hold each thread's own particles). Only
-  // the entries of its near list's `later` particles are ever non-zero;
-  // each thread zeroes those itself before its pass (ClearHalos before the
-  // near list changes), so that a halo's cache lines stay with the thread
-  // that sums into them.
+  // past its own (zero between evaluations; force_/torque_ hold each
+  // thread's own particles).
   std::vector<std::vector<Vec4>> thread_force_, thread_torque_;
-  // With more than one thread: copies of the position, velocity and spin of
-  // the particles that an earlier thread's pairs reach (the `later` ones),
-  // written by their owner at the start of each force pass and read by the
-  // others, which thus never read another thread's particle arrays (whose
-  // owner writes them at every step: between cores that share no cache,
-  // each such read moved a cache line, bench/README.md).
-  std::vector<Vec4> ghost_position_, ghost_velocity_, ghost_spin_;
-  // Zeroes the halo entries the current near list lets the threads write.
-  void ClearHalos();
   std::vector<Sums> thread_sums_;
   std::vector<double> thread_max2_;  // per thread: the largest |v|² it advanced
   // Per-thread scratch of the pair loop: a block of touching pairs, each

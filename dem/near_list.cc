@@ -61,12 +61,6 @@ void NearList::Build(const NeighborList& list, const std::vector<Vec4>& s,
       }
     }
     mine.count = count;
-    mine.later.clear();
-    for (int64_t q = 0; q < count; ++q) {
-      if (mine.j[q] >= end) mine.later.push_back(mine.j[q]);
-    }
-    std::sort(mine.later.begin(), mine.later.end());
-    mine.later.erase(std::unique(mine.later.begin(), mine.later.end()), mine.later.end());
   }
   build_cell_ = cell;
   skin_ = skin;

@@ -85,11 +85,6 @@ class NearList {
     std::vector<int64_t> p;
     int64_t count = 0;
     int64_t size() const { return count; }
-    // The spheres j of these pairs that belong to a later thread (j at or
-    // after the thread's last particle), ascending and each once: the
-    // particles whose data the thread reads from another's (Engine's ghost
-    // copies and halos).
-    std::vector<int32_t> later;
   };
 
   bool built() const { return built_; }

@@ -340,7 +340,7 @@ TEST(Engine, ResultsDoNotDependOnTheSkin) {
 // engine, and must continue bit for bit, its contact histories too (the
 // near build clears a left-out pair's history exactly as the force pass
 // would). The engine restored into may also have run before, on another
-// sample (its halos then hold that run's forces, which must not leak in).
+// sample: nothing of that run (its lists, its threads' halos) may leak in.
 TEST(Engine, ARestoredEngineRebuildsItsNearListAndContinuesBitIdentically) {
   const Packing packing = SmallSample(4);
   Material material = Elastic(0.5);
