@@ -474,20 +474,29 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
     const int32_t* near_j = near_pairs.j.data();
     const int64_t* near_p = near_pairs.p.data();
     const int64_t near_end = near_pairs.size();
+    // Friction and a fresh evaluation: the histories advance (a broken
+    // contact forgets its own) and the kinematics are gathered.
+    constexpr bool kGather = kUseFriction && !kReevaluate;
     PrefetchTargets prefetch;
     if (threads > 1 || 5.0 * sizeof(Vec4) * static_cast<double>(n) > kPrefetchFromBytes) {
       prefetch.position = position;
-      if constexpr (kUseFriction && !kReevaluate) {
-        prefetch = {position, velocity, spin, force, halo_force, torque, halo_torque, end};
+      if constexpr (kGather) {
+        prefetch.velocity = velocity;
+        prefetch.spin = spin;
+        prefetch.force = force;
+        prefetch.halo_force = halo_force;
+        prefetch.torque = torque;
+        prefetch.halo_torque = halo_torque;
+        prefetch.own_end = end;
       }
     }
     constexpr int kBlock = ContactBatch::kSize;
     for (int64_t q0 = 0; q0 < near_end; q0 += kBlock) {
       const int64_t q1 = std::min<int64_t>(q0 + kBlock, near_end);
-      const int count = CollectTouching < kUseFriction && !kReevaluate,
-                kRolling > (near_pairs, q0, q1, position, lx, ly, lz, loaded, shear, rolling,
-                            b.offset, batch, prefetch);
-      if constexpr (kUseFriction && !kReevaluate) {
+      const int count =
+          CollectTouching<kGather, kRolling>(near_pairs, q0, q1, position, lx, ly, lz, loaded,
+                                             shear, rolling, b.offset, batch, prefetch);
+      if constexpr (kGather) {
         GatherKinematics<kRolling>(near_pairs, q0, b.offset, count, shear, rolling, velocity, spin,
                                    gx, gy, gz, batch);
       }
