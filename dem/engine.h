@@ -131,6 +131,8 @@ class Engine {
   const std::vector<Vec4>& velocities() const { return velocity_; }
   const std::vector<Vec4>& spins() const { return spin_; }
   const std::vector<Vec4>& forces() const { return force_; }
+  // Empty without friction (no torques are summed).
+  const std::vector<Vec4>& torques() const { return torque_; }
   const std::vector<int64_t>& ids() const { return id_; }
   Vec3 Position(size_t i) const {
     return {cell_[0] * position_[i].x, cell_[1] * position_[i].y, cell_[2] * position_[i].z};

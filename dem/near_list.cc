@@ -61,6 +61,17 @@ void NearList::Build(const NeighborList& list, const std::vector<Vec4>& s,
       }
     }
     mine.count = count;
+    mine.remote.clear();
+    if (end < n) {
+      std::vector<uint8_t> reached(static_cast<size_t>(n - end), 0);
+      for (int64_t q = 0; q < count; ++q) {
+        const int32_t j = mine.j[q];
+        if (j >= end) reached[j - end] = 1;
+      }
+      for (int64_t k = 0; k < n - end; ++k) {
+        if (reached[k] != 0) mine.remote.push_back(static_cast<int32_t>(end + k));
+      }
+    }
   }
   build_cell_ = cell;
   skin_ = skin;

@@ -84,6 +84,9 @@ class NearList {
     std::vector<int32_t> i, j;
     std::vector<int64_t> p;
     int64_t count = 0;
+    // The spheres of other threads (j past the thread's own particles) that
+    // its pairs reach, ascending, each once.
+    std::vector<int32_t> remote;
     int64_t size() const { return count; }
   };
 
