@@ -12,6 +12,7 @@
 #include "app/signals.h"
 #include "app/study_commands.h"
 #include "app/thread_count.h"
+#include "common/blas_threads.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/output_path.h"
@@ -157,6 +158,9 @@ void RegisterExportCommand(CLI::App& app) {
 }  // namespace granasym
 
 int main(int argc, char** argv) {
+  // Before any thread of granasym's own: OpenBLAS's pool, if the system BLAS
+  // is OpenBLAS, would spin on the cores the DEM's threads need.
+  granasym::KeepBlasSerial();
   // A file-size limit (ulimit -f) is a full disk to granasym: the write fails
   // with EFBIG and is reported (status 1), instead of the kernel killing the
   // process with SIGXFSZ and leaving its temporary files.
