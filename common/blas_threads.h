@@ -13,6 +13,8 @@ namespace granasym {
 
 enum class BlasPool {
   kAbsent,      // no OpenBLAS in the process: nothing to do
+  kNoPool,      // OpenBLAS built serial or with OpenMP: no pool of its own (and its
+                // openblas_set_num_threads would set the process's OpenMP default)
   kLeftToUser,  // OPENBLAS_NUM_THREADS (or GOTO_NUM_THREADS) is set: the user's choice stands
   kStopped,     // OpenBLAS set to one thread and its pool's threads ended
 };

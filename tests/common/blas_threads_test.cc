@@ -30,9 +30,19 @@ TEST(BlasThreads, OpenBlasIsKeptOnOneThreadAndItsPoolEnded) {
   using GetThreads = int (*)();
   using Dot = double (*)(const int*, const double*, const int*, const double*, const int*);
   auto get_threads = reinterpret_cast<GetThreads>(dlsym(openblas, "openblas_get_num_threads"));
+  auto parallel = reinterpret_cast<GetThreads>(dlsym(openblas, "openblas_get_parallel"));
   auto dot = reinterpret_cast<Dot>(dlsym(openblas, "ddot_"));
   ASSERT_NE(get_threads, nullptr);
+  ASSERT_NE(parallel, nullptr);
   ASSERT_NE(dot, nullptr);
+  if (parallel() != 1) {
+    // A serial or OpenMP build has no pool of its own: left as it is.
+    const int threads = get_threads(), before = ThreadCount();
+    EXPECT_EQ(KeepBlasSerial(), BlasPool::kNoPool);
+    EXPECT_EQ(get_threads(), threads);
+    EXPECT_EQ(ThreadCount(), before);
+    return;
+  }
   // Its pool: one thread fewer than the cores (the caller is the first).
   const int pool = get_threads() - 1;
   const int before = ThreadCount();
