@@ -652,19 +652,18 @@ void Engine::ComputeForcesImpl(const PairLaw& law) {
 #pragma omp barrier
     if (threads > 1) {
       // Each thread adds to its own particles the halos of the threads
-      // before it, in the order of the sums before halos existed: the
-      // earlier threads' sums in thread order, then its own
-      // (((S_0 + S_1) + …) + S_t, addition being commutative), and zeroes
-      // the halo entries for the next evaluation.
-      // Only the spheres that an earlier thread's pairs reach (its near
-      // list's `remote`) can have a halo entry that is not zero, and adding
-      // a zero changes no sum here (none is −0: each starts from +0 and
-      // x + y is −0 only for x = y = −0). So the halos of threads 1 … t−1
-      // are added into thread 0's, in thread order, and that into the
-      // thread's own sums; a sphere that several lists name adds a zero
-      // the second time. At 10 000 spheres on 2 threads the reached spheres
-      // are a third of the second thread's, and their lines come from the
-      // other core (bench/README.md, eighth round).
+      // before it, in the order of the sums before halos existed
+      // ((((S_0 + S_1) + …) + S_t, addition being commutative), and zeroes
+      // them for the next evaluation. It visits only the spheres that an
+      // earlier thread's pairs reach (that thread's near list's `remote`):
+      // no other halo entry is non-zero, and adding a zero changes no sum
+      // here (none is −0: each starts from +0, and x + y is −0 only for
+      // x = y = −0). The halos of threads 1 … t−1 go into thread 0's, in
+      // thread order, and that into the thread's own sums; a sphere that
+      // several lists name adds a zero the second time. At 10 000 spheres
+      // on 2 threads the reached spheres are a third of the second
+      // thread's, and their lines come from the other core (bench/README.md,
+      // eighth round).
       auto reached = [&](int u) {
         const std::vector<int32_t>& remote = near_.pairs(u).remote;
         const auto first = std::lower_bound(remote.begin(), remote.end(), begin);

@@ -85,7 +85,8 @@ class NearList {
     std::vector<int64_t> p;
     int64_t count = 0;
     // The spheres of other threads (j past the thread's own particles) that
-    // its pairs reach, ascending, each once.
+    // its pairs reach, ascending, each once: the only ones whose halo entry
+    // this thread can write (Engine's halo sum visits only these).
     std::vector<int32_t> remote;
     int64_t size() const { return count; }
   };
