@@ -1,12 +1,30 @@
-// The machine's memory bandwidth, as the DEM engine's passes see it: a read
-// pass (a sum), a copy and a triad (a = b + s c) over arrays of doubles, at
-// sizes that live in L2, in L3 and in memory, on 1 and 2 threads. The engine's
-// per-particle passes (the integrator: ~160 bytes read and ~96 written per
-// particle) are compared against these rates in bench/README.md.
+// The machine's memory as the DEM engine's passes see it, on 1 and 2
+// threads:
+// - BM_Memory: bandwidth of a read pass (a sum), a copy and a triad
+//   (a = b + s c) over arrays of doubles, at sizes that live in L2, in L3 and
+//   in memory. The engine's per-particle passes (the integrator: ~160 bytes
+//   read and ~96 written per particle) are compared against these rates in
+//   bench/README.md.
+// - BM_Latency: the time of one load that depends on the one before, through
+//   a random cycle over the cache lines of an array, by array size. Where a
+//   virtual machine's sysfs names no caches this is how their sizes are
+//   read: the time steps up past each level (the DEM's random reads of the
+//   spheres j pay these latencies).
+// - BM_HandOff: one way of a cache line handed between two threads that
+//   take turns writing it (each waits for the other's value, then writes its
+//   own), pinned to the first two CPUs the process may use. It is what a line written by one thread of the engine and read by
+//   the other costs, and what a barrier costs at least; on a virtual
+//   machine it shows whether the two vCPUs share a cache at the moment.
 #include <benchmark/benchmark.h>
 #include <omp.h>
+#include <pthread.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <numeric>
+#include <random>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -46,6 +64,107 @@ BENCHMARK(BM_Memory)
     ->ArgNames({"bytes", "threads", "kind"})
     ->ArgsProduct({{1 << 20, 8 << 20, 256 << 20}, {1, 2}, {kRead, kCopy, kTriad}})
     ->UseRealTime();
+
+// One cache line of the chase: the index of the next line, and padding.
+struct alignas(64) Line {
+  int64_t next;
+  char padding[56];
+};
+
+void BM_Latency(benchmark::State& state) {
+  const int64_t lines = state.range(0) / static_cast<int64_t>(sizeof(Line));
+  // A single random cycle through every line (Sattolo's shuffle of the
+  // order, then each line names its successor), so that neither the
+  // hardware prefetchers nor a short sub-cycle can help.
+  std::vector<int64_t> order(static_cast<size_t>(lines));
+  std::iota(order.begin(), order.end(), 0);
+  std::mt19937_64 random(12345);
+  for (int64_t k = lines - 1; k > 0; --k) {
+    std::uniform_int_distribution<int64_t> pick(0, k - 1);
+    std::swap(order[k], order[pick(random)]);
+  }
+  std::vector<Line> chase(static_cast<size_t>(lines));
+  for (int64_t k = 0; k < lines; ++k) chase[order[k]].next = order[(k + 1) % lines];
+  constexpr int64_t kLoads = 1 << 20;
+  int64_t at = 0;
+  for (int64_t k = 0; k < lines; ++k) at = chase[at].next;  // warm the caches and the TLB
+  for (auto _ : state) {
+    for (int64_t k = 0; k < kLoads; ++k) at = chase[at].next;
+    benchmark::DoNotOptimize(at);
+  }
+  state.counters["ns_per_load"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * kLoads,
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+BENCHMARK(BM_Latency)
+    ->ArgName("bytes")
+    ->RangeMultiplier(2)
+    ->Range(64 << 10, 256 << 20)
+    ->UseRealTime();
+
+// Pins the calling thread to one CPU.
+void PinTo(int cpu) {
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(cpu, &one);
+  pthread_setaffinity_np(pthread_self(), sizeof one, &one);
+}
+
+void BM_HandOff(benchmark::State& state) {
+  constexpr int64_t kHandOffs = 1 << 18;  // per iteration, both ways together
+  // The CPUs this thread may use, read before it is pinned (a thread it
+  // starts inherits its mask) and given back at the end.
+  cpu_set_t allowed;
+  if (pthread_getaffinity_np(pthread_self(), sizeof allowed, &allowed) != 0) {
+    state.SkipWithError("cannot read the CPU affinity");
+    return;
+  }
+  // The first two CPUs it may use.
+  int cpus[2] = {-1, -1};
+  for (int cpu = 0, found = 0; cpu < CPU_SETSIZE && found < 2; ++cpu) {
+    if (CPU_ISSET(cpu, &allowed)) cpus[found++] = cpu;
+  }
+  if (cpus[1] < 0) {
+    state.SkipWithError("needs two CPUs (the process may use one)");
+    return;
+  }
+  alignas(64) std::atomic<int64_t> turn{0};
+  std::atomic<bool> stop{false};
+  // The partner answers every odd value with the next even one.
+  std::thread partner([&] {
+    PinTo(cpus[1]);
+    int64_t expected = 1;
+    while (true) {
+      int64_t seen;
+      while ((seen = turn.load(std::memory_order_acquire)) != expected) {
+        if (stop.load(std::memory_order_relaxed)) return;
+      }
+      turn.store(expected + 1, std::memory_order_release);
+      expected += 2;
+    }
+  });
+  PinTo(cpus[0]);
+  int64_t next = 0;
+  for (auto _ : state) {
+    for (int64_t k = 0; k < kHandOffs; k += 2) {
+      while (turn.load(std::memory_order_acquire) != next) {
+      }
+      turn.store(next + 1, std::memory_order_release);
+      next += 2;
+    }
+  }
+  while (turn.load(std::memory_order_acquire) != next) {
+  }
+  stop.store(true, std::memory_order_relaxed);
+  partner.join();
+  pthread_setaffinity_np(pthread_self(), sizeof allowed, &allowed);
+  state.counters["ns_one_way"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * kHandOffs,
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+BENCHMARK(BM_HandOff)->UseRealTime();
 
 }  // namespace
 
