@@ -12,9 +12,10 @@
 //   spheres j pay these latencies).
 // - BM_HandOff: one way of a cache line handed between two threads that
 //   take turns writing it (each waits for the other's value, then writes its
-//   own), pinned to the first two CPUs the process may use. It is what a line written by one thread of the engine and read by
-//   the other costs, and what a barrier costs at least; on a virtual
-//   machine it shows whether the two vCPUs share a cache at the moment.
+//   own), pinned to the first two CPUs the process may use. It is what a
+//   line written by one thread of the engine and read by the other costs,
+//   and what a barrier costs at least; on a virtual machine it shows
+//   whether the two vCPUs share a cache at the moment.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 #include <pthread.h>
@@ -92,9 +93,9 @@ void BM_Latency(benchmark::State& state) {
     for (int64_t k = 0; k < kLoads; ++k) at = chase[at].next;
     benchmark::DoNotOptimize(at);
   }
-  state.counters["ns_per_load"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * kLoads,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_load"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * kLoads,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 BENCHMARK(BM_Latency)
@@ -136,8 +137,7 @@ void BM_HandOff(benchmark::State& state) {
     PinTo(cpus[1]);
     int64_t expected = 1;
     while (true) {
-      int64_t seen;
-      while ((seen = turn.load(std::memory_order_acquire)) != expected) {
+      while (turn.load(std::memory_order_acquire) != expected) {
         if (stop.load(std::memory_order_relaxed)) return;
       }
       turn.store(expected + 1, std::memory_order_release);
@@ -159,9 +159,9 @@ void BM_HandOff(benchmark::State& state) {
   stop.store(true, std::memory_order_relaxed);
   partner.join();
   pthread_setaffinity_np(pthread_self(), sizeof allowed, &allowed);
-  state.counters["ns_one_way"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * kHandOffs,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_one_way"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * kHandOffs,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 BENCHMARK(BM_HandOff)->UseRealTime();
