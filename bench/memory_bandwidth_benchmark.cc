@@ -16,6 +16,14 @@
 //   line written by one thread of the engine and read by the other costs,
 //   and what a barrier costs at least; on a virtual machine it shows
 //   whether the two vCPUs share a cache at the moment.
+// - BM_Gather: loads that do not depend on each other, at random places of
+//   an array of the thread's own, by array size, on 1 and 2 threads: what
+//   the DEM's gathers cost when nothing is handed over. A second thread
+//   that makes each thread's loads dearer shares a cache level or the
+//   memory interface with the first.
+// - BM_Arithmetic: independent multiply-adds in registers on 1 and 2
+//   threads. Two vCPUs that are the two hardware threads of one core halve
+//   each other's rate here; two cores do not.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 #include <pthread.h>
@@ -165,6 +173,87 @@ void BM_HandOff(benchmark::State& state) {
 }
 
 BENCHMARK(BM_HandOff)->UseRealTime();
+
+void BM_Gather(benchmark::State& state) {
+  const int64_t n = state.range(0) / static_cast<int64_t>(sizeof(double));
+  const int threads = static_cast<int>(state.range(1));
+  constexpr int kIndices = 1 << 16;
+  constexpr int kRounds = 16;  // passes over the indices per iteration
+  // Each thread's array and indices, written (first touched) by that thread.
+  std::vector<std::vector<double>> values(threads);
+  std::vector<std::vector<uint32_t>> indices(threads);
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    values[t].assign(static_cast<size_t>(n), 1.0);
+    std::mt19937 random(static_cast<uint32_t>(t) + 1);
+    std::uniform_int_distribution<int64_t> pick(0, n - 1);
+    indices[t].resize(kIndices);
+    for (uint32_t& k : indices[t]) k = static_cast<uint32_t>(pick(random));
+  }
+  double sink = 0;
+  for (auto _ : state) {
+    double sum = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : sum)
+    {
+      const int t = omp_get_thread_num();
+      const double* v = values[t].data();
+      const uint32_t* at = indices[t].data();
+      // Four sums, so that the loads, not the additions, set the pace.
+      double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+      for (int r = 0; r < kRounds; ++r) {
+        for (int k = 0; k < kIndices; k += 4) {
+          s0 += v[at[k]];
+          s1 += v[at[k + 1]];
+          s2 += v[at[k + 2]];
+          s3 += v[at[k + 3]];
+        }
+      }
+      sum += (s0 + s1) + (s2 + s3);
+    }
+    sink += sum;
+  }
+  benchmark::DoNotOptimize(sink);
+  state.counters["ns_per_load"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * kRounds * kIndices,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);  // per thread
+}
+
+BENCHMARK(BM_Gather)
+    ->ArgNames({"bytes", "threads"})
+    ->ArgsProduct({{256 << 10, 1 << 20, 4 << 20, 16 << 20}, {1, 2}})
+    ->UseRealTime();
+
+volatile double arithmetic_factor = 0.9999999;
+volatile double arithmetic_term = 1e-7;
+
+void BM_Arithmetic(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  constexpr int kChains = 64;  // independent: the compiler spreads them over vector registers
+  constexpr int64_t kSteps = 1 << 20;
+  const double factor = arithmetic_factor, term = arithmetic_term;
+  double sink = 0;
+  for (auto _ : state) {
+    double sum = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : sum)
+    {
+      double chain[kChains];
+      for (int k = 0; k < kChains; ++k) chain[k] = 1.0 + 1e-9 * k;
+      for (int64_t step = 0; step < kSteps; ++step) {
+#pragma omp simd
+        for (int k = 0; k < kChains; ++k) chain[k] = chain[k] * factor + term;
+      }
+      for (int k = 0; k < kChains; ++k) sum += chain[k];
+    }
+    sink += sum;
+  }
+  benchmark::DoNotOptimize(sink);
+  state.counters["Gflop_per_s_per_thread"] =
+      benchmark::Counter(2.0 * kChains * kSteps * static_cast<double>(state.iterations()) / 1e9,
+                         benchmark::Counter::kIsRate);
+}
+
+BENCHMARK(BM_Arithmetic)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime();
 
 }  // namespace
 
