@@ -159,6 +159,7 @@ __attribute__((noinline)) int CollectTouching(const NearList::Pairs& pairs, int6
   const int64_t* near_p = pairs.p.data();
   // Locals, which the one-byte stores below cannot alias.
   const int64_t last = pairs.size() - 1;
+  const Lanes cell = {lx, ly, lz, 0.0};
   const Vec4* ahead_position = targets.position;
   const Vec4* velocity = targets.velocity;
   const Vec4* spin = targets.spin;
@@ -181,18 +182,23 @@ __attribute__((noinline)) int CollectTouching(const NearList::Pairs& pairs, int6
       }
     }
     const int32_t i = near_i[q], j = near_j[q];
-    const Vec4 pi = position[i], pj = position[j];
-    const Vec3 l = Branch(pi, pj, lx, ly, lz);
-    const double distance2 = Dot(l, l);
-    const double reach = pi.w + pj.w;
+    // Branch(position[i], position[j]) and its Dot on whole Vec4s: x, y and
+    // z each get Branch's operations, and |l|² is summed in Dot's order
+    // ((x² + y²) + z²), so both are bit for bit those of the scalar code;
+    // the fourth lane (radius difference, times 0) is not used.
+    const Lanes l = cell * MinimumImage(LoadLanes(position[j]) - LoadLanes(position[i]));
+    const Lanes l2 = l * l;
+    const double distance2 = (l2[0] + l2[1]) + l2[2];
+    const double ri = position[i].w, rj = position[j].w;
+    const double reach = ri + rj;
     const bool touching = distance2 < reach * reach;
     offset[count] = static_cast<uint8_t>(q - q0);
-    batch.bx[count] = l.x;
-    batch.by[count] = l.y;
-    batch.bz[count] = l.z;
+    batch.bx[count] = l[0];
+    batch.by[count] = l[1];
+    batch.bz[count] = l[2];
     batch.d2[count] = distance2;
-    batch.ri[count] = pi.w;
-    batch.rj[count] = pj.w;
+    batch.ri[count] = ri;
+    batch.rj[count] = rj;
     count += touching;
     if constexpr (kForget) {
       // A broken contact forgets its shear force (and rolling moment).

@@ -8,8 +8,11 @@ namespace granasym::dem {
 
 // Minimum image of a scaled separation: delta minus its nearest integer,
 // rounded by adding and subtracting 1.5·2^52 (exact for |delta| < 2^51 in the
-// default rounding mode; no int conversion and no SSE4.1 round needed).
-inline double MinimumImage(double delta) {
+// default rounding mode; no int conversion and no SSE4.1 round needed). For
+// a double, or for a GCC vector of doubles lane by lane (the same operations
+// on each lane, so the same results).
+template <class Real>
+inline Real MinimumImage(Real delta) {
   constexpr double kRound = 6755399441055744.0;
   return delta - ((delta + kRound) - kRound);
 }

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -35,6 +36,41 @@ std::vector<Vec4> Arrangement(const Cell& cell, uint64_t seed) {
 
 double Gap(const std::vector<Vec4>& s, int i, int j, const Cell& cell) {
   return Norm(Branch(s[i], s[j], cell[0], cell[1], cell[2])) - s[i].w - s[j].w;
+}
+
+// The force pass takes the minimum image of whole Vec4s at once (a GCC
+// vector of four doubles); each lane must be the scalar result, bit for bit,
+// so that the pass's branch vectors are those of the scalar code.
+TEST(MinimumImage, EachLaneOfAVectorIsTheScalarResultBitForBit) {
+  using Lanes = double __attribute__((vector_size(32)));
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> separation(-1.5, 1.5);
+  std::vector<double> deltas = {0.0,
+                                -0.0,
+                                0.5,
+                                -0.5,
+                                1.0,
+                                -1.0,
+                                1.5,
+                                -1.5,
+                                1e-300,
+                                0.25,
+                                0.999999,
+                                std::nextafter(0.5, 1.0),
+                                std::nextafter(0.5, 0.0),
+                                std::nextafter(-0.5, -1.0)};
+  for (int k = 0; k < 4000; ++k) deltas.push_back(separation(random));
+  for (size_t k = 0; k + 4 <= deltas.size(); k += 4) {
+    const Lanes delta = {deltas[k], deltas[k + 1], deltas[k + 2], deltas[k + 3]};
+    const Lanes image = MinimumImage(delta);
+    for (int lane = 0; lane < 4; ++lane) {
+      const double scalar = MinimumImage(deltas[k + lane]);
+      EXPECT_LE(std::abs(scalar), 0.5) << deltas[k + lane];
+      EXPECT_EQ(std::memcmp(&scalar, &image[lane], sizeof scalar), 0)
+          << "lane " << lane << " of " << deltas[k + lane] << ": " << image[lane] << " against "
+          << scalar;
+    }
+  }
 }
 
 TEST(NearList, SelectsTheListedPairsWithinItsSkinInListOrderPerThread) {
