@@ -67,6 +67,19 @@ inline Pair Firsts(Pair a, Pair b) { return __builtin_shuffle(a, b, PairIndices{
 inline Pair Seconds(Pair a, Pair b) { return __builtin_shuffle(a, b, PairIndices{1, 3}); }
 #endif
 
+// The halves of a Vec4 in a register, and two Vec4s' components interleaved
+// by halves: Evens(a, b) = (a.x, b.x, a.z, b.z), Odds(a, b) = (a.y, b.y,
+// a.w, b.w) (one unpack instruction each).
+inline Pair Low(Lanes v) { return Pair{v[0], v[1]}; }
+inline Pair High(Lanes v) { return Pair{v[2], v[3]}; }
+#if defined(__clang__)
+inline Lanes Evens(Lanes a, Lanes b) { return __builtin_shufflevector(a, b, 0, 4, 2, 6); }
+inline Lanes Odds(Lanes a, Lanes b) { return __builtin_shufflevector(a, b, 1, 5, 3, 7); }
+#else
+inline Lanes Evens(Lanes a, Lanes b) { return __builtin_shuffle(a, b, LaneMasks{0, 4, 2, 6}); }
+inline Lanes Odds(Lanes a, Lanes b) { return __builtin_shuffle(a, b, LaneMasks{1, 5, 3, 7}); }
+#endif
+
 inline Lanes LoadLanes(const Vec4& a) {
   Lanes v;
   std::memcpy(&v, &a, sizeof v);
@@ -253,21 +266,25 @@ __attribute__((noinline)) void GatherKinematics(const NearList::Pairs& pairs, in
         batch.rmz[k + u] = moment.z;
       }
     }
-    const Pair dxy_a = LoadPair(&velocity[ja].x) - LoadPair(&velocity[ia].x);
-    const Pair dzw_a = LoadPair(&velocity[ja].z) - LoadPair(&velocity[ia].z);
-    const Pair dxy_b = LoadPair(&velocity[jb].x) - LoadPair(&velocity[ib].x);
-    const Pair dzw_b = LoadPair(&velocity[jb].z) - LoadPair(&velocity[ib].z);
-    StorePair(Firsts(dxy_a, dxy_b) + gx * LoadPair(batch.bx + k), batch.vx + k);
-    StorePair(Seconds(dxy_a, dxy_b) + gy * LoadPair(batch.by + k), batch.vy + k);
-    StorePair(Firsts(dzw_a, dzw_b) + gz * LoadPair(batch.bz + k), batch.vz + k);
-    const Pair wi_xy_a = LoadPair(&spin[ia].x), wi_xy_b = LoadPair(&spin[ib].x);
-    const Pair wj_xy_a = LoadPair(&spin[ja].x), wj_xy_b = LoadPair(&spin[jb].x);
-    StorePair(Firsts(wi_xy_a, wi_xy_b), batch.wix + k);
-    StorePair(Seconds(wi_xy_a, wi_xy_b), batch.wiy + k);
-    StorePair(Pair{spin[ia].z, spin[ib].z}, batch.wiz + k);
-    StorePair(Firsts(wj_xy_a, wj_xy_b), batch.wjx + k);
-    StorePair(Seconds(wj_xy_a, wj_xy_b), batch.wjy + k);
-    StorePair(Pair{spin[ja].z, spin[jb].z}, batch.wjz + k);
+    // Velocities and spins as whole Vec4s (each component's difference is
+    // the one it had alone; the fourth lanes are not used), the two
+    // contacts' components interleaved by halves into the columns.
+    const Lanes dv_a = LoadLanes(velocity[ja]) - LoadLanes(velocity[ia]);
+    const Lanes dv_b = LoadLanes(velocity[jb]) - LoadLanes(velocity[ib]);
+    const Lanes dv_xz = Evens(dv_a, dv_b), dv_yw = Odds(dv_a, dv_b);
+    StorePair(Low(dv_xz) + gx * LoadPair(batch.bx + k), batch.vx + k);
+    StorePair(Low(dv_yw) + gy * LoadPair(batch.by + k), batch.vy + k);
+    StorePair(High(dv_xz) + gz * LoadPair(batch.bz + k), batch.vz + k);
+    const Lanes wi_a = LoadLanes(spin[ia]), wi_b = LoadLanes(spin[ib]);
+    const Lanes wj_a = LoadLanes(spin[ja]), wj_b = LoadLanes(spin[jb]);
+    const Lanes wi_xz = Evens(wi_a, wi_b), wi_yw = Odds(wi_a, wi_b);
+    const Lanes wj_xz = Evens(wj_a, wj_b), wj_yw = Odds(wj_a, wj_b);
+    StorePair(Low(wi_xz), batch.wix + k);
+    StorePair(Low(wi_yw), batch.wiy + k);
+    StorePair(High(wi_xz), batch.wiz + k);
+    StorePair(Low(wj_xz), batch.wjx + k);
+    StorePair(Low(wj_yw), batch.wjy + k);
+    StorePair(High(wj_xz), batch.wjz + k);
   }
 }
 
