@@ -2,9 +2,11 @@
 
 #include <cstdio>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "analysis/rate_study.h"
 #include "app/enum_option.h"
 #include "app/progress.h"
 #include "app/signals.h"
@@ -44,8 +46,14 @@ bool ParseShard(const std::string& text, int* index, int* count) {
   return *count >= 1 && *index >= 1 && *index <= *count;
 }
 
-void PrintTableSummary(const study::StateTableSummary& summary) {
-  std::printf("%s", summary.Text().c_str());
+// The state table, then the analyses that belong with it: a study with rate
+// cases gets the rate study's files (analysis/rate_study.h).
+void WriteTables(const std::string& directory) {
+  std::printf("%s", study::WriteStateTable(directory).Text().c_str());
+  if (const std::optional<analysis::RateStudy> rate =
+          analysis::WriteRateStudy(directory, study::ReadStateTable(directory))) {
+    std::printf("%s", rate->Text().c_str());
+  }
 }
 
 }  // namespace
@@ -132,7 +140,7 @@ void RegisterStudyCommands(CLI::App& app) {
       throw CLI::RuntimeError(130);
     }
     if (options.shard_count == 1) {
-      PrintTableSummary(study::WriteStateTable(out));
+      WriteTables(out);
     } else {
       std::printf("shard %d/%d done; when all shards are done: granasym study merge %s --out %s\n",
                   options.shard_index, options.shard_count, out.c_str(), out.c_str());
@@ -167,7 +175,7 @@ void RegisterStudyCommands(CLI::App& app) {
   merge->callback([] {
     const int cases = study::MergeStudies(inputs, merge_out);
     std::printf("%d finished cases in %s\n", cases, merge_out.c_str());
-    PrintTableSummary(study::WriteStateTable(merge_out));
+    WriteTables(merge_out);
   });
 #ifdef GRANASYM_HAVE_CALIBRATION
   RegisterStudyCalibrateCommand(study);

@@ -1,5 +1,5 @@
 // `granasym study figures DIR [--only STEM]...`: writes the figure data
-// (study/figure_data.h) under DIR/figures/data/, draws every figure with
+// (analysis/figure_data.h) under DIR/figures/data/, draws every figure with
 // the gnuplot scripts of plots/study/ into DIR/figures/<stem>.png and .pdf,
 // and writes DIR/figures/index.tsv (a figure that could not be drawn has
 // the reason in its caption). gnuplot is found on PATH; the scripts next to
@@ -21,7 +21,7 @@
 
 #include "common/error.h"
 #include "common/stopwatch.h"
-#include "study/figure_data.h"
+#include "analysis/figure_data.h"
 
 extern char** environ;
 
@@ -81,7 +81,7 @@ int RunCapturing(const std::vector<std::string>& argv, std::string* output) {
 
 // Draws one figure in both formats; returns "" or why it failed.
 std::string Draw(const std::string& gnuplot, const std::string& scripts,
-                 const std::string& directory, const study::FigureSpec& figure) {
+                 const std::string& directory, const analysis::FigureSpec& figure) {
   const std::string script = scripts + "/" + figure.script;
   if (!fs::exists(script)) return "the script " + script + " does not exist";
   for (const char* term : {"png", "pdf"}) {
@@ -114,10 +114,10 @@ void RunFigures(const FiguresFlags& flags) {
       throw InputError("'" + path + "': a folder name with a quote cannot be passed to gnuplot");
     }
   }
-  std::vector<study::FigureSpec> figures = study::WriteFigureData(flags.directory);
+  std::vector<analysis::FigureSpec> figures = analysis::WriteFigureData(flags.directory);
   const std::string gnuplot = flags.data_only ? "" : FindOnPath("gnuplot");
   int drawn = 0, failed = 0;
-  for (study::FigureSpec& figure : figures) {
+  for (analysis::FigureSpec& figure : figures) {
     if (!flags.only.empty() &&
         std::find(flags.only.begin(), flags.only.end(), figure.stem) == flags.only.end()) {
       continue;
@@ -141,7 +141,7 @@ void RunFigures(const FiguresFlags& flags) {
       std::printf("  %-28s FAILED: %s\n", figure.stem.c_str(), why.c_str());
     }
   }
-  study::WriteFigureIndex(flags.directory, figures);
+  analysis::WriteFigureIndex(flags.directory, figures);
   std::printf("%d figures drawn, %d failed, in %.1f s; index: %s/figures/index.tsv\n", drawn,
               failed, clock.Seconds(), flags.directory.c_str());
   if (failed > 0) throw CLI::RuntimeError(4);

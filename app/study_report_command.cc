@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <string>
 
-#include "study/report.h"
+#include "analysis/report.h"
 
 namespace granasym {
 
@@ -15,7 +15,7 @@ void RegisterStudyReportCommand(CLI::App* study) {
   static std::string directory;
   report->add_option("dir", directory, "study folder")->required()->check(CLI::ExistingDirectory);
   report->callback([] {
-    const study::ReportSummary summary = study::WriteReport(directory);
+    const analysis::ReportSummary summary = analysis::WriteReport(directory);
     std::printf("%s", summary.Text().c_str());
   });
 }

@@ -1,5 +1,5 @@
 // `granasym study report DIR`: the study's report, DIR/index.html and
-// DIR/report.md (study/report.h).
+// DIR/report.md (analysis/report.h).
 #pragma once
 
 #include <CLI/CLI.hpp>

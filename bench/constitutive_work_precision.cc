@@ -36,7 +36,7 @@
 #include <vector>
 
 #include "common/state_measures.h"
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 #include "constitutive/hypoplastic_clay.h"
 #include "constitutive/hypoplastic_sand.h"
 #include "constitutive/modified_cam_clay.h"

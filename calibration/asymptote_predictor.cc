@@ -10,8 +10,9 @@
 
 #include "calibration/model_parameters.h"
 #include "common/error.h"
+#include "common/root_finding.h"
 #include "common/state_measures.h"
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 #include "constitutive/hypoplastic_clay.h"
 #include "constitutive/hypoplastic_sand.h"
 #include "constitutive/modified_cam_clay.h"
@@ -82,30 +83,22 @@ bool Invert(const StressMap& map, const std::vector<Prediction>& grid, double ta
     const Prediction& a = grid[i - 1];
     const Prediction& b = grid[i];
     if (!(a.psi_epsilon <= target && target <= b.psi_epsilon)) continue;
-    double lo = a.psi_sigma, hi = b.psi_sigma;
-    double g_lo = a.psi_epsilon - target, g_hi = b.psi_epsilon - target;
-    Prediction best = std::abs(g_lo) < std::abs(g_hi) ? a : b;
-    int side = 0;
-    for (int iteration = 0; iteration < 100 && hi - lo > tolerance; ++iteration) {
-      double x = (g_hi * lo - g_lo * hi) / (g_hi - g_lo);
-      if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    const double g_a = a.psi_epsilon - target, g_b = b.psi_epsilon - target;
+    Prediction best = std::abs(g_a) < std::abs(g_b) ? a : b;
+    IllinoisOptions illinois;
+    illinois.width_tolerance = tolerance;
+    illinois.max_iterations = 100;
+    illinois.formula = SecantFormula::kWeightedMean;
+    illinois.test_initial_bracket = true;
+    illinois.returned = ReturnedPoint::kLastPoint;
+    auto g_at = [&](double x, double* g) {
       Prediction mid;
       if (!map(x, &mid, why)) return false;
-      const double g = mid.psi_epsilon - target;
+      *g = mid.psi_epsilon - target;
       best = mid;
-      if (g == 0.0) break;
-      if ((g < 0) == (g_lo < 0)) {
-        lo = x;
-        g_lo = g;
-        if (side == -1) g_hi *= 0.5;
-        side = -1;
-      } else {
-        hi = x;
-        g_hi = g;
-        if (side == +1) g_lo *= 0.5;
-        side = +1;
-      }
-    }
+      return true;
+    };
+    if (IllinoisRoot(g_at, a.psi_sigma, g_a, b.psi_sigma, g_b, illinois).failed) return false;
     *out = best;
     out->psi_epsilon = target;
     return true;

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/text_file.h"
 
 namespace granasym::calibration {
 
@@ -250,6 +251,113 @@ CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
 
 CalibrationConfig ReadCalibrationConfigFile(const std::string& path) {
   return ReadCalibrationConfig(ConfigTable::ParseFile(path));
+}
+
+namespace {
+
+// A TOML float that reads back to the same double (shortest round trip).
+std::string TomlFloat(double value) {
+  std::string text = fmt::format("{}", value);
+  if (text.find_first_of(".eEn") == std::string::npos) text += ".0";  // not an integer
+  return text;
+}
+
+std::string TomlStrings(const std::vector<std::string>& values) {
+  std::string text;
+  for (const std::string& v : values) text += (text.empty() ? "" : ", ") + TomlQuoted(v);
+  return "[" + text + "]";
+}
+
+std::string TomlFloats(const std::vector<double>& values) {
+  std::string text;
+  for (double v : values) text += (text.empty() ? "" : ", ") + TomlFloat(v);
+  return "[" + text + "]";
+}
+
+// `path` relative to the calibration file's folder.
+std::string RelativeTo(const std::string& origin, const std::string& path) {
+  const std::filesystem::path folder =
+      std::filesystem::path(origin).parent_path().lexically_normal();
+  std::filesystem::path relative = std::filesystem::path(path).lexically_relative(folder);
+  if (relative.empty()) return path;
+  if (!relative.has_filename() && relative.has_parent_path()) relative = relative.parent_path();
+  return relative.string();
+}
+
+std::string CommaList(const std::vector<std::string>& values) {
+  std::string text;
+  for (const std::string& v : values) text += (text.empty() ? "" : ",") + v;
+  return text;
+}
+
+}  // namespace
+
+std::string CalibrationConfigText(const CalibrationConfig& config, const std::string& header) {
+  const auto rel = [&](const std::string& path) { return TomlQuoted(RelativeTo(config.origin, path)); };
+  // The keys every kind of dataset has.
+  const auto weights = [](const auto& o) {
+    return fmt::format("weight = {}\npsi_sigma_uncertainty_deg = {}\nln_1_plus_e_uncertainty = {}\n",
+                       TomlFloat(o.weight), TomlFloat(o.psi_sigma_uncertainty_deg),
+                       TomlFloat(o.ln_volume_uncertainty));
+  };
+  std::string s = header;
+  s += fmt::format("[model]\nkind = {}\nasymptotes = {}\n", TomlQuoted(ToString(config.model)),
+                   TomlQuoted(ToString(config.predictor.method)));
+  for (const ParameterChoice& p : config.parameters) {
+    s += fmt::format("\n[parameters.{}]\nfree = {}\n", p.name, p.free ? "true" : "false");
+    if (p.has_value) s += "value = " + TomlFloat(p.value) + "\n";
+    if (p.has_lower) s += "lower = " + TomlFloat(p.lower) + "\n";
+    if (p.has_upper) s += "upper = " + TomlFloat(p.upper) + "\n";
+  }
+  for (const DatasetConfig& d : config.datasets) {
+    s += "\n[[dataset]]\nname = " + TomlQuoted(d.name) + "\n";
+    if (d.is_study) {
+      const StudyReadOptions& o = d.study;
+      s += "study = " + rel(d.path) + "\n";
+      s += weights(o);
+      s += "kinds = " + TomlStrings(o.kinds) + "\n";
+      s += "statuses = " + TomlStrings(o.statuses) + "\n";
+      s += "exclude_flags = " + TomlStrings(o.exclude_flags) + "\n";
+      if (!o.ncl_references.empty()) s += "ncl_references = " + TomlStrings(o.ncl_references) + "\n";
+      if (!o.cases.empty()) s += "cases = " + TomlStrings(o.cases) + "\n";
+      s += "psi_epsilon_range_deg = " +
+           TomlFloats({o.psi_epsilon_min_deg, o.psi_epsilon_max_deg}) + "\n";
+      s += "triaxial_kind_tolerance_deg = " + TomlFloat(o.triaxial_kind_tolerance_deg) + "\n";
+    } else if (d.is_dem) {
+      const DemReadOptions& o = d.dem;
+      std::vector<std::string> files;
+      for (const std::string& path : d.paths) files.push_back(RelativeTo(config.origin, path));
+      s += "dem = " + TomlStrings(files) + "\n";
+      s += weights(o);
+      s += fmt::format("ncl_min_p_kpa = {}\nmax_line_points = {}\n", TomlFloat(o.ncl_min_p_kpa),
+                       o.max_line_points);
+      if (!o.asbs_ln_1_plus_e.empty()) {
+        s += "asbs_ln_1_plus_e = " + TomlFloats(o.asbs_ln_1_plus_e) + "\n";
+      }
+    } else {
+      const CsvReadOptions& o = d.csv;
+      s += "csv = " + rel(d.path) + "\n";
+      s += weights(o);
+      s += "kind = " + TomlQuoted(o.kind) + "\n";
+      if (!o.ignore_columns.empty()) {
+        s += "ignore_columns = " + TomlQuoted(CommaList(o.ignore_columns)) + "\n";
+      }
+    }
+  }
+  s += fmt::format(
+      "\n[fitter]\nmethod = {}\nfix_undetermined = {}\nmax_iterations = {}\n"
+      "scale_by_residual_variance = {}\n",
+      TomlQuoted(ToString(config.method)), config.fix_undetermined ? "true" : "false",
+      config.ceres.max_iterations,
+      config.ceres.uncertainty.scale_by_residual_variance ? "true" : "false");
+  s += fmt::format(
+      "[fitter.nlopt]\nalgorithm = {}\nstarts = {}\nmax_evaluations = {}\nseed = {}\n"
+      "polish = {}\n",
+      TomlQuoted(ToString(config.nlopt.algorithm)), config.nlopt.starts,
+      config.nlopt.max_evaluations, config.nlopt.seed, TomlQuoted(ToString(config.nlopt.polish)));
+  s += fmt::format("\n[output]\nhdf5 = {}\nsummary = {}\nplot_data = {}\n",
+                   rel(config.hdf5_path), rel(config.summary_path), rel(config.plot_data_dir));
+  return s;
 }
 
 }  // namespace granasym::calibration

@@ -143,4 +143,11 @@ struct CalibrationConfig {
 CalibrationConfig ReadCalibrationConfig(const ConfigTable& root);
 CalibrationConfig ReadCalibrationConfigFile(const std::string& path);
 
+// The calibration file of `config`: every key that the reader takes, paths
+// relative to the folder of `config.origin`, after `header` (comment lines).
+// Reading it back gives `config` again (tests/calibration/calibration_config_test.cc),
+// so a configuration built in code (analysis/study_calibration.h) leaves a
+// file that a user can edit and rerun with `granasym calibrate`.
+std::string CalibrationConfigText(const CalibrationConfig& config, const std::string& header = "");
+
 }  // namespace granasym::calibration

@@ -109,14 +109,24 @@ std::vector<Row> ReadRows(const std::string& path) {
 }  // namespace
 
 const std::vector<std::string>& StudyTableKinds() {
-  static const std::vector<std::string> kinds = {"ncl", "csl", "compression", "extension",
-                                                 "triaxial"};
+  static const std::vector<std::string> kinds = [] {
+    std::vector<std::string> names;
+    for (study::TableKind kind : EnumValues<study::TableKind>()) {
+      if (kind != study::TableKind::kNone) names.push_back(ToString(kind));  // a state's kinds
+    }
+    return names;
+  }();
   return kinds;
 }
 
 const std::vector<std::string>& StudyTableStatuses() {
-  static const std::vector<std::string> statuses = {"detected", "drifting", "not_reached",
-                                                    "gas",      "invalid",  "no_result"};
+  static const std::vector<std::string> statuses = [] {
+    std::vector<std::string> names;
+    for (study::TableStatus status : EnumValues<study::TableStatus>()) {
+      names.push_back(ToString(status));
+    }
+    return names;
+  }();
   return statuses;
 }
 
@@ -238,16 +248,17 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
       replicates += (replicates.empty() ? "r" : ",r") + std::to_string(row->replicate);
     }
     AsymptoticStatePoint point;
-    const std::string& kind = members.front()->kind;
+    const std::optional<study::TableKind> kind = FromString<study::TableKind>(members.front()->kind);
     point.psi_epsilon = Mean(psi_e);
-    if (kind == "triaxial") {
+    if (kind == study::TableKind::kTriaxial) {
       point.kind = KindFromStretching(point.psi_epsilon, options.triaxial_kind_tolerance_deg * kDegree);
-    } else if (kind == "ncl" || kind == "csl") {
-      point.kind = kind == "ncl" ? StateKind::kNcl : StateKind::kCsl;
+    } else if (kind == study::TableKind::kNcl || kind == study::TableKind::kCsl) {
+      point.kind = kind == study::TableKind::kNcl ? StateKind::kNcl : StateKind::kCsl;
     } else {
       // compression / extension rows keep their side of 90° even when their
       // ψ_ε is close to it.
-      point.kind = kind == "compression" ? StateKind::kCompression : StateKind::kExtension;
+      point.kind = kind == study::TableKind::kCompression ? StateKind::kCompression
+                                                          : StateKind::kExtension;
     }
     point.mean_stress = std::exp(Mean(ln_p));
     point.void_ratio = std::expm1(Mean(ln_v));
@@ -267,7 +278,8 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
       point.psi_sigma_uncertainty = stated_psi;
       point.ln_volume_uncertainty = stated_v;
     }
-    point.source = fmt::format("{}/{} ({} {})", key.first, key.second, kind, replicates);
+    point.source = fmt::format("{}/{} ({} {})", key.first, key.second, members.front()->kind,
+                               replicates);
     dataset.points.push_back(point);
   }
   return dataset;

@@ -15,7 +15,7 @@
 //     (default all; a study with samples of other materials, e.g. φ = 0,
 //     names its own NCL case here so that the others stay out);
 //   cases: only rows of these case names (default all; `study calibrate`
-//     names the rate study's quasi-static cases here, study/rate_study.h).
+//     names the rate study's quasi-static cases here, analysis/rate_study.h).
 // Replicates: the state is the replicate mean of ln p, ln(1+e), ψ_σ and ψ_ε
 // (and of the table's OCR); its uncertainties are the standard errors of the
 // mean of ψ_σ and ln(1+e), floored at the stated uncertainty / √n (n

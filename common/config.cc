@@ -1,5 +1,6 @@
 #include "common/config.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -110,6 +111,15 @@ const void* ConfigTable::Find(const std::string& key) const {
 }
 
 bool ConfigTable::Has(const std::string& key) const { return Find(key) != nullptr; }
+
+std::vector<std::string> ConfigTable::Keys() const {
+  std::vector<std::string> keys;
+  const toml::value& table = AsValue(table_);
+  if (!table.is_table()) return keys;
+  for (const auto& entry : table.as_table()) keys.push_back(entry.first);
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
 
 namespace {
 // A number of the file; inf and nan (valid TOML) are never valid settings,

@@ -61,6 +61,8 @@ class ConfigTable {
   ~ConfigTable();
 
   bool Has(const std::string& key) const;
+  // The keys of this table, sorted (none of them counts as asked for).
+  std::vector<std::string> Keys() const;
   // Required values.
   double GetDouble(const std::string& key, Range range = Range::Any()) const;
   int64_t GetInt(const std::string& key, Range range = Range::Any()) const;

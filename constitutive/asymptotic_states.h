@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 #include "constitutive/hypoplastic_clay.h"
 
 namespace granasym {

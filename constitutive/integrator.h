@@ -54,7 +54,7 @@ struct EnumNames<TerminationType> {
 // ODE has 14–15 components and a cheap right-hand side, so per-step overhead
 // decides; ARKODE's explicit order-5 pair (Cash–Karp) wins. The tolerance
 // here (1e-8) is the hypoplastic clay's; element tests take each model's own
-// default (DefaultIntegratorOptions in constitutive/element_test.h: 1e-9 for
+// default (DefaultIntegratorOptions in constitutive/element_driver.h: 1e-9 for
 // Modified Cam clay, whose kinks at the yield surface make ERK 5 lose to
 // RKF23 at 1e-8 on some paths). BDF/DIRK pay for Newton and Jacobians on a
 // problem that is not stiff.

@@ -13,7 +13,7 @@
 #include "common/hdf5_file.h"
 #include "constitutive/asymptotic_states.h"
 #include "constitutive/constitutive_model.h"
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 
 namespace granasym {
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/root_finding.h"
 #include "common/stopwatch.h"
 
 namespace granasym {
@@ -135,35 +136,24 @@ IntegrationSummary Rkf23Integrator::Integrate(OdeSystem& system, double t0, doub
       }
       if (crossed >= 0) {
         // Illinois iteration on the fraction θ of the step where g crosses zero.
-        double lo = 0.0, hi = 1.0, g_lo = g_old[crossed], g_hi = g_new[crossed];
-        int side = 0;
-        std::vector<double> state(w.high);
-        for (int iteration = 0; iteration < 100; ++iteration) {
-          double theta = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-          if (!(theta > lo && theta < hi)) theta = 0.5 * (lo + hi);
-          if (!TakeStep(system, t, y, theta * step, &w, &summary.rhs_evaluations, codes)) break;
-          std::vector<double> g(num_roots);
+        IllinoisOptions illinois;
+        illinois.width_scale = step;
+        illinois.width_tolerance = 1e-14 * std::max(std::abs(t), std::abs(step));
+        illinois.max_iterations = 100;
+        std::vector<double> g(num_roots);
+        auto g_at = [&](double theta, double* value) {
+          if (!TakeStep(system, t, y, theta * step, &w, &summary.rhs_evaluations, codes)) {
+            return false;
+          }
           system.Roots(t + theta * step, w.high.data(), g.data());
-          const double g_mid = g[crossed];
-          state = w.high;
-          if ((g_mid < 0) == (g_lo < 0)) {
-            lo = theta;
-            g_lo = g_mid;
-            if (side == -1) g_hi *= 0.5;
-            side = -1;
-          } else {
-            hi = theta;
-            g_hi = g_mid;
-            if (side == 1) g_lo *= 0.5;
-            side = 1;
-          }
-          if (g_mid == 0.0 || (hi - lo) * step <= 1e-14 * std::max(std::abs(t), std::abs(step))) {
-            break;
-          }
-        }
+          *value = g[crossed];
+          return true;
+        };
+        const IllinoisResult root =
+            IllinoisRoot(g_at, 0.0, g_old[crossed], 1.0, g_new[crossed], illinois);
         // The far side of the bracket: a restart from here does not see the
         // same crossing again.
-        const double theta = hi;
+        const double theta = root.b;
         TakeStep(system, t, y, theta * step, &w, &summary.rhs_evaluations);
         std::copy(w.high.begin(), w.high.end(), y);
         t += theta * step;

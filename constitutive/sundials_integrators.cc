@@ -19,6 +19,7 @@
 #include <limits>
 
 #include "common/error.h"
+#include "common/root_finding.h"
 #include "common/stopwatch.h"
 
 namespace granasym {
@@ -234,35 +235,31 @@ bool LocateRootByIntegration(int k, double t_root, ReadLastStep read_last_step, 
   const double t_from = lo;
   std::vector<double> g(system->num_roots());
   system->Roots(lo, y_from.data(), g.data());
-  double g_lo = g[k];
+  const double g_lo = g[k];
   system->Roots(hi, y_hi.data(), g.data());
-  double g_hi = g[k];
+  const double g_hi = g[k];
   if (!((g_lo < 0 && g_hi >= 0) || (g_lo > 0 && g_hi <= 0))) return false;
-  const double resolution = 1e-7 * (hi - lo);
-  double theta = t_root;
-  int side = 0;
-  for (int iteration = 0; iteration < 60 && g_hi != 0.0 && hi - lo > resolution; ++iteration) {
-    if (!(theta > lo && theta < hi)) theta = 0.5 * (lo + hi);
+  IllinoisOptions illinois;
+  illinois.width_tolerance = 1e-7 * (hi - lo);
+  illinois.max_iterations = 60;
+  illinois.first_guess = t_root;
+  illinois.zero_replaces_b = true;
+  illinois.zero_test = ZeroTest::kAtB;
+  illinois.test_initial_bracket = true;
+  auto g_at = [&](double theta, double* value) {
     double reached = 0.0;
     if (restart(t_from, y_from, theta, &reached) < 0) return false;
     system->Roots(theta, y.data(), g.data());
-    const double g_mid = g[k];
-    if ((g_mid < 0) == (g_lo < 0) && g_mid != 0.0) {
-      lo = theta;
-      g_lo = g_mid;
-      if (side == -1) g_hi *= 0.5;
-      side = -1;
-    } else {
-      hi = theta;
-      g_hi = g_mid;
-      y_hi.assign(y.data(), y.data() + y.size());
-      if (side == 1) g_lo *= 0.5;
-      side = 1;
-    }
-    theta = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-  }
+    *value = g[k];
+    return true;
+  };
+  auto keep_state = [&](BracketEnd end) {
+    if (end == BracketEnd::kB) y_hi.assign(y.data(), y.data() + y.size());
+  };
+  const IllinoisResult root = IllinoisRoot(g_at, lo, g_lo, hi, g_hi, illinois, keep_state);
+  if (root.failed) return false;
   std::copy(y_hi.begin(), y_hi.end(), y.data());
-  *t = hi;
+  *t = root.b;
   return true;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "common/canonical_text.h"
 #include "common/config.h"
@@ -153,6 +154,20 @@ Material ParseMaterial(const ConfigTable& table) {
   std::string why;
   GRANASYM_CHECK(material.IsValid(&why)) << why;
   return material;
+}
+
+double Material::StiffnessNumber(double mean_stress) const {
+  if (!(mean_stress > 0)) return std::numeric_limits<double>::infinity();
+  switch (contact_law) {
+    case ContactLaw::kLinear:
+      return contact_modulus() / (2 * mean_stress);
+    case ContactLaw::kHertzMindlin: {
+      const double effective = contact_modulus() / (2 * (1 - poissons_ratio * poissons_ratio));
+      return std::pow(effective / mean_stress, 2.0 / 3.0);
+    }
+  }
+  GRANASYM_CHECK(false) << "unknown contact law";
+  return 0;
 }
 
 void Material::Canonical(CanonicalText& text, const std::string& prefix) const {

@@ -16,20 +16,6 @@ double InertialAt(const RowMeasures& row, double diameter) {
                : std::numeric_limits<double>::infinity();
 }
 
-// The stiffness number κ of the contact law at mean stress p: the inverse of
-// the typical overlap relative to the diameter (Agnolin & Roux 2007): linear
-// law κ = k_n/(d p) = E/(2p) (k_n = E d/2 for equal spheres); Hertz–Mindlin
-// κ = (E*/p)^(2/3), E* = E/(2(1 − ν²)); E is the contact modulus, i.e. with
-// the material's stiffness scaling applied.
-double StiffnessNumber(const RowMeasures& row) {
-  const double p = row.stress.mean();
-  if (!(p > 0)) return std::numeric_limits<double>::infinity();
-  const Material& m = row.engine.material();
-  if (m.contact_law == ContactLaw::kLinear) return m.contact_modulus() / (2 * p);
-  const double effective = m.contact_modulus() / (2 * (1 - m.poissons_ratio * m.poissons_ratio));
-  return std::pow(effective / p, 2.0 / 3.0);
-}
-
 }  // namespace
 
 RowMeasures::RowMeasures(const Engine& engine, int64_t stage,
@@ -66,43 +52,43 @@ const std::vector<OutputColumn>& OutputColumns() {
        [](R r) { return r.engine.SmallestContactDuration(); }},
       {record::kColumnStage, "1", "stage index (0-based)",
        [](R r) { return static_cast<double>(r.stage); }},
-      {"cell_x_m", "m", "cell side along axis 1 (vertical)",
+      {record::kColumnCellX, "m", "cell side along axis 1 (vertical)",
        [](R r) { return r.engine.cell()[0]; }},
-      {"cell_y_m", "m", "cell side along axis 2", [](R r) { return r.engine.cell()[1]; }},
-      {"cell_z_m", "m", "cell side along axis 3", [](R r) { return r.engine.cell()[2]; }},
-      {"sigma_11_kpa", "kPa", "Love-Weber stress, compression positive",
+      {record::kColumnCellY, "m", "cell side along axis 2", [](R r) { return r.engine.cell()[1]; }},
+      {record::kColumnCellZ, "m", "cell side along axis 3", [](R r) { return r.engine.cell()[2]; }},
+      {record::kColumnStress11, "kPa", "Love-Weber stress, compression positive",
        [](R r) { return Kpa(r.engine.sums().stress[0]); }},
-      {"sigma_22_kpa", "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[1]); }},
-      {"sigma_33_kpa", "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[2]); }},
-      {"sigma_12_kpa", "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[3]); }},
-      {"sigma_13_kpa", "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[4]); }},
-      {"sigma_23_kpa", "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[5]); }},
-      {"sigma_a_kpa", "kPa", "axial stress sigma_11", [](R r) { return Kpa(r.stress.axial); }},
-      {"sigma_r_kpa", "kPa", "radial stress (sigma_22 + sigma_33)/2",
+      {record::kColumnStress22, "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[1]); }},
+      {record::kColumnStress33, "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[2]); }},
+      {record::kColumnStress12, "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[3]); }},
+      {record::kColumnStress13, "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[4]); }},
+      {record::kColumnStress23, "kPa", "", [](R r) { return Kpa(r.engine.sums().stress[5]); }},
+      {record::kColumnAxialStress, "kPa", "axial stress sigma_11", [](R r) { return Kpa(r.stress.axial); }},
+      {record::kColumnRadialStress, "kPa", "radial stress (sigma_22 + sigma_33)/2",
        [](R r) { return Kpa(r.stress.radial); }},
       {record::kColumnMeanStress, "kPa", "mean stress", [](R r) { return Kpa(r.stress.mean()); }},
-      {"q_kpa", "kPa", "deviator sigma_a - sigma_r", [](R r) { return Kpa(r.stress.deviator()); }},
+      {record::kColumnDeviator, "kPa", "deviator sigma_a - sigma_r", [](R r) { return Kpa(r.stress.deviator()); }},
       {record::kColumnPsiSigma, "deg", "stress obliquity angle in the Rendulic plane",
        [](R r) { return r.stress.psi() / kDegree; }},
-      {"psi_epsilon_deg", "deg", "stretching direction in the Rendulic plane",
+      {record::kColumnPsiEpsilon, "deg", "stretching direction in the Rendulic plane",
        [](R r) { return r.rate.psi() / kDegree; }},
-      {"rate_a_per_s", "1/s", "axial strain rate, compression positive",
+      {record::kColumnAxialRate, "1/s", "axial strain rate, compression positive",
        [](R r) { return r.rate.axial; }},
-      {"rate_r_per_s", "1/s", "radial strain rate, compression positive",
+      {record::kColumnRadialRate, "1/s", "radial strain rate, compression positive",
        [](R r) { return r.rate.radial; }},
-      {"stretching_rate_per_s", "1/s", "norm of the stretching tensor |D|",
+      {record::kColumnStretchingRate, "1/s", "norm of the stretching tensor |D|",
        [](R r) { return r.stretching; }},
-      {"eps_a", "1", "axial logarithmic strain since the run start, compression positive",
+      {record::kColumnAxialStrain, "1", "axial logarithmic strain since the run start, compression positive",
        [](R r) { return r.eps_a; }},
-      {"eps_r", "1", "radial logarithmic strain", [](R r) { return r.eps_r; }},
-      {"eps_v", "1", "volumetric strain eps_a + 2 eps_r",
+      {record::kColumnRadialStrain, "1", "radial logarithmic strain", [](R r) { return r.eps_r; }},
+      {record::kColumnVolumetricStrain, "1", "volumetric strain eps_a + 2 eps_r",
        [](R r) { return r.eps_a + 2 * r.eps_r; }},
-      {"eps_s", "1", "shear strain 2 (eps_a - eps_r)/3",
+      {record::kColumnShearStrain, "1", "shear strain 2 (eps_a - eps_r)/3",
        [](R r) { return 2.0 * (r.eps_a - r.eps_r) / 3.0; }},
       {record::kColumnVoidRatio, "1", "void ratio V_cell/V_solid - 1",
        [](R r) { return r.void_ratio; }},
-      {"ln_1_plus_e", "1", "ln(1 + e)", [](R r) { return std::log1p(r.void_ratio); }},
-      {"contacts", "1", "number of contacts",
+      {record::kColumnLnVolume, "1", "ln(1 + e)", [](R r) { return std::log1p(r.void_ratio); }},
+      {record::kColumnContacts, "1", "number of contacts",
        [](R r) { return static_cast<double>(r.contacts.contacts); }},
       {record::kColumnCoordination, "1", "coordination number 2C/N",
        [](R r) { return r.contacts.coordination; }},
@@ -110,22 +96,22 @@ const std::vector<OutputColumn>& OutputColumns() {
        [](R r) { return r.contacts.mechanical_coordination; }},
       {record::kColumnOverlapMax, "1", "largest relative overlap u/(r_i + r_j)",
        [](R r) { return r.contacts.overlap_max; }},
-      {"overlap_mean", "1", "mean relative overlap", [](R r) { return r.contacts.overlap_mean; }},
-      {"overlap_p50", "1", "median relative overlap", [](R r) { return r.contacts.overlap_p50; }},
-      {"overlap_p90", "1", "90th percentile of relative overlaps",
+      {record::kColumnOverlapMean, "1", "mean relative overlap", [](R r) { return r.contacts.overlap_mean; }},
+      {record::kColumnOverlapP50, "1", "median relative overlap", [](R r) { return r.contacts.overlap_p50; }},
+      {record::kColumnOverlapP90, "1", "90th percentile of relative overlaps",
        [](R r) { return r.contacts.overlap_p90; }},
-      {"overlap_p99", "1", "99th percentile of relative overlaps",
+      {record::kColumnOverlapP99, "1", "99th percentile of relative overlaps",
        [](R r) { return r.contacts.overlap_p99; }},
       {record::kColumnInertialNumberDmin, "1", "|D| d sqrt(2 rho_s / p) for the smallest diameter",
        [](R r) { return InertialAt(r, r.min_diameter); }},
       {record::kColumnInertialNumberDmax, "1", "same for the largest diameter",
        [](R r) { return InertialAt(r, r.max_diameter); }},
-      {"stiffness_number", "1",
+      {record::kColumnStiffnessNumber, "1",
        "kappa: E/(2p) for the linear law, (E*/p)^(2/3) for Hertz-Mindlin (1/relative overlap)",
-       [](R r) { return StiffnessNumber(r); }},
-      {"kinetic_energy_j", "J", "kinetic energy of the fluctuating motion",
+       [](R r) { return r.engine.material().StiffnessNumber(r.stress.mean()); }},
+      {record::kColumnKineticEnergy, "J", "kinetic energy of the fluctuating motion",
        [](R r) { return KineticEnergy(r.engine); }},
-      {"unbalanced_force", "1", "mean net force / mean contact force",
+      {record::kColumnUnbalancedForce, "1", "mean net force / mean contact force",
        [](R r) { return UnbalancedForceRatio(r.engine); }},
   };
   return columns;

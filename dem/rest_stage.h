@@ -24,6 +24,8 @@ class RestStage final : public StageSpec {
   // Three controlled rates of at most max_rate_factor times max_strain_rate.
   double MaxStrainRate() const override;
   const char* RateKey() const override { return "max_strain_rate"; }
+  // A rest settles within a few thousand steps.
+  std::optional<double> TypicalSteps() const override { return 5000; }
   void Canonical(CanonicalText& text, const std::string& prefix) const override;
   void Describe(Hdf5File& file, const std::string& group) const override;
 };

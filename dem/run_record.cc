@@ -8,6 +8,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "common/config.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "dem/run_record_names.h"
@@ -759,6 +760,26 @@ Provenance ReadProvenance(const Hdf5File& file) {
   p.threads = file.ReadIntAttribute(g, kThreads);
   p.cpu_model = file.ReadStringAttribute(g, kCpuModel);
   return p;
+}
+
+Material ReadMaterial(const Hdf5File& file) {
+  // The canonical scene is "key = value" lines in TOML's notation; the
+  // material's keys are ParseMaterial's, prefixed "material.".
+  const std::string canonical = ReadProvenance(file).scene_canonical;
+  const std::string prefix = "material.";
+  std::string text = "[material]\n";
+  size_t at = 0;
+  while (at < canonical.size()) {
+    size_t end = canonical.find('\n', at);
+    if (end == std::string::npos) end = canonical.size();
+    if (canonical.compare(at, prefix.size(), prefix) == 0) {
+      text += canonical.substr(at + prefix.size(), end - at - prefix.size()) + "\n";
+    }
+    at = end + 1;
+  }
+  const ConfigTable root =
+      ConfigTable::ParseString(text, file.path() + ": the canonical scene of /provenance");
+  return ParseMaterial(root.GetTable("material"));
 }
 
 namespace {

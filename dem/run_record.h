@@ -16,6 +16,7 @@
 #include "common/time_series.h"
 #include "dem/asymptote_detector.h"
 #include "dem/engine.h"
+#include "dem/material.h"
 #include "dem/packing.h"
 #include "dem/stage.h"
 #include "dem/stage_validity.h"
@@ -177,6 +178,8 @@ RunnerRecord ReadRunner(const Hdf5File& file);
 
 void WriteProvenance(Hdf5File& file, const Provenance& provenance);
 Provenance ReadProvenance(const Hdf5File& file);
+// The material the run used, from its provenance's canonical scene.
+Material ReadMaterial(const Hdf5File& file);
 
 // A result file in one line per item (`granasym export --info`): the program
 // version, the scene and its origin, the start, the termination and its

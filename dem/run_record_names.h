@@ -40,7 +40,8 @@ inline constexpr char kEngine[] = "/engine";
 inline constexpr char kRunner[] = "/runner";
 inline constexpr char kHistogramRows[] = "/histogram_rows";
 
-// Series columns that other code reads by name.
+// Series columns, in the order of the rows (dem/output_columns.cc writes
+// them; readers take them by these names).
 inline constexpr char kColumnStep[] = "step";
 inline constexpr char kColumnStage[] = "stage";
 inline constexpr char kColumnMeanStress[] = "p_kpa";
@@ -54,6 +55,35 @@ inline constexpr char kColumnCoordination[] = "coordination";
 inline constexpr char kColumnMechanicalCoordination[] = "mechanical_coordination";
 inline constexpr char kColumnInertialNumberDmin[] = "inertial_number_dmin";
 inline constexpr char kColumnInertialNumberDmax[] = "inertial_number_dmax";
+inline constexpr char kColumnCellX[] = "cell_x_m";
+inline constexpr char kColumnCellY[] = "cell_y_m";
+inline constexpr char kColumnCellZ[] = "cell_z_m";
+inline constexpr char kColumnStress11[] = "sigma_11_kpa";
+inline constexpr char kColumnStress22[] = "sigma_22_kpa";
+inline constexpr char kColumnStress33[] = "sigma_33_kpa";
+inline constexpr char kColumnStress12[] = "sigma_12_kpa";
+inline constexpr char kColumnStress13[] = "sigma_13_kpa";
+inline constexpr char kColumnStress23[] = "sigma_23_kpa";
+inline constexpr char kColumnAxialStress[] = "sigma_a_kpa";
+inline constexpr char kColumnRadialStress[] = "sigma_r_kpa";
+inline constexpr char kColumnDeviator[] = "q_kpa";
+inline constexpr char kColumnPsiEpsilon[] = "psi_epsilon_deg";
+inline constexpr char kColumnAxialRate[] = "rate_a_per_s";
+inline constexpr char kColumnRadialRate[] = "rate_r_per_s";
+inline constexpr char kColumnStretchingRate[] = "stretching_rate_per_s";
+inline constexpr char kColumnAxialStrain[] = "eps_a";
+inline constexpr char kColumnRadialStrain[] = "eps_r";
+inline constexpr char kColumnVolumetricStrain[] = "eps_v";
+inline constexpr char kColumnShearStrain[] = "eps_s";
+inline constexpr char kColumnLnVolume[] = "ln_1_plus_e";
+inline constexpr char kColumnContacts[] = "contacts";
+inline constexpr char kColumnOverlapMean[] = "overlap_mean";
+inline constexpr char kColumnOverlapP50[] = "overlap_p50";
+inline constexpr char kColumnOverlapP90[] = "overlap_p90";
+inline constexpr char kColumnOverlapP99[] = "overlap_p99";
+inline constexpr char kColumnStiffnessNumber[] = "stiffness_number";
+inline constexpr char kColumnKineticEnergy[] = "kinetic_energy_j";
+inline constexpr char kColumnUnbalancedForce[] = "unbalanced_force";
 
 // Attributes of /stages/<NNN>.
 inline constexpr char kStageName[] = "name";

@@ -437,7 +437,7 @@ void Simulation::FinishStage(const std::string& reason, bool failed) {
       a.mean_stress_kpa = series_.Last(record::kColumnMeanStress);
       a.void_ratio = series_.Last(record::kColumnVoidRatio);
       a.psi_sigma_deg = series_.Last(record::kColumnPsiSigma);
-      a.psi_epsilon_deg = series_.Last("psi_epsilon_deg");
+      a.psi_epsilon_deg = series_.Last(record::kColumnPsiEpsilon);
       a.q_over_p = 3.0 / std::sqrt(2.0) * std::tan(a.psi_sigma_deg * kDegree);
     }
     a.coordination = state.coordination;

@@ -173,6 +173,14 @@ class StageSpec {
   // needs from below with it.
   virtual double MaxStrainRate() const = 0;
   virtual const char* RateKey() const = 0;
+  // The stretching norm ‖D‖ (1/s) the stage typically runs at, for cost
+  // estimates (a study's shards and ETA): a rate rule at its target for a
+  // grain of d = 1 mm (the default GSD's largest) at `mean_stress_kpa`.
+  virtual double TypicalStrainRate(double density, double mean_stress_kpa) const {
+    return 167.0;  // the paper's ‖D‖
+  }
+  // The steps it takes whatever its stop conditions say, or nullopt.
+  virtual std::optional<double> TypicalSteps() const { return std::nullopt; }
   // The type's keys for the canonical scene (`prefix` ends with '.').
   virtual void Canonical(CanonicalText& text, const std::string& prefix) const = 0;
   // Attributes of the stage's record in the result file.

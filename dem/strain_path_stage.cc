@@ -115,4 +115,11 @@ bool StrainPathStage::ContinuesPath(const StageSpec& previous) const {
            path->inertial.check_interval == inertial.check_interval));
 }
 
+double StrainPathStage::TypicalStrainRate(double density, double mean_stress_kpa) const {
+  if (rule != RateRule::kInertial) return stretching_rate;
+  const double p_kpa = std::max(mean_stress_kpa, inertial.min_mean_stress_kpa);
+  return std::min(stretching_rate,
+                  inertial.inertial_number * std::sqrt(p_kpa * 1e3 / (2 * density)) / 1e-3);
+}
+
 }  // namespace granasym::dem

@@ -64,6 +64,7 @@ class StrainPathStage final : public StageSpec {
   std::unique_ptr<StageController> MakeController(const StageContext& context) const override;
   double MaxStrainRate() const override { return stretching_rate; }
   const char* RateKey() const override { return "stretching_rate"; }
+  double TypicalStrainRate(double density, double mean_stress_kpa) const override;
   void Canonical(CanonicalText& text, const std::string& prefix) const override;
   void Describe(Hdf5File& file, const std::string& group) const override;
 };

@@ -2,6 +2,8 @@
 // stress σ_r held at a target by a PI controller on the radial strain rate.
 #pragma once
 
+#include <cmath>
+
 #include "dem/stage.h"
 
 namespace granasym::dem {
@@ -19,6 +21,10 @@ class TriaxialStage final : public StageSpec {
   // The axial rate and the radial rates up to max_rate_factor times it.
   double MaxStrainRate() const override;
   const char* RateKey() const override { return "axial_strain_rate"; }
+  // ‖D‖ of drained compression at ε̇_a, about 1.5 |ε̇_a|.
+  double TypicalStrainRate(double, double) const override {
+    return 1.5 * std::abs(axial_strain_rate);
+  }
   void Canonical(CanonicalText& text, const std::string& prefix) const override;
   void Describe(Hdf5File& file, const std::string& group) const override;
 };

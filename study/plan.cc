@@ -11,8 +11,6 @@
 #include "common/text_file.h"
 #include "dem/grain_size_distribution.h"
 #include "dem/scene.h"
-#include "dem/strain_path_stage.h"
-#include "dem/triaxial_stage.h"
 
 namespace granasym::study {
 namespace {
@@ -25,30 +23,18 @@ void AddField(Sha256& hash, const std::string& name, const std::string& value) {
   hash.Update("\n");
 }
 
-// Steps a stage is expected to take, from its stop conditions (a rough
-// figure for the ETA and the shards' balance; measured steps of finished
-// cases replace it). A stage at a fixed inertial number is taken at the
-// rate of I* for d = 1 mm (the default GSD's largest) at its p target, or
-// 100 kPa without one.
+// Steps a stage is expected to take, from its stop conditions at the
+// stage's typical rate (dem::StageSpec::TypicalStrainRate; 100 kPa where it
+// has no p target): a rough figure for the ETA and the shards' balance;
+// measured steps of finished cases replace it.
 double EstimateSteps(const dem::Stage& stage, double time_step, double density) {
-  double rate = 167.0;
-  if (const auto* path = stage.As<dem::StrainPathStage>()) {
-    rate = path->stretching_rate;
-    if (path->rule == dem::RateRule::kInertial) {
-      const double p_kpa = std::max(stage.stop.mean_stress_kpa.value_or(100.0),
-                                    path->inertial.min_mean_stress_kpa);
-      rate = std::min(rate, path->inertial.inertial_number *
-                                std::sqrt(p_kpa * 1e3 / (2 * density)) / 1e-3);
-    }
-  }
-  if (const auto* triaxial = stage.As<dem::TriaxialStage>()) {
-    rate = 1.5 * std::abs(triaxial->axial_strain_rate);
-  }
-  if (stage.type() == "rest") return 5000;
+  if (const std::optional<double> steps = stage.spec->TypicalSteps()) return *steps;
   if (stage.stop.steps) return static_cast<double>(*stage.stop.steps);
   double strain = 0.3;
   if (stage.stop.strain_norm) strain = std::min(strain, *stage.stop.strain_norm);
   if (stage.stop.time_s) return *stage.stop.time_s / time_step;
+  const double rate =
+      stage.spec->TypicalStrainRate(density, stage.stop.mean_stress_kpa.value_or(100.0));
   return strain / (rate * time_step);
 }
 

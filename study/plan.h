@@ -11,7 +11,7 @@
 //   DIR/cases/r<K>/<case>/done.toml  written last: the key it was computed for, how it ended
 //   DIR/models/<name>/               element tests of the constitutive models
 //   DIR/asymptotic_states.csv/.h5    the state table (study/state_table.h)
-//   DIR/index.html, DIR/report.md    the report (study/report.h)
+//   DIR/index.html, DIR/report.md    the report (analysis/report.h)
 #pragma once
 
 #include <cstdint>

@@ -451,7 +451,8 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
     CheckKeys(origin, where + ".", run, {"name", "from", "vary", "figures", "scene", "stage"});
     const std::string name_template = StringAt(origin, where + ".name", run, "", true);
     const std::string from_template = StringAt(origin, where + ".from", run, "", true);
-    const std::string figures = StringAt(origin, where + ".figures", run, "", false);
+    const FigureSet figures = FigureSet::Parse(
+        StringAt(origin, where + ".figures", run, "", false), origin, where + ".figures");
     const Value* stages = FindKey(run, "stage");
     if (!stages || !stages->is_array() || stages->as_array().empty()) {
       Fail(origin, where + ".stage", "is missing: a run needs at least one [[run.stage]]");
@@ -564,7 +565,8 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
           Fail(origin, where + ".name",
                "gives '" + spec.name + "': model runs need unique, valid folder names");
         }
-        spec.figures = StringAt(origin, where + ".figures", entry, "", false);
+        spec.figures = FigureSet::Parse(StringAt(origin, where + ".figures", entry, "", false),
+                                        origin, where + ".figures");
         for (const auto& [var, value] : variables) spec.variables[var] = ValueText(value);
         for (const auto& [var, value] : expansion.variables) variables[var] = value;
         Table test;

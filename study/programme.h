@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "common/enum_names.h"
+#include "study/case_record.h"
 
 namespace granasym::study {
 
@@ -97,7 +98,7 @@ struct CaseSpec {
   std::string scene_body;    // the scene's TOML without its [sample] table
   std::vector<std::string> stage_names;
   std::string run;      // the name template of the [[run]] it came from
-  std::string figures;  // the paper's figures it serves (free text)
+  FigureSet figures;    // what it serves (checked: study/case_record.h)
   std::map<std::string, std::string> variables;  // `vary` values, as text
 };
 
@@ -105,7 +106,7 @@ struct CaseSpec {
 // TOML of `granasym model run` ([model], [initial], [integration], [[stage]]).
 struct ModelCaseSpec {
   std::string name;  // unique among the model runs
-  std::string figures;
+  FigureSet figures;
   std::map<std::string, std::string> variables;
   std::string text;
 };

@@ -23,6 +23,7 @@
 #include "dem/grain_size_distribution.h"
 #include "dem/scene.h"
 #include "dem/simulation.h"
+#include "study/case_record.h"
 #include "study/study_folder.h"
 
 #ifdef GRANASYM_STUDY_HAS_MODELS
@@ -33,20 +34,22 @@ namespace granasym::study {
 namespace fs = std::filesystem;
 namespace {
 
-std::string CaseRecordText(const Plan& plan, const PlannedCase& c) {
-  std::string text = fmt::format(
-      "# what this case is (written by granasym study run)\n"
-      "id = {}\nname = {}\nreplicate = {}\nkey = {}\nparent = {}\nparent_stage = {}\n"
-      "run = {}\nfigures = {}\nprogramme = {}\nscale = {}\nthreads = {}\n"
-      "program_version = {}\n",
-      TomlQuoted(c.id), TomlQuoted(c.spec.name), c.replicate, TomlQuoted(c.key),
-      TomlQuoted(c.parent >= 0 ? plan.cases[static_cast<size_t>(c.parent)].id : ""),
-      TomlQuoted(c.spec.parent_stage), TomlQuoted(c.spec.run), TomlQuoted(c.spec.figures),
-      TomlQuoted(plan.programme.name), TomlQuoted(ToString(plan.scale)), plan.threads,
-      TomlQuoted(plan.program_version));
-  text += "[variables]\n";
-  for (const auto& [name, value] : c.spec.variables) text += name + " = " + TomlQuoted(value) + "\n";
-  return text;
+CaseRecord RecordOf(const Plan& plan, const PlannedCase& c) {
+  CaseRecord record;
+  record.id = c.id;
+  record.name = c.spec.name;
+  record.replicate = c.replicate;
+  record.key = c.key;
+  record.parent = c.parent >= 0 ? plan.cases[static_cast<size_t>(c.parent)].id : "";
+  record.parent_stage = c.spec.parent_stage;
+  record.run = c.spec.run;
+  record.figures = c.spec.figures;
+  record.programme = plan.programme.name;
+  record.scale = ToString(plan.scale);
+  record.threads = plan.threads;
+  record.program_version = plan.program_version;
+  record.variables = c.spec.variables;
+  return record;
 }
 
 void PrepareDirectory(const Plan& plan) {
@@ -381,7 +384,7 @@ CaseOutcome Scheduler::Execute(int k) {
     }
   }
   WriteIfChanged(c.directory + "/scene.toml", c.scene_text);
-  WriteIfChanged(c.directory + "/case.toml", CaseRecordText(plan_, c));
+  RecordOf(plan_, c).Write(c.directory);
   WriteTextFileAtomically(running_path, "key = " + TomlQuoted(c.key) + "\n");
 
   const dem::Scene scene = dem::Scene::Parse(c.scene_text, c.directory + "/scene.toml", c.directory);

@@ -6,6 +6,8 @@
 #include <limits>
 #include <optional>
 #include <set>
+#include <type_traits>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -18,7 +20,7 @@
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
 #include "dem/stage_validity.h"
-#include "study/rate_study.h"
+#include "study/case_record.h"
 #include "study/state_table_names.h"
 #include "study/study_folder.h"
 
@@ -29,57 +31,57 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The kind of an asymptotic state, as the table names it.
-std::string KindOf(dem::PathKind path, double psi_epsilon_deg) {
+TableKind KindOf(dem::PathKind path, double psi_epsilon_deg) {
   switch (path) {
     case dem::PathKind::kIsochoric:
-      return "csl";
+      return TableKind::kCsl;
     case dem::PathKind::kCompression:
-      return std::abs(psi_epsilon_deg) < 1e-6 ? "ncl" : "compression";
+      return std::abs(psi_epsilon_deg) < 1e-6 ? TableKind::kNcl : TableKind::kCompression;
     case dem::PathKind::kExtension:
-      return "extension";
+      return TableKind::kExtension;
     case dem::PathKind::kStressControlled:
-      return "triaxial";
+      return TableKind::kTriaxial;
   }
-  return "unknown";
+  GRANASYM_CHECK(false) << "unknown path kind";
+  return TableKind::kNone;
+}
+
+TableStatus StatusOf(dem::AsymptoteStatus status) {
+  switch (status) {
+    case dem::AsymptoteStatus::kDetected:
+      return TableStatus::kDetected;
+    case dem::AsymptoteStatus::kDrifting:
+      return TableStatus::kDrifting;
+    case dem::AsymptoteStatus::kNotReached:
+      return TableStatus::kNotReached;
+    case dem::AsymptoteStatus::kGas:
+      return TableStatus::kGas;
+    case dem::AsymptoteStatus::kInvalid:
+      return TableStatus::kInvalid;
+  }
+  GRANASYM_CHECK(false) << "unknown asymptote status";
+  return TableStatus::kNoResult;
 }
 
 struct CaseFolder {
-  std::string directory, id, name, run, figures, key;
-  std::string parent_name;  // empty: the sample
-  int replicate = 1;
+  CaseRecord record;
   bool finished = false;  // done.toml for the current key, and a result
   std::string termination, message;
 };
 
 std::vector<CaseFolder> ListCases(const std::string& directory) {
   std::vector<CaseFolder> cases;
-  for (const std::string& path : CaseFolders(directory)) {
-    const fs::path folder(path);
-    const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
+  for (const CaseRecord& record : ReadCaseRecords(directory)) {
+    const fs::path folder(record.directory);
     CaseFolder c;
-    c.directory = folder.string();
-    c.id = record.GetString("id");
-    c.name = record.GetString("name");
-    c.run = record.GetString("run", "");
-    c.figures = record.GetString("figures", "");
-    c.key = record.GetString("key");
-    const std::string parent = record.GetString("parent", "");  // "r<K>/<name>"
-    c.parent_name = parent.substr(parent.find('/') + 1);
-    c.replicate = static_cast<int>(record.GetInt("replicate", 1, Range::AtLeast(1)));
-    if (fs::exists(folder / "done.toml")) {
-      const ConfigTable done = ConfigTable::ParseFile((folder / "done.toml").string());
-      c.termination = done.GetString("termination");
-      c.message = done.GetString("message", "");
-      c.finished = done.GetString("key") == c.key && fs::exists(folder / "result.h5");
-      if (c.finished) {
-        // A partial result under the final name is not the case's result.
-        const std::string mismatch =
-            ResultMismatch((folder / "result.h5").string(), *ReadDone(c.directory));
-        if (!mismatch.empty()) {
-          c.finished = false;
-          c.message = mismatch;
-        }
-      }
+    c.record = record;
+    const CaseDone outcome = record.Done();
+    if (outcome.done) {
+      c.termination = ToString(outcome.done->termination);
+      c.message = outcome.done->message;
+      c.finished = outcome.finished;
+      // A partial result under the final name is not the case's result.
+      if (!outcome.mismatch.empty()) c.message = outcome.mismatch;
     }
     if (!c.finished && c.message.empty()) {
       c.message = fs::exists(folder / "result.h5.ckpt") ? "interrupted: resumes on the next run"
@@ -117,17 +119,23 @@ std::string DriftReason(const dem::AsymptoteRecord& a) {
   return text;
 }
 
+// A row with the case's fields set.
+StateRow CaseFields(const CaseRecord& record) {
+  StateRow row;
+  row.case_id = record.id;
+  row.case_name = record.name;
+  row.run = record.run;
+  row.figures = record.figures.Text();
+  row.replicate = record.replicate;
+  return row;
+}
+
 StateRow RowFrom(const CaseFolder& c, const dem::StageRecord& stage) {
   const dem::AsymptoteRecord& a = *stage.asymptote;
-  StateRow row;
-  row.case_id = c.id;
-  row.case_name = c.name;
-  row.run = c.run;
-  row.figures = c.figures;
-  row.replicate = c.replicate;
+  StateRow row = CaseFields(c.record);
   row.stage = stage.name;
   row.kind = KindOf(a.path_kind, a.psi_epsilon_deg);
-  row.status = ToString(a.status);
+  row.status = StatusOf(a.status);
   row.detector = stage.asymptote_criterion;
   for (dem::ValidityFlag flag : stage.validity.flags) {
     row.flags += std::string(row.flags.empty() ? "" : ";") + ToString(flag);
@@ -157,14 +165,9 @@ StateRow RowFrom(const CaseFolder& c, const dem::StageRecord& stage) {
 }
 
 StateRow MissingRow(const CaseFolder& c) {
-  StateRow row;
-  row.case_id = c.id;
-  row.case_name = c.name;
-  row.run = c.run;
-  row.figures = c.figures;
-  row.replicate = c.replicate;
-  row.kind = "none";
-  row.status = "no_result";
+  StateRow row = CaseFields(c.record);
+  row.kind = TableKind::kNone;
+  row.status = TableStatus::kNoResult;
   row.message = c.termination.empty() ? c.message : c.termination + ": " + c.message;
   for (double* v : {&row.psi_epsilon_deg, &row.p_kpa, &row.e, &row.ln_1_plus_e, &row.psi_sigma_deg,
                     &row.q_over_p, &row.ocr, &row.p_e_star_kpa, &row.inertial_number_dmin,
@@ -183,7 +186,7 @@ PathSamples MonotonePath(const TimeSeries& series, int64_t first, int64_t last, 
   const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
   const std::vector<double>& e = series.Values(dem::record::kColumnVoidRatio);
   const std::vector<double>& psi = series.Values(dem::record::kColumnPsiSigma);
-  const std::vector<double>& coordination = series.Values("mechanical_coordination");
+  const std::vector<double>& coordination = series.Values(dem::record::kColumnMechanicalCoordination);
   for (int64_t r = first; r <= last && r < static_cast<int64_t>(p.size()); ++r) {
     const size_t k = static_cast<size_t>(r);
     if (!(p[k] > 0) || dem::IsGas(p[k], coordination[k])) continue;
@@ -268,56 +271,140 @@ ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising
 
 namespace {
 
-struct NumberColumn {
+// The table's columns in the order of its CSV file: one entry per column
+// drives the CSV, the HDF5 file and the reader.
+using Member = std::variant<int StateRow::*, double StateRow::*, std::string StateRow::*,
+                            TableKind StateRow::*, TableStatus StateRow::*>;
+struct Column {
   const char* name;
-  const char* units;
-  double StateRow::*member;
+  Member member;
+  const char* units = "";  // of a number column
 };
-constexpr NumberColumn kNumberColumns[] = {
-    {table::kColumnPsiEpsilon, "deg", &StateRow::psi_epsilon_deg},
-    {table::kColumnMeanStress, "kPa", &StateRow::p_kpa},
-    {table::kColumnVoidRatio, "1", &StateRow::e},
-    {table::kColumnLnVolume, "1", &StateRow::ln_1_plus_e},
-    {table::kColumnPsiSigma, "deg", &StateRow::psi_sigma_deg},
-    {table::kColumnStressRatio, "1", &StateRow::q_over_p},
-    {table::kColumnOcr, "1", &StateRow::ocr},
-    {table::kColumnEquivalentPressure, "kPa", &StateRow::p_e_star_kpa},
-    {table::kColumnInertialNumberDmin, "1", &StateRow::inertial_number_dmin},
-    {table::kColumnInertialNumberDmax, "1", &StateRow::inertial_number_dmax},
-    {table::kColumnCoordination, "1", &StateRow::coordination},
-    {table::kColumnMechanicalCoordination, "1", &StateRow::mechanical_coordination},
-    {table::kColumnMaxRelativeOverlap, "1", &StateRow::max_relative_overlap},
-    {table::kColumnWindowStrain, "1", &StateRow::window_strain},
-    {table::kColumnWindowLnp, "1", &StateRow::window_lnp},
-    {table::kColumnPsiChange, "deg", &StateRow::psi_change_deg},
-    {table::kColumnSlopeChange, "1", &StateRow::slope_change},
-    {table::kColumnLnpChange, "1", &StateRow::lnp_change},
-    {table::kColumnSlope, "1", &StateRow::dln1pe_dlnp},
-};
-struct TextColumn {
-  const char* name;
-  std::string StateRow::*member;
-};
-constexpr TextColumn kTextColumns[] = {
-    {table::kColumnKind, &StateRow::kind},       {table::kColumnStatus, &StateRow::status},
-    {table::kColumnCase, &StateRow::case_id},    {table::kColumnCaseName, &StateRow::case_name},
-    {table::kColumnStage, &StateRow::stage},     {table::kColumnRun, &StateRow::run},
-    {table::kColumnFigures, &StateRow::figures}, {table::kColumnFlags, &StateRow::flags},
-    {table::kColumnDetector, &StateRow::detector}, {table::kColumnMessage, &StateRow::message},
+const Column kColumns[] = {
+    {table::kColumnReplicate, &StateRow::replicate},
+    {table::kColumnKind, &StateRow::kind},
+    {table::kColumnStatus, &StateRow::status},
+    {table::kColumnCase, &StateRow::case_id},
+    {table::kColumnCaseName, &StateRow::case_name},
+    {table::kColumnStage, &StateRow::stage},
+    {table::kColumnPsiEpsilon, &StateRow::psi_epsilon_deg, "deg"},
+    {table::kColumnMeanStress, &StateRow::p_kpa, "kPa"},
+    {table::kColumnVoidRatio, &StateRow::e, "1"},
+    {table::kColumnLnVolume, &StateRow::ln_1_plus_e, "1"},
+    {table::kColumnPsiSigma, &StateRow::psi_sigma_deg, "deg"},
+    {table::kColumnStressRatio, &StateRow::q_over_p, "1"},
+    {table::kColumnOcr, &StateRow::ocr, "1"},
+    {table::kColumnEquivalentPressure, &StateRow::p_e_star_kpa, "kPa"},
+    {table::kColumnInertialNumberDmin, &StateRow::inertial_number_dmin, "1"},
+    {table::kColumnInertialNumberDmax, &StateRow::inertial_number_dmax, "1"},
+    {table::kColumnCoordination, &StateRow::coordination, "1"},
+    {table::kColumnMechanicalCoordination, &StateRow::mechanical_coordination, "1"},
+    {table::kColumnMaxRelativeOverlap, &StateRow::max_relative_overlap, "1"},
+    {table::kColumnWindowStrain, &StateRow::window_strain, "1"},
+    {table::kColumnWindowLnp, &StateRow::window_lnp, "1"},
+    {table::kColumnPsiChange, &StateRow::psi_change_deg, "deg"},
+    {table::kColumnSlopeChange, &StateRow::slope_change, "1"},
+    {table::kColumnLnpChange, &StateRow::lnp_change, "1"},
+    {table::kColumnSlope, &StateRow::dln1pe_dlnp, "1"},
     {table::kColumnNclReference, &StateRow::ncl_reference},
+    {table::kColumnRun, &StateRow::run},
+    {table::kColumnFigures, &StateRow::figures},
+    {table::kColumnFlags, &StateRow::flags},
+    {table::kColumnDetector, &StateRow::detector},
+    {table::kColumnMessage, &StateRow::message},
 };
+
+// A field of the CSV file.
+std::string CsvField(const StateRow& row, const Member& member) {
+  return std::visit(
+      [&row](auto m) -> std::string {
+        using T = std::decay_t<decltype(row.*m)>;
+        if constexpr (std::is_same_v<T, int>) {
+          return std::to_string(row.*m);
+        } else if constexpr (std::is_same_v<T, double>) {
+          return CsvNumber(row.*m);
+        } else if constexpr (std::is_same_v<T, std::string>) {
+          return CsvText(row.*m);
+        } else {
+          return ToString(row.*m);
+        }
+      },
+      member);
+}
+
+void WriteColumn(Hdf5File& file, const std::vector<StateRow>& rows, const Column& column) {
+  const std::string path = std::string(table::kStatesGroup) + "/" + column.name;
+  std::visit(
+      [&](auto m) {
+        using T = std::decay_t<decltype(StateRow{}.*m)>;
+        if constexpr (std::is_same_v<T, int>) {
+          std::vector<int64_t> values;
+          for (const StateRow& row : rows) values.push_back(row.*m);
+          file.WriteInts(path, values);
+        } else if constexpr (std::is_same_v<T, double>) {
+          std::vector<double> values;
+          for (const StateRow& row : rows) values.push_back(row.*m);
+          file.WriteDoubles(path, values, column.units);
+        } else {
+          std::vector<std::string> values;
+          for (const StateRow& row : rows) {
+            if constexpr (std::is_same_v<T, std::string>) {
+              values.push_back(row.*m);
+            } else {
+              values.push_back(ToString(row.*m));
+            }
+          }
+          file.WriteStrings(path, values);
+        }
+      },
+      column.member);
+}
+
+// Reads one column into `rows` (sized by the replicate column).
+void ReadColumn(const Hdf5File& file, const std::string& origin, const Column& column,
+                std::vector<StateRow>* rows) {
+  const std::string path = std::string(table::kStatesGroup) + "/" + column.name;
+  std::visit(
+      [&](auto m) {
+        using T = std::decay_t<decltype(StateRow{}.*m)>;
+        if constexpr (std::is_same_v<T, int>) {
+          const std::vector<int64_t> values = file.ReadInts(path);
+          for (size_t k = 0; k < rows->size() && k < values.size(); ++k) {
+            (*rows)[k].*m = static_cast<int>(values[k]);
+          }
+        } else if constexpr (std::is_same_v<T, double>) {
+          const std::vector<double> values = file.ReadDoubles(path);
+          for (size_t k = 0; k < rows->size() && k < values.size(); ++k) (*rows)[k].*m = values[k];
+        } else {
+          const std::vector<std::string> values = file.ReadStrings(path);
+          for (size_t k = 0; k < rows->size() && k < values.size(); ++k) {
+            if constexpr (std::is_same_v<T, std::string>) {
+              (*rows)[k].*m = values[k];
+            } else {
+              const std::optional<T> value = FromString<T>(values[k]);
+              if (!value) {
+                throw InputError(fmt::format("{}: {} of row {} is '{}': expected {}", origin, path,
+                                             k + 1, values[k], AllowedNames<T>()));
+              }
+              (*rows)[k].*m = *value;
+            }
+          }
+        }
+      },
+      column.member);
+}
 
 void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
                const std::vector<NclFit>& fits) {
-  std::string csv = "replicate,kind,status,case,case_name,stage";
-  for (const NumberColumn& column : kNumberColumns) csv += std::string(",") + column.name;
-  csv += ",ncl_reference,run,figures,flags,detector,message\n";
+  std::string csv;
+  for (const Column& column : kColumns) csv += (csv.empty() ? "" : ",") + std::string(column.name);
+  csv += "\n";
   for (const StateRow& row : rows) {
-    csv += std::to_string(row.replicate) + "," + row.kind + "," + row.status + "," +
-           CsvText(row.case_id) + "," + CsvText(row.case_name) + "," + CsvText(row.stage);
-    for (const NumberColumn& column : kNumberColumns) csv += "," + CsvNumber(row.*column.member);
-    csv += "," + CsvText(row.ncl_reference) + "," + CsvText(row.run) + "," + CsvText(row.figures) + "," + CsvText(row.flags) + "," +
-           CsvText(row.detector) + "," + CsvText(row.message) + "\n";
+    std::string line;
+    for (const Column& column : kColumns) {
+      line += (line.empty() ? "" : ",") + CsvField(row, column.member);
+    }
+    csv += line + "\n";
   }
   WriteTextFileAtomically(directory + "/asymptotic_states.csv", csv);
 
@@ -326,19 +413,7 @@ void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
   file.SetAttribute(table::kStatesGroup, "description",
                     "asymptotic states of every case: one row per detector-carrying stage, and "
                     "one per case without a result");
-  std::vector<int64_t> replicates;
-  for (const StateRow& row : rows) replicates.push_back(row.replicate);
-  file.WriteInts(std::string(table::kStatesGroup) + "/" + table::kColumnReplicate, replicates);
-  for (const NumberColumn& column : kNumberColumns) {
-    std::vector<double> values;
-    for (const StateRow& row : rows) values.push_back(row.*column.member);
-    file.WriteDoubles(std::string(table::kStatesGroup) + "/" + column.name, values, column.units);
-  }
-  for (const TextColumn& column : kTextColumns) {
-    std::vector<std::string> values;
-    for (const StateRow& row : rows) values.push_back(row.*column.member);
-    file.WriteStrings(std::string(table::kStatesGroup) + "/" + column.name, values);
-  }
+  for (const Column& column : kColumns) WriteColumn(file, rows, column);
   file.CreateGroup("/ncl_fit");
   std::vector<double> n, lambda, pmin, pmax;
   std::vector<int64_t> reps, points;
@@ -368,31 +443,33 @@ void WriteSummary(const std::string& directory, const std::vector<StateRow>& row
   std::map<std::pair<std::string, std::string>, std::vector<const StateRow*>> groups;
   std::vector<std::pair<std::string, std::string>> order;
   for (const StateRow& row : rows) {
-    if (row.status == "no_result") continue;
+    if (row.status == TableStatus::kNoResult) continue;
     const auto key = std::make_pair(row.case_name, row.stage);
     if (!groups.count(key)) order.push_back(key);
     groups[key].push_back(&row);
   }
-  const std::vector<NumberColumn> summarised = {
-      kNumberColumns[1], kNumberColumns[3], kNumberColumns[4],
-      kNumberColumns[5], kNumberColumns[6], kNumberColumns[0]};
+  const std::pair<const char*, double StateRow::*> summarised[] = {
+      {table::kColumnMeanStress, &StateRow::p_kpa},
+      {table::kColumnLnVolume, &StateRow::ln_1_plus_e},
+      {table::kColumnPsiSigma, &StateRow::psi_sigma_deg},
+      {table::kColumnStressRatio, &StateRow::q_over_p},
+      {table::kColumnOcr, &StateRow::ocr},
+      {table::kColumnPsiEpsilon, &StateRow::psi_epsilon_deg}};
   std::string csv = "case_name,stage,kind,replicates,detected";
-  for (const NumberColumn& column : summarised) {
-    csv += fmt::format(",{0}_mean,{0}_ci95", column.name);
-  }
+  for (const auto& [name, member] : summarised) csv += fmt::format(",{0}_mean,{0}_ci95", name);
   csv += "\n";
   for (const auto& key : order) {
     const std::vector<const StateRow*>& members = groups[key];
     std::vector<const StateRow*> detected;
     for (const StateRow* row : members) {
-      if (row->status == "detected") detected.push_back(row);
+      if (row->status == TableStatus::kDetected) detected.push_back(row);
     }
-    csv += CsvText(key.first) + "," + CsvText(key.second) + "," + members.front()->kind + "," +
+    csv += CsvText(key.first) + "," + CsvText(key.second) + "," + ToString(members.front()->kind) + "," +
            std::to_string(members.size()) + "," + std::to_string(detected.size());
-    for (const NumberColumn& column : summarised) {
+    for (const auto& [name, member] : summarised) {
       std::vector<double> values;
       for (const StateRow* row : detected) {
-        if (std::isfinite(row->*column.member)) values.push_back(row->*column.member);
+        if (std::isfinite(row->*member)) values.push_back(row->*member);
       }
       const Interval interval = MeanInterval95(values);
       csv += "," + CsvNumber(interval.mean) + "," + CsvNumber(interval.half_width);
@@ -410,7 +487,7 @@ StateRow JoinedRow(const ConvergenceRow& joined, const ConvergenceTolerance& tol
   row.replicate = joined.replicate;
   row.stage = table::kStageJoined;
   row.kind = joined.kind;
-  row.status = "detected";
+  row.status = TableStatus::kDetected;
   row.message.clear();
   row.detector = fmt::format(
       "path_convergence: paths of psi_epsilon = {:g} deg from different starting states agree "
@@ -459,32 +536,29 @@ Interval MeanInterval95(const std::vector<double>& values) {
   return interval;
 }
 
-StateTableSummary WriteStateTable(const std::string& directory,
-                                  const ConvergenceTolerance& tolerance) {
-  if (!fs::exists(directory + "/study.toml")) {
-    throw InputError(directory + ": not a study folder (no study.toml)");
-  }
-  const ConfigTable study = ConfigTable::ParseFile(directory + "/study.toml");
-  const std::string ncl_case = study.GetString("ncl", "");
-  StateTableSummary summary;
-  summary.directory = directory;
-  std::vector<StateRow> rows;
-  // Paths by (replicate, kind, ψ_ε) for the convergence check.
-  struct Path {
-    std::string case_name;
-    double start_p;
-    PathSamples samples;
-  };
-  std::map<std::tuple<int, std::string, double>, std::vector<Path>> paths;
-  std::map<std::pair<int, std::string>, std::string> parent_of;  // (replicate, case) → parent
+namespace {
+
+// A compression or extension path of one case, for the convergence check.
+struct ConvergencePath {
+  std::string case_name;
+  double start_p;
+  PathSamples samples;
+};
+// Paths by (replicate, kind, ψ_ε).
+using PathGroups = std::map<std::tuple<int, TableKind, double>, std::vector<ConvergencePath>>;
+
+// The rows of every case (a row per detector-carrying stage, one per case
+// without a result), its compression and extension paths, and each case's
+// parent.
+void ReadCases(const std::string& directory, std::vector<StateRow>* rows, PathGroups* paths,
+               std::map<std::pair<int, std::string>, std::string>* parent_of) {
   for (const CaseFolder& c : ListCases(directory)) {
-    parent_of[{c.replicate, c.name}] = c.parent_name;
+    (*parent_of)[{c.record.replicate, c.record.name}] = c.record.parent_name();
     if (!c.finished) {
-      rows.push_back(MissingRow(c));
+      rows->push_back(MissingRow(c));
       continue;
     }
-    const std::string result = c.directory + "/result.h5";
-    const Hdf5File file = Hdf5File::OpenRead(result);
+    const Hdf5File file = Hdf5File::OpenRead(c.record.result_path());
     const std::vector<dem::StageRecord> stages = dem::ReadStageRecords(file);
     std::optional<TimeSeries> series;
     bool any = false;
@@ -493,28 +567,34 @@ StateTableSummary WriteStateTable(const std::string& directory,
       any = true;
       StateRow row = RowFrom(c, stage);
       if (c.termination != "completed" && row.message.empty()) row.message = c.message;
-      rows.push_back(row);
-      if (row.kind == "compression" || row.kind == "extension") {
-        if (!series) series = TimeSeries::Read(file, "/series");
-        const bool rising = row.kind == "compression";
-        Path path{c.name, 0, MonotonePath(*series, stage.first_row, stage.last_row, rising)};
+      rows->push_back(row);
+      if (row.kind == TableKind::kCompression || row.kind == TableKind::kExtension) {
+        if (!series) series = TimeSeries::Read(file, dem::record::kSeries);
+        const bool rising = row.kind == TableKind::kCompression;
+        ConvergencePath path{c.record.name, 0,
+                             MonotonePath(*series, stage.first_row, stage.last_row, rising)};
         if (path.samples.x.size() >= 2) {
           path.start_p = std::exp(rising ? path.samples.x.front() : path.samples.x.back());
           const double psi = std::round(row.psi_epsilon_deg * 1e6) / 1e6;
-          paths[{c.replicate, row.kind, psi}].push_back(std::move(path));
+          (*paths)[{c.record.replicate, row.kind, psi}].push_back(std::move(path));
         }
       }
     }
-    if (!any && c.termination != "completed") rows.push_back(MissingRow(c));
+    if (!any && c.termination != "completed") rows->push_back(MissingRow(c));
   }
+}
 
-  // Paper Sec. 4.3: paths of one ψ_ε from successive starting states.
+// Paper Sec. 4.3: paths of one ψ_ε from successive starting states; a joined
+// pair adds its state to `rows`.
+std::vector<ConvergenceRow> JoinGroups(PathGroups* paths, const ConvergenceTolerance& tolerance,
+                                       std::vector<StateRow>* rows, StateTableSummary* summary) {
   std::vector<ConvergenceRow> convergence;
-  for (auto& [key, group] : paths) {
+  for (auto& [key, group] : *paths) {
     const auto& [replicate, kind, psi] = key;
-    const bool rising = kind == "compression";
-    std::sort(group.begin(), group.end(),
-              [](const Path& a, const Path& b) { return a.start_p < b.start_p; });
+    const bool rising = kind == TableKind::kCompression;
+    std::sort(group.begin(), group.end(), [](const ConvergencePath& a, const ConvergencePath& b) {
+      return a.start_p < b.start_p;
+    });
     for (size_t k = 1; k < group.size(); ++k) {
       ConvergenceRow row = JoinPaths(group[k - 1].samples, group[k].samples, rising, tolerance);
       row.replicate = replicate;
@@ -522,28 +602,34 @@ StateTableSummary WriteStateTable(const std::string& directory,
       row.psi_epsilon_deg = psi;
       row.case_a = group[k - 1].case_name;
       row.case_b = group[k].case_name;
-      summary.joined += row.status == "joined";
-      summary.not_joined += row.status != "joined";
+      summary->joined += row.status == "joined";
+      summary->not_joined += row.status != "joined";
       convergence.push_back(row);
-      if (row.status == "joined") rows.push_back(JoinedRow(row, tolerance));
+      if (row.status == "joined") rows->push_back(JoinedRow(row, tolerance));
     }
   }
-  // An NCL per replicate and NCL-carrying case (the study's NCL, and the
-  // NCLs of samples with another material or time step: cases with NCL
-  // states at two stages or more; a case that continues an NC state to one
-  // isotropic asymptote, as the rate study's ψ_ε = 0° cases do, refers to
-  // its ancestor's NCL), through the stage-end states that are load-bearing
-  // and reliable: detected or drifting (the detector's ψ_σ and slope tests
-  // are at the noise of a small sample on a ψ_ε = 0° path), not a gas,
-  // overlaps below 10 %.
+  return convergence;
+}
+
+// An NCL per replicate and NCL-carrying case (the study's NCL, and the
+// NCLs of samples with another material or time step: cases with NCL
+// states at two stages or more; a case that continues an NC state to one
+// isotropic asymptote, as the rate study's ψ_ε = 0° cases do, refers to
+// its ancestor's NCL), through the stage-end states that are load-bearing
+// and reliable: detected or drifting (the detector's ψ_σ and slope tests
+// are at the noise of a small sample on a ψ_ε = 0° path), not a gas,
+// overlaps below 10 %. Returns (replicate, case) → index into `fits`.
+std::map<std::pair<int, std::string>, size_t> FitNcls(const std::vector<StateRow>& rows,
+                                                      const std::string& ncl_case,
+                                                      std::vector<NclFit>* fits) {
   std::map<std::pair<int, std::string>, int> ncl_states;  // (replicate, case) → NCL rows
   for (const StateRow& row : rows) {
-    if (row.kind == "ncl") ++ncl_states[{row.replicate, row.case_name}];
+    if (row.kind == TableKind::kNcl) ++ncl_states[{row.replicate, row.case_name}];
   }
-  std::map<std::pair<int, std::string>, size_t> fit_of;  // (replicate, case) → summary.ncl
+  std::map<std::pair<int, std::string>, size_t> fit_of;
   for (const StateRow& row : rows) {
     const auto key = std::make_pair(row.replicate, row.case_name);
-    if (row.kind != "ncl" || fit_of.count(key)) continue;
+    if (row.kind != TableKind::kNcl || fit_of.count(key)) continue;
     if (ncl_states[key] < 2 && row.case_name != ncl_case) continue;
     NclFit fit;
     fit.replicate = row.replicate;
@@ -551,11 +637,12 @@ StateTableSummary WriteStateTable(const std::string& directory,
     std::vector<double> x, y;
     for (const StateRow& other : rows) {
       if (other.replicate != fit.replicate || other.case_name != fit.case_name ||
-          other.kind != "ncl" || (other.status != "detected" && other.status != "drifting") ||
+          other.kind != TableKind::kNcl ||
+          (other.status != TableStatus::kDetected && other.status != TableStatus::kDrifting) ||
           other.flags.find("overlap_above_10pct") != std::string::npos) {
         continue;
       }
-      ++(other.status == "detected" ? fit.detected : fit.drifting);
+      ++(other.status == TableStatus::kDetected ? fit.detected : fit.drifting);
       x.push_back(std::log(other.p_kpa));
       y.push_back(other.ln_1_plus_e);
     }
@@ -567,19 +654,26 @@ StateTableSummary WriteStateTable(const std::string& directory,
       fit.p_min_kpa = std::exp(*std::min_element(x.begin(), x.end()));
       fit.p_max_kpa = std::exp(*std::max_element(x.begin(), x.end()));
     }
-    fit_of[key] = summary.ncl.size();
-    summary.ncl.push_back(fit);
+    fit_of[key] = fits->size();
+    fits->push_back(fit);
   }
-  // Each state refers to the NCL of its nearest ancestor (or itself) that
-  // has one, else to the study's NCL.
-  for (StateRow& row : rows) {
+  return fit_of;
+}
+
+// Each state refers to the NCL of its nearest ancestor (or itself) that has
+// one, else to the study's NCL: its p_e* and OCR.
+void ReferToNcls(const std::vector<NclFit>& fits,
+                 const std::map<std::pair<int, std::string>, size_t>& fit_of,
+                 const std::map<std::pair<int, std::string>, std::string>& parent_of,
+                 const std::string& ncl_case, std::vector<StateRow>* rows) {
+  for (StateRow& row : *rows) {
     if (!(row.p_kpa > 0)) continue;
     std::string name = row.case_name.substr(0, row.case_name.find('+'));  // joined: first path
     const NclFit* fit = nullptr;
     for (int guard = 0; !name.empty() && guard < 1000; ++guard) {
       const auto it = fit_of.find({row.replicate, name});
-      if (it != fit_of.end() && summary.ncl[it->second].valid()) {
-        fit = &summary.ncl[it->second];
+      if (it != fit_of.end() && fits[it->second].valid()) {
+        fit = &fits[it->second];
         break;
       }
       const auto up = parent_of.find({row.replicate, name});
@@ -587,60 +681,77 @@ StateTableSummary WriteStateTable(const std::string& directory,
     }
     if (!fit) {
       const auto it = fit_of.find({row.replicate, ncl_case});
-      if (it != fit_of.end() && summary.ncl[it->second].valid()) fit = &summary.ncl[it->second];
+      if (it != fit_of.end() && fits[it->second].valid()) fit = &fits[it->second];
     }
     if (!fit) continue;
     row.ncl_reference = fit->case_name;
     row.p_e_star_kpa = std::exp((fit->n - row.ln_1_plus_e) / fit->lambda);
     row.ocr = row.p_e_star_kpa / row.p_kpa;
   }
-  std::string ncl_csv =
-      "replicate,case,points,detected,drifting,N,lambda_star,p_min_kpa,p_max_kpa\n";
-  for (const NclFit& fit : summary.ncl) {
-    ncl_csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", fit.replicate, fit.case_name, fit.points,
-                           fit.detected, fit.drifting, CsvNumber(fit.valid() ? fit.n : kNaN),
-                           CsvNumber(fit.valid() ? fit.lambda : kNaN), CsvNumber(fit.p_min_kpa),
-                           CsvNumber(fit.p_max_kpa));
-  }
-  WriteTextFileAtomically(directory + "/ncl_fit.csv", ncl_csv);
+}
 
-  std::string conv_csv = fmt::format(
+void WriteNclFits(const std::string& directory, const std::vector<NclFit>& fits) {
+  std::string csv = "replicate,case,points,detected,drifting,N,lambda_star,p_min_kpa,p_max_kpa\n";
+  for (const NclFit& fit : fits) {
+    csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", fit.replicate, fit.case_name, fit.points,
+                       fit.detected, fit.drifting, CsvNumber(fit.valid() ? fit.n : kNaN),
+                       CsvNumber(fit.valid() ? fit.lambda : kNaN), CsvNumber(fit.p_min_kpa),
+                       CsvNumber(fit.p_max_kpa));
+  }
+  WriteTextFileAtomically(directory + "/ncl_fit.csv", csv);
+}
+
+void WriteConvergence(const std::string& directory, const std::vector<ConvergenceRow>& rows,
+                      const ConvergenceTolerance& tolerance) {
+  std::string csv = fmt::format(
       "# paths of one psi_epsilon from different starting states join where ln(1+e) and "
       "psi_sigma agree within {} and {} deg at a common p from there on\n"
       "replicate,kind,psi_epsilon_deg,case_a,case_b,status,joined_at_p_kpa,ln_1_plus_e,"
       "psi_sigma_deg,overlap_from_p_kpa,overlap_to_p_kpa\n",
       tolerance.ln_1_plus_e, tolerance.psi_sigma_deg);
-  for (const ConvergenceRow& row : convergence) {
-    conv_csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", row.replicate, row.kind,
-                            CsvNumber(row.psi_epsilon_deg), row.case_a, row.case_b, row.status,
-                            CsvNumber(row.joined_at_p_kpa), CsvNumber(row.ln_1_plus_e),
-                            CsvNumber(row.psi_sigma_deg), CsvNumber(row.overlap_from_p_kpa),
-                            CsvNumber(row.overlap_to_p_kpa));
+  for (const ConvergenceRow& row : rows) {
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{}\n", row.replicate, ToString(row.kind),
+                       CsvNumber(row.psi_epsilon_deg), row.case_a, row.case_b, row.status,
+                       CsvNumber(row.joined_at_p_kpa), CsvNumber(row.ln_1_plus_e),
+                       CsvNumber(row.psi_sigma_deg), CsvNumber(row.overlap_from_p_kpa),
+                       CsvNumber(row.overlap_to_p_kpa));
   }
-  WriteTextFileAtomically(directory + "/path_convergence.csv", conv_csv);
+  WriteTextFileAtomically(directory + "/path_convergence.csv", csv);
+}
 
-  for (const StateRow& row : rows) ++summary.counts[row.kind][row.status];
+}  // namespace
+
+StateTableSummary WriteStateTable(const std::string& directory,
+                                  const ConvergenceTolerance& tolerance) {
+  if (!fs::exists(directory + "/study.toml")) {
+    throw InputError(directory + ": not a study folder (no study.toml)");
+  }
+  const ConfigTable study = ConfigTable::ParseFile(directory + "/study.toml");
+  const std::string ncl_case = study.GetString("ncl", "");
+  StateTableSummary summary;
+  summary.directory = directory;
+  std::vector<StateRow> rows;
+  PathGroups paths;
+  std::map<std::pair<int, std::string>, std::string> parent_of;  // (replicate, case) → parent
+  ReadCases(directory, &rows, &paths, &parent_of);
+  const std::vector<ConvergenceRow> convergence = JoinGroups(&paths, tolerance, &rows, &summary);
+  const auto fit_of = FitNcls(rows, ncl_case, &summary.ncl);
+  ReferToNcls(summary.ncl, fit_of, parent_of, ncl_case, &rows);
+  WriteNclFits(directory, summary.ncl);
+  WriteConvergence(directory, convergence, tolerance);
+  for (const StateRow& row : rows) ++summary.counts[ToString(row.kind)][ToString(row.status)];
   WriteRows(directory, rows, summary.ncl);
   WriteSummary(directory, rows);
-  if (const std::optional<RateStudy> rate = WriteRateStudy(directory, rows)) {
-    summary.rate = rate->Text();
-  }
   return summary;
 }
 
 std::vector<StateRow> ReadStateTable(const std::string& directory) {
-  const Hdf5File file = Hdf5File::OpenRead(directory + "/" + table::kFileName);
-  const std::vector<int64_t> replicates = file.ReadInts(std::string(table::kStatesGroup) + "/" + table::kColumnReplicate);
+  const std::string origin = directory + "/" + table::kFileName;
+  const Hdf5File file = Hdf5File::OpenRead(origin);
+  const std::vector<int64_t> replicates =
+      file.ReadInts(std::string(table::kStatesGroup) + "/" + table::kColumnReplicate);
   std::vector<StateRow> rows(replicates.size());
-  for (size_t k = 0; k < rows.size(); ++k) rows[k].replicate = static_cast<int>(replicates[k]);
-  for (const NumberColumn& column : kNumberColumns) {
-    const std::vector<double> values = file.ReadDoubles(std::string(table::kStatesGroup) + "/" + column.name);
-    for (size_t k = 0; k < rows.size() && k < values.size(); ++k) rows[k].*column.member = values[k];
-  }
-  for (const TextColumn& column : kTextColumns) {
-    const std::vector<std::string> values = file.ReadStrings(std::string(table::kStatesGroup) + "/" + column.name);
-    for (size_t k = 0; k < rows.size() && k < values.size(); ++k) rows[k].*column.member = values[k];
-  }
+  for (const Column& column : kColumns) ReadColumn(file, origin, column, &rows);
   return rows;
 }
 
@@ -661,7 +772,7 @@ std::string StateTableSummary::Text() const {
                               fit.replicate, fit.case_name, fit.points);
   }
   text += fmt::format("  path convergence: {} pairs joined, {} not\n", joined, not_joined);
-  return text + rate;
+  return text;
 }
 
 }  // namespace granasym::study

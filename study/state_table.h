@@ -5,13 +5,16 @@
 // interval over replicates), DIR/ncl_fit.csv (the study's own NCLs that OCR
 // and p_e* refer to: a state uses the NCL of its nearest ancestor case that
 // has one, else the study's `ncl`), and DIR/path_convergence.csv (the paper's Sec. 4.3
-// evidence: where paths of one ψ_ε from different starting states join);
-// with rate cases also the rate study's files (study/rate_study.h).
+// evidence: where paths of one ψ_ε from different starting states join).
+// The analyses of the table (the rate study, figures, calibration, report)
+// are the analysis library's (analysis/).
 #pragma once
 
 #include <map>
 #include <string>
 #include <vector>
+
+#include "study/state_table_names.h"
 
 namespace granasym::study {
 
@@ -19,8 +22,8 @@ namespace granasym::study {
 struct StateRow {
   std::string case_id, case_name, run, stage, figures;
   int replicate = 1;
-  std::string kind;    // ncl, csl, compression, extension, triaxial
-  std::string status;  // detected, drifting, not_reached, gas, invalid; no_result
+  TableKind kind = TableKind::kNone;
+  TableStatus status = TableStatus::kNoResult;
   std::string detector;
   std::string flags;  // validity flags, ';'-separated
   std::string message;
@@ -52,7 +55,7 @@ struct NclFit {
 // Where paths of one ψ_ε from different starting states join.
 struct ConvergenceRow {
   int replicate = 1;
-  std::string kind;
+  TableKind kind = TableKind::kCompression;  // compression or extension
   double psi_epsilon_deg = 0;
   std::string case_a, case_b;
   std::string status;  // joined, not_joined, no_overlap
@@ -89,7 +92,6 @@ struct StateTableSummary {
   std::map<std::string, std::map<std::string, int>> counts;  // kind → status → rows
   std::vector<NclFit> ncl;
   int joined = 0, not_joined = 0;
-  std::string rate;  // the rate study's line (study/rate_study.h); empty without rate cases
   std::string Text() const;
 };
 

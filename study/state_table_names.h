@@ -4,6 +4,46 @@
 // without linking the study library.
 #pragma once
 
+#include "common/enum_names.h"
+
+namespace granasym::study {
+
+// The kind of an asymptotic state, as the table's `kind` column names it:
+// from the detector's path kind, with the ψ_ε = 0° compression states as
+// the NCL; `none` for a case without a result.
+enum class TableKind { kNcl, kCsl, kCompression, kExtension, kTriaxial, kNone };
+// What the detector said of a state (dem::AsymptoteStatus), or that its
+// case has no result.
+enum class TableStatus { kDetected, kDrifting, kNotReached, kGas, kInvalid, kNoResult };
+
+}  // namespace granasym::study
+
+template <>
+struct granasym::EnumNames<granasym::study::TableKind> {
+  using K = study::TableKind;
+  static constexpr EnumEntry<K> kEntries[] = {
+      {K::kNcl, "ncl", "isotropic normal compression (psi_epsilon = 0)"},
+      {K::kCsl, "csl", "critical state (an isochoric path, psi_epsilon = 90 deg)"},
+      {K::kCompression, "compression", "a strain path with 0 < |psi_epsilon| < 90 deg"},
+      {K::kExtension, "extension", "a strain path with |psi_epsilon| > 90 deg"},
+      {K::kTriaxial, "triaxial", "a stress-controlled (drained triaxial) stage"},
+      {K::kNone, "none", "a case without a result"},
+  };
+};
+
+template <>
+struct granasym::EnumNames<granasym::study::TableStatus> {
+  using S = study::TableStatus;
+  static constexpr EnumEntry<S> kEntries[] = {
+      {S::kDetected, "detected", "the detector's criterion held over a full window"},
+      {S::kDrifting, "drifting", "a full window, but the criterion did not hold at the stage end"},
+      {S::kNotReached, "not_reached", "the window never filled"},
+      {S::kGas, "gas", "a gas or liquefied state: no asymptotic state"},
+      {S::kInvalid, "invalid", "the stage failed a validity guard"},
+      {S::kNoResult, "no_result", "the case has no result (not run, failed, interrupted)"},
+  };
+};
+
 namespace granasym::study::table {
 
 constexpr char kFileName[] = "asymptotic_states.h5";
@@ -44,8 +84,7 @@ constexpr char kColumnDetector[] = "detector";
 constexpr char kColumnMessage[] = "message";
 constexpr char kColumnNclReference[] = "ncl_reference";
 
-// Values of the kind, status and stage columns that readers select by.
-constexpr char kStatusDetected[] = "detected";
+// The stage column's value for a path-convergence state.
 constexpr char kStageJoined[] = "joined";
 constexpr char kFlagSeparator = ';';
 

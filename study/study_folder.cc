@@ -18,6 +18,7 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/text_file.h"
+#include "study/case_record.h"
 
 namespace granasym::study {
 namespace fs = std::filesystem;
@@ -49,7 +50,7 @@ std::vector<std::string> CaseFolders(const std::string& directory, bool with_rec
   for (const auto& replicate : fs::directory_iterator(base)) {
     if (!replicate.is_directory()) continue;
     for (const auto& entry : fs::directory_iterator(replicate.path())) {
-      if (entry.is_directory() && (!with_record || fs::exists(entry.path() / "case.toml"))) {
+      if (entry.is_directory() && (!with_record || fs::exists(entry.path() / CaseRecord::kFileName))) {
         folders.push_back(entry.path().string());
       }
     }
@@ -122,10 +123,10 @@ std::map<std::string, int64_t> OwnSteps(const std::string& directory) {
   for (const auto& [id, done] : finished) {
     const auto& [steps, folder] = done;
     int64_t start = 0;
-    if (fs::exists(folder / "case.toml")) {
-      const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
-      const std::string parent = record.GetString("parent", "");
-      const std::string stage = record.GetString("parent_stage", "");
+    if (fs::exists(folder / CaseRecord::kFileName)) {
+      const CaseRecord record = CaseRecord::Read(folder.string());
+      const std::string& parent = record.parent;
+      const std::string& stage = record.parent_stage;
       const auto parent_done = finished.find(parent);
       if (parent_done != finished.end()) {
         const auto [at, added] = fork_step.try_emplace({parent, stage}, parent_done->second.first);

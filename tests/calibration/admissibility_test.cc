@@ -14,7 +14,7 @@
 #include "calibration/starting_values.h"
 #include "common/config.h"
 #include "common/state_measures.h"
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 #include "constitutive/hypoplastic_sand.h"
 #include "constitutive/model_config.h"
 #include "synthetic_data.h"

@@ -10,7 +10,7 @@
 #include "calibration/model_parameters.h"
 #include "common/state_measures.h"
 #include "constitutive/asymptotic_states.h"
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 #include "constitutive/hypoplastic_clay.h"
 #include "synthetic_data.h"
 

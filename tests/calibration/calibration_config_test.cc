@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "synthetic_data.h"
+#include "tests/calibration/same_config.h"
 #include "tests/common/enum_spellings.h"
 
 namespace granasym::calibration {
@@ -70,6 +71,80 @@ TEST(CalibrationConfig, ReadsAValidFile) {
   EXPECT_FALSE(c.parameters[0].free);
   EXPECT_EQ(c.nlopt.starts, 2);
   EXPECT_EQ(c.hdf5_path, "/d/calib.h5");
+}
+
+// Every key the reader takes, none at its default.
+const char* kEveryKey = R"(
+[model]
+kind = "modified_cam_clay"
+asymptotes = "integrated"
+[parameters.lambda_star]
+free = true
+value = 0.1
+lower = 0.01
+upper = 0.3
+[parameters.poisson_ratio]
+free = false
+value = 0.25
+[[dataset]]
+name = "from a study"
+study = "../study"
+weight = 2.5
+psi_sigma_uncertainty_deg = 0.7
+ln_1_plus_e_uncertainty = 0.003
+kinds = ["csl", "extension"]
+statuses = ["detected", "drifting"]
+exclude_flags = ["gas"]
+ncl_references = ["ncl", "ncl_phi0"]
+cases = ["nc100_psi90", "oc2_psi90"]
+psi_epsilon_range_deg = [-10, 120.5]
+triaxial_kind_tolerance_deg = 3.0
+[[dataset]]
+name = "runs"
+dem = ["a.h5", "sub/b.h5"]
+weight = 0.0
+ncl_min_p_kpa = 20
+max_line_points = 7
+asbs_ln_1_plus_e = [0.55, 0.5812345678901234]
+[[dataset]]
+name = "table"
+csv = "/abs/states.csv"
+kind = "csl"
+ignore_columns = "q_kpa,t_s"
+psi_sigma_uncertainty_deg = 1e-3
+[fitter]
+method = "nlopt"
+fix_undetermined = false
+max_iterations = 77
+scale_by_residual_variance = false
+[fitter.nlopt]
+algorithm = "isres"
+starts = 5
+max_evaluations = 900
+seed = 42
+polish = "ceres"
+[output]
+hdf5 = "out/c.h5"
+summary = "out/c.txt"
+plot_data = "plots"
+)";
+
+TEST(CalibrationConfig, ItsTextReadsBackAsTheSameConfiguration) {
+  const CalibrationConfig c =
+      ReadCalibrationConfig(ConfigTable::ParseString(kEveryKey, "/d/e/calib.toml"));
+  const std::string text = CalibrationConfigText(c, "# a header\n");
+  EXPECT_EQ(text.rfind("# a header\n", 0), 0u) << text;
+  const CalibrationConfig again = ReadCalibrationConfig(ConfigTable::ParseString(text, c.origin));
+  testing::ExpectSameConfig(c, again);
+  // Paths stay relative to the file's folder, so the folder can move.
+  EXPECT_NE(text.find("study = \"../study\""), std::string::npos) << text;
+  EXPECT_NE(text.find("dem = [\"a.h5\", \"sub/b.h5\"]"), std::string::npos) << text;
+  EXPECT_EQ(CalibrationConfigText(again, "# a header\n"), text);
+  // And a configuration at every default.
+  const CalibrationConfig plain =
+      ReadCalibrationConfig(ConfigTable::ParseString(kConfig, "/d/calib.toml"));
+  testing::ExpectSameConfig(plain, ReadCalibrationConfig(ConfigTable::ParseString(
+                                       CalibrationConfigText(plain), plain.origin)));
 }
 
 TEST(CalibrationConfig, RejectsBadFilesNamingTheKey) {

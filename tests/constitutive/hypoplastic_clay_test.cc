@@ -7,7 +7,7 @@
 
 #include "common/state_measures.h"
 #include "constitutive/asymptotic_states.h"
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 #include "tests/constitutive/test_models.h"
 
 namespace granasym {

@@ -13,7 +13,7 @@
 #include "common/error.h"
 #include "common/state_measures.h"
 #include "constitutive/asymptotic_states.h"
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 #include "tests/constitutive/test_models.h"
 
 namespace granasym {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 #include "tests/common/enum_spellings.h"
 #include "tests/constitutive/test_models.h"
 

@@ -9,7 +9,7 @@
 #include "common/error.h"
 #include "constitutive/asymptotic_states.h"
 #include "constitutive/cam_clay_stress_point.h"
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 #include "tests/common/enum_spellings.h"
 #include "tests/constitutive/test_models.h"
 

@@ -23,7 +23,7 @@
 #include <string>
 
 #include "common/error.h"
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 #include "tests/constitutive/test_models.h"
 
 namespace granasym {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 #include "common/canonical_text.h"
 #include "common/config.h"
@@ -82,6 +83,21 @@ TEST(Material, IsValidNamesTheOffendingField) {
   EXPECT_NE(why.find("rolling_friction"), std::string::npos) << why;
   rolling.rolling_friction = -0.1;
   EXPECT_FALSE(rolling.IsValid(&why));
+}
+
+// κ = E/(2p) (linear) and (E*/p)^(2/3), E* = E/(2(1 − ν²)) (Hertz–Mindlin),
+// both with the contact modulus s·E.
+TEST(Material, TheStiffnessNumberIsThatOfItsLawWithTheScaledModulus) {
+  const Material linear = Parse("youngs_modulus_mpa = 500.0\nstiffness_scaling = 0.1\n");
+  EXPECT_DOUBLE_EQ(linear.StiffnessNumber(100e3), 0.1 * 500e6 / (2 * 100e3));  // 250
+  const Material hertz = Parse(
+      "contact_law = \"hertz_mindlin\"\nyoungs_modulus_mpa = 500.0\npoissons_ratio = 0.2\n");
+  EXPECT_DOUBLE_EQ(hertz.StiffnessNumber(100e3),
+                   std::pow(500e6 / (2 * (1 - 0.04)) / 100e3, 2.0 / 3.0));
+  Material scaled = hertz;
+  scaled.stiffness_scaling = 0.125;  // κ falls by s^(2/3) = 1/4
+  EXPECT_DOUBLE_EQ(scaled.StiffnessNumber(100e3), 0.25 * hertz.StiffnessNumber(100e3));
+  EXPECT_EQ(linear.StiffnessNumber(0.0), std::numeric_limits<double>::infinity());
 }
 
 TEST(ContactLaw, NamesRoundTrip) {

@@ -191,6 +191,12 @@ TEST(ForkWithAnotherMaterial, StartsTheHistoriesTheParentDidNotKeepFromZero) {
   double largest = 0;
   for (const Vec3& f : state.neighbors.shear) largest = std::max(largest, Norm(f));
   EXPECT_GT(largest, 0.0);  // the child's contacts built up shear forces
+  // The material a run used reads back from its file (the analyses' κ).
+  const Material material = ReadMaterial(file);
+  EXPECT_EQ(material.friction_angle, 0.5);
+  EXPECT_EQ(material.rolling_friction, 0.1);
+  EXPECT_EQ(material.contact_law, Material{}.contact_law);
+  EXPECT_EQ(material.youngs_modulus, Material{}.youngs_modulus);
 }
 
 TEST(Provenance, ARestartWithAnotherSceneIsRejected) {

@@ -118,6 +118,15 @@ TEST(Programme, BadInputNamesTheKey) {
             std::string::npos);
   EXPECT_NE(message(Replace(kProgramme, "name = \"tx\"", "name = \"a/b\"")).find("not a valid"),
             std::string::npos);
+  // What a run serves is checked where it is read (study/case_record.h).
+  const std::string figures =
+      message(Replace(kProgramme, "name = \"tx\"", "name = \"tx\"\nfigures = \"12, 31\""));
+  EXPECT_NE(figures.find("key 'run[3].figures' = '12, 31': '31' is not valid"), std::string::npos)
+      << figures;
+  EXPECT_EQ(Parse(Replace(kProgramme, "name = \"tx\"", "name = \"tx\"\nfigures = \"12,Sec. 4.3\""))
+                .Find("tx")
+                ->figures.Text(),
+            "12, Sec. 4.3");
 }
 
 // A scale that keeps some values of the lists and sets placeholders.
@@ -304,7 +313,7 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
     const CaseSpec* c = small.Find(name);
     EXPECT_NE(c, nullptr) << name;
     if (!c) return 0;
-    EXPECT_EQ(c->figures, "rate") << name;
+    EXPECT_EQ(c->figures.Text(), "rate") << name;
     EXPECT_EQ(c->parent_stage, "p" + p) << name;
     return 1;
   };

@@ -1,4 +1,4 @@
-#include "study/figure_data.h"
+#include "analysis/figure_data.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,10 +21,19 @@
 #include "common/time_series.h"
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
-#include "study/rate_study.h"
+#include "study/case_record.h"
+#include "analysis/rate_study.h"
 #include "study/study_folder.h"
 
-namespace granasym::study {
+namespace granasym::analysis {
+using study::TableKind;
+using study::TableStatus;
+using study::CaseFolders;
+using study::CaseRecord;
+using study::FigureSet;
+using study::ReadCaseRecords;
+using study::ReadDone;
+using study::ResultMismatch;
 namespace fs = std::filesystem;
 namespace {
 
@@ -86,16 +95,6 @@ std::string Quoted(const std::string& s) {
   return out + "'";
 }
 
-std::vector<std::string> SplitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    if (!Trimmed(item).empty()) items.push_back(Trimmed(item));
-  }
-  return items;
-}
-
 // A number for a legend: 3 significant digits, no exponent for kPa values.
 std::string Short(double v) {
   if (!std::isfinite(v)) return "?";
@@ -115,7 +114,7 @@ struct Path {
 struct CaseData {
   std::string name, directory, parent_name, parent_stage;
   int replicate = 1;
-  std::vector<std::string> figures;
+  FigureSet figures;
   bool finished = false;
   // From the result.
   std::vector<dem::StageRecord> stages;
@@ -124,9 +123,7 @@ struct CaseData {
   double time_step = 0;
   double friction = std::numeric_limits<double>::quiet_NaN();
   Path path;  // the case's own rows
-  bool Serves(const std::string& figure) const {
-    return std::find(figures.begin(), figures.end(), figure) != figures.end();
-  }
+  bool Serves(const std::string& figure) const { return figures.Contains(figure); }
   double NominalPsiEpsilon() const {
     for (double v : stage_psi_epsilon) {
       if (std::isfinite(v)) return v;
@@ -150,12 +147,12 @@ Path ReadPath(const TimeSeries& series, int64_t first, int64_t last, int half_ro
     return std::vector<double>(v.begin() + first, v.begin() + last + 1);
   };
   path.p = slice(dem::record::kColumnMeanStress);
-  path.ln_v = slice("ln_1_plus_e");
+  path.ln_v = slice(dem::record::kColumnLnVolume);
   path.psi_sigma = slice(dem::record::kColumnPsiSigma);
-  path.q = slice("q_kpa");
+  path.q = slice(dem::record::kColumnDeviator);
   path.i_dmin = slice(dem::record::kColumnInertialNumberDmin);
   path.i_dmax = slice(dem::record::kColumnInertialNumberDmax);
-  const std::vector<double> eps_a = slice("eps_a"), eps_r = slice("eps_r");
+  const std::vector<double> eps_a = slice(dem::record::kColumnAxialStrain), eps_r = slice(dem::record::kColumnRadialStrain);
   path.eps_s.resize(eps_a.size());
   for (size_t k = 0; k < eps_a.size(); ++k) {
     path.eps_s[k] = 2.0 * ((eps_a[k] - eps_a[0]) - (eps_r[k] - eps_r[0])) / 3.0;
@@ -166,23 +163,16 @@ Path ReadPath(const TimeSeries& series, int64_t first, int64_t last, int half_ro
 
 std::vector<CaseData> LoadCases(const std::string& directory, int half_rows) {
   std::vector<CaseData> cases;
-  for (const std::string& path : CaseFolders(directory)) {
-    const fs::path folder(path);
-    const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
+  for (const CaseRecord& record : ReadCaseRecords(directory)) {
+    const fs::path folder(record.directory);
     CaseData c;
-    c.directory = folder.string();
-    c.name = record.GetString("name");
-    c.replicate = static_cast<int>(record.GetInt("replicate", 1, Range::AtLeast(1)));
-    c.figures = SplitList(record.GetString("figures", ""));
-    const std::string parent = record.GetString("parent", "");
-    c.parent_name = parent.empty() ? "" : parent.substr(parent.find('/') + 1);
-    c.parent_stage = record.GetString("parent_stage", "");
-    if (fs::exists(folder / "done.toml")) {
-      const ConfigTable done = ConfigTable::ParseFile((folder / "done.toml").string());
-      c.finished = done.GetString("key") == record.GetString("key") &&
-                   fs::exists(folder / "result.h5") &&
-                   ResultMismatch((folder / "result.h5").string(), *ReadDone(c.directory)).empty();
-    }
+    c.directory = record.directory;
+    c.name = record.name;
+    c.replicate = record.replicate;
+    c.figures = record.figures;
+    c.parent_name = record.parent_name();
+    c.parent_stage = record.parent_stage;
+    c.finished = record.Done().finished;
     if (c.finished) {
       const Hdf5File file = Hdf5File::OpenRead((folder / "result.h5").string());
       c.stages = dem::ReadStageRecords(file);
@@ -278,7 +268,8 @@ std::string StudyNclName(const std::string& directory) {
 }
 
 bool UsableState(const StateRow& row) {
-  return (row.status == "detected" || row.status == "drifting") && row.p_kpa > 0 &&
+  return (row.status == TableStatus::kDetected || row.status == TableStatus::kDrifting) &&
+         row.p_kpa > 0 &&
          std::isfinite(row.ln_1_plus_e);
 }
 
@@ -455,7 +446,7 @@ FigureSpec Fig08(const Context& ctx) {
   BlockFile contacts({"p_kpa", "coordination", "contacts"});
   const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
   const std::vector<double>& z = series.Values(dem::record::kColumnCoordination);
-  const std::vector<double>& n = series.Values("contacts");
+  const std::vector<double>& n = series.Values(dem::record::kColumnContacts);
   std::vector<std::vector<double>> rows;
   for (size_t k = 0; k < p.size(); ++k) {
     if (p[k] > 0) rows.push_back({p[k], z[k], n[k]});
@@ -524,7 +515,7 @@ FigureSpec Fig09(const Context& ctx) {
 // ψ_σ–ln(1+e), with the cases' asymptotic states of all replicates marked.
 FigureSpec PathFamily(const Context& ctx, const std::string& figure, const std::string& stem,
                       const std::string& title, const std::string& what,
-                      const std::vector<std::pair<std::string, std::string>>& reference_kinds) {
+                      const std::vector<std::pair<TableKind, std::string>>& reference_kinds) {
   FigureSpec spec = Spec(stem, figure, title,
                   what + " Paths of replicate 1 (cases whose `figures` include " + figure +
                       "): (a) ψ_σ against p, (b) ln(1+e) against p, (c) ψ_σ against ln(1+e). "
@@ -560,7 +551,7 @@ FigureSpec PathFamily(const Context& ctx, const std::string& figure, const std::
   std::vector<std::vector<double>> detected, drifting;
   for (const StateRow& row : ctx.states) {
     if (!names.count(row.case_name) || !UsableState(row)) continue;
-    (row.status == "detected" ? detected : drifting)
+    (row.status == TableStatus::kDetected ? detected : drifting)
         .push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg});
   }
   marks.Add("asymptotic states (detected)", detected);
@@ -568,7 +559,7 @@ FigureSpec PathFamily(const Context& ctx, const std::string& figure, const std::
   for (const auto& [kind, label] : reference_kinds) {
     std::vector<std::vector<double>> rows;
     for (const StateRow& row : ctx.states) {
-      if (row.kind == kind && row.status == "detected") {
+      if (row.kind == kind && row.status == TableStatus::kDetected) {
         rows.push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg});
       }
     }
@@ -609,8 +600,9 @@ FigureSpec Fig12(const Context& ctx) {
 // Nominal ψ_ε of a state: the measured one, rounded to 0.1°.
 double NominalOf(const StateRow& row) { return std::round(row.psi_epsilon_deg * 10) / 10; }
 
-bool ConstantDirectionKind(const std::string& kind) {
-  return kind == "ncl" || kind == "csl" || kind == "compression" || kind == "extension";
+bool ConstantDirectionKind(TableKind kind) {
+  return kind == TableKind::kNcl || kind == TableKind::kCsl || kind == TableKind::kCompression ||
+         kind == TableKind::kExtension;
 }
 
 FigureSpec Fig16(const Context& ctx) {
@@ -627,7 +619,7 @@ FigureSpec Fig16(const Context& ctx) {
     if (!ConstantDirectionKind(row.kind) || !UsableState(row)) continue;
     by_direction[NominalOf(row)].push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg,
                                             row.psi_epsilon_deg,
-                                            row.status == "detected" ? 7.0 : 6.0});
+                                            row.status == TableStatus::kDetected ? 7.0 : 6.0});
   }
   BlockFile states({"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "psi_epsilon_deg", "point_type"});
   for (const auto& [psi, rows] : by_direction) states.Add(fmt::format("ψ_ε = {}°", Short(psi)), rows);
@@ -679,7 +671,7 @@ Sections Project(const Context& ctx, std::vector<double> levels) {
       SectionPoint point;
       if (ProjectToLevel(row, levels[l], ncl, ctx.options.max_projection_lnp, &point)) {
         s.rows[l].push_back({point.p_over_pe, point.q_over_pe, point.psi_epsilon_deg,
-                             row.status == "detected" ? 7.0 : 6.0});
+                             row.status == TableStatus::kDetected ? 7.0 : 6.0});
       }
     }
   }
@@ -821,7 +813,9 @@ FigureSpec Fig19(const Context& ctx) {
       "triaxial_picks.gp");
   std::map<double, std::vector<std::vector<double>>> by_direction;
   for (const StateRow& row : ctx.states) {
-    if (row.kind == "ncl" || !ConstantDirectionKind(row.kind) || !UsableState(row)) continue;
+    if (row.kind == TableKind::kNcl || !ConstantDirectionKind(row.kind) || !UsableState(row)) {
+      continue;
+    }
     by_direction[NominalOf(row)].push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg, 7.0});
   }
   std::vector<double> targets;
@@ -934,7 +928,10 @@ FigureSpec Fig21(const Context& ctx) {
   BlockFile file({"inertial_number", "q_over_p"});
   std::vector<std::vector<double>> dmin, dmax;
   for (const StateRow& row : ctx.states) {
-    if ((row.kind != "csl" && row.kind != "triaxial") || row.status != "detected") continue;
+    if ((row.kind != TableKind::kCsl && row.kind != TableKind::kTriaxial) ||
+        row.status != TableStatus::kDetected) {
+      continue;
+    }
     if (!(row.q_over_p > 0)) continue;
     if (row.inertial_number_dmin > 0) dmin.push_back({row.inertial_number_dmin, row.q_over_p});
     if (row.inertial_number_dmax > 0) dmax.push_back({row.inertial_number_dmax, row.q_over_p});
@@ -1661,7 +1658,7 @@ bool ProjectToLevel(const StateRow& state, double level, const NclLine& ncl, dou
                     SectionPoint* point) {
   if (!ncl.valid() || !(state.p_kpa > 0) || !std::isfinite(state.ln_1_plus_e)) return false;
   double slope = -ncl.lambda;
-  if ((state.kind == "compression" || state.kind == "extension") &&
+  if ((state.kind == TableKind::kCompression || state.kind == TableKind::kExtension) &&
       std::isfinite(state.dln1pe_dlnp) && state.dln1pe_dlnp < -1e-3) {
     slope = state.dln1pe_dlnp;
   }
@@ -1860,11 +1857,11 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
                                "ψ_ε = 90° paths from overconsolidated states (loaded to 1000 kPa, "
                                "unloaded along ψ_ε = 180°): the asymptotic state does not depend "
                                "on the start.",
-                               {{"csl", "NC ψ_ε = 90° asymptotes (Fig. 10), all replicates"}}));
+                               {{TableKind::kCsl, "NC ψ_ε = 90° asymptotes (Fig. 10), all replicates"}}));
   figures.push_back(Fig12(ctx));
   figures.push_back(PathFamily(ctx, "13", "fig13_triaxial", "Drained triaxial paths",
                                "Constant-σ_r paths from NC and OC states.",
-                               {{"csl", "ψ_ε = 90° asymptotes (Figs. 10-11), all replicates"}}));
+                               {{TableKind::kCsl, "ψ_ε = 90° asymptotes (Figs. 10-11), all replicates"}}));
   figures.push_back(PathFamily(ctx, "14", "fig14_compression", "Compression asymptotic states",
                                "Proportional compression paths, 0° < ψ_ε < 90°, from NC states.",
                                {}));
@@ -1884,7 +1881,9 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
   // The paper's figures that this study's programme declares (every one, for
   // paper.toml): a programme of other cases lists its own figures only.
   std::set<std::string> declared;
-  for (const CaseData& c : ctx.cases) declared.insert(c.figures.begin(), c.figures.end());
+  for (const CaseData& c : ctx.cases) {
+    declared.insert(c.figures.entries().begin(), c.figures.entries().end());
+  }
   const bool models = fs::exists(fs::path(directory) / "models");
   figures.erase(
       std::remove_if(figures.begin(), figures.end(),
@@ -1924,4 +1923,4 @@ void WriteFigureIndex(const std::string& directory, const std::vector<FigureSpec
   WriteTextFileAtomically(directory + "/figures/index.tsv", text);
 }
 
-}  // namespace granasym::study
+}  // namespace granasym::analysis

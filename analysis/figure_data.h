@@ -20,9 +20,10 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/rate_study.h"
 #include "study/state_table.h"
 
-namespace granasym::study {
+namespace granasym::analysis {
 
 // One figure: what index.tsv says about it and how plots/study/ draws it.
 struct FigureSpec {
@@ -127,7 +128,7 @@ void ModelSectionAt(const ModelOverlay& model, double level, const NclLine& stud
 // each that has no data): the paper's figures that the study's cases declare
 // in their `figures` keys (Fig. 5 when it has model runs, the calibrated
 // models' Fig. 5 when `study calibrate` ran them), and the rate study's
-// three figures when it has rate cases (study/rate_study.h). Throws
+// three figures when it has rate cases (analysis/rate_study.h). Throws
 // InputError when DIR is not a study folder with a state table.
 std::vector<FigureSpec> WriteFigureData(const std::string& directory,
                                         const FigureDataOptions& options = {});
@@ -136,4 +137,4 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
 // has its reason in the caption); tabs and line breaks in fields become spaces.
 void WriteFigureIndex(const std::string& directory, const std::vector<FigureSpec>& figures);
 
-}  // namespace granasym::study
+}  // namespace granasym::analysis

@@ -1,6 +1,6 @@
 // The mixed-control element-test driver: stages, stops by root finding,
 // records, and the Cam clay strain-increment path.
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 
 #include <fmt/format.h>
 

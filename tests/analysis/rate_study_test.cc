@@ -1,4 +1,4 @@
-#include "study/rate_study.h"
+#include "analysis/rate_study.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -13,9 +13,9 @@
 #include "common/csv_table.h"
 #include "common/error.h"
 #include "common/statistics.h"
-#include "tests/study/rate_states_fixture.h"
+#include "tests/analysis/rate_states_fixture.h"
 
-namespace granasym::study {
+namespace granasym::analysis {
 namespace {
 namespace fs = std::filesystem;
 using rate_fixture::CriticalStates;
@@ -158,7 +158,7 @@ TEST(RateStudy, OcrIsAlsoMeasuredAgainstTheNclOfTheSameRate) {
   for (double p0 : {20.0, 100.0}) {
     for (int r = 1; r <= 3; ++r) {
       RateState s = State(0, p0, dem::RateRule::kInertial, 1e-3, r);
-      s.kind = "ncl";
+      s.kind = TableKind::kNcl;
       s.p_kpa = 2 * p0 * (1 + 0.01 * kScatter[r - 1]);
       s.ln_1_plus_e = 1.0 - 0.04 * std::log(s.p_kpa);
       states.push_back(s);
@@ -203,8 +203,8 @@ TEST(RateStudy, TheNclOfARateIsTheMeanOfItsPathsOwnLines) {
   for (double p0 : {20.0, 100.0}) {
     for (int r = 1; r <= 3; ++r) {
       RateState s = State(0, p0, dem::RateRule::kInertial, 1e-3, r);
-      s.kind = "ncl";
-      s.status = "drifting";
+      s.kind = TableKind::kNcl;
+      s.status = TableStatus::kDrifting;
       s.p_kpa = 2500 * (1 + 0.001 * r);
       s.ln_1_plus_e = 0.465 + 0.001 * r;
       s.path_n = n[r - 1] + (p0 == 100 ? 0.003 : 0.0);
@@ -307,7 +307,7 @@ TEST(RateStudy, AnswersStateTheQuestionsOfTheIssueWithIntervals) {
   for (RateState& s : states) {
     if (s.psi_epsilon_deg == 90 && s.rule == dem::RateRule::kInertial &&
         s.inertial_number == 3e-4 && s.start_p_kpa == 20) {
-      s.status = "gas";
+      s.status = TableStatus::kGas;
       s.flags = "gas";
     }
   }
@@ -446,10 +446,10 @@ TEST(RateStudy, TwoSmallestRatesDecideRateIndependence) {
 
 TEST(RateStudy, UsableStatesFollowTheStatusesAndFlags) {
   std::vector<RateState> states = CriticalStates();
-  states[0].status = "drifting";  // ψ_ε = 90°: not usable
+  states[0].status = TableStatus::kDrifting;  // ψ_ε = 90°: not usable
   states[1].flags = "rate_affected;gas";
   RateState ncl = State(0, 20, dem::RateRule::kInertial, 1e-3, 1);
-  ncl.status = "drifting";  // ψ_ε = 0°: usable (the NCL's noise, state_table.h)
+  ncl.status = TableStatus::kDrifting;  // ψ_ε = 0°: usable (the NCL's noise, state_table.h)
   ncl.p_kpa = 50;
   ncl.ln_1_plus_e = 0.8;
   states.push_back(ncl);
@@ -470,7 +470,8 @@ TEST(ServesRateStudy, NamesTheRateFigureKey) {
   EXPECT_TRUE(ServesRateStudy("rate"));
   EXPECT_TRUE(ServesRateStudy("10, rate"));
   EXPECT_FALSE(ServesRateStudy("10, 16"));
-  EXPECT_FALSE(ServesRateStudy("rates"));
+  // An entry that names nothing the paper has is an error, not "no".
+  EXPECT_THROW(ServesRateStudy("rates"), InputError);
 }
 
 TEST(WriteRateFiles, TheStatesReadBackAndEveryTableHasItsRows) {
@@ -698,7 +699,7 @@ TEST(DrainedStudy, TheTwoSlowestRatesDecideRateIndependence) {
 TEST(DrainedStudy, UnusableStatesAreLeftOutAndAStartNeedsTwoRates) {
   std::vector<DrainedState> states = DrainedStates(4.0);
   for (DrainedState& s : states) {
-    if (s.radial_stress_kpa == 5 && s.inertial_number_dmax < 5e-3) s.status = "drifting";
+    if (s.radial_stress_kpa == 5 && s.inertial_number_dmax < 5e-3) s.status = TableStatus::kDrifting;
     if (s.radial_stress_kpa == 20 && s.replicate == 1) s.flags = "gas";
   }
   const DrainedStudy d = DrainedStudy::Analyse(states, {});
@@ -789,4 +790,4 @@ TEST(ReadRateStates, MalformedNumbersNameTheFileAndLine) {
 }
 
 }  // namespace
-}  // namespace granasym::study
+}  // namespace granasym::analysis

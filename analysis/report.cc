@@ -1,4 +1,4 @@
-#include "study/report.h"
+#include "analysis/report.h"
 
 #include <fmt/format.h>
 
@@ -18,10 +18,17 @@
 #include "common/error.h"
 #include "common/provenance.h"
 #include "common/text_file.h"
-#include "study/rate_study.h"
+#include "study/case_record.h"
+#include "analysis/rate_study.h"
 #include "study/study_folder.h"
 
-namespace granasym::study {
+namespace granasym::analysis {
+using study::CaseRecord;
+using study::DoneRecord;
+using study::FigureSet;
+using study::OwnSteps;
+using study::ReadCaseRecords;
+using study::ReadDone;
 
 const char* const kReportModels[3] = {"hypoplastic_clay", "modified_cam_clay", "hypoplastic_sand"};
 
@@ -509,32 +516,6 @@ void CheckStem(const std::string& stem, const CsvTextTable& table, int line) {
   }
 }
 
-// The figure numbers a state row names ("8, 9, 16"), and the number of a figure
-// ("16", "Fig. 16b": the first run of digits).
-std::set<std::string> FigureNumbers(const std::string& list) {
-  std::set<std::string> numbers;
-  size_t at = 0;
-  while (at <= list.size()) {
-    size_t end = list.find(',', at);
-    if (end == std::string::npos) end = list.size();
-    std::string token = list.substr(at, end - at);
-    const size_t first = token.find_first_not_of(' ');
-    const size_t last = token.find_last_not_of(' ');
-    if (first != std::string::npos) token = token.substr(first, last - first + 1);
-    if (IsInteger(token)) numbers.insert(token);
-    at = end + 1;
-  }
-  return numbers;
-}
-std::string FigureNumber(const std::string& figure) {
-  const size_t first = figure.find_first_of("0123456789");
-  if (first == std::string::npos) return "";
-  const size_t last = figure.find_first_not_of("0123456789", first);
-  std::string number = figure.substr(first, last == std::string::npos ? last : last - first);
-  number.erase(0, std::min(number.find_first_not_of('0'), number.size() - 1));
-  return number;
-}
-
 // What the report knows of the study folder, read once.
 struct StudyFolder {
   std::string directory;
@@ -563,9 +544,9 @@ Block MissingTableNote(const std::string& name, const std::string& directory) {
 // ---------------------------------------------------------------------------
 // Sections
 
-struct CaseRecord {
-  std::string id, name, parent, run, figures, key;
-  int replicate = 1;
+// A case as the report shows it: its record and what became of it.
+struct CaseRow {
+  CaseRecord record;
   std::string status;  // the termination, or stale, running, not_run
   std::string message;
   int64_t steps = 0, own_steps = 0, particles = 0;
@@ -573,39 +554,19 @@ struct CaseRecord {
   bool done = false;
 };
 
-std::vector<CaseRecord> ReadCases(const std::string& directory) {
-  std::vector<fs::path> folders;
-  const fs::path base = fs::path(directory) / "cases";
-  if (fs::exists(base)) {
-    for (const auto& replicate : fs::directory_iterator(base)) {
-      if (!replicate.is_directory()) continue;
-      for (const auto& entry : fs::directory_iterator(replicate.path())) {
-        if (entry.is_directory() && fs::exists(entry.path() / "case.toml")) {
-          folders.push_back(entry.path());
-        }
-      }
-    }
-  }
-  std::sort(folders.begin(), folders.end());
-  std::vector<CaseRecord> cases;
-  for (const fs::path& folder : folders) {
-    const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
-    CaseRecord c;
-    c.id = record.GetString("id");
-    c.name = record.GetString("name", c.id);
-    c.parent = record.GetString("parent", "");
-    c.run = record.GetString("run", "");
-    c.figures = record.GetString("figures", "");
-    c.key = record.GetString("key");
-    c.replicate = static_cast<int>(record.GetInt("replicate", 1, Range::AtLeast(1)));
-    if (fs::exists(folder / "done.toml")) {
-      const ConfigTable done = ConfigTable::ParseFile((folder / "done.toml").string());
-      c.message = done.GetString("message", "");
-      c.steps = done.GetInt("steps", 0, Range::NonNegative());
-      c.particles = done.GetInt("particles", 0, Range::NonNegative());
-      c.wall_seconds = done.GetDouble("wall_seconds", 0.0, Range::NonNegative());
-      c.done = done.GetString("key") == c.key;
-      c.status = c.done ? done.GetString("termination") : "stale";
+std::vector<CaseRow> ReadCases(const std::string& directory) {
+  std::vector<CaseRow> cases;
+  for (const CaseRecord& record : ReadCaseRecords(directory)) {
+    const fs::path folder(record.directory);
+    CaseRow c;
+    c.record = record;
+    if (const std::optional<DoneRecord> done = ReadDone(record.directory)) {
+      c.message = done->message;
+      c.steps = done->steps;
+      c.particles = done->particles;
+      c.wall_seconds = done->wall_seconds;
+      c.done = done->key == record.key;
+      c.status = c.done ? ToString(done->termination) : "stale";
       if (!c.done)
         c.message = "done.toml is for another key: the inputs changed since; " + c.message;
     } else if (fs::exists(folder / "result.h5.ckpt") || fs::exists(folder / "running.toml")) {
@@ -619,14 +580,14 @@ std::vector<CaseRecord> ReadCases(const std::string& directory) {
   }
   // A case's own steps: its engine steps less the step it started from.
   const std::map<std::string, int64_t> own = OwnSteps(directory);
-  for (CaseRecord& c : cases) {
-    const auto found = own.find(c.id);
+  for (CaseRow& c : cases) {
+    const auto found = own.find(c.record.id);
     c.own_steps = c.done && found != own.end() ? found->second : c.steps;
   }
   return cases;
 }
 
-Section OverviewSection(const StudyFolder& study, const std::vector<CaseRecord>& cases, int figures,
+Section OverviewSection(const StudyFolder& study, const std::vector<CaseRow>& cases, int figures,
                         int figures_missing, int models) {
   Section section{"overview", "Overview", 2, {}};
   Block table;
@@ -643,7 +604,7 @@ Section OverviewSection(const StudyFolder& study, const std::vector<CaseRecord>&
   add("computed by", Code(Lookup(study.record, "program_version", "?")));
   add("report written by", Code(ProgramVersion()));
   std::map<std::string, int> by_status;
-  for (const CaseRecord& c : cases) ++by_status[c.status];
+  for (const CaseRow& c : cases) ++by_status[c.status];
   std::string counts = fmt::format("{} case folders", cases.size());
   for (const auto& [status, count] : by_status) counts += fmt::format(", {} {}", count, status);
   add("cases", Plain(counts));
@@ -675,9 +636,9 @@ Section OverviewSection(const StudyFolder& study, const std::vector<CaseRecord>&
 }
 
 // The states behind a figure: the rows of the state table whose `figures`
-// column names its number.
-std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string& number) {
-  if (!study.states || number.empty()) return std::nullopt;
+// column names it ("10", "Sec. 5.2"; the rate study's figures draw its own tables).
+std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string& entry) {
+  if (!study.states || entry.empty() || entry.rfind(FigureSet::kRate, 0) == 0) return std::nullopt;
   const CsvTextTable& states = *study.states;
   const int figures = states.Find("figures");
   if (figures < 0) return std::nullopt;
@@ -694,7 +655,10 @@ std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string&
     table.header.push_back(name);
   }
   for (const auto& fields : states.rows) {
-    if (!FigureNumbers(fields[figures]).count(number)) continue;
+    if (!FigureSet::Parse(fields[figures], study.Path("asymptotic_states.csv"), "figures")
+             .Contains(entry)) {
+      continue;
+    }
     std::vector<Cell> row;
     for (int c : columns) {
       Cell cell = FieldCell(fields[c]);
@@ -705,12 +669,14 @@ std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string&
     table.rows.push_back(std::move(row));
   }
   if (table.rows.empty()) {
-    return Paragraph(Plain("No row of the state table names figure " + number + "."));
+    const std::string what = entry.rfind("Sec.", 0) == 0 ? entry : "figure " + entry;
+    return Paragraph(Plain("No row of the state table names " + what + "."));
   }
   Block details;
   details.type = Block::Type::kDetails;
-  details.text = Plain(fmt::format("{} row{} of the state table behind figure {}",
-                                   table.rows.size(), table.rows.size() == 1 ? "" : "s", number));
+  details.text = Plain(fmt::format("{} row{} of the state table behind {}",
+                                   table.rows.size(), table.rows.size() == 1 ? "" : "s",
+                                   entry.rfind("Sec.", 0) == 0 ? entry : "figure " + entry));
   details.children.push_back(std::move(table));
   return details;
 }
@@ -774,7 +740,7 @@ std::vector<Section> FigureSections(const StudyFolder& study, int* figures, int*
     for (const std::string& file : data)
       files = files + Plain("; data: ") + Link(file, UrlPath(file), true);
     section.blocks.push_back(Paragraph(files + Plain(".")));
-    if (std::optional<Block> states = StatesOfFigure(study, FigureNumber(row[figure]))) {
+    if (std::optional<Block> states = StatesOfFigure(study, row[figure])) {
       section.blocks.push_back(std::move(*states));
     }
     figure_sections.push_back(std::move(section));
@@ -1050,7 +1016,7 @@ Section ReplicateSection(const StudyFolder& study) {
   return section;
 }
 
-// The rate study (study/rate_study.h): only for a study with rate cases.
+// The rate study (analysis/rate_study.h): only for a study with rate cases.
 std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::string>* absent) {
   if (!study.Exists(kRateStatesFile)) return std::nullopt;
   Section section{"rate-study", "Rate study", 2, {}};
@@ -1192,7 +1158,7 @@ Section CsvSection(const std::optional<CsvTextTable>& table, const std::string& 
   return section;
 }
 
-Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRecord>& cases) {
+Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRow>& cases) {
   Section section{"run-times-and-keys", "Run times and keys", 2, {}};
   if (cases.empty()) {
     section.blocks.push_back(Note(Plain("No case folders (") + Code("cases/r<K>/<case>/") +
@@ -1213,11 +1179,12 @@ Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRecord>&
     int64_t own_steps = 0;
     double particle_steps = 0, wall_seconds = 0;
     int done = 0;
-    for (const CaseRecord& c : cases) {
+    for (const CaseRow& c : cases) {
       const double ps = static_cast<double>(c.own_steps) * static_cast<double>(c.particles);
-      std::vector<Cell> row = {Cell{Link(c.id, UrlPath("cases/" + c.id + "/case.toml")), ""},
-                               Cell{Plain(std::to_string(c.replicate)), "num"},
-                               Cell{c.parent.empty() ? Plain("sample") : Plain(c.parent), ""},
+      const CaseRecord& r = c.record;
+      std::vector<Cell> row = {Cell{Link(r.id, UrlPath("cases/" + r.id + "/" + CaseRecord::kFileName)), ""},
+                               Cell{Plain(std::to_string(r.replicate)), "num"},
+                               Cell{r.parent.empty() ? Plain("sample") : Plain(r.parent), ""},
                                Cell{Plain(c.status), StatusCss(c.status)}};
       if (c.done) {
         ++done;
@@ -1235,7 +1202,7 @@ Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRecord>&
       } else {
         for (int k = 0; k < 6; ++k) row.push_back(Cell{Plain("—"), "num"});
       }
-      row.push_back(Cell{Code(c.key), ""});
+      row.push_back(Cell{Code(r.key), ""});
       row.push_back(Cell{Plain(c.message), "text"});
       table.rows.push_back(std::move(row));
       table.row_css.push_back("");
@@ -1354,7 +1321,7 @@ ReportSummary WriteReport(const std::string& directory) {
   study.summary = study.ReadCsv("asymptotic_states_summary.csv");
   study.ncl = study.ReadCsv("ncl_fit.csv");
   study.convergence = study.ReadCsv("path_convergence.csv");
-  const std::vector<CaseRecord> cases = ReadCases(study.directory);
+  const std::vector<CaseRow> cases = ReadCases(study.directory);
 
   ReportSummary summary;
   std::vector<std::string> absent;
@@ -1438,4 +1405,4 @@ std::string ReportSummary::Text() const {
   return text;
 }
 
-}  // namespace granasym::study
+}  // namespace granasym::analysis

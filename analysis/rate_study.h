@@ -41,22 +41,32 @@
 #include "dem/strain_path_stage.h"
 #include "study/state_table.h"
 
-namespace granasym::study {
+namespace granasym::analysis {
 
 enum class Agreement { kAgree, kDiffer, kUndetermined };
-}  // namespace granasym::study
+}  // namespace granasym::analysis
 
 template <>
-struct granasym::EnumNames<granasym::study::Agreement> {
-  static constexpr EnumEntry<study::Agreement> kEntries[] = {
-      {study::Agreement::kAgree, "agree", "the difference is inside its 95 % interval"},
-      {study::Agreement::kDiffer, "differ", "the difference is outside its 95 % interval"},
-      {study::Agreement::kUndetermined, "undetermined",
+struct granasym::EnumNames<granasym::analysis::Agreement> {
+  static constexpr EnumEntry<analysis::Agreement> kEntries[] = {
+      {analysis::Agreement::kAgree, "agree", "the difference is inside its 95 % interval"},
+      {analysis::Agreement::kDiffer, "differ", "the difference is outside its 95 % interval"},
+      {analysis::Agreement::kUndetermined, "undetermined",
        "an estimate lacks its interval (fewer than two states, or three points for a line)"},
   };
 };
 
-namespace granasym::study {
+namespace granasym::analysis {
+
+// The study's table of asymptotic states, which the analyses read.
+using study::CsvNumber;
+using study::CsvText;
+using study::Interval;
+using study::MeanInterval95;
+using study::ReadStateTable;
+using study::StateRow;
+using study::TableKind;
+using study::TableStatus;
 
 // The published critical-state stress ratio of frictional spheres without
 // rolling resistance that the study's quasi-static M is set against (issue 10
@@ -83,11 +93,11 @@ inline constexpr LiteratureBand kSphereCriticalStateRatio = {
 
 struct RateStudyOptions {
   // Detector statuses of the states that enter means, lines, fits and verdicts.
-  std::vector<std::string> statuses = {"detected"};
+  std::vector<TableStatus> statuses = {TableStatus::kDetected};
   // ψ_ε = 0° states also when drifting: on the isotropic path the detector's
   // ψ_σ and slope tests are at the noise level of a small sample (the
   // study's own NCL fit takes them for the same reason, state_table.h).
-  std::vector<std::string> ncl_statuses = {"detected", "drifting"};
+  std::vector<TableStatus> ncl_statuses = {TableStatus::kDetected, TableStatus::kDrifting};
   // Validity flags that exclude a state (a gas or liquefied sample, overlaps
   // that make a result unreliable, SPEC §8.3).
   std::vector<std::string> excluded_flags = {"gas", "overlap_above_10pct"};
@@ -128,7 +138,9 @@ Comparison Compare(const Estimate& a, const Estimate& b);
 // One rate case's asymptotic state (a row of rate_states.csv).
 struct RateState {
   int replicate = 1;
-  std::string case_name, stage, kind, status, flags;
+  std::string case_name, stage, flags;
+  TableKind kind = TableKind::kNone;
+  TableStatus status = TableStatus::kNoResult;
   double youngs_modulus_mpa = 0;
   double psi_epsilon_deg = 0;  // the stage's nominal direction
   double start_p_kpa = 0;      // the state it started from: the parent stage's p target
@@ -290,7 +302,8 @@ struct ExtensionLimit {
 // I(d_max) measured over each asymptote's window.
 struct DrainedState {
   int replicate = 1;
-  std::string case_name, stage, status, flags;
+  std::string case_name, stage, flags;
+  TableStatus status = TableStatus::kNoResult;
   double youngs_modulus_mpa = 0, radial_stress_kpa = 0, axial_strain_rate = 0;  // ε̇_a (1/s)
   double p_kpa = 0, e = 0, ln_1_plus_e = 0, psi_sigma_deg = 0, q_over_p = 0;
   double inertial_number_dmin = 0, inertial_number_dmax = 0;
@@ -435,4 +448,4 @@ inline constexpr char kRateDrainedFile[] = "rate_drained.csv";
 inline constexpr char kRateDrainedLimitFile[] = "rate_drained_limit.csv";
 inline constexpr char kRateDrainedCriticalFile[] = "rate_drained_critical_state.csv";
 
-}  // namespace granasym::study
+}  // namespace granasym::analysis

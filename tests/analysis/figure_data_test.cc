@@ -1,6 +1,7 @@
-#include "study/figure_data.h"
+#include "analysis/figure_data.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -8,26 +9,26 @@
 
 #include "common/error.h"
 #include "common/text_file.h"
-#include "study/rate_study.h"
+#include "analysis/rate_study.h"
 #include "study/state_table.h"
-#include "tests/study/rate_states_fixture.h"
+#include "tests/analysis/rate_states_fixture.h"
 
-namespace granasym::study {
+namespace granasym::analysis {
 namespace {
 
 namespace fs = std::filesystem;
 constexpr double kDegree = M_PI / 180.0;
 
-StateRow State(const std::string& kind, double p, double ln_v, double psi_sigma,
+StateRow State(TableKind kind, double p, double ln_v, double psi_sigma,
                double slope) {
   StateRow row;
   row.kind = kind;
-  row.status = "detected";
+  row.status = TableStatus::kDetected;
   row.p_kpa = p;
   row.ln_1_plus_e = ln_v;
   row.e = std::expm1(ln_v);
   row.psi_sigma_deg = psi_sigma;
-  row.psi_epsilon_deg = kind == "csl" ? 90 : 50;
+  row.psi_epsilon_deg = kind == TableKind::kCsl ? 90 : 50;
   row.dln1pe_dlnp = slope;
   return row;
 }
@@ -43,7 +44,7 @@ TEST(FigureDataOptions, DefaultOptionsAreValid) {
 
 TEST(ProjectToLevel, ACompressionStateMovesAlongItsOwnAsymptoticLine) {
   const NclLine ncl{0.8, 0.03};
-  const StateRow state = State("compression", 100.0, 0.60, 20.0, -0.05);
+  const StateRow state = State(TableKind::kCompression, 100.0, 0.60, 20.0, -0.05);
   SectionPoint point;
   ASSERT_TRUE(ProjectToLevel(state, 0.59, ncl, 1.0, &point));
   // (0.59 − 0.60)/(−0.05) = 0.2 in ln p, at ψ_σ kept.
@@ -58,7 +59,7 @@ TEST(ProjectToLevel, ACompressionStateMovesAlongItsOwnAsymptoticLine) {
 TEST(ProjectToLevel, AnIsochoricStateKeepsItsOcrAlongTheNclSlope) {
   const NclLine ncl{0.8, 0.03};
   // The detector's slope of an isochoric path is ~0: the NCL's is used.
-  const StateRow state = State("csl", 50.0, 0.62, 30.0, 1e-12);
+  const StateRow state = State(TableKind::kCsl, 50.0, 0.62, 30.0, 1e-12);
   SectionPoint point;
   ASSERT_TRUE(ProjectToLevel(state, 0.61, ncl, 1.0, &point));
   const double ocr = ncl.EquivalentPressure(0.62) / 50.0;
@@ -68,7 +69,7 @@ TEST(ProjectToLevel, AnIsochoricStateKeepsItsOcrAlongTheNclSlope) {
 
 TEST(ProjectToLevel, AStateFartherThanTheLimitIsSkipped) {
   const NclLine ncl{0.8, 0.03};
-  const StateRow state = State("compression", 100.0, 0.60, 20.0, -0.05);
+  const StateRow state = State(TableKind::kCompression, 100.0, 0.60, 20.0, -0.05);
   SectionPoint point;
   EXPECT_FALSE(ProjectToLevel(state, 0.50, ncl, 1.0, &point));  // 2 in ln p
   EXPECT_TRUE(ProjectToLevel(state, 0.50, ncl, 2.5, &point));
@@ -124,8 +125,12 @@ TEST(SectionLevels, LevelsSpanTheMiddleOfTheRange) {
 class ModelOverlayTest : public ::testing::Test {
  protected:
   void SetUp() override {
+    // One folder per test and process: ctest -j runs the tests of this
+    // fixture in parallel processes.
     folder_ = (fs::temp_directory_path() /
-               ("granasym_overlay_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed())))
+               ("granasym_overlay_" +
+                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+                std::to_string(::getpid())))
                   .string();
     fs::create_directories(folder_);
   }
@@ -219,7 +224,7 @@ fs::path BareStudy(const std::string& name) {
   fs::create_directories(dir);
   WriteTextFileAtomically((dir / "study.toml").string(),
                           "programme = \"rate\"\nscale = \"tiny\"\nncl = \"ncl\"\n");
-  WriteStateTable(dir.string());
+  study::WriteStateTable(dir.string());
   return dir;
 }
 
@@ -396,4 +401,4 @@ TEST(WriteFigureData, TheExtensionSweepHasItsFigureWhenItHasAnExtensionStep) {
 }
 
 }  // namespace
-}  // namespace granasym::study
+}  // namespace granasym::analysis

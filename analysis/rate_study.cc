@@ -1,4 +1,4 @@
-#include "study/rate_study.h"
+#include "analysis/rate_study.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 #include <tuple>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -19,16 +20,15 @@
 #include "common/time_series.h"
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
+#include "study/case_record.h"
 
-namespace granasym::study {
+namespace granasym::analysis {
+using study::CaseRecord;
+using study::FigureSet;
 namespace fs = std::filesystem;
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-bool Contains(const std::vector<std::string>& list, const std::string& item) {
-  return std::find(list.begin(), list.end(), item) != list.end();
-}
 
 bool HasFlag(const std::string& flags, const std::string& flag) {
   std::stringstream in(flags);
@@ -42,9 +42,9 @@ bool HasFlag(const std::string& flags, const std::string& flag) {
 // Whether a state's status is one of `statuses` and it carries none of the
 // options' excluded flags (the part of usability that proportional and
 // drained states share).
-bool PassesFilters(const std::string& status, const std::string& flags,
-                   const std::vector<std::string>& statuses, const RateStudyOptions& options) {
-  if (!Contains(statuses, status)) return false;
+bool PassesFilters(TableStatus status, const std::string& flags,
+                   const std::vector<TableStatus>& statuses, const RateStudyOptions& options) {
+  if (std::find(statuses.begin(), statuses.end(), status) == statuses.end()) return false;
   for (const std::string& flag : options.excluded_flags) {
     if (HasFlag(flags, flag)) return false;
   }
@@ -83,8 +83,8 @@ Estimate MeanOver(const std::vector<const State*>& used, double State::*member) 
 }
 
 // A state that liquefied: a gas (status or flag), no asymptotic state.
-bool IsLiquefied(const std::string& status, const std::string& flags) {
-  return status == "gas" || HasFlag(flags, "gas");
+bool IsLiquefied(TableStatus status, const std::string& flags) {
+  return status == TableStatus::kGas || HasFlag(flags, "gas");
 }
 
 // The line of (E, ψ_ε, rule, rate), or nullptr.
@@ -142,26 +142,6 @@ std::optional<double> CanonicalNumber(const std::map<std::string, std::string>& 
   } catch (const std::exception&) {
   }
   return std::nullopt;
-}
-
-std::string Unquoted(const std::string& text) {
-  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') {
-    return text.substr(1, text.size() - 2);
-  }
-  return text;
-}
-
-// The stiffness number κ of the contact law at mean stress p (SPEC §8.2):
-// linear κ = E/(2p), Hertz–Mindlin κ = (E/((1 − ν²) p))^(2/3).
-double StiffnessNumber(const std::map<std::string, std::string>& canonical, double p_kpa) {
-  const std::optional<double> e_mpa = CanonicalNumber(canonical, "material.youngs_modulus_mpa");
-  if (!e_mpa || !(p_kpa > 0)) return kNaN;
-  const auto law = canonical.find("material.contact_law");
-  if (law != canonical.end() && Unquoted(law->second) == "hertz_mindlin") {
-    const double nu = CanonicalNumber(canonical, "material.poissons_ratio").value_or(kNaN);
-    return std::pow(*e_mpa * 1e3 / ((1 - nu * nu) * p_kpa), 2.0 / 3.0);
-  }
-  return *e_mpa * 1e3 / (2 * p_kpa);
 }
 
 // The p target of stage `stage` of the run in `result` (its canonical scene),
@@ -259,8 +239,8 @@ Columns StateFields(const RateState& s) {
   return {{"replicate", std::to_string(s.replicate)},
           {"case_name", CsvText(s.case_name)},
           {"stage", CsvText(s.stage)},
-          {"kind", s.kind},
-          {"status", s.status},
+          {"kind", ToString(s.kind)},
+          {"status", ToString(s.status)},
           {"youngs_modulus_mpa", CsvNumber(s.youngs_modulus_mpa)},
           {"psi_epsilon_deg", CsvNumber(s.psi_epsilon_deg)},
           {"start_p_kpa", CsvNumber(s.start_p_kpa)},
@@ -288,7 +268,7 @@ Columns DrainedStateFields(const DrainedState& s) {
   return {{"replicate", std::to_string(s.replicate)},
           {"case_name", CsvText(s.case_name)},
           {"stage", CsvText(s.stage)},
-          {"status", s.status},
+          {"status", ToString(s.status)},
           {"youngs_modulus_mpa", CsvNumber(s.youngs_modulus_mpa)},
           {"radial_stress_kpa", CsvNumber(s.radial_stress_kpa)},
           {"axial_strain_rate_per_s", CsvNumber(s.axial_strain_rate)},
@@ -458,7 +438,7 @@ RateKey KeyOf(const RateState& state) {
 }
 
 bool RateStudy::Usable(const RateState& s) const {
-  const bool isotropic = s.kind == "ncl";
+  const bool isotropic = s.kind == TableKind::kNcl;
   if (!PassesFilters(s.status, s.flags, isotropic ? options.ncl_statuses : options.statuses,
                      options)) {
     return false;
@@ -1168,9 +1148,15 @@ std::string RateStudy::Text() const {
 
 void WriteRateFiles(const std::string& directory, const RateStudy& study) {
   const RateStudyOptions& o = study.options;
-  auto join = [](const std::vector<std::string>& list) {
+  auto join = [](const auto& list) {
     std::string text;
-    for (const std::string& item : list) text += (text.empty() ? "" : "/") + item;
+    for (const auto& item : list) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(item)>, std::string>) {
+        text += (text.empty() ? "" : "/") + item;
+      } else {
+        text += std::string(text.empty() ? "" : "/") + ToString(item);
+      }
+    }
     return text;
   };
   const std::string usable =
@@ -1434,7 +1420,7 @@ QuasiStaticSelection SelectQuasiStatic(const RateStudy& study,
 void WriteQuasiStaticSelection(const std::string& directory, const QuasiStaticSelection& s) {
   std::string text = fmt::format(
       "# the rate study's quasi-static states that the calibrations in this folder were fitted "
-      "to (written by granasym study calibrate; study/rate_study.h)\n"
+      "to (written by granasym study calibrate; analysis/rate_study.h)\n"
       "inertial_number = {}\nyoungs_modulus_mpa = {}\ncases = [",
       CsvNumber(s.inertial_number), CsvNumber(s.youngs_modulus_mpa));
   for (size_t k = 0; k < s.cases.size(); ++k) text += (k ? ", " : "") + TomlQuoted(s.cases[k]);
@@ -1469,12 +1455,7 @@ std::optional<RateStudy> ReadRateStudy(const std::string& directory) {
 }
 
 bool ServesRateStudy(const std::string& figures) {
-  std::stringstream in(figures);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    if (Trimmed(item) == "rate") return true;
-  }
-  return false;
+  return FigureSet::Parse(figures, "the state table", "figures").ServesRateStudy();
 }
 
 namespace {
@@ -1503,7 +1484,7 @@ State FromRow(const StateRow& row) {
 // once p exceeds e times the first row's.
 void FitPathLine(const TimeSeries& series, int64_t first, int64_t last, RateState* s) {
   const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
-  const std::vector<double>& ln_v = series.Values("ln_1_plus_e");
+  const std::vector<double>& ln_v = series.Values(dem::record::kColumnLnVolume);
   first = std::max<int64_t>(first, 0);
   last = std::min<int64_t>(last, static_cast<int64_t>(p.size()) - 1);
   if (last <= first || !(p[first] > 0)) return;
@@ -1535,11 +1516,11 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
   for (const StateRow& row : rows) {
     if (!ServesRateStudy(row.figures)) continue;
     any = true;
-    if (row.status == "no_result" || row.stage.empty()) continue;
+    if (row.status == TableStatus::kNoResult || row.stage.empty()) continue;
     const fs::path folder = fs::path(directory) / "cases" / row.case_id;
-    const ConfigTable record = ConfigTable::ParseFile((folder / "case.toml").string());
-    const std::string parent = record.GetString("parent", "");
-    const std::string parent_stage = record.GetString("parent_stage", "");
+    const CaseRecord record = CaseRecord::Read(folder.string());
+    const std::string& parent = record.parent;
+    const std::string& parent_stage = record.parent_stage;
     const Hdf5File file = Hdf5File::OpenRead((folder / "result.h5").string());
     const std::vector<dem::StageRecord> stages = dem::ReadStageRecords(file);
     size_t index = stages.size();
@@ -1584,8 +1565,10 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
             : StartStress((fs::path(directory) / "cases" / parent / "result.h5").string(),
                           parent_stage);
     s.ocr = row.ocr;
-    s.stiffness_number = StiffnessNumber(canonical, row.p_kpa);
-    if (s.kind == "ncl") {
+    // κ as the DEM's rows define it (dem/material.h), at the state's p.
+    s.stiffness_number =
+        row.p_kpa > 0 ? dem::ReadMaterial(file).StiffnessNumber(row.p_kpa * 1e3) : kNaN;  // none at p = 0
+    if (s.kind == TableKind::kNcl) {
       FitPathLine(TimeSeries::Read(file, dem::record::kSeries), stages[index].first_row,
                   stages[index].last_row, &s);
     }
@@ -1612,6 +1595,19 @@ namespace {
 
 // A number column of a rate file's row (empty: NaN), or an InputError naming
 // the file, the line, the column and the text.
+// A kind or status cell of a rate file (InputError naming the file, line and value).
+template <typename E>
+E CsvName(const CsvTextTable& table, const std::string& path, const std::vector<std::string>& row,
+          size_t r, const char* column) {
+  const std::string& text = row[table.Column(column)];
+  const std::optional<E> value = FromString<E>(text);
+  if (!value) {
+    throw InputError(fmt::format("{}: line {}: {} '{}': expected {}", path, table.line_numbers[r],
+                                 column, text, AllowedNames<E>()));
+  }
+  return *value;
+}
+
 double CsvCell(const CsvTextTable& table, const std::string& path,
                const std::vector<std::string>& row, size_t r, const char* column) {
   const std::string& text = row[table.Column(column)];
@@ -1640,7 +1636,7 @@ std::vector<DrainedState> ReadDrainedStates(const std::string& directory) {
     s.replicate = static_cast<int>(number("replicate"));
     s.case_name = row[table.Column("case_name")];
     s.stage = row[table.Column("stage")];
-    s.status = row[table.Column("status")];
+    s.status = CsvName<TableStatus>(table, path, row, r, "status");
     s.flags = row[table.Column("flags")];
     s.youngs_modulus_mpa = number("youngs_modulus_mpa");
     s.radial_stress_kpa = number("radial_stress_kpa");
@@ -1671,8 +1667,8 @@ std::vector<RateState> ReadRateStates(const std::string& directory) {
     s.replicate = static_cast<int>(number(row, r, "replicate"));
     s.case_name = row[table.Column("case_name")];
     s.stage = row[table.Column("stage")];
-    s.kind = row[table.Column("kind")];
-    s.status = row[table.Column("status")];
+    s.kind = CsvName<TableKind>(table, path, row, r, "kind");
+    s.status = CsvName<TableStatus>(table, path, row, r, "status");
     s.flags = row[table.Column("flags")];
     const std::string rule = row[table.Column("rate_rule")];
     const std::optional<dem::RateRule> parsed = FromString<dem::RateRule>(rule);
@@ -1706,4 +1702,4 @@ std::vector<RateState> ReadRateStates(const std::string& directory) {
   return states;
 }
 
-}  // namespace granasym::study
+}  // namespace granasym::analysis

@@ -1,4 +1,4 @@
-#include "study/report.h"
+#include "analysis/report.h"
 
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 
 #include "common/error.h"
 #include "common/text_file.h"
-#include "study/rate_study.h"
-#include "tests/study/rate_states_fixture.h"
+#include "analysis/rate_study.h"
+#include "tests/analysis/rate_states_fixture.h"
 
-namespace granasym::study {
+namespace granasym::analysis {
 namespace {
 namespace fs = std::filesystem;
 
@@ -38,7 +38,7 @@ fs::path EmptyStudy(const std::string& name) {
 }
 
 // A study folder with every input of the report, in the formats of the
-// contracts (study/report.h); texts carry markup that must come out escaped.
+// contracts (analysis/report.h); texts carry markup that must come out escaped.
 fs::path FullStudy(const std::string& name) {
   const fs::path dir = EmptyStudy(name);
   Write(dir / "asymptotic_states.csv",
@@ -101,6 +101,18 @@ fs::path FullStudy(const std::string& name) {
 TEST(StudyReport, HtmlEscapingReplacesEveryMarkupCharacter) {
   EXPECT_EQ(HtmlEscaped("a<b>&\"c\"'d'"), "a&lt;b&gt;&amp;&quot;c&quot;&#39;d&#39;");
   EXPECT_EQ(HtmlEscaped("plain ψ_σ"), "plain ψ_σ");
+}
+
+// A figure of a section ("Sec. 5.2") lists the rows that name that section,
+// not those of figure 5.
+TEST(StudyReport, TheStatesBehindASectionAreTheRowsThatNameIt) {
+  const fs::path dir = FullStudy("section");
+  Write(dir / "figures/index.tsv",
+        "stem\tfigure\ttitle\tcaption\n"
+        "sec52_time_step\tSec. 5.2\tTime-step independence\tΔt against Δt/5\n");
+  const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);
+  EXPECT_NE(html.find("1 row of the state table behind Sec. 5.2"), std::string::npos);
+  EXPECT_EQ(html.find("names figure 5"), std::string::npos);
 }
 
 TEST(StudyReport, EveryFigureOfTheIndexAppearsWithItsImageOrAMissingNote) {
@@ -347,4 +359,4 @@ TEST(Report, TheRateSectionSaysHowFarTheExtensionStatesGo) {
 }
 
 }  // namespace
-}  // namespace granasym::study
+}  // namespace granasym::analysis

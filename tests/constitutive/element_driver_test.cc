@@ -1,5 +1,5 @@
 // The mixed-control driver: control modes, sign convention, stops, failures.
-#include "constitutive/element_test.h"
+#include "constitutive/element_driver.h"
 
 #include <gtest/gtest.h>
 

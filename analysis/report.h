@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-namespace granasym::study {
+namespace granasym::analysis {
 
 // The models a study calibrates, in the order the report shows them.
 extern const char* const kReportModels[3];
@@ -51,4 +51,4 @@ ReportSummary WriteReport(const std::string& directory);
 // `text` with &, <, >, " and ' replaced by entities (for text and attribute values).
 std::string HtmlEscaped(const std::string& text);
 
-}  // namespace granasym::study
+}  // namespace granasym::analysis

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <vector>
 
-#include "study/rate_study.h"
+#include "analysis/rate_study.h"
 
-namespace granasym::study::rate_fixture {
+namespace granasym::analysis::rate_fixture {
 
 // A synthetic rate study with known answers: E = 500 MPa, ψ_ε = 90° from NC
 // 20 and 100 kPa, three replicates at I* = 3e-4, 1e-3, 3e-3 and 1e-2 and one
@@ -20,8 +20,10 @@ inline RateState State(double psi, double p0, dem::RateRule rule, double rate, i
   s.replicate = replicate;
   s.case_name = "case";
   s.stage = "psi";
-  s.kind = std::abs(psi) < 1e-9 ? "ncl" : std::abs(psi - 90) < 1e-9 ? "csl" : "extension";
-  s.status = "detected";
+  s.kind = std::abs(psi) < 1e-9   ? TableKind::kNcl
+           : std::abs(psi - 90) < 1e-9 ? TableKind::kCsl
+                                      : TableKind::kExtension;
+  s.status = TableStatus::kDetected;
   s.youngs_modulus_mpa = 500;
   s.psi_epsilon_deg = psi;
   s.start_p_kpa = p0;
@@ -93,7 +95,7 @@ inline std::vector<RateState> ExtensionSweep() {
     for (int r = 1; r <= 3; ++r) {
       RateState s = SweepState(psi, 20, 0.5 - 0.01 * (psi - 90) + 0.01 * kScatter[r - 1], r);
       if (psi >= 110 && r >= 2) {
-        s.status = "gas";
+        s.status = TableStatus::kGas;
         s.flags = "gas";
         s.p_kpa = 0.3;
       }
@@ -120,7 +122,7 @@ inline std::vector<DrainedState> DrainedStates(double m_slope, double scatter = 
         s.replicate = r + 1;
         s.case_name = fmt::format("nc{:g}_drained_I{:g}", radial, inertial);
         s.stage = "drained";
-        s.status = "detected";
+        s.status = TableStatus::kDetected;
         s.youngs_modulus_mpa = 500;
         s.radial_stress_kpa = radial;
         s.axial_strain_rate = inertial * 4000;  // ascending with I
@@ -138,4 +140,4 @@ inline std::vector<DrainedState> DrainedStates(double m_slope, double scatter = 
   return states;
 }
 
-}  // namespace granasym::study::rate_fixture
+}  // namespace granasym::analysis::rate_fixture

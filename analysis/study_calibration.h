@@ -1,0 +1,45 @@
+// The calibration of the constitutive models to a study's asymptotic states
+// (`granasym study calibrate`): the calibration built in code from the study
+// folder, run through the calibration library, and its outputs in
+// DIR/calibration/<model>/, whose names the figures and the report read:
+//   calibration.toml  the calibration as a file (calibration/calibration_config.h),
+//                     to edit and rerun with `granasym calibrate`
+//   calibration.h5, summary.txt, warnings.txt, parameters.csv, model.toml,
+//   plot_data/        the calibration library's outputs (calibration_report.h)
+//   paths/psi<ψ>_ocr<k>/  Fig. 5 for the fitted model (WriteModelPaths)
+//
+// The data: a study's detected states whose OCR refers to the study's NCL
+// (other samples, e.g. φ = 0, stay out), or a rate study's quasi-static set
+// (analysis/rate_study.h, QuasiStaticSelection): its ψ_ε = 0° states also
+// when drifting, its other states with the drained cases when detected.
+#pragma once
+
+#include <string>
+
+#include "analysis/rate_study.h"
+#include "calibration/calibration_config.h"
+
+namespace granasym::analysis {
+
+// The calibration of `model` to the study in `directory`, as the file
+// DIR/calibration/<model>/calibration.toml would give it; `quasi_static`
+// (null for other studies) selects a rate study's quasi-static cases.
+calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directory, ModelKind model,
+                                                      const QuasiStaticSelection* quasi_static);
+
+// Fig. 5 for a fitted model (its [model] block, calibration::ModelTomlBlock):
+// element tests along the paths A (ψ_ε = 45°), B (90°) and C (120°) from a
+// normally and an overconsolidated (OCR 4) state at 100 kPa, as the
+// programme's [[model_run]] of the clay model (A stops at 2000 kPa, C at
+// 1 kPa), in FOLDER/paths/psi<ψ>_ocr<k>/ (test.toml, result.h5, result.csv,
+// done.toml). A path that ends at a limit point or fails is left without
+// done.toml and said on standard error; returns the number of finished paths.
+int WriteModelPaths(const std::string& folder, const std::string& model_block);
+
+// Calibrates one model and writes its folder; returns the line to print
+// (the parameters, the number of warnings, the fit's time, the Fig. 5
+// paths). Throws RuntimeError when no fit succeeded.
+std::string CalibrateStudyModel(const std::string& directory, ModelKind model,
+                                const QuasiStaticSelection* quasi_static);
+
+}  // namespace granasym::analysis
