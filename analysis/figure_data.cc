@@ -261,10 +261,7 @@ std::map<std::pair<int, std::string>, NclLine> ReadNclFits(const std::string& di
 }
 
 std::string StudyNclName(const std::string& directory) {
-  const std::string path = directory + "/study.toml";
-  if (!fs::exists(path)) return "ncl";
-  const ConfigTable record = ConfigTable::ParseFile(path);
-  return record.GetString("ncl", "ncl");
+  return study::StudyNclCase(directory).value_or("ncl");
 }
 
 bool UsableState(const StateRow& row) {

@@ -20,10 +20,11 @@
 #include <utility>
 #include <vector>
 
-#include "analysis/rate_study.h"
 #include "study/state_table.h"
 
 namespace granasym::analysis {
+
+using study::StateRow;
 
 // One figure: what index.tsv says about it and how plots/study/ draws it.
 struct FigureSpec {

@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "common/text_file.h"
 #include "constitutive/model_config.h"
+#include "study/study_folder.h"
 
 namespace granasym::analysis {
 namespace fs = std::filesystem;
@@ -82,9 +83,7 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
     config.datasets = {ncl, other};
   } else {
     calibration::DatasetConfig d = study_dataset("study");
-    const std::string study_file = directory + "/study.toml";
-    const std::string ncl =
-        fs::exists(study_file) ? ConfigTable::ParseFile(study_file).GetString("ncl", "") : "";
+    const std::string ncl = study::StudyNclCase(directory).value_or("");
     if (!ncl.empty()) d.study.ncl_references = {ncl};
     config.datasets = {d};
   }

@@ -57,7 +57,6 @@ fi
 log="$OUT/log.txt"
 : > "$log"
 
-
 study() {  # programme scale label
   local programme="$1" scale="$2" label="$3" dir="$OUT/$3"
   echo "== $label: study run $programme --scale $scale" | tee -a "$log"

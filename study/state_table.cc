@@ -726,8 +726,7 @@ StateTableSummary WriteStateTable(const std::string& directory,
   if (!fs::exists(directory + "/study.toml")) {
     throw InputError(directory + ": not a study folder (no study.toml)");
   }
-  const ConfigTable study = ConfigTable::ParseFile(directory + "/study.toml");
-  const std::string ncl_case = study.GetString("ncl", "");
+  const std::string ncl_case = StudyNclCase(directory).value_or("");
   StateTableSummary summary;
   summary.directory = directory;
   std::vector<StateRow> rows;

@@ -96,6 +96,12 @@ void WriteDone(const std::string& directory, const DoneRecord& done) {
                   done.steps, done.particles, done.wall_seconds));
 }
 
+std::optional<std::string> StudyNclCase(const std::string& directory) {
+  const std::string path = directory + "/study.toml";
+  if (!fs::exists(path)) return std::nullopt;
+  return ConfigTable::ParseFile(path).GetString("ncl", "");
+}
+
 void WriteIfChanged(const std::string& path, const std::string& text) {
   if (fs::exists(path) && ReadTextFile(path) == text) return;
   WriteTextFileAtomically(path, text);

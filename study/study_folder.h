@@ -59,6 +59,11 @@ std::vector<std::string> CaseFolders(const std::string& directory, bool with_rec
 // last step, one from a sample at 0.
 std::map<std::string, int64_t> OwnSteps(const std::string& directory);
 
+// The study's NCL case (study.toml's `ncl`, which the runner writes from the
+// programme; "" when the programme names none), or nullopt without a
+// study.toml.
+std::optional<std::string> StudyNclCase(const std::string& directory);
+
 // Writes `text` to `path` (atomically) unless the file holds it already.
 void WriteIfChanged(const std::string& path, const std::string& text);
 
