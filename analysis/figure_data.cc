@@ -1,5 +1,7 @@
 #include "analysis/figure_data.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -10,8 +12,7 @@
 #include <set>
 #include <sstream>
 
-#include <fmt/format.h>
-
+#include "analysis/rate_study.h"
 #include "common/config.h"
 #include "common/csv_table.h"
 #include "common/error.h"
@@ -22,18 +23,17 @@
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
 #include "study/case_record.h"
-#include "analysis/rate_study.h"
 #include "study/study_folder.h"
 
 namespace granasym::analysis {
-using study::TableKind;
-using study::TableStatus;
 using study::CaseFolders;
 using study::CaseRecord;
 using study::FigureSet;
 using study::ReadCaseRecords;
 using study::ReadDone;
 using study::ResultMismatch;
+using study::TableKind;
+using study::TableStatus;
 namespace fs = std::filesystem;
 namespace {
 
@@ -152,7 +152,8 @@ Path ReadPath(const TimeSeries& series, int64_t first, int64_t last, int half_ro
   path.q = slice(dem::record::kColumnDeviator);
   path.i_dmin = slice(dem::record::kColumnInertialNumberDmin);
   path.i_dmax = slice(dem::record::kColumnInertialNumberDmax);
-  const std::vector<double> eps_a = slice(dem::record::kColumnAxialStrain), eps_r = slice(dem::record::kColumnRadialStrain);
+  const std::vector<double> eps_a = slice(dem::record::kColumnAxialStrain),
+                            eps_r = slice(dem::record::kColumnRadialStrain);
   path.eps_s.resize(eps_a.size());
   for (size_t k = 0; k < eps_a.size(); ++k) {
     path.eps_s[k] = 2.0 * ((eps_a[k] - eps_a[0]) - (eps_r[k] - eps_r[0])) / 3.0;
@@ -180,9 +181,8 @@ std::vector<CaseData> LoadCases(const std::string& directory, int half_rows) {
         const std::string group = dem::StageGroup(k);
         c.stage_psi_epsilon.push_back(AttributeOr(file, group, dem::record::kStagePsiEpsilonDeg,
                                                   std::numeric_limits<double>::quiet_NaN()));
-        c.stage_radial_stress.push_back(AttributeOr(
-            file, group, dem::record::kStageRadialStressKpa,
-            std::numeric_limits<double>::quiet_NaN()));
+        c.stage_radial_stress.push_back(AttributeOr(file, group, dem::record::kStageRadialStressKpa,
+                                                    std::numeric_limits<double>::quiet_NaN()));
       }
       c.time_step = dem::ReadSummary(file).time_step;
       const TimeSeries series = TimeSeries::Read(file, dem::record::kSeries);
@@ -206,7 +206,8 @@ const CaseData* FindCase(const std::vector<CaseData>& cases, int replicate,
 // "NC 100 kPa", "OC 20 kPa" (unloaded from the NCL), from the parent stage.
 std::string StartLabel(const std::vector<CaseData>& cases, const CaseData& c) {
   const CaseData* parent = FindCase(cases, c.replicate, c.parent_name);
-  if (!parent || !parent->finished) return "from " + (c.parent_name.empty() ? "the sample" : c.parent_name);
+  if (!parent || !parent->finished)
+    return "from " + (c.parent_name.empty() ? "the sample" : c.parent_name);
   size_t k = parent->stages.size() - 1;
   for (size_t j = 0; j < parent->stages.size(); ++j) {
     if (parent->stages[j].name == c.parent_stage) k = j;
@@ -266,8 +267,7 @@ std::string StudyNclName(const std::string& directory) {
 
 bool UsableState(const StateRow& row) {
   return (row.status == TableStatus::kDetected || row.status == TableStatus::kDrifting) &&
-         row.p_kpa > 0 &&
-         std::isfinite(row.ln_1_plus_e);
+         row.p_kpa > 0 && std::isfinite(row.ln_1_plus_e);
 }
 
 std::string ModelTitle(const std::string& name) {
@@ -357,15 +357,16 @@ FigureSpec ModelPaths(const Context& ctx, FigureSpec spec, const fs::path& root,
                  psi = table.Column("psi_sigma_deg"), dir = table.Column("psi_epsilon_deg"),
                  ocr = table.Column("ocr");
     std::vector<std::vector<double>> rows;
-    for (const std::vector<double>& r : table.rows) rows.push_back({r[p], std::log1p(r[e]), r[psi]});
+    for (const std::vector<double>& r : table.rows)
+      rows.push_back({r[p], std::log1p(r[e]), r[psi]});
     const double psi_e = table.rows[0][dir];
     const char* path = psi_e < 89.5 ? "A" : psi_e < 90.5 ? "B" : "C";
     file.Add(fmt::format("{}: ψ_ε = {}°, OCR {}", path, Short(psi_e), Short(table.rows[0][ocr])),
              rows);
   }
   if (file.blocks() == 0) {
-    return NotDrawn(spec, "no finished element tests in " +
-                              fs::relative(root, ctx.directory).string());
+    return NotDrawn(spec,
+                    "no finished element tests in " + fs::relative(root, ctx.directory).string());
   }
   file.Write(ctx.File(data_file));
   Set(&spec, "n_paths", file.blocks());
@@ -374,13 +375,14 @@ FigureSpec ModelPaths(const Context& ctx, FigureSpec spec, const fs::path& root,
 }
 
 FigureSpec Fig05(const Context& ctx) {
-  FigureSpec spec = Spec("fig05_model_paths", "5", "Asymptotic states of the hypoplastic model for clays",
-                  "Element tests of the hypoplastic model for clays (Mašín 2005; the programme's "
-                  "[[model_run]] parameters) along proportional paths: compression (A, 0° < ψ_ε "
-                  "< 90°), isochoric (B, ψ_ε = 90°) and extension (C, ψ_ε > 90°), each from a "
-                  "normally and an overconsolidated state; paths of one ψ_ε reach one asymptotic "
-                  "ψ_σ and a line parallel to the NCL. Data: DIR/models/<name>/result.csv.",
-                  "model_paths.gp");
+  FigureSpec spec =
+      Spec("fig05_model_paths", "5", "Asymptotic states of the hypoplastic model for clays",
+           "Element tests of the hypoplastic model for clays (Mašín 2005; the programme's "
+           "[[model_run]] parameters) along proportional paths: compression (A, 0° < ψ_ε "
+           "< 90°), isochoric (B, ψ_ε = 90°) and extension (C, ψ_ε > 90°), each from a "
+           "normally and an overconsolidated state; paths of one ψ_ε reach one asymptotic "
+           "ψ_σ and a line parallel to the NCL. Data: DIR/models/<name>/result.csv.",
+           "model_paths.gp");
   return ModelPaths(ctx, spec, fs::path(ctx.directory) / "models", "fig05_paths.tsv");
 }
 
@@ -396,12 +398,16 @@ std::vector<FigureSpec> Fig05Calibrated(const Context& ctx) {
                                                                           : "hypoplastic sand";
     FigureSpec spec = Spec(
         std::string("fig05_") + model, "5", "Asymptotic states of the calibrated " + title,
-        "Element tests of the " + title + " model with the parameters fitted to this study "
-        "(DIR/calibration/" + model + "/model.toml) along the paths A (ψ_ε = 45°), B (90°) "
-        "and C (120°) from a normally and an overconsolidated (OCR 4) state at 100 kPa; "
-        "A stops at 2000 kPa, C at 1 kPa; a path the model cannot follow (e.g. Cam "
-        "clay softening on the dry side) is absent, its test.toml beside the others. Data: "
-        "DIR/calibration/" + model + "/paths/.",
+        "Element tests of the " + title +
+            " model with the parameters fitted to this study "
+            "(DIR/calibration/" +
+            model +
+            "/model.toml) along the paths A (ψ_ε = 45°), B (90°) "
+            "and C (120°) from a normally and an overconsolidated (OCR 4) state at 100 kPa; "
+            "A stops at 2000 kPa, C at 1 kPa; a path the model cannot follow (e.g. Cam "
+            "clay softening on the dry side) is absent, its test.toml beside the others. Data: "
+            "DIR/calibration/" +
+            model + "/paths/.",
         "model_paths.gp");
     specs.push_back(ModelPaths(ctx, spec, root, std::string("fig05_") + model + ".tsv"));
   }
@@ -409,12 +415,13 @@ std::vector<FigureSpec> Fig05Calibrated(const Context& ctx) {
 }
 
 FigureSpec Fig08(const Context& ctx) {
-  FigureSpec spec = Spec("fig08_overlaps", "8", "Relative overlaps along the isotropic NCL",
-                  "Frequency of relative overlaps Δu/(r_i + r_j) among the contacts (a) at the end "
-                  "of each ψ_ε = 0° stage of the NCL case (replicate 1, /series_histogram), and "
-                  "(b) the coordination number against p along the same path. The paper takes "
-                  "2 % as the limit of accuracy and 10 % as unreliable.",
-                  "overlaps.gp");
+  FigureSpec spec =
+      Spec("fig08_overlaps", "8", "Relative overlaps along the isotropic NCL",
+           "Frequency of relative overlaps Δu/(r_i + r_j) among the contacts (a) at the end "
+           "of each ψ_ε = 0° stage of the NCL case (replicate 1, /series_histogram), and "
+           "(b) the coordination number against p along the same path. The paper takes "
+           "2 % as the limit of accuracy and 10 % as unreliable.",
+           "overlaps.gp");
   const CaseData* ncl = FindCase(ctx.cases, 1, ctx.study_ncl);
   if (!ncl || !ncl->finished) return NotDrawn(spec, "the NCL case has no result");
   const Hdf5File file = Hdf5File::OpenRead(ncl->directory + "/result.h5");
@@ -466,11 +473,12 @@ void AddLine(BlockFile* file, const std::string& title, const NclLine& line, dou
 }
 
 FigureSpec Fig09(const Context& ctx) {
-  FigureSpec spec = Spec("fig09_ncl", "9", "Isotropic compression: monotonic and with unload/reload cycles",
-                  "ln(1+e) against p (log scale) along ψ_ε = 0° (the NCL case) and along the "
-                  "unload (ψ_ε = 180°)/reload (0°) cycles that start from it (replicate 1); the "
-                  "line is the NCL fitted through the NCL case's stage-end states (ncl_fit.csv).",
-                  "ncl.gp");
+  FigureSpec spec =
+      Spec("fig09_ncl", "9", "Isotropic compression: monotonic and with unload/reload cycles",
+           "ln(1+e) against p (log scale) along ψ_ε = 0° (the NCL case) and along the "
+           "unload (ψ_ε = 180°)/reload (0°) cycles that start from it (replicate 1); the "
+           "line is the NCL fitted through the NCL case's stage-end states (ncl_fit.csv).",
+           "ncl.gp");
   BlockFile file({"p_kpa", "ln_1_plus_e"});
   std::vector<const CaseData*> cases = ctx.Serving("9");
   // A case with unloading (ψ_ε = 180°) stages is a cycle; several monotonic
@@ -513,13 +521,14 @@ FigureSpec Fig09(const Context& ctx) {
 FigureSpec PathFamily(const Context& ctx, const std::string& figure, const std::string& stem,
                       const std::string& title, const std::string& what,
                       const std::vector<std::pair<TableKind, std::string>>& reference_kinds) {
-  FigureSpec spec = Spec(stem, figure, title,
-                  what + " Paths of replicate 1 (cases whose `figures` include " + figure +
-                      "): (a) ψ_σ against p, (b) ln(1+e) against p, (c) ψ_σ against ln(1+e). "
-                      "Marks: the detector's asymptotic states of these cases, all replicates "
-                      "(filled: detected; open: still drifting at the stage end; gases and "
-                      "invalid stages omitted).",
-                  "paths.gp");
+  FigureSpec spec =
+      Spec(stem, figure, title,
+           what + " Paths of replicate 1 (cases whose `figures` include " + figure +
+               "): (a) ψ_σ against p, (b) ln(1+e) against p, (c) ψ_σ against ln(1+e). "
+               "Marks: the detector's asymptotic states of these cases, all replicates "
+               "(filled: detected; open: still drifting at the stage end; gases and "
+               "invalid stages omitted).",
+           "paths.gp");
   BlockFile paths({"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "eps_s", "psi_epsilon_deg", "q_kpa"});
   std::vector<const CaseData*> cases = ctx.Serving(figure);
   std::stable_sort(cases.begin(), cases.end(), [](const CaseData* a, const CaseData* b) {
@@ -577,12 +586,13 @@ FigureSpec PathFamily(const Context& ctx, const std::string& figure, const std::
 }
 
 FigureSpec Fig12(const Context& ctx) {
-  FigureSpec spec = Spec("fig12_triaxial_strain", "12", "Drained triaxial tests against shear strain",
-                  "Constant-σ_r tests from NC and OC states (replicate 1) with the axial rate of "
-                  "the ψ_ε = 90° tests: (a) ψ_σ and (b) the stretching direction ψ_ε (from the "
-                  "strain increments over ±2 output rows) against the stage's shear strain "
-                  "ε_s = 2(ε_a − ε_r)/3.",
-                  "triaxial_strain.gp");
+  FigureSpec spec =
+      Spec("fig12_triaxial_strain", "12", "Drained triaxial tests against shear strain",
+           "Constant-σ_r tests from NC and OC states (replicate 1) with the axial rate of "
+           "the ψ_ε = 90° tests: (a) ψ_σ and (b) the stretching direction ψ_ε (from the "
+           "strain increments over ±2 output rows) against the stage's shear strain "
+           "ε_s = 2(ε_a − ε_r)/3.",
+           "triaxial_strain.gp");
   BlockFile paths({"eps_s", "psi_sigma_deg", "psi_epsilon_deg"});
   for (const CaseData* c : ctx.Serving("12")) {
     paths.Add(DirectionLabel(*c) + ", " + StartLabel(ctx.cases, *c),
@@ -603,14 +613,15 @@ bool ConstantDirectionKind(TableKind kind) {
 }
 
 FigureSpec Fig16(const Context& ctx) {
-  FigureSpec spec = Spec("fig16_asymptotic_states", "16", "Asymptotic states: summary",
-                  "The asymptotic states of all constant-ψ_ε paths, all replicates (filled: "
-                  "detected; open: still drifting at the stage end; gases and invalid stages "
-                  "omitted), with the joined parts of paths of one ψ_ε from different starts "
-                  "(path_convergence.csv): (a) ψ_σ against p, (b) ln(1+e) against p, (c) ψ_σ "
-                  "against ln(1+e), (d) ψ_σ against ψ_ε. Lines: the calibrated models' "
-                  "asymptotic lines in (b) and their ψ_σ(ψ_ε) in (d).",
-                  "asymptotic_states.gp");
+  FigureSpec spec =
+      Spec("fig16_asymptotic_states", "16", "Asymptotic states: summary",
+           "The asymptotic states of all constant-ψ_ε paths, all replicates (filled: "
+           "detected; open: still drifting at the stage end; gases and invalid stages "
+           "omitted), with the joined parts of paths of one ψ_ε from different starts "
+           "(path_convergence.csv): (a) ψ_σ against p, (b) ln(1+e) against p, (c) ψ_σ "
+           "against ln(1+e), (d) ψ_σ against ψ_ε. Lines: the calibrated models' "
+           "asymptotic lines in (b) and their ψ_σ(ψ_ε) in (d).",
+           "asymptotic_states.gp");
   std::map<double, std::vector<std::vector<double>>> by_direction;
   for (const StateRow& row : ctx.states) {
     if (!ConstantDirectionKind(row.kind) || !UsableState(row)) continue;
@@ -619,8 +630,10 @@ FigureSpec Fig16(const Context& ctx) {
                                             row.status == TableStatus::kDetected ? 7.0 : 6.0});
   }
   BlockFile states({"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "psi_epsilon_deg", "point_type"});
-  for (const auto& [psi, rows] : by_direction) states.Add(fmt::format("ψ_ε = {}°", Short(psi)), rows);
-  if (states.blocks() == 0) return NotDrawn(spec, "the state table has no usable asymptotic states");
+  for (const auto& [psi, rows] : by_direction)
+    states.Add(fmt::format("ψ_ε = {}°", Short(psi)), rows);
+  if (states.blocks() == 0)
+    return NotDrawn(spec, "the state table has no usable asymptotic states");
   states.Write(ctx.File("fig16_states.tsv"));
   BlockFile lines({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
   BlockFile curves({"psi_epsilon_deg", "psi_sigma_deg"});
@@ -694,13 +707,14 @@ std::string ProjectionMethod(const FigureDataOptions& options) {
 }
 
 FigureSpec Fig17(const Context& ctx) {
-  FigureSpec spec = Spec("fig17_asbs_sections", "17", "Constant-e cross-sections of the ASBS",
-                  "q/p_e* against p/p_e* at constant ln(1+e) (each level its own colour; labels: "
-                  "ψ_ε in degrees). " +
-                      ProjectionMethod(ctx.options) +
-                      " Lines: each calibrated model's cross-section at the same ln(1+e), "
-                      "normalised by the same p_e* (dash type per model).",
-                  "asbs_sections.gp");
+  FigureSpec spec =
+      Spec("fig17_asbs_sections", "17", "Constant-e cross-sections of the ASBS",
+           "q/p_e* against p/p_e* at constant ln(1+e) (each level its own colour; labels: "
+           "ψ_ε in degrees). " +
+               ProjectionMethod(ctx.options) +
+               " Lines: each calibrated model's cross-section at the same ln(1+e), "
+               "normalised by the same p_e* (dash type per model).",
+           "asbs_sections.gp");
   const NclLine ncl = ctx.StudyNcl(1);
   if (!ncl.valid()) return NotDrawn(spec, "the study's NCL could not be fitted");
   std::vector<double> levels = ctx.options.asbs_levels;
@@ -736,7 +750,7 @@ FigureSpec Fig17(const Context& ctx) {
 
 FigureSpec Fig18(const Context& ctx) {
   FigureSpec spec = Spec("fig18_asbs_level", "18", "The ASBS cross-section with ψ_ε = 90° paths",
-                  "", "asbs_level.gp");
+                         "", "asbs_level.gp");
   const NclLine ncl = ctx.StudyNcl(1);
   if (!ncl.valid()) return NotDrawn(spec, "the study's NCL could not be fitted");
   std::vector<double> ln_v = StateLevels(ctx);
@@ -842,7 +856,8 @@ FigureSpec Fig19(const Context& ctx) {
 std::string Counterpart(const std::string& name, const std::string& tag) {
   if (name.rfind(tag + "_", 0) == 0) return name.substr(tag.size() + 1);
   const std::string suffix = "_" + tag;
-  if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
+  if (name.size() > suffix.size() &&
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
     return name.substr(0, name.size() - suffix.size());
   }
   return "";
@@ -886,29 +901,28 @@ FigureSpec Variants(const Context& ctx, FigureSpec spec, const std::string& tag,
 }
 
 FigureSpec Fig20(const Context& ctx) {
-  FigureSpec spec = Spec("fig20_friction", "20", "Contact friction φ = 0 against φ = 0.5 rad",
-                  "(a) The isotropic NCL in ln(1+e) against p and (b) the stress paths q against "
-                  "p of the ψ_ε = 90° tests from NC states, for frictionless contacts (cases "
-                  "serving Fig. 20) and the paper's φ = 0.5 rad (the same cases without the "
-                  "phi0 tag), replicate 1.",
-                  "friction.gp");
-  return Variants(ctx, spec, "phi0",
-                  [](const CaseData& c) {
-                    return c.name.find("phi0") != std::string::npos ? "φ = 0" : "φ = 0.5 rad";
-                  });
+  FigureSpec spec =
+      Spec("fig20_friction", "20", "Contact friction φ = 0 against φ = 0.5 rad",
+           "(a) The isotropic NCL in ln(1+e) against p and (b) the stress paths q against "
+           "p of the ψ_ε = 90° tests from NC states, for frictionless contacts (cases "
+           "serving Fig. 20) and the paper's φ = 0.5 rad (the same cases without the "
+           "phi0 tag), replicate 1.",
+           "friction.gp");
+  return Variants(ctx, spec, "phi0", [](const CaseData& c) {
+    return c.name.find("phi0") != std::string::npos ? "φ = 0" : "φ = 0.5 rad";
+  });
 }
 
 FigureSpec Sec52(const Context& ctx) {
-  FigureSpec spec = Spec("sec52_time_step", "Sec. 5.2", "Time-step independence: Δt against Δt/5",
-                  "(a) The isotropic NCL in ln(1+e) against p and (b) ψ_σ against the shear "
-                  "strain ε_s of the ψ_ε = 90° path from NC 100 kPa, with the programme's time "
-                  "step and with a fifth of it (cases serving Sec. 5.2 against the same cases "
-                  "without the dt5 tag), replicate 1.",
-                  "time_step.gp");
+  FigureSpec spec =
+      Spec("sec52_time_step", "Sec. 5.2", "Time-step independence: Δt against Δt/5",
+           "(a) The isotropic NCL in ln(1+e) against p and (b) ψ_σ against the shear "
+           "strain ε_s of the ψ_ε = 90° path from NC 100 kPa, with the programme's time "
+           "step and with a fifth of it (cases serving Sec. 5.2 against the same cases "
+           "without the dt5 tag), replicate 1.",
+           "time_step.gp");
   return Variants(ctx, spec, "dt5",
-                  [](const CaseData& c) {
-                    return fmt::format("Δt = {:.3g} s", c.time_step);
-                  });
+                  [](const CaseData& c) { return fmt::format("Δt = {:.3g} s", c.time_step); });
 }
 
 // The paper's Fig. 21 is da Cruz et al.'s μ*(I) from plane shear; the study's
@@ -943,11 +957,12 @@ FigureSpec Fig21(const Context& ctx) {
 }
 
 FigureSpec Fig22(const Context& ctx) {
-  FigureSpec spec = Spec("fig22_inertial_number", "22", "Inertial number against mean stress",
-                  "The inertial number I = ‖D‖ d √(2ρ_s/p) (paper Eq. 5) for the smallest and the "
-                  "largest particle diameter along the cases serving Figs. 21–22 (the isotropic "
-                  "NCL, replicate 1), with I = 10^{-2} (quasi-static) and the stricter 10^{-3}.",
-                  "inertial.gp");
+  FigureSpec spec =
+      Spec("fig22_inertial_number", "22", "Inertial number against mean stress",
+           "The inertial number I = ‖D‖ d √(2ρ_s/p) (paper Eq. 5) for the smallest and the "
+           "largest particle diameter along the cases serving Figs. 21–22 (the isotropic "
+           "NCL, replicate 1), with I = 10^{-2} (quasi-static) and the stricter 10^{-3}.",
+           "inertial.gp");
   BlockFile file({"p_kpa", "inertial_number"});
   std::set<const CaseData*> cases;
   for (const char* f : {"21", "22"}) {
@@ -1280,16 +1295,16 @@ FigureSpec RateLines(const Context& ctx, const RateStudy& rate) {
 // colour per sweep (E, rate, p_0); liquefied steps on the zero line, and
 // ψ_ε(d) with its interval where a sweep reached the limit d.
 FigureSpec RateExtension(const Context& ctx, const RateStudy& rate) {
-  FigureSpec spec = Spec(
-      "rate_extension", "rate (d)", "Extension states up to the limit d",
-      "The asymptotic σ_r/p = 1 − (q/p)/3 of the rate cases with ψ_ε ≥ 90° against ψ_ε (means "
-      "over the replicates' usable states with their 95 % intervals), one colour per sweep "
-      "(E, rate, start p_0). σ_r/p = 0 is the limit d (ψ_σ = 54.74°). Crosses on the zero "
-      "line: steps at which most replicates liquefied (a gas: mechanical coordination below 3 "
-      "or p below 0.5 kPa; no asymptote). Squares with horizontal bars: ψ_ε(d), the root of "
-      "the least-squares line of σ_r/p through the last steps, with its 95 % interval. Data: "
-      "rate_extension.csv, rate_extension_limit.csv.",
-      "rate_extension.gp");
+  FigureSpec spec =
+      Spec("rate_extension", "rate (d)", "Extension states up to the limit d",
+           "The asymptotic σ_r/p = 1 − (q/p)/3 of the rate cases with ψ_ε ≥ 90° against ψ_ε (means "
+           "over the replicates' usable states with their 95 % intervals), one colour per sweep "
+           "(E, rate, start p_0). σ_r/p = 0 is the limit d (ψ_σ = 54.74°). Crosses on the zero "
+           "line: steps at which most replicates liquefied (a gas: mechanical coordination below 3 "
+           "or p below 0.5 kPa; no asymptote). Squares with horizontal bars: ψ_ε(d), the root of "
+           "the least-squares line of σ_r/p through the last steps, with its 95 % interval. Data: "
+           "rate_extension.csv, rate_extension_limit.csv.",
+           "rate_extension.gp");
   using SweepKey = std::tuple<double, int, double, double>;
   auto key_of = [](double e_mpa, dem::RateRule rule, double r, double p0) {
     return SweepKey{e_mpa, static_cast<int>(rule), r, p0};
@@ -1330,9 +1345,8 @@ FigureSpec RateExtension(const Context& ctx, const RateStudy& rate) {
     if (l.result != "limit_d" || !std::isfinite(l.psi_d_deg.mean)) continue;
     const SweepKey k = key_of(l.youngs_modulus_mpa, l.rule, l.rate, l.start_p_kpa);
     x.Add(l.psi_d_deg.mean, l.psi_d_deg.half_width);
-    limit_file.Add(title(k) + ": " + l.Text(),
-                   {{l.psi_d_deg.mean, Zeroed(l.psi_d_deg.half_width), 0.0,
-                     static_cast<double>(colour_of.at(k))}});
+    limit_file.Add(title(k) + ": " + l.Text(), {{l.psi_d_deg.mean, Zeroed(l.psi_d_deg.half_width),
+                                                 0.0, static_cast<double>(colour_of.at(k))}});
   }
   if (step_file.blocks() > 0) step_file.Write(ctx.File("rate_extension_steps.tsv"));
   if (liquefied_file.blocks() > 0) liquefied_file.Write(ctx.File("rate_extension_liquefied.tsv"));
@@ -1388,7 +1402,9 @@ FigureSpec RateAgainstModels(const Context& ctx, const RateStudy& rate) {
   std::vector<std::vector<double>> set_rows[2];
   for (const RateGroup& g : rate.groups) {
     if (g.key.youngs_modulus_mpa != e_mpa || g.used == 0) continue;
-    const int set = quasi(g.key.rule, g.key.rate) ? 0 : g.key.rule == dem::RateRule::kConstant ? 1 : -1;
+    const int set = quasi(g.key.rule, g.key.rate)            ? 0
+                    : g.key.rule == dem::RateRule::kConstant ? 1
+                                                             : -1;
     if (set < 0) continue;
     // Side by side at each ψ_ε, so that the intervals do not hide each other.
     set_rows[set].push_back({g.key.psi_epsilon_deg + (set == 0 ? -0.6 : 0.6), g.psi_sigma_deg.mean,
@@ -1414,8 +1430,8 @@ FigureSpec RateAgainstModels(const Context& ctx, const RateStudy& rate) {
   // The drained cases of the quasi-static set: the critical state under stress control.
   std::vector<std::vector<double>> drained_rows;
   for (const DrainedState& s : rate.drained.states) {
-    if (std::find(selection->drained_cases.begin(), selection->drained_cases.end(),
-                  s.case_name) != selection->drained_cases.end() &&
+    if (std::find(selection->drained_cases.begin(), selection->drained_cases.end(), s.case_name) !=
+            selection->drained_cases.end() &&
         s.youngs_modulus_mpa == e_mpa && rate.Usable(s)) {
       drained_rows.push_back({s.p_kpa, s.ln_1_plus_e, 9.0});
     }
@@ -1691,8 +1707,8 @@ std::vector<StretchingPick> PickStretchingDirections(const std::vector<double>& 
                                                      const std::vector<double>& psi_sigma_deg,
                                                      const std::vector<double>& targets_deg) {
   std::vector<StretchingPick> picks;
-  const size_t n = std::min({psi_epsilon_deg.size(), p_kpa.size(), ln_1_plus_e.size(),
-                             psi_sigma_deg.size()});
+  const size_t n =
+      std::min({psi_epsilon_deg.size(), p_kpa.size(), ln_1_plus_e.size(), psi_sigma_deg.size()});
   for (double target : targets_deg) {
     for (size_t k = 1; k < n; ++k) {
       const double a = psi_epsilon_deg[k - 1] - target, b = psi_epsilon_deg[k] - target;
@@ -1702,7 +1718,8 @@ std::vector<StretchingPick> PickStretchingDirections(const std::vector<double>& 
       auto at = [&](const std::vector<double>& v) { return v[k - 1] + t * (v[k] - v[k - 1]); };
       StretchingPick pick;
       pick.psi_epsilon_deg = target;
-      pick.p_kpa = std::exp(std::log(p_kpa[k - 1]) + t * (std::log(p_kpa[k]) - std::log(p_kpa[k - 1])));
+      pick.p_kpa =
+          std::exp(std::log(p_kpa[k - 1]) + t * (std::log(p_kpa[k]) - std::log(p_kpa[k - 1])));
       pick.ln_1_plus_e = at(ln_1_plus_e);
       pick.psi_sigma_deg = at(psi_sigma_deg);
       pick.row = static_cast<double>(k - 1) + t;
@@ -1752,8 +1769,8 @@ ModelOverlay ReadModelOverlay(const std::string& folder, const std::string& name
     std::string field;
     for (int k = 0; k < 4; ++k) {
       if (!std::getline(fields, field, ',')) {
-        throw InputError(fmt::format("{}:{}: expected 4 comma-separated numbers, got '{}'", path,
-                                     number, line));
+        throw InputError(
+            fmt::format("{}:{}: expected 4 comma-separated numbers, got '{}'", path, number, line));
       }
       try {
         size_t used = 0;
@@ -1805,7 +1822,8 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
   if (!options.IsValid(&why)) throw InputError("figure options: " + why);
   const std::string table = directory + "/asymptotic_states.h5";
   if (!fs::exists(table)) {
-    throw InputError(table + " does not exist: run `granasym study run` (or `study merge`) "
+    throw InputError(table +
+                     " does not exist: run `granasym study run` (or `study merge`) "
                      "on the study folder first");
   }
   Context ctx;
@@ -1835,10 +1853,11 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
     for (size_t k = 0; k < v.size(); ++k) s += (k ? ", " : "") + v[k];
     return s;
   };
-  ctx.models_note = overlaid.empty() ? "No calibrated model is overlaid"
-                                     : "Models overlaid (DIR/calibration/<model>/plot_data): " +
-                                           join(overlaid);
-  if (!absent.empty()) ctx.models_note += "; not calibrated in this study, so not shown: " + join(absent);
+  ctx.models_note = overlaid.empty()
+                        ? "No calibrated model is overlaid"
+                        : "Models overlaid (DIR/calibration/<model>/plot_data): " + join(overlaid);
+  if (!absent.empty())
+    ctx.models_note += "; not calibrated in this study, so not shown: " + join(absent);
   ctx.models_note += ".";
 
   std::vector<FigureSpec> figures;
@@ -1850,15 +1869,17 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
                                "ψ_ε = 90° paths from normally consolidated states: the critical "
                                "state line.",
                                {}));
-  figures.push_back(PathFamily(ctx, "11", "fig11_csl_oc", "Isochoric paths from OC states",
-                               "ψ_ε = 90° paths from overconsolidated states (loaded to 1000 kPa, "
-                               "unloaded along ψ_ε = 180°): the asymptotic state does not depend "
-                               "on the start.",
-                               {{TableKind::kCsl, "NC ψ_ε = 90° asymptotes (Fig. 10), all replicates"}}));
+  figures.push_back(
+      PathFamily(ctx, "11", "fig11_csl_oc", "Isochoric paths from OC states",
+                 "ψ_ε = 90° paths from overconsolidated states (loaded to 1000 kPa, "
+                 "unloaded along ψ_ε = 180°): the asymptotic state does not depend "
+                 "on the start.",
+                 {{TableKind::kCsl, "NC ψ_ε = 90° asymptotes (Fig. 10), all replicates"}}));
   figures.push_back(Fig12(ctx));
-  figures.push_back(PathFamily(ctx, "13", "fig13_triaxial", "Drained triaxial paths",
-                               "Constant-σ_r paths from NC and OC states.",
-                               {{TableKind::kCsl, "ψ_ε = 90° asymptotes (Figs. 10-11), all replicates"}}));
+  figures.push_back(
+      PathFamily(ctx, "13", "fig13_triaxial", "Drained triaxial paths",
+                 "Constant-σ_r paths from NC and OC states.",
+                 {{TableKind::kCsl, "ψ_ε = 90° asymptotes (Figs. 10-11), all replicates"}}));
   figures.push_back(PathFamily(ctx, "14", "fig14_compression", "Compression asymptotic states",
                                "Proportional compression paths, 0° < ψ_ε < 90°, from NC states.",
                                {}));

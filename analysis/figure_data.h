@@ -28,8 +28,8 @@ using study::StateRow;
 
 // One figure: what index.tsv says about it and how plots/study/ draws it.
 struct FigureSpec {
-  std::string stem;     // output file name without extension, e.g. "fig10_csl_nc"
-  std::string figure;   // the paper's figure: "10", "Sec. 5.2"
+  std::string stem;    // output file name without extension, e.g. "fig10_csl_nc"
+  std::string figure;  // the paper's figure: "10", "Sec. 5.2"
   std::string title;
   std::string caption;  // what it shows, the method, what is missing
   std::string script;   // plots/study/<script>
@@ -52,8 +52,7 @@ struct FigureDataOptions {
   // Half-width (rows) of the strain increments that give a path's ψ_ε.
   int psi_epsilon_half_rows = 2;
   // The calibrated models overlaid, DIR/calibration/<model>/plot_data/.
-  std::vector<std::string> models = {"hypoplastic_clay", "modified_cam_clay",
-                                     "hypoplastic_sand"};
+  std::vector<std::string> models = {"hypoplastic_clay", "modified_cam_clay", "hypoplastic_sand"};
   bool IsValid(std::string* why) const;
 };
 

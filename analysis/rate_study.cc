@@ -1,5 +1,7 @@
 #include "analysis/rate_study.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -8,8 +10,6 @@
 #include <sstream>
 #include <tuple>
 #include <type_traits>
-
-#include <fmt/format.h>
 
 #include "common/config.h"
 #include "common/csv_table.h"
@@ -285,14 +285,16 @@ Columns DrainedStateFields(const DrainedState& s) {
 // The four drained files (rate_drained*.csv).
 void WriteDrainedFiles(const std::string& directory, const DrainedStudy& d,
                        const RateStudyOptions& o, const std::string& usable) {
-  CsvWriter states({"the asymptotic states of the drained triaxial rate cases (constant sigma_r, "
-                    "constant axial rate), one row per case and detector stage"});
+  CsvWriter states(
+      {"the asymptotic states of the drained triaxial rate cases (constant sigma_r, "
+       "constant axial rate), one row per case and detector stage"});
   states.WriteRows(d.states, DrainedStateFields, directory + "/" + kRateDrainedStatesFile);
 
-  CsvWriter groups({"per (E, sigma_r, axial rate): the mean over the replicates' usable states "
-                    "and the half-width of its 95 % interval (Student t, n - 1 degrees of "
-                    "freedom); q_over_p is the critical-state ratio M",
-                    usable});
+  CsvWriter groups(
+      {"per (E, sigma_r, axial rate): the mean over the replicates' usable states "
+       "and the half-width of its 95 % interval (Student t, n - 1 degrees of "
+       "freedom); q_over_p is the critical-state ratio M",
+       usable});
   auto group_fields = [](const DrainedGroup& g) {
     Columns fields = {{"youngs_modulus_mpa", CsvNumber(g.youngs_modulus_mpa)},
                       {"radial_stress_kpa", CsvNumber(g.radial_stress_kpa)},
@@ -309,13 +311,14 @@ void WriteDrainedFiles(const std::string& directory, const DrainedStudy& d,
   };
   groups.WriteRows(d.groups, group_fields, directory + "/" + kRateDrainedFile);
 
-  CsvWriter limits({"per (E, sigma_r): y = a + b I(d_max) by least squares through the usable "
-                    "states of every axial rate (I(d_max) as measured over each asymptote's "
-                    "window): the limits as I -> 0 of M = q/p, ln(1+e) and ln p with 95 % "
-                    "intervals (Student t, points - 2 degrees of freedom); the two slowest "
-                    "rates compared in M and ln(1+e): rate_independent when both agree within "
-                    "the 95 % interval of their difference",
-                    usable});
+  CsvWriter limits(
+      {"per (E, sigma_r): y = a + b I(d_max) by least squares through the usable "
+       "states of every axial rate (I(d_max) as measured over each asymptote's "
+       "window): the limits as I -> 0 of M = q/p, ln(1+e) and ln p with 95 % "
+       "intervals (Student t, points - 2 degrees of freedom); the two slowest "
+       "rates compared in M and ln(1+e): rate_independent when both agree within "
+       "the 95 % interval of their difference",
+       usable});
   auto limit_fields = [](const DrainedLimit& l) {
     Columns fields = {{"youngs_modulus_mpa", CsvNumber(l.youngs_modulus_mpa)},
                       {"radial_stress_kpa", CsvNumber(l.radial_stress_kpa)},
@@ -489,7 +492,8 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
   for (const auto& [key, list] : line_members) {
     RateLine line;
     std::tie(line.youngs_modulus_mpa, line.psi_epsilon_deg, line.rule, line.rate) = key;
-    if (std::any_of(list.begin(), list.end(), [](const RateState* s) { return s->HasPathLine(); })) {
+    if (std::any_of(list.begin(), list.end(),
+                    [](const RateState* s) { return s->HasPathLine(); })) {
       // ψ_ε = 0°: the mean of the paths' own lines; the position over the
       // paths whose range holds the reference p.
       std::vector<double> ns, lambdas, positions;
@@ -637,12 +641,14 @@ RateStudy RateStudy::Analyse(std::vector<RateState> states, const RateStudyOptio
     std::vector<std::string> missing;
     for (const RateGroup* g : {&a, &b}) {
       if (g->used < 2) {
-        missing.push_back(fmt::format("I* = {:g}: {} (an interval needs 2)", g->key.rate,
-                                      g->UsableText()));
+        missing.push_back(
+            fmt::format("I* = {:g}: {} (an interval needs 2)", g->key.rate, g->UsableText()));
       }
     }
-    const RateLine* csl_a = FindLine(study.lines, e_mpa, 90.0, dem::RateRule::kInertial, a.key.rate);
-    const RateLine* csl_b = FindLine(study.lines, e_mpa, 90.0, dem::RateRule::kInertial, b.key.rate);
+    const RateLine* csl_a =
+        FindLine(study.lines, e_mpa, 90.0, dem::RateRule::kInertial, a.key.rate);
+    const RateLine* csl_b =
+        FindLine(study.lines, e_mpa, 90.0, dem::RateRule::kInertial, b.key.rate);
     if (csl_a) v.csl_smallest = csl_a->position;
     if (csl_b) v.csl_next = csl_b->position;
     v.csl_position = Compare(v.csl_smallest, v.csl_next);
@@ -721,8 +727,8 @@ static void AnalyseExtension(RateStudy* study) {
   std::map<SweepKey, std::map<double, const RateGroup*>> sweeps;
   for (const RateGroup& g : study->groups) {
     if (g.key.psi_epsilon_deg < 90.0) continue;
-    sweeps[{g.key.youngs_modulus_mpa, static_cast<int>(g.key.rule), g.key.rate,
-            g.key.start_p_kpa}][g.key.psi_epsilon_deg] = &g;
+    sweeps[{g.key.youngs_modulus_mpa, static_cast<int>(g.key.rule), g.key.rate, g.key.start_p_kpa}]
+          [g.key.psi_epsilon_deg] = &g;
   }
   auto sigma_r = [](const Estimate& q_over_p) {
     Estimate e = q_over_p;
@@ -782,11 +788,10 @@ static void AnalyseExtension(RateStudy* study) {
         }
         std::vector<double> x, y;
         for (const RateState& s : study->states) {
-          const bool in_step =
-              std::any_of(through.begin(), through.end(), [&](double step_psi) {
-                return KeyOf(s) == RateKey{limit.youngs_modulus_mpa, step_psi,
-                                           limit.start_p_kpa, limit.rule, limit.rate};
-              });
+          const bool in_step = std::any_of(through.begin(), through.end(), [&](double step_psi) {
+            return KeyOf(s) == RateKey{limit.youngs_modulus_mpa, step_psi, limit.start_p_kpa,
+                                       limit.rule, limit.rate};
+          });
           if (!in_step || !study->Usable(s) || !std::isfinite(s.q_over_p)) continue;
           x.push_back(s.psi_epsilon_deg);
           y.push_back(1.0 - s.q_over_p / 3.0);
@@ -931,13 +936,14 @@ DrainedStudy DrainedStudy::Analyse(std::vector<DrainedState> states,
       std::vector<std::string> missing;
       for (const DrainedGroup* g : {&a, &b}) {
         if (g->used < 2) {
-          missing.push_back(fmt::format("axial rate {:g} 1/s: {} usable of {} states (an "
-                                        "interval needs 2)",
-                                        g->axial_strain_rate, g->used, g->states));
+          missing.push_back(
+              fmt::format("axial rate {:g} 1/s: {} usable of {} states (an "
+                          "interval needs 2)",
+                          g->axial_strain_rate, g->used, g->states));
         }
       }
-      l.verdict = VerdictOf({{"M", &l.m_change}, {"ln(1+e)", &l.ln_1_plus_e_change}}, missing,
-                            &l.reason);
+      l.verdict =
+          VerdictOf({{"M", &l.m_change}, {"ln(1+e)", &l.ln_1_plus_e_change}}, missing, &l.reason);
     } else {
       l.verdict = "undetermined";
       l.reason = "fewer than two axial rates";
@@ -989,8 +995,9 @@ DrainedStudy DrainedStudy::Analyse(std::vector<DrainedState> states,
 
 std::string DrainedCriticalState::Text(double reference_p_kpa) const {
   auto pm = [](const Estimate& e, int digits) {
-    return e.has_interval() ? fmt::format("{:.{}f} +- {:.{}f}", e.mean, digits, e.half_width, digits)
-                            : fmt::format("{:.{}f} (no interval)", e.mean, digits);
+    return e.has_interval()
+               ? fmt::format("{:.{}f} +- {:.{}f}", e.mean, digits, e.half_width, digits)
+               : fmt::format("{:.{}f} (no interval)", e.mean, digits);
   };
   std::string text = fmt::format("M = {}, phi_c = {} deg from {} radial stresses", pm(m, 3),
                                  pm(phi_c_deg, 1), starts);
@@ -1021,14 +1028,13 @@ std::vector<std::string> RateStudy::Answers() const {
       const LiteratureBand& band = options.literature_m;
       const double lo = c.m.has_interval() ? c.m.mean - c.m.half_width : c.m.mean;
       const double hi = c.m.has_interval() ? c.m.mean + c.m.half_width : c.m.mean;
-      const char* where = hi < band.low    ? "below the band"
-                          : lo > band.high ? "above the band"
-                          : lo >= band.low && hi <= band.high
-                              ? "inside the band"
-                              : "across an edge of the band";
-      answers.push_back(fmt::format(
-          "Against the literature (E = {:g} MPa): M = {} is {} M = {:g}–{:g}, {}.",
-          c.youngs_modulus_mpa, pm(c.m, 3), where, band.low, band.high, band.source));
+      const char* where = hi < band.low                       ? "below the band"
+                          : lo > band.high                    ? "above the band"
+                          : lo >= band.low && hi <= band.high ? "inside the band"
+                                                              : "across an edge of the band";
+      answers.push_back(
+          fmt::format("Against the literature (E = {:g} MPa): M = {} is {} M = {:g}–{:g}, {}.",
+                      c.youngs_modulus_mpa, pm(c.m, 3), where, band.low, band.high, band.source));
     }
     if (c.m_per_ln_p.has_interval()) {
       const bool zero = std::abs(c.m_per_ln_p.mean) <= c.m_per_ln_p.half_width;
@@ -1061,8 +1067,8 @@ std::vector<std::string> RateStudy::Answers() const {
   }
   std::string liquefied;
   for (const auto& [key, yes] : all_liquefied) {
-    liquefied += fmt::format("{}I* = {:g} from {:g} kPa", liquefied.empty() ? "" : ", ",
-                             key.first, key.second);
+    liquefied += fmt::format("{}I* = {:g} from {:g} kPa", liquefied.empty() ? "" : ", ", key.first,
+                             key.second);
   }
   if (!limits.empty() || !liquefied.empty()) {
     answers.push_back(fmt::format(
@@ -1083,9 +1089,9 @@ std::vector<std::string> RateStudy::Answers() const {
     for (const RateVerdict& v : verdicts) {
       if (v.verdict == "undetermined" && v.ln_1_plus_e.agreement == Agreement::kAgree &&
           v.psi_sigma.agreement == Agreement::kAgree) {
-        state_only += fmt::format("{}E = {:g} MPa, ψ_ε = {:g}° from {:g} kPa",
-                                  state_only.empty() ? "" : "; ", v.youngs_modulus_mpa,
-                                  v.psi_epsilon_deg, v.start_p_kpa);
+        state_only +=
+            fmt::format("{}E = {:g} MPa, ψ_ε = {:g}° from {:g} kPa", state_only.empty() ? "" : "; ",
+                        v.youngs_modulus_mpa, v.psi_epsilon_deg, v.start_p_kpa);
       }
     }
     answers.push_back(
@@ -1100,10 +1106,10 @@ std::vector<std::string> RateStudy::Answers() const {
   std::string drained_verdicts;
   for (const DrainedLimit& l : drained.limits) {
     if (l.verdict.empty()) continue;
-    drained_verdicts += fmt::format("{}E = {:g} MPa, σ_r = {:g} kPa: {}{}",
-                                    drained_verdicts.empty() ? "" : "; ", l.youngs_modulus_mpa,
-                                    l.radial_stress_kpa, l.verdict,
-                                    l.reason.empty() ? std::string() : " (" + l.reason + ")");
+    drained_verdicts +=
+        fmt::format("{}E = {:g} MPa, σ_r = {:g} kPa: {}{}", drained_verdicts.empty() ? "" : "; ",
+                    l.youngs_modulus_mpa, l.radial_stress_kpa, l.verdict,
+                    l.reason.empty() ? std::string() : " (" + l.reason + ")");
   }
   if (!drained_verdicts.empty()) {
     answers.push_back(
@@ -1131,9 +1137,10 @@ std::string RateStudy::Text() const {
   std::map<double, std::vector<StiffnessComparison>> by_modulus;
   for (const StiffnessComparison& c : stiffness) by_modulus[c.youngs_modulus_mpa].push_back(c);
   for (const auto& [e_mpa, list] : by_modulus) {
-    text += fmt::format("  stiffness, E {:g} against {:g} MPa (psi_sigma and the CSL per start and "
-                        "rate): {}\n",
-                        e_mpa, ReferenceModulus(), VerdictCounts(list, " "));
+    text += fmt::format(
+        "  stiffness, E {:g} against {:g} MPa (psi_sigma and the CSL per start and "
+        "rate): {}\n",
+        e_mpa, ReferenceModulus(), VerdictCounts(list, " "));
   }
   for (const ExtensionLimit& l : extension_limits) {
     text += fmt::format("  extension, E {:g} MPa, {}, from {:g} kPa: {}\n", l.youngs_modulus_mpa,
@@ -1375,8 +1382,9 @@ QuasiStaticSelection SelectQuasiStatic(const RateStudy& study,
     if (!rates.count(*inertial_number)) {
       std::string known;
       for (double r : rates) known += (known.empty() ? "" : ", ") + fmt::format("{:g}", r);
-      selection.reason = fmt::format("no rate case runs at I* = {:g} (E = {:g} MPa): the study has {}",
-                                     *inertial_number, e_mpa, known.empty() ? "none" : known);
+      selection.reason =
+          fmt::format("no rate case runs at I* = {:g} (E = {:g} MPa): the study has {}",
+                      *inertial_number, e_mpa, known.empty() ? "none" : known);
       return selection;
     }
     selection.inertial_number = *inertial_number;
@@ -1409,8 +1417,8 @@ QuasiStaticSelection SelectQuasiStatic(const RateStudy& study,
   }
   for (const DrainedState& s : study.drained.states) {
     const auto it = slowest.find(s.radial_stress_kpa);
-    if (s.youngs_modulus_mpa == e_mpa && it != slowest.end() &&
-        s.axial_strain_rate == it->second && seen.insert(s.case_name).second) {
+    if (s.youngs_modulus_mpa == e_mpa && it != slowest.end() && s.axial_strain_rate == it->second &&
+        seen.insert(s.case_name).second) {
       selection.drained_cases.push_back(s.case_name);
     }
   }
@@ -1424,7 +1432,9 @@ void WriteQuasiStaticSelection(const std::string& directory, const QuasiStaticSe
       "inertial_number = {}\nyoungs_modulus_mpa = {}\ncases = [",
       CsvNumber(s.inertial_number), CsvNumber(s.youngs_modulus_mpa));
   for (size_t k = 0; k < s.cases.size(); ++k) text += (k ? ", " : "") + TomlQuoted(s.cases[k]);
-  text += "]\n# the drained triaxial cases at the slowest axial rate of each sigma_r\ndrained_cases = [";
+  text +=
+      "]\n# the drained triaxial cases at the slowest axial rate of each sigma_r\ndrained_cases = "
+      "[";
   for (size_t k = 0; k < s.drained_cases.size(); ++k) {
     text += (k ? ", " : "") + TomlQuoted(s.drained_cases[k]);
   }
@@ -1530,8 +1540,7 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
     if (index == stages.size()) continue;
     const std::string group = dem::StageGroup(index);
     const auto canonical = CanonicalLines(dem::ReadProvenance(file).scene_canonical);
-    const double modulus =
-        CanonicalNumber(canonical, "material.youngs_modulus_mpa").value_or(kNaN);
+    const double modulus = CanonicalNumber(canonical, "material.youngs_modulus_mpa").value_or(kNaN);
     if (file.HasAttribute(group, dem::record::kStageAxialStrainRate)) {
       DrainedState d = FromRow<DrainedState>(row);  // a drained triaxial stage
       d.youngs_modulus_mpa = modulus;
@@ -1566,21 +1575,18 @@ std::optional<RateStudy> WriteRateStudy(const std::string& directory,
                           parent_stage);
     s.ocr = row.ocr;
     // κ as the DEM's rows define it (dem/material.h), at the state's p.
-    s.stiffness_number =
-        row.p_kpa > 0 ? dem::ReadMaterial(file).StiffnessNumber(row.p_kpa * 1e3) : kNaN;  // none at p = 0
+    s.stiffness_number = row.p_kpa > 0 ? dem::ReadMaterial(file).StiffnessNumber(row.p_kpa * 1e3)
+                                       : kNaN;  // none at p = 0
     if (s.kind == TableKind::kNcl) {
       FitPathLine(TimeSeries::Read(file, dem::record::kSeries), stages[index].first_row,
                   stages[index].last_row, &s);
     }
     states.push_back(s);
   }
-  const std::vector<const char*> files = {kRateStatesFile,      kRateSummaryFile,
-                                          kRateLinesFile,       kRateQuasiStaticFile,
-                                          kRateIndependenceFile, kRateStiffnessFile,
-                                          kRateExtensionFile,
-                                          kRateExtensionLimitFile, kRateDrainedStatesFile,
-                                          kRateDrainedFile,     kRateDrainedLimitFile,
-                                          kRateDrainedCriticalFile};
+  const std::vector<const char*> files = {
+      kRateStatesFile,        kRateSummaryFile,   kRateLinesFile,        kRateQuasiStaticFile,
+      kRateIndependenceFile,  kRateStiffnessFile, kRateExtensionFile,    kRateExtensionLimitFile,
+      kRateDrainedStatesFile, kRateDrainedFile,   kRateDrainedLimitFile, kRateDrainedCriticalFile};
   if (!any) {
     for (const char* name : files) fs::remove(fs::path(directory) / name);
     return std::nullopt;

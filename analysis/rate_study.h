@@ -187,8 +187,8 @@ RateKey KeyOf(const RateState& state);
 // Per (E, ψ_ε, p_0, rate): the replicates' states and their means.
 struct RateGroup {
   RateKey key;
-  int states = 0;  // rows of the group
-  int used = 0;    // of them usable (statuses, flags)
+  int states = 0;     // rows of the group
+  int used = 0;       // of them usable (statuses, flags)
   int liquefied = 0;  // of them a gas (status or flag "gas": no asymptotic state)
   // "2 usable of 3 states" and, when some liquefied, "(1 liquefied)".
   std::string UsableText() const;
@@ -247,8 +247,7 @@ struct RateVerdict {
 // the 95 % interval of their difference (Welch), stiffness_dependent when one
 // differs, undetermined otherwise (`reason`).
 struct StiffnessComparison {
-  double youngs_modulus_mpa = 0, reference_modulus_mpa = 0, psi_epsilon_deg = 0,
-         start_p_kpa = 0;
+  double youngs_modulus_mpa = 0, reference_modulus_mpa = 0, psi_epsilon_deg = 0, start_p_kpa = 0;
   dem::RateRule rule = dem::RateRule::kConstant;
   double rate = 0;
   Estimate psi_reference, psi_other, csl_reference, csl_other, kappa_reference, kappa_other;
@@ -325,8 +324,8 @@ struct DrainedLimit {
   int rates = 0, points = 0;
   double i_min = std::numeric_limits<double>::quiet_NaN();
   double i_max = std::numeric_limits<double>::quiet_NaN();
-  Estimate m, ln_1_plus_e, ln_p_kpa;  // the limits a
-  Estimate m_slope;                   // b of M
+  Estimate m, ln_1_plus_e, ln_p_kpa;                          // the limits a
+  Estimate m_slope;                                           // b of M
   double slowest = std::numeric_limits<double>::quiet_NaN();  // ε̇_a (1/s)
   double next = std::numeric_limits<double>::quiet_NaN();
   Comparison m_change, ln_1_plus_e_change;  // next − slowest
@@ -337,21 +336,21 @@ struct DrainedLimit {
 // Per E: the quasi-static critical state from the limits of every σ_r.
 struct DrainedCriticalState {
   double youngs_modulus_mpa = 0;
-  int starts = 0;             // σ_r with a limit
-  Estimate m;                 // mean of the limits' M (Student t, starts − 1 dof)
-  Estimate phi_c_deg;         // φ_c = asin(3M/(6 + M)), its interval by the delta method
-  Estimate m_per_ln_p;        // slope of the limits' M against ln p: M's p-dependence
-  Estimate lambda;            // the CSL ln(1+e) = Γ − λ ln(p / 1 kPa) through the limits
+  int starts = 0;       // σ_r with a limit
+  Estimate m;           // mean of the limits' M (Student t, starts − 1 dof)
+  Estimate phi_c_deg;   // φ_c = asin(3M/(6 + M)), its interval by the delta method
+  Estimate m_per_ln_p;  // slope of the limits' M against ln p: M's p-dependence
+  Estimate lambda;      // the CSL ln(1+e) = Γ − λ ln(p / 1 kPa) through the limits
   double gamma = std::numeric_limits<double>::quiet_NaN();
-  Estimate position;          // ln(1+e) on it at the reference p
+  Estimate position;  // ln(1+e) on it at the reference p
   std::string Text(double reference_p_kpa) const;
 };
 
 struct DrainedStudy {
   std::vector<DrainedState> states;
-  std::vector<DrainedGroup> groups;                // by (E, σ_r, ε̇_a)
-  std::vector<DrainedLimit> limits;                // by (E, σ_r)
-  std::vector<DrainedCriticalState> critical;      // by E
+  std::vector<DrainedGroup> groups;            // by (E, σ_r, ε̇_a)
+  std::vector<DrainedLimit> limits;            // by (E, σ_r)
+  std::vector<DrainedCriticalState> critical;  // by E
   // `usable`: the rate study's rule for a state's status and flags.
   static DrainedStudy Analyse(std::vector<DrainedState> states, const RateStudyOptions& options);
 };
@@ -397,7 +396,7 @@ struct QuasiStaticSelection {
   double youngs_modulus_mpa = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::string> cases;          // case names, each once, in the states' order
   std::vector<std::string> drained_cases;  // likewise, the drained cases
-  std::string reason;              // why there is none (empty when valid)
+  std::string reason;                      // why there is none (empty when valid)
   bool valid() const { return !cases.empty(); }
 };
 QuasiStaticSelection SelectQuasiStatic(const RateStudy& study,

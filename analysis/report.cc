@@ -13,13 +13,13 @@
 #include <set>
 #include <utility>
 
+#include "analysis/rate_study.h"
 #include "common/config.h"
 #include "common/csv_table.h"
 #include "common/error.h"
 #include "common/provenance.h"
 #include "common/text_file.h"
 #include "study/case_record.h"
-#include "analysis/rate_study.h"
 #include "study/study_folder.h"
 
 namespace granasym::analysis {
@@ -674,8 +674,8 @@ std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string&
   }
   Block details;
   details.type = Block::Type::kDetails;
-  details.text = Plain(fmt::format("{} row{} of the state table behind {}",
-                                   table.rows.size(), table.rows.size() == 1 ? "" : "s",
+  details.text = Plain(fmt::format("{} row{} of the state table behind {}", table.rows.size(),
+                                   table.rows.size() == 1 ? "" : "s",
                                    entry.rfind("Sec.", 0) == 0 ? entry : "figure " + entry));
   details.children.push_back(std::move(table));
   return details;
@@ -1029,7 +1029,8 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
             "Figures rate (a)–(e) above draw them.")));
   if (const std::optional<RateStudy> rate = ReadRateStudy(study.directory)) {
     const std::vector<std::string> answers = rate->Answers();
-    if (!answers.empty()) section.blocks.push_back(Paragraph(Plain("The answers, from the tables below:")));
+    if (!answers.empty())
+      section.blocks.push_back(Paragraph(Plain("The answers, from the tables below:")));
     for (const std::string& answer : answers) section.blocks.push_back(Paragraph(Plain(answer)));
   }
   if (const std::optional<QuasiStaticSelection> selection =
@@ -1182,10 +1183,11 @@ Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRow>& ca
     for (const CaseRow& c : cases) {
       const double ps = static_cast<double>(c.own_steps) * static_cast<double>(c.particles);
       const CaseRecord& r = c.record;
-      std::vector<Cell> row = {Cell{Link(r.id, UrlPath("cases/" + r.id + "/" + CaseRecord::kFileName)), ""},
-                               Cell{Plain(std::to_string(r.replicate)), "num"},
-                               Cell{r.parent.empty() ? Plain("sample") : Plain(r.parent), ""},
-                               Cell{Plain(c.status), StatusCss(c.status)}};
+      std::vector<Cell> row = {
+          Cell{Link(r.id, UrlPath("cases/" + r.id + "/" + CaseRecord::kFileName)), ""},
+          Cell{Plain(std::to_string(r.replicate)), "num"},
+          Cell{r.parent.empty() ? Plain("sample") : Plain(r.parent), ""},
+          Cell{Plain(c.status), StatusCss(c.status)}};
       if (c.done) {
         ++done;
         own_steps += c.own_steps;

@@ -107,13 +107,17 @@ int WriteModelPaths(const std::string& folder, const std::string& model_block) {
       const std::string dir = fmt::format("{}/paths/psi{}_ocr{}", folder, psi, ocr);
       fs::create_directories(dir);
       fs::remove(dir + "/done.toml");
-      const std::string text = model_block + fmt::format(
-          "\n[initial]\nmean_stress_kpa = 100.0\npsi_sigma_deg = 0.0\nocr = {}.0\n\n"
-          "[[stage]]\nname = \"path\"\ntype = \"proportional\"\npsi_epsilon_deg = {}.0\n"
-          "stretching_rate = 1.0\nduration_s = 1.0\noutput_points = 200\n[stage.stop]\n"
-          "asymptote = 1e-7\n{}",
-          ocr, psi,
-          psi < 90 ? "mean_stress_kpa = 2000.0\n" : psi > 90 ? "mean_stress_kpa = 1.0\n" : "");
+      const std::string text =
+          model_block +
+          fmt::format(
+              "\n[initial]\nmean_stress_kpa = 100.0\npsi_sigma_deg = 0.0\nocr = {}.0\n\n"
+              "[[stage]]\nname = \"path\"\ntype = \"proportional\"\npsi_epsilon_deg = {}.0\n"
+              "stretching_rate = 1.0\nduration_s = 1.0\noutput_points = 200\n[stage.stop]\n"
+              "asymptote = 1e-7\n{}",
+              ocr, psi,
+              psi < 90   ? "mean_stress_kpa = 2000.0\n"
+              : psi > 90 ? "mean_stress_kpa = 1.0\n"
+                         : "");
       const std::string input = dir + "/test.toml";
       WriteTextFileAtomically(input, text);
       try {
@@ -151,7 +155,8 @@ std::string CalibrateStudyModel(const std::string& directory, ModelKind model,
   // The successful fit of lowest cost (a rate study runs Ceres and NLopt).
   const calibration::FitResult* best = nullptr;
   for (const calibration::FitResult& f : run.fits) {
-    if (f.summary.success() && (!best || f.summary.final_cost < best->summary.final_cost)) best = &f;
+    if (f.summary.success() && (!best || f.summary.final_cost < best->summary.final_cost))
+      best = &f;
   }
   if (!best) {
     throw RuntimeError(fmt::format("{}: the fit failed: {} (see {})", name,
@@ -162,8 +167,8 @@ std::string CalibrateStudyModel(const std::string& directory, ModelKind model,
   WriteTextFileAtomically(folder + "/parameters.csv", calibration::ParametersCsv(run, fit));
   WriteTextFileAtomically(folder + "/model.toml", calibration::ModelToml(run, fit));
   calibration::WritePlotData(run, fit, config.plot_data_dir);
-  const int paths = WriteModelPaths(folder, calibration::ModelTomlBlock(
-                                                run.problem->parameters().kind(), fit.values));
+  const int paths = WriteModelPaths(
+      folder, calibration::ModelTomlBlock(run.problem->parameters().kind(), fit.values));
   int count = 0;
   for (char c : warnings) count += c == '\n' ? 1 : 0;
   std::string line = name + ":";

@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "analysis/figure_data.h"
 #include "common/error.h"
 #include "common/stopwatch.h"
-#include "analysis/figure_data.h"
 
 extern char** environ;
 
@@ -132,8 +132,8 @@ void RunFigures(const FiguresFlags& flags) {
                                       : Draw(gnuplot, PlotsDirectory(), flags.directory, figure);
     if (why.empty()) {
       ++drawn;
-      std::printf("  %-28s %s/figures/%s.png, .pdf\n", figure.stem.c_str(),
-                  flags.directory.c_str(), figure.stem.c_str());
+      std::printf("  %-28s %s/figures/%s.png, .pdf\n", figure.stem.c_str(), flags.directory.c_str(),
+                  figure.stem.c_str());
     } else {
       ++failed;
       figure.not_drawn = why;

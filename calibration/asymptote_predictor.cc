@@ -114,8 +114,8 @@ bool SandPath(const HypoplasticSand& model, double psi_epsilon, const std::vecto
               std::string* why) {
   const double lo = *std::min_element(targets.begin(), targets.end());
   const double hi = *std::max_element(targets.begin(), targets.end());
-  const double psi_c = std::atan(std::sqrt(2.0) / 3.0 *
-                                 CriticalStateRatio(model.critical_friction_angle()));
+  const double psi_c =
+      std::atan(std::sqrt(2.0) / 3.0 * CriticalStateRatio(model.critical_friction_angle()));
   out->assign(targets.size(), StatePrediction());
   auto closed_form = [&](double e_of_p(const HypoplasticSand&, double), double psi) {
     for (size_t k = 0; k < targets.size(); ++k) {

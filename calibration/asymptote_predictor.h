@@ -85,9 +85,9 @@ struct Prediction {
 
 // A state the model reaches at a given mean stress (sand model).
 struct StatePrediction {
-  double psi_sigma = 0.0;    // rad
-  double ln_volume = 0.0;    // ln(1+e) at the requested p
-  double ln_ocr = 0.0;       // ln(p_e*/p) of the model (its own NCL e_i)
+  double psi_sigma = 0.0;  // rad
+  double ln_volume = 0.0;  // ln(1+e) at the requested p
+  double ln_ocr = 0.0;     // ln(p_e*/p) of the model (its own NCL e_i)
 };
 
 class AsymptotePredictor {

@@ -293,12 +293,15 @@ std::string CommaList(const std::vector<std::string>& values) {
 }  // namespace
 
 std::string CalibrationConfigText(const CalibrationConfig& config, const std::string& header) {
-  const auto rel = [&](const std::string& path) { return TomlQuoted(RelativeTo(config.origin, path)); };
+  const auto rel = [&](const std::string& path) {
+    return TomlQuoted(RelativeTo(config.origin, path));
+  };
   // The keys every kind of dataset has.
   const auto weights = [](const auto& o) {
-    return fmt::format("weight = {}\npsi_sigma_uncertainty_deg = {}\nln_1_plus_e_uncertainty = {}\n",
-                       TomlFloat(o.weight), TomlFloat(o.psi_sigma_uncertainty_deg),
-                       TomlFloat(o.ln_volume_uncertainty));
+    return fmt::format(
+        "weight = {}\npsi_sigma_uncertainty_deg = {}\nln_1_plus_e_uncertainty = {}\n",
+        TomlFloat(o.weight), TomlFloat(o.psi_sigma_uncertainty_deg),
+        TomlFloat(o.ln_volume_uncertainty));
   };
   std::string s = header;
   s += fmt::format("[model]\nkind = {}\nasymptotes = {}\n", TomlQuoted(ToString(config.model)),
@@ -318,10 +321,11 @@ std::string CalibrationConfigText(const CalibrationConfig& config, const std::st
       s += "kinds = " + TomlStrings(o.kinds) + "\n";
       s += "statuses = " + TomlStrings(o.statuses) + "\n";
       s += "exclude_flags = " + TomlStrings(o.exclude_flags) + "\n";
-      if (!o.ncl_references.empty()) s += "ncl_references = " + TomlStrings(o.ncl_references) + "\n";
+      if (!o.ncl_references.empty())
+        s += "ncl_references = " + TomlStrings(o.ncl_references) + "\n";
       if (!o.cases.empty()) s += "cases = " + TomlStrings(o.cases) + "\n";
-      s += "psi_epsilon_range_deg = " +
-           TomlFloats({o.psi_epsilon_min_deg, o.psi_epsilon_max_deg}) + "\n";
+      s += "psi_epsilon_range_deg = " + TomlFloats({o.psi_epsilon_min_deg, o.psi_epsilon_max_deg}) +
+           "\n";
       s += "triaxial_kind_tolerance_deg = " + TomlFloat(o.triaxial_kind_tolerance_deg) + "\n";
     } else if (d.is_dem) {
       const DemReadOptions& o = d.dem;
@@ -355,8 +359,8 @@ std::string CalibrationConfigText(const CalibrationConfig& config, const std::st
       "polish = {}\n",
       TomlQuoted(ToString(config.nlopt.algorithm)), config.nlopt.starts,
       config.nlopt.max_evaluations, config.nlopt.seed, TomlQuoted(ToString(config.nlopt.polish)));
-  s += fmt::format("\n[output]\nhdf5 = {}\nsummary = {}\nplot_data = {}\n",
-                   rel(config.hdf5_path), rel(config.summary_path), rel(config.plot_data_dir));
+  s += fmt::format("\n[output]\nhdf5 = {}\nsummary = {}\nplot_data = {}\n", rel(config.hdf5_path),
+                   rel(config.summary_path), rel(config.plot_data_dir));
   return s;
 }
 

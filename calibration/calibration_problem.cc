@@ -68,13 +68,13 @@ CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
         "than free parameters; fix parameters or add states)",
         num_residuals_, num_free()));
   }
-  const std::vector<std::pair<int, std::string>> unidentified = Unidentifiable(datasets_, parameters_);
+  const std::vector<std::pair<int, std::string>> unidentified =
+      Unidentifiable(datasets_, parameters_);
   if (!unidentified.empty()) {
-    throw InputError(
-        fmt::format("calibration: parameter {} cannot be identified by these data: {} (fix it with "
-                    "free = false and a value, or add states)",
-                    parameters_.specs()[unidentified.front().first].name,
-                    unidentified.front().second));
+    throw InputError(fmt::format(
+        "calibration: parameter {} cannot be identified by these data: {} (fix it with "
+        "free = false and a value, or add states)",
+        parameters_.specs()[unidentified.front().first].name, unidentified.front().second));
   }
 }
 
@@ -131,7 +131,8 @@ std::vector<double> CalibrationProblem::FreeStart() const {
 
 bool CalibrationProblem::Evaluate(const std::vector<double>& values,
                                   std::vector<PointResidual>* residuals, std::string* why) const {
-  if (parameters_.kind() == ModelKind::kHypoplasticSand) return EvaluateSand(values, residuals, why);
+  if (parameters_.kind() == ModelKind::kHypoplasticSand)
+    return EvaluateSand(values, residuals, why);
   std::vector<Prediction> by_stretching, by_stress;
   if (!predictor_.Predict(values, psi_epsilons_, asbs_psi_sigmas_, &by_stretching, &by_stress,
                           why)) {

@@ -201,7 +201,8 @@ StateDataset ParseStatesCsv(const std::string& text, const std::string& origin,
     // Both measures of the volume (WriteStatesCsv writes both): they must agree.
     if (e && ln_v && !(std::abs(std::log1p(row[*e]) - row[*ln_v]) <= kVolumeMeasureTolerance)) {
       throw InputError(fmt::format(
-          "{}: columns 'e' = {} and 'ln_1_plus_e' = {} disagree (ln(1 + e) = {:.7g}, tolerance {}): "
+          "{}: columns 'e' = {} and 'ln_1_plus_e' = {} disagree (ln(1 + e) = {:.7g}, tolerance "
+          "{}): "
           "give one of them",
           point.source, row[*e], row[*ln_v], std::log1p(row[*e]), kVolumeMeasureTolerance));
     }

@@ -180,8 +180,8 @@ StateDataset ReadStatesDem(const std::string& path, const std::string& name,
     // A stress-controlled stage (drained triaxial) has the ψ_ε of its
     // asymptote, measured from the strain increments over the window.
     const double psi_epsilon =
-        file.ReadDoubleAttribute(group, strain_path ? record::kStagePsiEpsilonDeg
-                                                    : record::kAsymptotePsiEpsilonDeg) *
+        file.ReadDoubleAttribute(
+            group, strain_path ? record::kStagePsiEpsilonDeg : record::kAsymptotePsiEpsilonDeg) *
         kDegree;
     AsymptoticStatePoint base;
     base.psi_epsilon = psi_epsilon;

@@ -15,7 +15,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-
 double FrictionAngleFromPsiSigma(double psi_sigma) {
   const double m = 3.0 * std::tan(psi_sigma) / std::sqrt(2.0);
   return std::asin(3.0 * m / (6.0 + m)) / kDegree;

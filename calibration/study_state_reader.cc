@@ -9,11 +9,11 @@
 #include <map>
 #include <sstream>
 
+#include "calibration/fit_result.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/state_measures.h"
 #include "common/statistics.h"
-#include "calibration/fit_result.h"
 #include "study/state_table_names.h"
 
 namespace granasym::calibration {
@@ -57,9 +57,10 @@ std::vector<Row> ReadRows(const std::string& path) {
         names::kColumnStage, names::kColumnFlags, names::kColumnPsiEpsilon,
         names::kColumnMeanStress, names::kColumnVoidRatio, names::kColumnPsiSigma}) {
     if (!file.Exists(column(required))) {
-      throw InputError(fmt::format("{}: not a granasym study state table (no dataset {}; "
-                                   "`granasym study run` writes it)",
-                                   path, column(required)));
+      throw InputError(
+          fmt::format("{}: not a granasym study state table (no dataset {}; "
+                      "`granasym study run` writes it)",
+                      path, column(required)));
     }
   }
   const std::vector<int64_t> replicate = file.ReadInts(column(names::kColumnReplicate));
@@ -73,8 +74,8 @@ std::vector<Row> ReadRows(const std::string& path) {
   const std::vector<double> e = file.ReadDoubles(column(names::kColumnVoidRatio));
   const std::vector<double> psi_s = file.ReadDoubles(column(names::kColumnPsiSigma));
   const bool has_ocr = file.Exists(column(names::kColumnOcr));
-  const std::vector<double> ocr = has_ocr ? file.ReadDoubles(column(names::kColumnOcr))
-                                          : std::vector<double>();
+  const std::vector<double> ocr =
+      has_ocr ? file.ReadDoubles(column(names::kColumnOcr)) : std::vector<double>();
   const bool has_reference = file.Exists(column(names::kColumnNclReference));
   const std::vector<std::string> reference =
       has_reference ? file.ReadStrings(column(names::kColumnNclReference))
@@ -174,13 +175,13 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
   std::string why;
   if (!options.IsValid(&why)) throw InputError("dataset '" + name + "': " + why);
   const std::filesystem::path given(directory);
-  const std::string path = std::filesystem::is_directory(given)
-                               ? (given / names::kFileName).string()
-                               : directory;
+  const std::string path =
+      std::filesystem::is_directory(given) ? (given / names::kFileName).string() : directory;
   if (!std::filesystem::exists(path)) {
-    throw InputError(fmt::format("dataset '{}': {} does not exist (a study folder holds {} once "
-                                 "`granasym study run` has finished)",
-                                 name, path, names::kFileName));
+    throw InputError(
+        fmt::format("dataset '{}': {} does not exist (a study folder holds {} once "
+                    "`granasym study run` has finished)",
+                    name, path, names::kFileName));
   }
   const std::vector<Row> rows = ReadRows(path);
 
@@ -200,8 +201,7 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
       excluded = excluded || Contains(options.exclude_flags, flag);
     }
     if (excluded) continue;
-    if (!options.ncl_references.empty() &&
-        !Contains(options.ncl_references, row.ncl_reference)) {
+    if (!options.ncl_references.empty() && !Contains(options.ncl_references, row.ncl_reference)) {
       continue;
     }
     if (!options.cases.empty() && !Contains(options.cases, row.case_name)) continue;
@@ -248,17 +248,19 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
       replicates += (replicates.empty() ? "r" : ",r") + std::to_string(row->replicate);
     }
     AsymptoticStatePoint point;
-    const std::optional<study::TableKind> kind = FromString<study::TableKind>(members.front()->kind);
+    const std::optional<study::TableKind> kind =
+        FromString<study::TableKind>(members.front()->kind);
     point.psi_epsilon = Mean(psi_e);
     if (kind == study::TableKind::kTriaxial) {
-      point.kind = KindFromStretching(point.psi_epsilon, options.triaxial_kind_tolerance_deg * kDegree);
+      point.kind =
+          KindFromStretching(point.psi_epsilon, options.triaxial_kind_tolerance_deg * kDegree);
     } else if (kind == study::TableKind::kNcl || kind == study::TableKind::kCsl) {
       point.kind = kind == study::TableKind::kNcl ? StateKind::kNcl : StateKind::kCsl;
     } else {
       // compression / extension rows keep their side of 90° even when their
       // ψ_ε is close to it.
-      point.kind = kind == study::TableKind::kCompression ? StateKind::kCompression
-                                                          : StateKind::kExtension;
+      point.kind =
+          kind == study::TableKind::kCompression ? StateKind::kCompression : StateKind::kExtension;
     }
     point.mean_stress = std::exp(Mean(ln_p));
     point.void_ratio = std::expm1(Mean(ln_v));
@@ -278,8 +280,8 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
       point.psi_sigma_uncertainty = stated_psi;
       point.ln_volume_uncertainty = stated_v;
     }
-    point.source = fmt::format("{}/{} ({} {})", key.first, key.second, members.front()->kind,
-                               replicates);
+    point.source =
+        fmt::format("{}/{} ({} {})", key.first, key.second, members.front()->kind, replicates);
     dataset.points.push_back(point);
   }
   return dataset;

@@ -39,7 +39,7 @@ struct StudyReadOptions {
   std::vector<std::string> ncl_references;  // empty: all
   std::vector<std::string> cases;           // empty: all
   double triaxial_kind_tolerance_deg = 2.0;
-  double kind_tolerance_deg = 0.5;  // ψ_ε within this of 0°, 90° counts as there
+  double kind_tolerance_deg = 0.5;         // ψ_ε within this of 0°, 90° counts as there
   double psi_sigma_uncertainty_deg = 0.5;  // one standard deviation, per state
   double ln_volume_uncertainty = 0.002;
   double weight = 1.0;

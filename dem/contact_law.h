@@ -306,7 +306,8 @@ class IncrementalShearLaw {
   static GRANASYM_ALWAYS_INLINE ShearLane NormalLane(const Law& law, const ContactBatch& b, int k) {
     ShearLane lane;
     const LaneGeometry g = ContactGeometryLane(b, k);
-    const NormalResponse response = law.Normal(b.ri[k], b.rj[k], g.distance, g.reciprocal, g.overlap);
+    const NormalResponse response =
+        law.Normal(b.ri[k], b.rj[k], g.distance, g.reciprocal, g.overlap);
     lane.inverse_distance = g.inverse_distance;
     lane.nx = g.nx;
     lane.ny = g.ny;

@@ -14,8 +14,8 @@
 #include "common/error.h"
 #include "common/state_measures.h"
 #include "common/stopwatch.h"
-#include "dem/stage_validity.h"
 #include "common/text_file.h"
+#include "dem/stage_validity.h"
 
 namespace granasym::dem {
 

@@ -199,8 +199,7 @@ Packing Scene::BuildSample(GenerationReport* report) const {
   } catch (const InputError& error) {
     // What the generator refuses comes from [sample.generate]: say where.
     throw InputError(fmt::format("{}: [sample.generate] (count = {}, cell_size_mm = {:g}): {}",
-                                 origin, generate->count, generate->cell_size * 1e3,
-                                 error.what()));
+                                 origin, generate->count, generate->cell_size * 1e3, error.what()));
   }
 }
 

@@ -16,12 +16,11 @@
 //  - a gas (or liquefied) state: mechanical coordination Z_m below 3, or
 //    p below 0.5 kPa. A rigid frictional packing needs Z_m ≥ 4 (isostatic
 //    limit d + 1 in 3D for μ → ∞); dynamic, flowing packings with μ = 0.5
-//    stay a little below it (counted over all contacts), so 3 leaves room for the scatter of small samples
-//    while still catching packings that have lost their load-bearing network
-//    (measured on 3000 spheres: Z_m ≈ 2–2.6 when the sample liquefies on an
-//    extension path, 3.4 on the critical state at 30 kPa, 3.8 on the NCL
-//    at 200 kPa). The floor on p lies below the paper's
-//    smallest state (OC samples unloaded to 1 kPa, Fig. 18);
+//    stay a little below it (counted over all contacts), so 3 leaves room for the scatter of small
+//    samples while still catching packings that have lost their load-bearing network (measured on
+//    3000 spheres: Z_m ≈ 2–2.6 when the sample liquefies on an extension path, 3.4 on the critical
+//    state at 30 kPa, 3.8 on the NCL at 200 kPa). The floor on p lies below the paper's smallest
+//    state (OC samples unloaded to 1 kPa, Fig. 18);
 //  - void ratio e ≤ 0: the cell is smaller than the solid volume; the run
 //    fails;
 //  - a mean-stress target that the stage moves away from for 0.3 of

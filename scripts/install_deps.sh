@@ -13,6 +13,8 @@
 # them. So they are installed with a policy-rc.d that forbids starting
 # services (exit 101, invoke-rc.d's "action not allowed"), unless the machine
 # already has one; it is removed again afterwards.
+# clang-format (14 on Debian 12) is for the test that keeps the tree
+# formatted (scripts/check_format.sh).
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -20,6 +22,7 @@ packages=(
   libcli11-dev libtoml11-dev libfmt-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
+  clang-format
   chromium
 )
 daemon_packages=(slurm-wlm munge)

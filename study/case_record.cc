@@ -20,8 +20,8 @@ std::string Trimmed(const std::string& text) {
 }
 
 bool AllDigits(const std::string& text) {
-  return !text.empty() && std::all_of(text.begin(), text.end(),
-                                      [](char c) { return c >= '0' && c <= '9'; });
+  return !text.empty() &&
+         std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
 // The figure number of an entry, or 0.
@@ -49,8 +49,8 @@ std::string ValidEntries() {
 }  // namespace
 
 const std::vector<std::string>& FigureSet::PaperSections() {
-  static const std::vector<std::string> sections = {"1",   "2", "2.1", "2.2", "3",   "4",   "4.1",
-                                                    "4.2", "4.3", "5", "5.1", "5.2", "5.3", "6"};
+  static const std::vector<std::string> sections = {"1",   "2",   "2.1", "2.2", "3",   "4",   "4.1",
+                                                    "4.2", "4.3", "5",   "5.1", "5.2", "5.3", "6"};
   return sections;
 }
 
@@ -138,7 +138,8 @@ std::string CaseRecord::Text() const {
   text += "threads = " + std::to_string(threads) + "\n";
   text += "program_version = " + TomlQuoted(program_version) + "\n";
   text += "[variables]\n";
-  for (const auto& [variable, value] : variables) text += variable + " = " + TomlQuoted(value) + "\n";
+  for (const auto& [variable, value] : variables)
+    text += variable + " = " + TomlQuoted(value) + "\n";
   return text;
 }
 
@@ -149,8 +150,9 @@ void CaseRecord::Write(const std::string& directory) const {
 CaseRecord CaseRecord::Read(const std::string& case_directory) {
   const std::string path = case_directory + "/" + kFileName;
   if (!fs::exists(path)) {
-    throw InputError(path + ": no such file: a case folder holds the case.toml that "
-                            "`granasym study run` writes");
+    throw InputError(path +
+                     ": no such file: a case folder holds the case.toml that "
+                     "`granasym study run` writes");
   }
   const ConfigTable table = ConfigTable::ParseFile(path);
   CaseRecord c;

@@ -50,7 +50,7 @@ class FigureSet {
   // The entries as written, in order: "8", "Sec. 5.2", "rate".
   const std::vector<std::string>& entries() const { return entries_; }
   bool Contains(const std::string& entry) const;     // an entry as written: "19", "Sec. 5.2"
-  bool HasFigure(int number) const;                 // figure 1–22
+  bool HasFigure(int number) const;                  // figure 1–22
   bool HasSection(const std::string& number) const;  // "5.2"
   bool ServesRateStudy() const;
   // The figure numbers named, in the order written.

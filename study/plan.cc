@@ -90,7 +90,8 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
       std::string sample_table = "[sample]\n";
       std::string parent_key;
       if (case_spec.parent.empty()) {
-        sample_table += "packing = " + TomlQuoted("../../../samples/" + replicate + "/packing.txt") + "\n";
+        sample_table +=
+            "packing = " + TomlQuoted("../../../samples/" + replicate + "/packing.txt") + "\n";
         parent_key = plan.samples[static_cast<size_t>(r - 1)].key;
       } else {
         c.parent = plan.Find(replicate + "/" + case_spec.parent);
@@ -121,8 +122,9 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
       for (const dem::Stage& stage : scene.stages) {
         c.estimated_steps += EstimateSteps(stage, time_step, scene.material.density);
       }
-      if (c.parent >= 0) plan.cases[static_cast<size_t>(c.parent)].children.push_back(
-          static_cast<int>(plan.cases.size()));
+      if (c.parent >= 0)
+        plan.cases[static_cast<size_t>(c.parent)].children.push_back(
+            static_cast<int>(plan.cases.size()));
       plan.cases.push_back(std::move(c));
     }
   }
@@ -181,8 +183,8 @@ std::string StudyRecordText(const Plan& plan) {
   std::ostringstream out;
   out << "# written by granasym study run; describes the cases below cases/\n"
       << "programme = " << TomlQuoted(plan.programme.name) << "\n"
-      << "programme_file = " << TomlQuoted(std::filesystem::path(plan.programme.origin).filename().string())
-      << "\n"
+      << "programme_file = "
+      << TomlQuoted(std::filesystem::path(plan.programme.origin).filename().string()) << "\n"
       << "scale = " << TomlQuoted(ToString(plan.scale)) << "\n"
       << "threads = " << plan.threads << "\n"
       << "replicates = " << plan.samples.size() << "\n"

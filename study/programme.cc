@@ -451,8 +451,8 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
     CheckKeys(origin, where + ".", run, {"name", "from", "vary", "figures", "scene", "stage"});
     const std::string name_template = StringAt(origin, where + ".name", run, "", true);
     const std::string from_template = StringAt(origin, where + ".from", run, "", true);
-    const FigureSet figures = FigureSet::Parse(
-        StringAt(origin, where + ".figures", run, "", false), origin, where + ".figures");
+    const FigureSet figures = FigureSet::Parse(StringAt(origin, where + ".figures", run, "", false),
+                                               origin, where + ".figures");
     const Value* stages = FindKey(run, "stage");
     if (!stages || !stages->is_array() || stages->as_array().empty()) {
       Fail(origin, where + ".stage", "is missing: a run needs at least one [[run.stage]]");
@@ -468,9 +468,8 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
       spec.figures = figures;
       for (const auto& [var, value] : variables) spec.variables[var] = ValueText(value);
       for (const auto& [var, value] : expansion.variables) variables[var] = value;
-      spec.name = Substitute(Value(name_template), variables, origin, where + ".name")
-                      .as_string()
-                      .str;
+      spec.name =
+          Substitute(Value(name_template), variables, origin, where + ".name").as_string().str;
       const std::string case_where = where + " (case '" + spec.name + "')";
       if (!ValidName(spec.name)) {
         Fail(origin, where + ".name",
@@ -503,8 +502,8 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
               known += (known.empty() ? "" : ", ") + stage;
             }
             Fail(origin, case_where + ".from",
-                 "= '" + from + "': case '" + spec.parent + "' has no stage '" +
-                     spec.parent_stage + "' (its stages: " + known + ")");
+                 "= '" + from + "': case '" + spec.parent + "' has no stage '" + spec.parent_stage +
+                     "' (its stages: " + known + ")");
           }
         }
       }
@@ -603,9 +602,10 @@ const ScaleSpec& Programme::At(Scale scale) const {
   const auto it = scales.find(scale);
   if (it == scales.end()) {
     std::string known;
-    for (const auto& [s, unused] : scales) known += std::string(known.empty() ? "" : ", ") + ToString(s);
-    throw InputError(origin + ": the programme has no [scale." + ToString(scale) +
-                     "] (it has " + known + ")");
+    for (const auto& [s, unused] : scales)
+      known += std::string(known.empty() ? "" : ", ") + ToString(s);
+    throw InputError(origin + ": the programme has no [scale." + ToString(scale) + "] (it has " +
+                     known + ")");
   }
   return it->second;
 }

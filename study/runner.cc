@@ -1,5 +1,7 @@
 #include "study/runner.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
@@ -13,8 +15,6 @@
 #include <mutex>
 #include <set>
 #include <thread>
-
-#include <fmt/format.h>
 
 #include "common/config.h"
 #include "common/error.h"
@@ -116,8 +116,8 @@ CaseOutcome RunModelCase(const PlannedModelCase& m,
   FileLock lock(m.directory + "/.lock", {});
   if (const std::optional<DoneRecord> done = ReadDone(m.directory);
       done && done->key == m.key && fs::exists(m.directory + "/result.h5")) {
-    outcome.status =
-        done->termination == dem::Termination::kCompleted ? CaseStatus::kCached : CaseStatus::kFailed;
+    outcome.status = done->termination == dem::Termination::kCompleted ? CaseStatus::kCached
+                                                                       : CaseStatus::kFailed;
     outcome.message = done->message;
     return outcome;
   }
@@ -136,7 +136,8 @@ CaseOutcome RunModelCase(const PlannedModelCase& m,
                           outcome.message, 0, 0, outcome.wall_seconds});
   if (log) log(m.id + ": " + ToString(outcome.status) + " (" + outcome.message + ")");
 #else
-  throw InputError(m.id + ": this build has no constitutive models (configure with "
+  throw InputError(m.id +
+                   ": this build has no constitutive models (configure with "
                    "GRANASYM_BUILD_MODELS=ON) and cannot run the programme's [[model_run]]");
 #endif
   return outcome;
@@ -387,7 +388,8 @@ CaseOutcome Scheduler::Execute(int k) {
   RecordOf(plan_, c).Write(c.directory);
   WriteTextFileAtomically(running_path, "key = " + TomlQuoted(c.key) + "\n");
 
-  const dem::Scene scene = dem::Scene::Parse(c.scene_text, c.directory + "/scene.toml", c.directory);
+  const dem::Scene scene =
+      dem::Scene::Parse(c.scene_text, c.directory + "/scene.toml", c.directory);
   dem::RunOptions run;
   run.output_path = c.result_path();
   run.threads = plan_.threads;
@@ -408,7 +410,8 @@ CaseOutcome Scheduler::Execute(int k) {
         static_cast<double>(progress.step - first_step) * static_cast<double>(c.particles);
   };
   run.progress_period_s = 0.5;
-  if (options_.log) options_.log(c.id + ": " + (resume ? "resuming from its checkpoint" : "started"));
+  if (options_.log)
+    options_.log(c.id + ": " + (resume ? "resuming from its checkpoint" : "started"));
   dem::RunSummary summary;
   try {
     summary = dem::RunScene(scene, run);
@@ -453,15 +456,15 @@ std::string EtaText(double seconds) {
 }  // namespace
 
 std::string StudyProgress::OneLine() const {
-  return fmt::format("cases {}/{} done ({} cached, {} failed), {} running, {} left | {:.3g} "
-                     "particle-steps/s | ETA {}",
-                     done, total, cached, failed, running, left, particle_steps_per_second,
-                     EtaText(eta_seconds));
+  return fmt::format(
+      "cases {}/{} done ({} cached, {} failed), {} running, {} left | {:.3g} "
+      "particle-steps/s | ETA {}",
+      done, total, cached, failed, running, left, particle_steps_per_second, EtaText(eta_seconds));
 }
 
 int StudyOutcome::Count(CaseStatus status) const {
-  return static_cast<int>(std::count_if(cases.begin(), cases.end(),
-                                        [status](const CaseOutcome& c) { return c.status == status; }));
+  return static_cast<int>(std::count_if(
+      cases.begin(), cases.end(), [status](const CaseOutcome& c) { return c.status == status; }));
 }
 
 std::string StudyOutcome::OneLine() const {

@@ -1,5 +1,7 @@
 #include "study/state_table.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -9,14 +11,12 @@
 #include <type_traits>
 #include <variant>
 
-#include <fmt/format.h>
-
 #include "common/config.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
+#include "common/statistics.h"
 #include "common/text_file.h"
 #include "common/time_series.h"
-#include "common/statistics.h"
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
 #include "dem/stage_validity.h"
@@ -85,7 +85,7 @@ std::vector<CaseFolder> ListCases(const std::string& directory) {
     }
     if (!c.finished && c.message.empty()) {
       c.message = fs::exists(folder / "result.h5.ckpt") ? "interrupted: resumes on the next run"
-                                                          : "not run";
+                                                        : "not run";
     }
     cases.push_back(std::move(c));
   }
@@ -97,7 +97,8 @@ std::string DriftReason(const dem::AsymptoteRecord& a) {
   const dem::AsymptoteCriterion& c = a.criterion;
   std::vector<std::string> failed;
   auto check = [&failed](double value, double tolerance, const char* what) {
-    if (!(value < tolerance)) failed.push_back(fmt::format("{} {:.3g} (< {:g})", what, value, tolerance));
+    if (!(value < tolerance))
+      failed.push_back(fmt::format("{} {:.3g} (< {:g})", what, value, tolerance));
   };
   check(a.psi_change_deg, c.psi_tolerance_deg, "psi_sigma changed by deg");
   switch (a.path_kind) {
@@ -141,7 +142,8 @@ StateRow RowFrom(const CaseFolder& c, const dem::StageRecord& stage) {
     row.flags += std::string(row.flags.empty() ? "" : ";") + ToString(flag);
   }
   row.message = stage.stop_reason;
-  if (a.status == dem::AsymptoteStatus::kDrifting) row.message = DriftReason(a) + "; " + row.message;
+  if (a.status == dem::AsymptoteStatus::kDrifting)
+    row.message = DriftReason(a) + "; " + row.message;
   row.psi_epsilon_deg = a.psi_epsilon_deg;
   row.p_kpa = a.mean_stress_kpa;
   row.e = a.void_ratio;
@@ -186,7 +188,8 @@ PathSamples MonotonePath(const TimeSeries& series, int64_t first, int64_t last, 
   const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
   const std::vector<double>& e = series.Values(dem::record::kColumnVoidRatio);
   const std::vector<double>& psi = series.Values(dem::record::kColumnPsiSigma);
-  const std::vector<double>& coordination = series.Values(dem::record::kColumnMechanicalCoordination);
+  const std::vector<double>& coordination =
+      series.Values(dem::record::kColumnMechanicalCoordination);
   for (int64_t r = first; r <= last && r < static_cast<int64_t>(p.size()); ++r) {
     const size_t k = static_cast<size_t>(r);
     if (!(p[k] > 0) || dem::IsGas(p[k], coordination[k])) continue;
@@ -250,8 +253,7 @@ ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising
     close[static_cast<size_t>(g)] =
         std::abs(Smoothed(a.x, a.ln_v, x, h) - Smoothed(b.x, b.ln_v, x, h)) <
             tolerance.ln_1_plus_e &&
-        std::abs(Smoothed(a.x, a.psi, x, h) - Smoothed(b.x, b.psi, x, h)) <
-            tolerance.psi_sigma_deg;
+        std::abs(Smoothed(a.x, a.psi, x, h) - Smoothed(b.x, b.psi, x, h)) < tolerance.psi_sigma_deg;
   }
   int first = n;
   while (first > 0 && close[static_cast<size_t>(first - 1)]) --first;
@@ -464,8 +466,8 @@ void WriteSummary(const std::string& directory, const std::vector<StateRow>& row
     for (const StateRow* row : members) {
       if (row->status == TableStatus::kDetected) detected.push_back(row);
     }
-    csv += CsvText(key.first) + "," + CsvText(key.second) + "," + ToString(members.front()->kind) + "," +
-           std::to_string(members.size()) + "," + std::to_string(detected.size());
+    csv += CsvText(key.first) + "," + CsvText(key.second) + "," + ToString(members.front()->kind) +
+           "," + std::to_string(members.size()) + "," + std::to_string(detected.size());
     for (const auto& [name, member] : summarised) {
       std::vector<double> values;
       for (const StateRow* row : detected) {
@@ -762,13 +764,13 @@ std::string StateTableSummary::Text() const {
     text += "\n";
   }
   for (const NclFit& fit : ncl) {
-    text += fit.valid()
-                ? fmt::format("  NCL r{} {}: N = {:.4f}, lambda* = {:.4f} through {} states "
+    text += fit.valid() ? fmt::format(
+                              "  NCL r{} {}: N = {:.4f}, lambda* = {:.4f} through {} states "
                               "({} detected, {} drifting), {:.4g}-{:.4g} kPa\n",
-                              fit.replicate, fit.case_name, fit.n, fit.lambda, fit.points, fit.detected,
-                              fit.drifting, fit.p_min_kpa, fit.p_max_kpa)
-                : fmt::format("  NCL r{} {}: not determined ({} usable states)\n",
-                              fit.replicate, fit.case_name, fit.points);
+                              fit.replicate, fit.case_name, fit.n, fit.lambda, fit.points,
+                              fit.detected, fit.drifting, fit.p_min_kpa, fit.p_max_kpa)
+                        : fmt::format("  NCL r{} {}: not determined ({} usable states)\n",
+                                      fit.replicate, fit.case_name, fit.points);
   }
   text += fmt::format("  path convergence: {} pairs joined, {} not\n", joined, not_joined);
   return text;

@@ -28,13 +28,12 @@ struct StateRow {
   std::string flags;  // validity flags, ';'-separated
   std::string message;
   std::string ncl_reference;  // the case whose NCL gives OCR and p_e* (empty: none)
-  double psi_epsilon_deg = 0, p_kpa = 0, e = 0, ln_1_plus_e = 0, psi_sigma_deg = 0,
-         q_over_p = 0, ocr = 0, p_e_star_kpa = 0, inertial_number_dmin = 0,
-         inertial_number_dmax = 0, coordination = 0, mechanical_coordination = 0,
-         max_relative_overlap = 0;
+  double psi_epsilon_deg = 0, p_kpa = 0, e = 0, ln_1_plus_e = 0, psi_sigma_deg = 0, q_over_p = 0,
+         ocr = 0, p_e_star_kpa = 0, inertial_number_dmin = 0, inertial_number_dmax = 0,
+         coordination = 0, mechanical_coordination = 0, max_relative_overlap = 0;
   // The detector's window and measures (AsymptoteRecord).
-  double window_strain = 0, window_lnp = 0, psi_change_deg = 0, slope_change = 0,
-         lnp_change = 0, dln1pe_dlnp = 0;
+  double window_strain = 0, window_lnp = 0, psi_change_deg = 0, slope_change = 0, lnp_change = 0,
+         dln1pe_dlnp = 0;
 };
 
 // The isotropic NCL ln(1+e) = N − λ* ln(p / 1 kPa) of one replicate and one
@@ -47,7 +46,7 @@ struct NclFit {
   std::string case_name;
   int points = 0;
   int detected = 0, drifting = 0;  // the states' detector statuses
-  double n = 0, lambda = 0;  // N and λ*
+  double n = 0, lambda = 0;        // N and λ*
   double p_min_kpa = 0, p_max_kpa = 0;
   bool valid() const { return points >= 2 && lambda > 0; }
 };

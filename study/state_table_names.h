@@ -58,7 +58,7 @@ constexpr char kColumnVoidRatio[] = "e";
 constexpr char kColumnLnVolume[] = "ln_1_plus_e";
 constexpr char kColumnPsiSigma[] = "psi_sigma_deg";  // deg
 constexpr char kColumnStressRatio[] = "q_over_p";
-constexpr char kColumnOcr[] = "ocr";                  // p_e*/p against the study's NCL
+constexpr char kColumnOcr[] = "ocr";  // p_e*/p against the study's NCL
 constexpr char kColumnEquivalentPressure[] = "p_e_star_kpa";
 constexpr char kColumnInertialNumberDmin[] = "inertial_number_dmin";
 constexpr char kColumnInertialNumberDmax[] = "inertial_number_dmax";
@@ -72,9 +72,10 @@ constexpr char kColumnSlopeChange[] = "slope_change";
 constexpr char kColumnLnpChange[] = "lnp_change";
 constexpr char kColumnSlope[] = "dln1pe_dlnp";
 // Text columns.
-constexpr char kColumnKind[] = "kind";      // ncl, csl, compression, extension, triaxial
-constexpr char kColumnStatus[] = "status";  // detected, drifting, not_reached, gas, invalid, no_result
-constexpr char kColumnCase[] = "case";      // r<K>/<case name>
+constexpr char kColumnKind[] = "kind";  // ncl, csl, compression, extension, triaxial
+constexpr char kColumnStatus[] =
+    "status";                           // detected, drifting, not_reached, gas, invalid, no_result
+constexpr char kColumnCase[] = "case";  // r<K>/<case name>
 constexpr char kColumnCaseName[] = "case_name";
 constexpr char kColumnStage[] = "stage";  // the stage's name, or "joined" (path convergence)
 constexpr char kColumnRun[] = "run";

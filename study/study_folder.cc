@@ -1,6 +1,7 @@
 #include "study/study_folder.h"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -11,8 +12,6 @@
 #include <filesystem>
 #include <map>
 #include <thread>
-
-#include <fmt/format.h>
 
 #include "common/config.h"
 #include "common/error.h"
@@ -25,7 +24,8 @@ namespace fs = std::filesystem;
 
 FileLock::FileLock(const std::string& path, const std::function<bool()>& stop_requested) {
   fd_ = ::open(path.c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw RuntimeError("cannot open the lock file '" + path + "': " + std::strerror(errno));
+  if (fd_ < 0)
+    throw RuntimeError("cannot open the lock file '" + path + "': " + std::strerror(errno));
   while (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     if (errno != EWOULDBLOCK && errno != EINTR) {
       const std::string reason = std::strerror(errno);
@@ -50,7 +50,8 @@ std::vector<std::string> CaseFolders(const std::string& directory, bool with_rec
   for (const auto& replicate : fs::directory_iterator(base)) {
     if (!replicate.is_directory()) continue;
     for (const auto& entry : fs::directory_iterator(replicate.path())) {
-      if (entry.is_directory() && (!with_record || fs::exists(entry.path() / CaseRecord::kFileName))) {
+      if (entry.is_directory() &&
+          (!with_record || fs::exists(entry.path() / CaseRecord::kFileName))) {
         folders.push_back(entry.path().string());
       }
     }
@@ -92,8 +93,8 @@ void WriteDone(const std::string& directory, const DoneRecord& done) {
       fmt::format("# written when the case ended; its key names the inputs it was computed for\n"
                   "key = {}\ntermination = {}\nmessage = {}\nsteps = {}\nparticles = {}\n"
                   "wall_seconds = {:.3f}\n",
-                  TomlQuoted(done.key), TomlQuoted(ToString(done.termination)), TomlQuoted(done.message),
-                  done.steps, done.particles, done.wall_seconds));
+                  TomlQuoted(done.key), TomlQuoted(ToString(done.termination)),
+                  TomlQuoted(done.message), done.steps, done.particles, done.wall_seconds));
 }
 
 std::optional<std::string> StudyNclCase(const std::string& directory) {
@@ -139,7 +140,8 @@ std::map<std::string, int64_t> OwnSteps(const std::string& directory) {
         const fs::path result = parent_done->second.second / "result.h5";
         if (added && !stage.empty() && fs::exists(result)) {
           const Hdf5File file = Hdf5File::OpenRead(result.string());
-          if (const std::optional<int64_t> step = dem::StageEndStep(file, stage)) at->second = *step;
+          if (const std::optional<int64_t> step = dem::StageEndStep(file, stage))
+            at->second = *step;
         }
         start = at->second;
       }

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "analysis/rate_study.h"
 #include "common/error.h"
 #include "common/text_file.h"
-#include "analysis/rate_study.h"
 #include "study/state_table.h"
 #include "tests/analysis/rate_states_fixture.h"
 
@@ -19,8 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 constexpr double kDegree = M_PI / 180.0;
 
-StateRow State(TableKind kind, double p, double ln_v, double psi_sigma,
-               double slope) {
+StateRow State(TableKind kind, double p, double ln_v, double psi_sigma, double slope) {
   StateRow row;
   row.kind = kind;
   row.status = TableStatus::kDetected;
@@ -201,8 +200,8 @@ TEST(WriteFigureIndex, OneRowPerFigureWithTabsRemovedFromFields) {
   const std::string folder = (fs::temp_directory_path() / "granasym_figure_index").string();
   fs::create_directories(folder);
   FigureSpec a{"fig09_ncl", "9", "NCL", "a\tcaption\nover lines", "ncl.gp", {}, ""};
-  FigureSpec b{"fig17_asbs_sections", "17", "ASBS", "Not drawn: no NCL.", "asbs_sections.gp", {},
-               "no NCL"};
+  FigureSpec b{"fig17_asbs_sections", "17", "ASBS",  "Not drawn: no NCL.",
+               "asbs_sections.gp",    {},   "no NCL"};
   WriteFigureIndex(folder, {a, b});
   EXPECT_EQ(ReadTextFile(folder + "/figures/index.tsv"),
             "stem\tfigure\ttitle\tcaption\n"
@@ -321,7 +320,8 @@ TEST(WriteFigureData, TheDrainedCriticalStatesJoinTheMFigure) {
   std::map<std::string, std::string> v(a.variables.begin(), a.variables.end());
   EXPECT_EQ(v["n_panels"], "2");
   EXPECT_EQ(v["panel_blocks"], "'5 3'");
-  EXPECT_NE(v["panel_titles"].find("\"drained, σ_r = p_0\""), std::string::npos) << v["panel_titles"];
+  EXPECT_NE(v["panel_titles"].find("\"drained, σ_r = p_0\""), std::string::npos)
+      << v["panel_titles"];
   const std::string panel = ReadTextFile((dir / "figures/data/rate_psi_sigma_2.tsv").string());
   EXPECT_NE(panel.find("drained, I ≈ 0.0003, E = 500 MPa"), std::string::npos) << panel;
   EXPECT_EQ(Count(panel, "\t9\t"), 12) << panel;
@@ -329,7 +329,6 @@ TEST(WriteFigureData, TheDrainedCriticalStatesJoinTheMFigure) {
   fs::remove(dir / kRateStatesFile);
   EXPECT_FALSE(WriteFigureData(dir.string()).empty());
 }
-
 
 TEST(WriteFigureData, TheQuasiStaticSetStandsBesideThePaperRate) {
   const fs::path dir = BareStudy("rate_models");
@@ -363,7 +362,8 @@ TEST(WriteFigureData, TheQuasiStaticSetStandsBesideThePaperRate) {
       ReadTextFile((dir / "figures/data/rate_models_quasi_static.tsv").string());
   // Two groups (the starts) at ψ_ε = 90°, drawn 0.6° to the left; ψ_σ = 25 + 400·3e-3.
   EXPECT_EQ(Count(quasi, "\n89.4\t26.2"), 2) << quasi;
-  const std::string paper = ReadTextFile((dir / "figures/data/rate_models_paper_rate.tsv").string());
+  const std::string paper =
+      ReadTextFile((dir / "figures/data/rate_models_paper_rate.tsv").string());
   EXPECT_EQ(Count(paper, "\n90.6\t35\t"), 2) << paper;
   // (b): the drained states of the quasi-static set, the slowest axial rate
   // of each of the four σ_r, three replicates, as filled triangles (9).
@@ -381,10 +381,9 @@ TEST(WriteFigureData, TheExtensionSweepHasItsFigureWhenItHasAnExtensionStep) {
   for (const RateState& s : rate_fixture::ExtensionSweep()) states.push_back(s);
   WriteRateFiles(dir.string(), RateStudy::Analyse(states));
   const std::vector<FigureSpec> figures = WriteFigureData(dir.string());
-  ASSERT_EQ(Stems(figures),
-            (std::vector<std::string>{"rate_psi_sigma_p", "rate_csl_ncl",
-                                      "rate_critical_state_ratio", "rate_extension",
-                                      "rate_against_models"}));
+  ASSERT_EQ(Stems(figures), (std::vector<std::string>{"rate_psi_sigma_p", "rate_csl_ncl",
+                                                      "rate_critical_state_ratio", "rate_extension",
+                                                      "rate_against_models"}));
   const FigureSpec& f = figures[3];
   EXPECT_TRUE(f.not_drawn.empty()) << f.not_drawn;
   std::map<std::string, std::string> v(f.variables.begin(), f.variables.end());
@@ -392,7 +391,8 @@ TEST(WriteFigureData, TheExtensionSweepHasItsFigureWhenItHasAnExtensionStep) {
   EXPECT_EQ(v["n_steps"], "2");      // both sweeps have usable steps
   EXPECT_EQ(v["n_liquefied"], "1");  // NC 20 kPa from 110°
   EXPECT_EQ(v["n_limits"], "1");     // NC 100 kPa: ψ_ε(d) = 120°
-  const std::string limits = ReadTextFile((dir / "figures/data/rate_extension_limits.tsv").string());
+  const std::string limits =
+      ReadTextFile((dir / "figures/data/rate_extension_limits.tsv").string());
   EXPECT_NE(limits.find("psi_epsilon(d) = 120.0 +- "), std::string::npos) << limits;
   const std::string liquefied =
       ReadTextFile((dir / "figures/data/rate_extension_liquefied.tsv").string());

@@ -20,9 +20,9 @@ inline RateState State(double psi, double p0, dem::RateRule rule, double rate, i
   s.replicate = replicate;
   s.case_name = "case";
   s.stage = "psi";
-  s.kind = std::abs(psi) < 1e-9   ? TableKind::kNcl
+  s.kind = std::abs(psi) < 1e-9        ? TableKind::kNcl
            : std::abs(psi - 90) < 1e-9 ? TableKind::kCsl
-                                      : TableKind::kExtension;
+                                       : TableKind::kExtension;
   s.status = TableStatus::kDetected;
   s.youngs_modulus_mpa = 500;
   s.psi_epsilon_deg = psi;

@@ -20,10 +20,10 @@ namespace {
 namespace fs = std::filesystem;
 using rate_fixture::CriticalStates;
 using rate_fixture::DrainedStates;
+using rate_fixture::kDelta;
 using rate_fixture::kGamma;
 using rate_fixture::kLambda;
 using rate_fixture::kM0;
-using rate_fixture::kDelta;
 using rate_fixture::kScatter;
 using rate_fixture::State;
 
@@ -330,8 +330,7 @@ TEST(RateStudy, AnswersStateTheQuestionsOfTheIssueWithIntervals) {
       << find("Against the literature");
   EXPECT_NE(find("Against the literature").find("Latham, Abe & Mora (2005"), std::string::npos);
   study.options.literature_m = {1.0, 1.2, "a test band"};
-  EXPECT_NE(study.Answers()[1].find("is below the band M = 1–1.2, a test band."),
-            std::string::npos)
+  EXPECT_NE(study.Answers()[1].find("is below the band M = 1–1.2, a test band."), std::string::npos)
       << study.Answers()[1];
   // The fixture's M is exact (zero width): widen its interval across 0.95.
   study.drained.critical.at(0).m.half_width = 0.05;
@@ -339,21 +338,23 @@ TEST(RateStudy, AnswersStateTheQuestionsOfTheIssueWithIntervals) {
   EXPECT_NE(study.Answers()[1].find("is across an edge of the band"), std::string::npos)
       << study.Answers()[1];
   study.options.literature_m = {0.5, 0.6, "a test band"};
-  EXPECT_NE(study.Answers()[1].find("is above the band"), std::string::npos)
-      << study.Answers()[1];
-  EXPECT_NE(find("p-dependence as I → 0").find("zero within its interval: the quasi-static "
-                                                "stress ratio does not depend on p"),
+  EXPECT_NE(study.Answers()[1].find("is above the band"), std::string::npos) << study.Answers()[1];
+  EXPECT_NE(find("p-dependence as I → 0")
+                .find("zero within its interval: the quasi-static "
+                      "stress ratio does not depend on p"),
             std::string::npos);
   const std::string isochoric = find("Isochoric paths");
   // From 100 kPa: ψ_σ = 25 + 400 I, so 25° at I → 0.
-  EXPECT_NE(isochoric.find("from 100 kPa 25.0 ± 0.1° (I* = 0.0003, 0.001, 0.003)"), std::string::npos)
+  EXPECT_NE(isochoric.find("from 100 kPa 25.0 ± 0.1° (I* = 0.0003, 0.001, 0.003)"),
+            std::string::npos)
       << isochoric;
   EXPECT_NE(isochoric.find("every replicate liquefied (no asymptotic state) at I* = 0.0003 from "
                            "20 kPa"),
             std::string::npos)
       << isochoric;
-  EXPECT_NE(find("Extension (E = 500 MPa, I* = 0.003, from 100 kPa): ").find("psi_epsilon(d) = 120.0"),
-            std::string::npos);
+  EXPECT_NE(
+      find("Extension (E = 500 MPa, I* = 0.003, from 100 kPa): ").find("psi_epsilon(d) = 120.0"),
+      std::string::npos);
   EXPECT_NE(find("Rate independence between the two smallest I*").find("rate_dependent"),
             std::string::npos);
   EXPECT_NE(find("Drained critical state between the two slowest axial rates")
@@ -549,7 +550,8 @@ TEST(ExtensionSweep, ASweepThatLiquefiesFirstSaysWhere) {
   EXPECT_EQ(l.liquefied_at_deg, 110);
   EXPECT_EQ(l.last_asymptote_deg, 100);
   EXPECT_FALSE(std::isfinite(l.psi_d_deg.mean));
-  EXPECT_EQ(l.Text(), "liquefied at psi_epsilon = 110 deg (asymptotes up to psi_epsilon = 100 deg)");
+  EXPECT_EQ(l.Text(),
+            "liquefied at psi_epsilon = 110 deg (asymptotes up to psi_epsilon = 100 deg)");
   const ExtensionStep& at110 = study.extension_steps[2];
   EXPECT_EQ(at110.liquefied, 2);
   EXPECT_EQ(at110.used, 1);
@@ -699,7 +701,8 @@ TEST(DrainedStudy, TheTwoSlowestRatesDecideRateIndependence) {
 TEST(DrainedStudy, UnusableStatesAreLeftOutAndAStartNeedsTwoRates) {
   std::vector<DrainedState> states = DrainedStates(4.0);
   for (DrainedState& s : states) {
-    if (s.radial_stress_kpa == 5 && s.inertial_number_dmax < 5e-3) s.status = TableStatus::kDrifting;
+    if (s.radial_stress_kpa == 5 && s.inertial_number_dmax < 5e-3)
+      s.status = TableStatus::kDrifting;
     if (s.radial_stress_kpa == 20 && s.replicate == 1) s.flags = "gas";
   }
   const DrainedStudy d = DrainedStudy::Analyse(states, {});

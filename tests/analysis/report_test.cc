@@ -7,9 +7,9 @@
 #include <fstream>
 #include <string>
 
+#include "analysis/rate_study.h"
 #include "common/error.h"
 #include "common/text_file.h"
-#include "analysis/rate_study.h"
 #include "tests/analysis/rate_states_fixture.h"
 
 namespace granasym::analysis {
@@ -309,9 +309,8 @@ TEST(StudyReport, TheRateStudySectionAppearsOnlyWithRateFiles) {
   const std::string md = ReadTextFile(summary.markdown_path);
   EXPECT_NE(html.find("<h2 id=\"rate-study\">Rate study</h2>"), std::string::npos);
   EXPECT_NE(md.find("## Rate study"), std::string::npos);
-  for (const char* file :
-       {kRateIndependenceFile, kRateQuasiStaticFile, kRateLinesFile, kRateSummaryFile,
-        kRateStiffnessFile}) {
+  for (const char* file : {kRateIndependenceFile, kRateQuasiStaticFile, kRateLinesFile,
+                           kRateSummaryFile, kRateStiffnessFile}) {
     EXPECT_NE(html.find(std::string("href=\"") + file + "\""), std::string::npos) << file;
   }
   EXPECT_EQ(Count(html, "<td class=\"status-invalid\">stiffness_dependent</td>"), 2);

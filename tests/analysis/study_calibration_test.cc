@@ -88,8 +88,8 @@ TEST(StudyCalibration, IsTheConfigurationThatTheGeneratedFileGave) {
       built, calibration::ReadCalibrationConfig(ConfigTable::ParseString(kStudyFile, origin)));
   // The file it leaves reads back as the same configuration.
   calibration::testing::ExpectSameConfig(
-      built, calibration::ReadCalibrationConfig(ConfigTable::ParseString(
-                 calibration::CalibrationConfigText(built), origin)));
+      built, calibration::ReadCalibrationConfig(
+                 ConfigTable::ParseString(calibration::CalibrationConfigText(built), origin)));
   // Without an NCL case every detected state is taken.
   fs::remove(dir / "study.toml");
   EXPECT_TRUE(StudyCalibrationConfig(dir.string(), ModelKind::kHypoplasticClay, nullptr)

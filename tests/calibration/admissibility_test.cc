@@ -83,8 +83,7 @@ TEST(Admissibility, UnloadingSteeperThanTheNclWarnsKappaNotBelowLambda) {
   unloading.origin = "made";
   for (double p : {80.0, 40.0, 20.0}) {  // slope 2 λ* in ln(1+e)-ln p
     unloading.points.push_back(Point(StateKind::kUnloading, 180, p,
-                                     truth[kNIntercept] - 2 * truth[kLambdaStar] * std::log(p),
-                                     0));
+                                     truth[kNIntercept] - 2 * truth[kLambdaStar] * std::log(p), 0));
   }
   // κ* held valid so that the model exists; the data's own κ* ≥ λ* is the finding.
   ParameterChoice kappa;
@@ -157,8 +156,8 @@ StateDataset SandStates(const HypoplasticSand& sand, const std::vector<double>& 
   StateDataset d;
   d.name = "sand";
   d.origin = "synthetic";
-  const double psi_c = std::atan(std::sqrt(2.0) / 3.0 *
-                                 CriticalStateRatio(sand.critical_friction_angle()));
+  const double psi_c =
+      std::atan(std::sqrt(2.0) / 3.0 * CriticalStateRatio(sand.critical_friction_angle()));
   for (double psi_deg : {0.0, 30.0, 60.0, 90.0}) {
     std::vector<ElementTestRecord> ends;
     if (psi_deg != 0 && psi_deg != 90) {
@@ -178,8 +177,8 @@ StateDataset SandStates(const HypoplasticSand& sand, const std::vector<double>& 
     }
     for (size_t k = 0; k < pressures.size(); ++k) {
       const double p = pressures[k];
-      AsymptoticStatePoint point = Point(KindFromStretching(psi_deg * kDegree, 1e-9), psi_deg, p,
-                                         0, 0);
+      AsymptoticStatePoint point =
+          Point(KindFromStretching(psi_deg * kDegree, 1e-9), psi_deg, p, 0, 0);
       if (psi_deg == 0) {
         point.void_ratio = sand.LimitVoidRatiosAt(p).loosest;
       } else if (psi_deg == 90) {
@@ -265,5 +264,4 @@ TEST(ModelToml, TheClayModelsBlocksRunThroughTheElementTestReader) {
 
 }  // namespace
 }  // namespace granasym::calibration
-namespace granasym::calibration {
-}
+namespace granasym::calibration {}

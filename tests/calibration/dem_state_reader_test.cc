@@ -4,11 +4,11 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <unistd.h>
 
 #include "common/error.h"
 #include "common/hdf5_file.h"
@@ -166,7 +166,7 @@ TEST(DemStateReader, AsbsPointsLieOnTheAsymptoticLineOfEachUsableStage) {
   options.asbs_ln_1_plus_e = {0.55, 0.58, 0.65};
   const StateDataset d = ReadStatesDem(path, "dem", options);
   EXPECT_EQ(d.Count(StateKind::kNcl), 8u);
-  EXPECT_EQ(d.Count(StateKind::kCsl), 2u);  // psi90 and the triaxial
+  EXPECT_EQ(d.Count(StateKind::kCsl), 2u);          // psi90 and the triaxial
   EXPECT_EQ(d.Count(StateKind::kCompression), 2u);  // psi30 and psi45 asymptotes
   ASSERT_EQ(d.Count(StateKind::kAsbs), 2u);
   const double targets[] = {0.55, 0.58};

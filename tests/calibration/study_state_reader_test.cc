@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -212,8 +211,10 @@ psi_epsilon_range_deg = [-10, 120]
 
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
   const size_t at = text.find(from);
-  if (at == std::string::npos) ADD_FAILURE() << "no '" << from << "'";
-  else text.replace(at, from.size(), to);
+  if (at == std::string::npos)
+    ADD_FAILURE() << "no '" << from << "'";
+  else
+    text.replace(at, from.size(), to);
   return text;
 }
 
@@ -229,7 +230,8 @@ void ExpectRejected(const std::string& text, const std::string& expected) {
 }
 
 TEST(StudyStateReader, CalibrationFileReadsStudySelectionsAndRejectsBadOnes) {
-  const CalibrationConfig c = ReadCalibrationConfig(ConfigTable::ParseString(kStudyConfig, "/d/calib.toml"));
+  const CalibrationConfig c =
+      ReadCalibrationConfig(ConfigTable::ParseString(kStudyConfig, "/d/calib.toml"));
   ASSERT_EQ(c.datasets.size(), 1u);
   EXPECT_TRUE(c.datasets[0].is_study);
   EXPECT_EQ(c.datasets[0].path, "/d/study");
@@ -264,8 +266,8 @@ TEST(StudyStateReader, DemDatasetsTakeArraysAndGlobs) {
   EXPECT_EQ(fs::path(c.datasets[0].paths[1]).filename(), "a.h5");
   EXPECT_EQ(fs::path(c.datasets[0].paths[2]).filename(), "b.h5");
   try {
-    ReadCalibrationConfig(ConfigTable::ParseString(
-        Replace(text, "runs/*.h5", "runs/*.hdf"), (dir / "calib.toml").string()));
+    ReadCalibrationConfig(ConfigTable::ParseString(Replace(text, "runs/*.h5", "runs/*.hdf"),
+                                                   (dir / "calib.toml").string()));
     FAIL() << "a glob without matches was accepted";
   } catch (const InputError& error) {
     EXPECT_NE(std::string(error.what()).find("matches no file"), std::string::npos);
@@ -303,13 +305,15 @@ void WriteModelTable(const std::string& dir, ModelKind kind, const std::vector<d
 // `fixed`: extra calibration-file lines (e.g. a parameter held at its truth).
 void ExpectRecovered(ModelKind kind, const std::vector<double>& truth,
                      const std::string& fixed = "") {
-  const fs::path dir = fs::temp_directory_path() / ("granasym_study_fit_" + std::string(ToString(kind)));
+  const fs::path dir =
+      fs::temp_directory_path() / ("granasym_study_fit_" + std::string(ToString(kind)));
   fs::remove_all(dir);
   WriteModelTable((dir / "study").string(), kind, truth);
   WriteModelTable((dir / "other").string(), kind, truth);
   std::ofstream(dir / "calib.toml")
       << "[model]\nkind = \"" << ToString(kind) << "\"\n"
-      << fixed << "\n[[dataset]]\nname = \"study\"\nstudy = \"study\"\npsi_sigma_uncertainty_deg = "
+      << fixed
+      << "\n[[dataset]]\nname = \"study\"\nstudy = \"study\"\npsi_sigma_uncertainty_deg = "
          "0.3\n[[dataset]]\nname = \"drawn\"\nstudy = \"other\"\nweight = 0\n";
   const CalibrationConfig config = ReadCalibrationConfigFile((dir / "calib.toml").string());
   const CalibrationRun run = RunCalibration(config);

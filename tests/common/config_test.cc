@@ -42,8 +42,8 @@ TEST(ConfigTable, OutOfRangeNamesFileKeyValueAndRange) {
 }
 
 TEST(ConfigTable, InfinityAndNanAreNeverValidNumbers) {
-  const ConfigTable root = ConfigTable::ParseString(
-      "a = inf\nb = -inf\nc = nan\nlist = [1.0, inf]\n", "scene.toml");
+  const ConfigTable root =
+      ConfigTable::ParseString("a = inf\nb = -inf\nc = nan\nlist = [1.0, inf]\n", "scene.toml");
   for (const char* key : {"a", "b", "c"}) {
     // Even where any number is valid, and where inf satisfies "> 0".
     for (const Range range : {Range::Any(), Range::Positive()}) {

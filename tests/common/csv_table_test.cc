@@ -102,7 +102,8 @@ struct CsvRuleCase {
 const std::vector<CsvRuleCase>& CsvRuleCases() {
   static const std::vector<CsvRuleCase> cases = {
       {"duplicate_column", "a,b,a\n1,2,3\n", {"line 1", "'a'", "columns 1 and 3", "unique"}},
-      {"duplicate_column_after_comments", "# note\n\nx, y ,y\n1,2,3\n",
+      {"duplicate_column_after_comments",
+       "# note\n\nx, y ,y\n1,2,3\n",
        {"line 3", "'y'", "columns 2 and 3"}},
       {"unnamed_column", "a,,b\n1,2,3\n", {"line 1", "column 2 has no name"}},
       {"row_with_an_extra_field", "a,b\n1,2\n1,2,3\n", {"line 3", "3 fields", "2 columns"}},

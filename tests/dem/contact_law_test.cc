@@ -229,7 +229,8 @@ void OneLoopBatch(const Law& law, ContactBatch& b, int count) {
   const double dt = law.time_step();
   for (int k = 0; k < count; ++k) {
     const LaneGeometry g = ContactGeometryLane(b, k);
-    const NormalResponse response = law.Normal(b.ri[k], b.rj[k], g.distance, g.reciprocal, g.overlap);
+    const NormalResponse response =
+        law.Normal(b.ri[k], b.rj[k], g.distance, g.reciprocal, g.overlap);
     const double normal_force = response.force;
     double fx = -normal_force * g.nx, fy = -normal_force * g.ny, fz = -normal_force * g.nz;
     const double arm_i = b.ri[k] - 0.5 * g.overlap, arm_j = b.rj[k] - 0.5 * g.overlap;
@@ -287,9 +288,8 @@ TYPED_TEST(ShearLawBatch, SkippingTheCapBelowTheLimitIsBitIdenticalToOneLoop) {
   // linearly, plus an increment): stored forces of a lane are scaled so that
   // the updated |F_s| lands within a few ulps of μ F_n, and elsewhere far
   // below, just below, far above, zero, and at a zero increment.
-  const double kRelative[] = {0.0,        1e-3,       0.5,   1 - 1e-6,   1 - 1e-12, 1 - 1e-15,
-                              1 - 2e-16,  1.0,        1 + 2e-16,  1 + 1e-15, 1 + 1e-12, 1 + 1e-6,
-                              2.0,        1e3};
+  const double kRelative[] = {0.0, 1e-3,      0.5,       1 - 1e-6,  1 - 1e-12, 1 - 1e-15, 1 - 2e-16,
+                              1.0, 1 + 2e-16, 1 + 1e-15, 1 + 1e-12, 1 + 1e-6,  2.0,       1e3};
   int near_limit = 0;
   for (int k = 0; k < count; ++k) {
     const double ri = uniform(0.1e-3, 0.5e-3), rj = uniform(0.1e-3, 0.5e-3);
@@ -320,8 +320,7 @@ TYPED_TEST(ShearLawBatch, SkippingTheCapBelowTheLimitIsBitIdenticalToOneLoop) {
     t = (1.0 / Norm(t)) * t;
     const LaneGeometry g = ContactGeometryLane(batch, k);
     const double limit =
-        law.friction_coefficient() *
-        law.Normal(ri, rj, g.distance, g.reciprocal, g.overlap).force;
+        law.friction_coefficient() * law.Normal(ri, rj, g.distance, g.reciprocal, g.overlap).force;
     const double target = limit * kRelative[k % std::size(kRelative)];
     auto updated = [&](double size) {
       ContactBatch probe = batch;
@@ -349,13 +348,12 @@ TYPED_TEST(ShearLawBatch, SkippingTheCapBelowTheLimitIsBitIdenticalToOneLoop) {
   OneLoopBatch(law, reference, count);
   int capped = 0;
   for (int k = 0; k < count; ++k) {
-    const double got[] = {batch.sx[k],  batch.sy[k],  batch.sz[k],  batch.fx[k],  batch.fy[k],
-                          batch.fz[k],  batch.tix[k], batch.tiy[k], batch.tiz[k], batch.tjx[k],
-                          batch.tjy[k], batch.tjz[k]};
-    const double want[] = {reference.sx[k],  reference.sy[k],  reference.sz[k],
-                           reference.fx[k],  reference.fy[k],  reference.fz[k],
-                           reference.tix[k], reference.tiy[k], reference.tiz[k],
-                           reference.tjx[k], reference.tjy[k], reference.tjz[k]};
+    const double got[] = {batch.sx[k],  batch.sy[k],  batch.sz[k],  batch.fx[k],
+                          batch.fy[k],  batch.fz[k],  batch.tix[k], batch.tiy[k],
+                          batch.tiz[k], batch.tjx[k], batch.tjy[k], batch.tjz[k]};
+    const double want[] = {reference.sx[k],  reference.sy[k],  reference.sz[k],  reference.fx[k],
+                           reference.fy[k],  reference.fz[k],  reference.tix[k], reference.tiy[k],
+                           reference.tiz[k], reference.tjx[k], reference.tjy[k], reference.tjz[k]};
     for (int c = 0; c < 12; ++c) {
       EXPECT_EQ(std::memcmp(&got[c], &want[c], sizeof(double)), 0)
           << "pair " << k << " value " << c << ": " << got[c] << " against " << want[c];

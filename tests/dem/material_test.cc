@@ -90,8 +90,8 @@ TEST(Material, IsValidNamesTheOffendingField) {
 TEST(Material, TheStiffnessNumberIsThatOfItsLawWithTheScaledModulus) {
   const Material linear = Parse("youngs_modulus_mpa = 500.0\nstiffness_scaling = 0.1\n");
   EXPECT_DOUBLE_EQ(linear.StiffnessNumber(100e3), 0.1 * 500e6 / (2 * 100e3));  // 250
-  const Material hertz = Parse(
-      "contact_law = \"hertz_mindlin\"\nyoungs_modulus_mpa = 500.0\npoissons_ratio = 0.2\n");
+  const Material hertz =
+      Parse("contact_law = \"hertz_mindlin\"\nyoungs_modulus_mpa = 500.0\npoissons_ratio = 0.2\n");
   EXPECT_DOUBLE_EQ(hertz.StiffnessNumber(100e3),
                    std::pow(500e6 / (2 * (1 - 0.04)) / 100e3, 2.0 / 3.0));
   Material scaled = hertz;

@@ -89,9 +89,10 @@ TEST(Scene, StopOnLiquefactionNeedsAnotherConditionAndADetector) {
   ExpectMentions(ErrorOf(Replace(kValid, "mean_stress_kpa = 100.0",
                                  "mean_stress_kpa = 100.0\nliquefied_strain = 0.02")),
                  {"bad.toml", "stop.liquefied_strain", "liquefied = true"});
-  ExpectMentions(ErrorOf(Replace(kValid, "mean_stress_kpa = 100.0",
-                                 "mean_stress_kpa = 100.0\nliquefied = true\nliquefied_strain = 0")),
-                 {"bad.toml", "stop.liquefied_strain", "0"});
+  ExpectMentions(
+      ErrorOf(Replace(kValid, "mean_stress_kpa = 100.0",
+                      "mean_stress_kpa = 100.0\nliquefied = true\nliquefied_strain = 0")),
+      {"bad.toml", "stop.liquefied_strain", "0"});
 }
 
 TEST(Scene, WrongTypeIsRejected) {

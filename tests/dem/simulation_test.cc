@@ -559,12 +559,14 @@ TEST(AsymptoteDetection, ConsecutiveStagesOfOnePathShareTheDetectorWindow) {
   for (int p : {100, 160, 250, 400}) {
     stages += "[[stage]]\nname = \"p" + std::to_string(p) +
               "\"\npsi_epsilon_deg = 0.0\nstretching_rate = 167.0\n[stage.stop]\n"
-              "mean_stress_kpa = " + std::to_string(p) + ".0\n[stage.asymptote]\n";
+              "mean_stress_kpa = " +
+              std::to_string(p) + ".0\n[stage.asymptote]\n";
   }
   const std::string text = SampleToml(500, 4.6, 1) + "[output]\ninterval_strain = 0.002\n" + stages;
   const Result whole = RunText(text, "chain");
   ASSERT_EQ(whole.summary.termination, Termination::kCompleted) << whole.summary.message;
-  const std::vector<StageRecord> records = ReadStageRecords(Hdf5File::OpenRead(TempPath("chain.h5")));
+  const std::vector<StageRecord> records =
+      ReadStageRecords(Hdf5File::OpenRead(TempPath("chain.h5")));
   ASSERT_EQ(records.size(), 4u);
   for (size_t k = 1; k < records.size(); ++k) {
     ASSERT_TRUE(records[k].asymptote);

@@ -345,8 +345,8 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
   // Dilating paths at I* <= 3e-2 stop after 0.02 of strain of gas; at I* = 0.1,
   // at 167 1/s and at 90° (where gas phases were seen to recover) the
   // detector's window holds.
-  for (const char* name : {"nc100_psi150_I0.003", "nc100_psi95_I0.003", "nc5_psi100_I0.03",
-                           "nc500_psi100_I0.001"}) {
+  for (const char* name :
+       {"nc100_psi150_I0.003", "nc100_psi95_I0.003", "nc5_psi100_I0.03", "nc500_psi100_I0.001"}) {
     EXPECT_NE(small.Find(name)->scene_body.find("liquefied_strain = 0.02"), std::string::npos)
         << name;
   }
@@ -381,10 +381,9 @@ TEST(RateProgramme, SmallScaleRunsEveryDirectionStartAndRate) {
             std::string::npos);
   // The runs whose every case is slow and loose take the thinner skin (a
   // speed setting: the results do not depend on it); the others the default.
-  for (const char* name : {"nc20_psi90_I0.001_E100", "nc100_psi90_I0.0003_E500",
-                           "nc5_psi100_I0.03", "nc100_psi150_I0.003"}) {
-    EXPECT_NE(small.Find(name)->scene_body.find("skin_fraction = 0.1"), std::string::npos)
-        << name;
+  for (const char* name : {"nc20_psi90_I0.001_E100", "nc100_psi90_I0.0003_E500", "nc5_psi100_I0.03",
+                           "nc100_psi150_I0.003"}) {
+    EXPECT_NE(small.Find(name)->scene_body.find("skin_fraction = 0.1"), std::string::npos) << name;
   }
   for (const char* name : {"nc100_psi0_I0.001", "nc100_psi90_I0.001_E500", "nc100_psi100_I0.1",
                            "nc100_psi100_D167", "nc20_drained_ea1.8958"}) {
@@ -428,11 +427,10 @@ TEST(RateProgramme, TinyScaleKeepsOneStartTwoRatesAndTheConstantRate) {
   const Programme tiny = Programme::Load(RateProgrammePath(), Scale::kTiny);
   std::vector<std::string> names;
   for (const CaseSpec& c : tiny.cases) names.push_back(c.name);
-  EXPECT_EQ(names, (std::vector<std::string>{"ncl_E500", "nc100_psi0_I0.1", "nc100_psi0_I0.03",
-                                             "nc100_psi0_D167", "nc100_psi90_I0.1_E500",
-                                             "nc100_psi90_I0.03_E500", "nc100_drained_ea42.3908",
-                                             "nc100_psi90_D167_E500", "nc100_psi120_I0.1",
-                                             "nc100_psi150_I0.1"}));
+  EXPECT_EQ(names, (std::vector<std::string>{
+                       "ncl_E500", "nc100_psi0_I0.1", "nc100_psi0_I0.03", "nc100_psi0_D167",
+                       "nc100_psi90_I0.1_E500", "nc100_psi90_I0.03_E500", "nc100_drained_ea42.3908",
+                       "nc100_psi90_D167_E500", "nc100_psi120_I0.1", "nc100_psi150_I0.1"}));
   EXPECT_EQ(tiny.Find("ncl_E500")->stage_names, (std::vector<std::string>{"p100"}));
   const Plan plan = Plan::Make(tiny, 1, "out");
   EXPECT_EQ(plan.cases.size(), 20u);  // two replicates

@@ -84,8 +84,8 @@ std::string Dir(const std::string& name) {
   return dir.string();
 }
 
-StudyOutcome RunProgramme(const std::string& text, const std::string& dir, RunnerOptions options = {},
-                 int threads = 1) {
+StudyOutcome RunProgramme(const std::string& text, const std::string& dir,
+                          RunnerOptions options = {}, int threads = 1) {
   const Programme programme = Programme::Parse(text, "runner_test.toml", ".", Scale::kTiny);
   const Plan plan = Plan::Make(programme, threads, dir);
   if (options.jobs == 1) options.jobs = 2;
@@ -113,7 +113,8 @@ std::map<std::string, std::string> Series(const std::string& dir) {
     }
     size_t rows = 0, cols = 0;
     const std::vector<double> positions = file.ReadMatrix("/final_state/positions", &rows, &cols);
-    bytes.append(reinterpret_cast<const char*>(positions.data()), positions.size() * sizeof(double));
+    bytes.append(reinterpret_cast<const char*>(positions.data()),
+                 positions.size() * sizeof(double));
     all[fs::relative(entry.path().parent_path(), dir).string()] = bytes;
   }
   return all;
