@@ -2,7 +2,9 @@
 // run record: the result file RUN.h5 and its checkpoint RUN.h5.ckpt. Every
 // writer and reader (dem/run_record.cc, calibration/dem_state_reader.cc, the
 // tests) uses these constants, so that renaming one breaks the build, not a
-// user. Header-only, no dependencies: readers outside dem/ include it alone.
+// user. Header-only (it includes only common/quantity_names.h, where the
+// quantities shared with the models' outputs are spelled): readers outside
+// dem/ include it alone.
 //
 // Result file (all stresses kPa, compression positive):
 //   /scene                 the scene text as given (attribute origin)
@@ -22,6 +24,8 @@
 // Checkpoint: /scene, /sample, /engine, /runner, /series, /histogram_rows,
 //   /stages (the records of the stages done).
 #pragma once
+
+#include "common/quantity_names.h"
 
 namespace granasym::dem::record {
 
@@ -44,11 +48,11 @@ inline constexpr char kHistogramRows[] = "/histogram_rows";
 // them; readers take them by these names).
 inline constexpr char kColumnStep[] = "step";
 inline constexpr char kColumnStage[] = "stage";
-inline constexpr char kColumnMeanStress[] = "p_kpa";
-inline constexpr char kColumnVoidRatio[] = "e";
-inline constexpr char kColumnPsiSigma[] = "psi_sigma_deg";
+inline constexpr auto& kColumnMeanStress = quantity::kMeanStress;
+inline constexpr auto& kColumnVoidRatio = quantity::kVoidRatio;
+inline constexpr auto& kColumnPsiSigma = quantity::kPsiSigma;
 inline constexpr char kColumnOverlapMax[] = "overlap_max";
-inline constexpr char kColumnTime[] = "time_s";
+inline constexpr auto& kColumnTime = quantity::kTime;
 inline constexpr char kColumnTimeStep[] = "time_step_s";
 inline constexpr char kColumnContactDurationMin[] = "contact_duration_min_s";
 inline constexpr char kColumnCoordination[] = "coordination";
@@ -64,18 +68,18 @@ inline constexpr char kColumnStress33[] = "sigma_33_kpa";
 inline constexpr char kColumnStress12[] = "sigma_12_kpa";
 inline constexpr char kColumnStress13[] = "sigma_13_kpa";
 inline constexpr char kColumnStress23[] = "sigma_23_kpa";
-inline constexpr char kColumnAxialStress[] = "sigma_a_kpa";
-inline constexpr char kColumnRadialStress[] = "sigma_r_kpa";
-inline constexpr char kColumnDeviator[] = "q_kpa";
-inline constexpr char kColumnPsiEpsilon[] = "psi_epsilon_deg";
+inline constexpr auto& kColumnAxialStress = quantity::kAxialStress;
+inline constexpr auto& kColumnRadialStress = quantity::kRadialStress;
+inline constexpr auto& kColumnDeviator = quantity::kDeviator;
+inline constexpr auto& kColumnPsiEpsilon = quantity::kPsiEpsilon;
 inline constexpr char kColumnAxialRate[] = "rate_a_per_s";
 inline constexpr char kColumnRadialRate[] = "rate_r_per_s";
 inline constexpr char kColumnStretchingRate[] = "stretching_rate_per_s";
-inline constexpr char kColumnAxialStrain[] = "eps_a";
-inline constexpr char kColumnRadialStrain[] = "eps_r";
-inline constexpr char kColumnVolumetricStrain[] = "eps_v";
-inline constexpr char kColumnShearStrain[] = "eps_s";
-inline constexpr char kColumnLnVolume[] = "ln_1_plus_e";
+inline constexpr auto& kColumnAxialStrain = quantity::kAxialStrain;
+inline constexpr auto& kColumnRadialStrain = quantity::kRadialStrain;
+inline constexpr auto& kColumnVolumetricStrain = quantity::kVolumetricStrain;
+inline constexpr auto& kColumnShearStrain = quantity::kShearStrain;
+inline constexpr auto& kColumnLnVolume = quantity::kLnVolume;
 inline constexpr char kColumnContacts[] = "contacts";
 inline constexpr char kColumnOverlapMean[] = "overlap_mean";
 inline constexpr char kColumnOverlapP50[] = "overlap_p50";
