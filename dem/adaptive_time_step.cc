@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "dem/contact_laws.h"
 #include "dem/engine.h"
 #include "dem/material.h"
 
@@ -22,7 +23,8 @@ AdaptiveTimeStep::AdaptiveTimeStep(const Options& options, const Material& mater
                                    const std::vector<double>& radii)
     : options_(options),
       impact_duration_(ComputeContactDurations(radii, material).smallest_reduced_mass),
-      overlap_dependent_(material.contact_law != ContactLaw::kLinear) {
+      overlap_dependent_(VisitContactLaw(
+          material, [](auto law) { return decltype(law)::type::kOverlapDependentStiffness; })) {
   std::string why;
   GRANASYM_CHECK(options.IsValid(&why)) << why;
   GRANASYM_CHECK(impact_duration_ > 0 && std::isfinite(impact_duration_))

@@ -19,7 +19,11 @@
 // and static members that state its contact duration and stability limit
 // (ImpactDuration, StabilityStiffness, TangentialStiffnessRatio,
 // DurationDescription), from which ComputeContactDurations (material.h) builds
-// the time-step check.
+// the time-step check, whether k_n depends on the overlap
+// (kOverlapDependentStiffness: the adaptive time step's pass over the pairs)
+// and the stiffness number κ at a mean stress (StiffnessNumber, with its
+// StiffnessNumberDescription). A normal law names its ContactLaw value
+// (kContactLaw) and is listed in contact_laws.h.
 //
 // The normal laws (linear_cundall_strack.h, hertz_mindlin.h) differ only in
 // the normal force F_n(u_N) and its stiffness k_n, and in the ratio k_t/k_n of

@@ -301,23 +301,10 @@ bool Engine::Options::IsValid(std::string* why) const {
 }
 
 Engine::Law Engine::MakeLaw(const Material& material, double time_step) {
-  const bool rolling = material.has_rolling_resistance();
-  switch (material.contact_law) {
-    case ContactLaw::kLinear:
-      if (rolling) {
-        using Rolling = RollingResistance<LinearCundallStrack>;
-        return Rolling(Rolling::Params::FromMaterial(material), time_step);
-      }
-      return LinearCundallStrack(LinearCundallStrack::Params::FromMaterial(material), time_step);
-    case ContactLaw::kHertzMindlin:
-      if (rolling) {
-        using Rolling = RollingResistance<HertzMindlin>;
-        return Rolling(Rolling::Params::FromMaterial(material), time_step);
-      }
-      return HertzMindlin(HertzMindlin::Params::FromMaterial(material), time_step);
-  }
-  GRANASYM_CHECK(false) << "unknown contact law";
-  return LinearCundallStrack({}, time_step);
+  return VisitContactLaw(material, [&](auto law) -> Law {
+    using PairLaw = typename decltype(law)::type;
+    return PairLaw(PairLaw::Params::FromMaterial(material), time_step);
+  });
 }
 
 Engine::Engine(const Packing& packing, const Material& material, const Options& options)

@@ -30,13 +30,11 @@
 
 #include "common/state_measures.h"
 #include "dem/contact_law.h"
-#include "dem/hertz_mindlin.h"
-#include "dem/linear_cundall_strack.h"
+#include "dem/contact_laws.h"
 #include "dem/material.h"
 #include "dem/near_list.h"
 #include "dem/neighbor_list.h"
 #include "dem/packing.h"
-#include "dem/rolling_resistance.h"
 #include "dem/vec.h"
 
 namespace granasym::dem {
@@ -166,9 +164,8 @@ class Engine {
   void Restore(State state);
 
  private:
-  // The contact laws a material can select (material.h).
-  using Law = std::variant<LinearCundallStrack, HertzMindlin,
-                           RollingResistance<LinearCundallStrack>, RollingResistance<HertzMindlin>>;
+  // The contact laws a material can select (contact_laws.h).
+  using Law = AnyContactLaw;
   static Law MakeLaw(const Material& material, double time_step);
 
   // Rebuilds the neighbour list and the near list when the displacements

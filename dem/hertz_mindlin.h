@@ -33,6 +33,11 @@ namespace granasym::dem {
 
 class HertzMindlin : public IncrementalShearLaw<HertzMindlin> {
  public:
+  static constexpr ContactLaw kContactLaw = ContactLaw::kHertzMindlin;
+  // k_n = 2E* sqrt(R* u_N) grows with the overlap (the adaptive time step
+  // follows it over the touching pairs).
+  static constexpr bool kOverlapDependentStiffness = true;
+
   struct Params {
     double youngs_modulus = 500e6;      // E (Pa)
     double poissons_ratio = 0.25;       // ν, in (−1, 0.5)
@@ -113,6 +118,11 @@ class HertzMindlin : public IncrementalShearLaw<HertzMindlin> {
   static double TangentialStiffnessRatio(const Params& params) {
     return 4.0 * params.effective_shear_modulus() / params.effective_modulus();
   }
+  // κ = (E*/p)^(2/3) at mean stress p > 0 (Pa) (Material::StiffnessNumber).
+  static double StiffnessNumber(const Params& params, double mean_stress) {
+    return std::pow(params.effective_modulus() / mean_stress, 2.0 / 3.0);
+  }
+  static std::string StiffnessNumberDescription() { return "(E*/p)^(2/3) for Hertz-Mindlin"; }
   static std::string DurationDescription() {
     return "Hertz-Mindlin law: t_c = 2.868 (m_12^2/(R* E*^2 v))^(1/5) at the reference normal "
            "impact speed v = 1 m/s (slower impacts last longer); stability limit 2/omega_max "

@@ -20,6 +20,11 @@ namespace granasym::dem {
 
 class LinearCundallStrack : public IncrementalShearLaw<LinearCundallStrack> {
  public:
+  static constexpr ContactLaw kContactLaw = ContactLaw::kLinear;
+  // k_n does not depend on the overlap (the adaptive time step needs no pass
+  // over the pairs).
+  static constexpr bool kOverlapDependentStiffness = false;
+
   struct Params {
     double youngs_modulus = 500e6;      // E (Pa)
     double stiffness_ratio = 0.3;       // ν = k_s/k_n (Yade's "poisson")
@@ -71,6 +76,12 @@ class LinearCundallStrack : public IncrementalShearLaw<LinearCundallStrack> {
     return 2.0 * params.youngs_modulus * radius_i * radius_j / (radius_i + radius_j);
   }
   static double TangentialStiffnessRatio(const Params& params) { return params.stiffness_ratio; }
+  // κ = k_n/(d p) = E/(2p) at mean stress p > 0 (Pa) (k_n = E d/2 for equal
+  // spheres; Material::StiffnessNumber).
+  static double StiffnessNumber(const Params& params, double mean_stress) {
+    return params.youngs_modulus / (2 * mean_stress);
+  }
+  static std::string StiffnessNumberDescription() { return "E/(2p) for the linear law"; }
   static std::string DurationDescription() {
     return "linear Cundall-Strack law: t_c = pi/sqrt(k_n/m_12), k_n = 2E r_i r_j/(r_i + r_j) "
            "(paper Eq. 3), independent of the impact speed; stability limit 2/omega_max with "

@@ -10,9 +10,7 @@
 #include "common/config.h"
 #include "common/error.h"
 #include "common/state_measures.h"
-#include "dem/hertz_mindlin.h"
-#include "dem/linear_cundall_strack.h"
-#include "dem/rolling_resistance.h"
+#include "dem/contact_laws.h"
 
 namespace granasym::dem {
 namespace {
@@ -158,16 +156,10 @@ Material ParseMaterial(const ConfigTable& table) {
 
 double Material::StiffnessNumber(double mean_stress) const {
   if (!(mean_stress > 0)) return std::numeric_limits<double>::infinity();
-  switch (contact_law) {
-    case ContactLaw::kLinear:
-      return contact_modulus() / (2 * mean_stress);
-    case ContactLaw::kHertzMindlin: {
-      const double effective = contact_modulus() / (2 * (1 - poissons_ratio * poissons_ratio));
-      return std::pow(effective / mean_stress, 2.0 / 3.0);
-    }
-  }
-  GRANASYM_CHECK(false) << "unknown contact law";
-  return 0;
+  return VisitContactLaw(*this, [&](auto law) {
+    using Law = typename decltype(law)::type;
+    return Law::StiffnessNumber(Law::Params::FromMaterial(*this), mean_stress);
+  });
 }
 
 void Material::Canonical(CanonicalText& text, const std::string& prefix) const {
@@ -187,17 +179,8 @@ void Material::Canonical(CanonicalText& text, const std::string& prefix) const {
 
 ContactDurations ComputeContactDurations(const std::vector<double>& radii,
                                          const Material& material) {
-  const bool rolling = material.has_rolling_resistance();
-  switch (material.contact_law) {
-    case ContactLaw::kLinear:
-      return rolling ? Durations<RollingResistance<LinearCundallStrack>>(radii, material)
-                     : Durations<LinearCundallStrack>(radii, material);
-    case ContactLaw::kHertzMindlin:
-      return rolling ? Durations<RollingResistance<HertzMindlin>>(radii, material)
-                     : Durations<HertzMindlin>(radii, material);
-  }
-  GRANASYM_CHECK(false) << "unknown contact law";
-  return {};
+  return VisitContactLaw(
+      material, [&](auto law) { return Durations<typename decltype(law)::type>(radii, material); });
 }
 
 }  // namespace granasym::dem

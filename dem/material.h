@@ -69,10 +69,11 @@ struct Material {
   bool has_rolling_resistance() const { return rolling_friction > 0; }
   double friction_coefficient() const;  // μ = tan φ
   // The stiffness number κ at mean stress p (Pa): the inverse of the typical
-  // overlap relative to the diameter (Agnolin & Roux 2007; SPEC §8.2): the
-  // linear law κ = k_n/(d p) = E/(2p) (k_n = E d/2 for equal spheres),
-  // Hertz–Mindlin κ = (E*/p)^(2/3), E* = E/(2(1 − ν²)), with E the contact
-  // modulus (the stiffness scaling applied); +inf where p ≤ 0.
+  // overlap relative to the diameter (Agnolin & Roux 2007; SPEC §8.2), as
+  // the law defines it (Law::StiffnessNumber): the linear law κ = k_n/(d p) =
+  // E/(2p) (k_n = E d/2 for equal spheres), Hertz–Mindlin κ = (E*/p)^(2/3),
+  // E* = E/(2(1 − ν²)), with E the contact modulus (the stiffness scaling
+  // applied); +inf where p ≤ 0.
   double StiffnessNumber(double mean_stress) const;
   // The keys of its own law only, as ParseMaterial reads them (`prefix`
   // ends with '.' or is empty).

@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
+#include "dem/contact_laws.h"
 #include "dem/run_record_names.h"
 
 namespace granasym::dem {
@@ -40,6 +42,8 @@ RowMeasures::RowMeasures(const Engine& engine, int64_t stage,
 
 const std::vector<OutputColumn>& OutputColumns() {
   using R = const RowMeasures&;
+  static const std::string stiffness_number =
+      "kappa: " + StiffnessNumberDescriptions() + " (1/relative overlap)";
   static const std::vector<OutputColumn> columns = {
       {record::kColumnTime, "s", "simulated time", [](R r) { return r.engine.time(); }},
       {record::kColumnStep, "1", "time step index",
@@ -111,8 +115,7 @@ const std::vector<OutputColumn>& OutputColumns() {
        [](R r) { return InertialAt(r, r.min_diameter); }},
       {record::kColumnInertialNumberDmax, "1", "same for the largest diameter",
        [](R r) { return InertialAt(r, r.max_diameter); }},
-      {record::kColumnStiffnessNumber, "1",
-       "kappa: E/(2p) for the linear law, (E*/p)^(2/3) for Hertz-Mindlin (1/relative overlap)",
+      {record::kColumnStiffnessNumber, "1", stiffness_number.c_str(),
        [](R r) { return r.engine.material().StiffnessNumber(r.stress.mean()); }},
       {record::kColumnKineticEnergy, "J", "kinetic energy of the fluctuating motion",
        [](R r) { return KineticEnergy(r.engine); }},

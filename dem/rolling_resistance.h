@@ -55,6 +55,7 @@ class RollingResistance {
     }
   };
   static constexpr bool kRollingHistory = true;
+  static constexpr bool kOverlapDependentStiffness = Law::kOverlapDependentStiffness;
 
   RollingResistance(const Params& params, double time_step)
       : law_(params.law, time_step),
@@ -151,6 +152,10 @@ class RollingResistance {
   }
   static double TangentialStiffnessRatio(const Params& params) {
     return Law::TangentialStiffnessRatio(params.law);
+  }
+  // The wrapped law's κ: the rolling spring does not change the overlaps.
+  static double StiffnessNumber(const Params& params, double mean_stress) {
+    return Law::StiffnessNumber(params.law, mean_stress);
   }
   static std::string DurationDescription() {
     return Law::DurationDescription() +
