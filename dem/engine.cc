@@ -395,6 +395,16 @@ void Engine::SetInverseMassAndInertia(size_t i, double inverse_mass, double inve
   spin_[i].w = inverse_inertia;
 }
 
+// The pair loop, one function of some 340 lines on purpose: it is one OpenMP
+// parallel region whose passes (collect, gather, the law, the scatter with
+// the inline advance, then after the barrier the halo sums and the advance)
+// share per-thread state the compiler keeps in registers: the loop's pointers
+// as thread-private locals, sphere i's running sums over its contacts. What
+// is inlined and what is not was measured pass by pass (bench/README.md, "DEM
+// kernel: what was tried", rounds 3, 6, 8 and 10): the two helpers that ran
+// faster out of line (CollectTouching, GatherKinematics) already are. A
+// split would hand those decisions back to the compiler and have to be
+// measured again; the tuning is finished.
 template <class PairLaw, bool kUseFriction, unsigned kFlags>
 void Engine::ComputeForcesImpl(const PairLaw& law) {
   constexpr bool kRolling = PairLaw::kRollingHistory;

@@ -2,7 +2,10 @@
 // stages, measures when asked, lets each stage's controller drive the cell,
 // writes the output rows and checkpoints; one HDF5 result file (layout:
 // dem/run_record_names.h), bit-identical restarts from checkpoints, and runs
-// that start from the saved state of another run.
+// that start from the saved state of another run. The loop's parts live
+// beside it: the start (run_start.h), the files (run_files.h), the checks on
+// each row (row_guards.h), a stage's asymptote detection and end
+// (stage_detection.h, stage_end.h) and the progress (run_progress.h).
 //
 // The library neither prints nor handles signals: the caller receives log
 // lines and progress through RunOptions and asks the run to stop through it.
@@ -13,22 +16,12 @@
 #include <string>
 
 #include "dem/packing.h"
+#include "dem/run_files.h"
+#include "dem/run_progress.h"
 #include "dem/run_record.h"
 #include "dem/scene.h"
 
 namespace granasym::dem {
-
-// Where a run stands, handed to RunOptions::progress.
-struct RunProgress {
-  int64_t stage = 0;  // 0-based
-  int64_t stages = 0;
-  std::string stage_name;
-  int64_t step = 0;
-  double steps_per_second = 0;                                    // in this stage, this invocation
-  double eta_seconds = -1;                                        // of the stage; < 0 when unknown
-  double mean_stress_kpa = 0, void_ratio = 0, psi_sigma_deg = 0;  // of the last row
-  std::string OneLine() const;
-};
 
 struct RunOptions {
   std::string output_path = "run.h5";  // result file; checkpoint at output_path + ".ckpt"
@@ -50,9 +43,5 @@ struct RunOptions {
 // bad input; numerical trouble ends the run with Termination::kFailed and the
 // results so far written; a violated invariant (InvariantError) propagates.
 RunSummary RunScene(const Scene& scene, const RunOptions& options);
-
-// Reads a packing stored in a result file: "/final_state" (the end of the
-// run) or "/sample" (the initial packing). InputError if it is missing.
-Packing ReadResultPacking(const std::string& result_path, const std::string& group);
 
 }  // namespace granasym::dem

@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "common/canonical_text.h"
 #include "common/config.h"
@@ -25,6 +28,30 @@ bool StepsOrTimeDone(const StopConditions& stop, const StageClock& clock, const 
 }
 
 }  // namespace
+
+StageContext StageContext::Of(const Packing& sample, double density) {
+  StageContext context;
+  context.density = density;
+  if (sample.radii.empty()) return context;
+  std::vector<std::pair<double, double>> by_size;  // (radius, mass ∝ r³)
+  double total = 0;
+  for (double r : sample.radii) {
+    by_size.push_back({r, r * r * r});
+    total += r * r * r;
+  }
+  std::sort(by_size.begin(), by_size.end());
+  context.min_diameter = 2 * by_size.front().first;
+  context.max_diameter = 2 * by_size.back().first;
+  double passing = 0;
+  for (const auto& [r, mass] : by_size) {
+    passing += mass;
+    if (passing >= 0.5 * total) {
+      context.median_diameter = 2 * r;
+      break;
+    }
+  }
+  return context;
+}
 
 StopConditions StopConditions::Parse(const ConfigTable& stop) {
   StopConditions s;

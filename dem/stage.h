@@ -152,6 +152,8 @@ struct StageContext {
   double min_diameter = 0, median_diameter = 0,
          max_diameter = 0;  // of the sample (m); d_50 by mass
   double density = 0;       // solid density (kg/m³)
+  // The diameters of `sample` and the solid `density`.
+  static StageContext Of(const Packing& sample, double density);
 };
 
 // The parsed keys of one stage type.

@@ -1,0 +1,136 @@
+#include "dem/stage_end.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "common/state_measures.h"
+#include "dem/run_record_names.h"
+#include "dem/stage_validity.h"
+
+namespace granasym::dem {
+namespace {
+
+// The first of the stage's rows [first, last] at or after `time` (the
+// window's start); `last` when none.
+int64_t FirstRowAfter(const TimeSeries& series, int64_t first, int64_t last, double time) {
+  const auto& times = series.Values(record::kColumnTime);
+  for (int64_t k = first; k <= last; ++k) {
+    if (times[k] >= time) return k;
+  }
+  return last;
+}
+
+}  // namespace
+
+std::optional<std::string> AsymptoteStop(const AsymptoteDetector::Result& result, PathKind kind,
+                                         const TimeSeries& series, int64_t detector_first_row,
+                                         int64_t stage_first_row) {
+  const int64_t last_row = static_cast<int64_t>(series.rows()) - 1;
+  bool valid = result.detected() && last_row >= stage_first_row;
+  if (valid) {
+    const RowState state = RowState::Mean(
+        series, FirstRowAfter(series, detector_first_row, last_row, result.window_start_time),
+        last_row);
+    valid = !IsGas(result.mean_stress_kpa, state.mechanical_coordination) &&
+            state.max_relative_overlap <= kValidityLimits.overlap_unreliable;
+  }
+  if (!valid) return std::nullopt;
+  return fmt::format(
+      "asymptotic state detected ({}: p {:.4g} kPa, psi_sigma {:.3f} deg over {:.3g} of "
+      "strain and {:.3g} of ln p)",
+      ToString(kind), result.mean_stress_kpa, result.psi_sigma / kDegree, result.window_strain,
+      result.window_lnp);
+}
+
+StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t first_row,
+                        const AsymptoteDetector& detector, int64_t detector_first_row,
+                        const std::string& reason, bool failed) {
+  StageRecord record;
+  record.name = stage.name;
+  record.type = stage.type();
+  record.first_row = first_row;
+  record.last_row = static_cast<int64_t>(series.rows()) - 1;
+  record.stop_reason = reason;
+  record.failed = failed;
+  const bool has_rows = record.last_row >= record.first_row;
+  const bool detect = stage.detect_asymptote;
+  const AsymptoteDetector::Result result =
+      detect ? detector.Evaluate() : AsymptoteDetector::Result{};
+  // The state: the window's rows when a full window exists, else the last row.
+  const bool window = detect && result.window_strain > 0;
+  RowState state;
+  if (has_rows) {
+    const int64_t state_row = window ? FirstRowAfter(series, detector_first_row, record.last_row,
+                                                     result.window_start_time)
+                                     : record.last_row;
+    state = RowState::Mean(series, state_row, record.last_row);
+    record.validity = StageValidity::FromRows(series, record.first_row, record.last_row, state);
+  }
+  if (!detect) return record;
+  AsymptoteRecord a;
+  a.path_kind = stage.asymptote.kind;
+  a.criterion = stage.asymptote;
+  a.window_strain = result.window_strain;
+  a.window_lnp = result.window_lnp;
+  if (window) {
+    a.mean_stress_kpa = result.mean_stress_kpa;
+    a.void_ratio = result.void_ratio;
+    a.psi_sigma_deg = result.psi_sigma / kDegree;
+    a.psi_epsilon_deg = result.psi_epsilon / kDegree;
+    a.q_over_p = result.q_over_p;
+  } else if (has_rows) {
+    a.mean_stress_kpa = series.Last(record::kColumnMeanStress);
+    a.void_ratio = series.Last(record::kColumnVoidRatio);
+    a.psi_sigma_deg = series.Last(record::kColumnPsiSigma);
+    a.psi_epsilon_deg = series.Last(record::kColumnPsiEpsilon);
+    a.q_over_p = 3.0 / std::sqrt(2.0) * std::tan(a.psi_sigma_deg * kDegree);
+  }
+  a.coordination = state.coordination;
+  a.mechanical_coordination = state.mechanical_coordination;
+  a.inertial_number_dmin = state.inertial_number_dmin;
+  a.inertial_number_dmax = state.inertial_number_dmax;
+  a.max_relative_overlap = state.max_relative_overlap;
+  a.psi_change_deg = result.psi_change_deg;
+  a.lnp_change = result.lnp_change;
+  a.lnp_half_difference = result.lnp_half_difference;
+  a.slope_change = result.slope_change;
+  a.psi_epsilon_change_deg = result.psi_epsilon_change_deg;
+  a.lnv_change = result.lnv_change;
+  a.dlnp_dstrain = result.slope_lnp;
+  a.dln1pe_dlnp = result.slope_lnv_lnp;
+  const ValidityLimits& limits = kValidityLimits;
+  if (failed || !has_rows || state.max_relative_overlap > limits.overlap_unreliable) {
+    a.status = AsymptoteStatus::kInvalid;
+  } else if (IsGas(state.mean_stress_kpa, state.mechanical_coordination, limits)) {
+    a.status = AsymptoteStatus::kGas;
+  } else {
+    a.status = result.status;
+  }
+  a.detected = a.status == AsymptoteStatus::kDetected;
+  if (result.detected() && !a.detected) {
+    record.stop_reason += fmt::format("; not an asymptote: status {} ({})", ToString(a.status),
+                                      EnumDescription(a.status));
+  }
+  record.asymptote = a;
+  record.asymptote_criterion = stage.asymptote.Describe();
+  return record;
+}
+
+std::vector<std::string> StageEndLines(const StageRecord& record, int64_t index, int64_t steps) {
+  std::vector<std::string> lines;
+  lines.push_back(fmt::format("stage {} '{}' {} after {} steps: {}", index + 1, record.name,
+                              record.failed ? "failed" : "done", steps, record.stop_reason));
+  lines.push_back(fmt::format("  validity: {}", record.validity.OneLine()));
+  if (record.asymptote) {
+    const AsymptoteRecord& a = *record.asymptote;
+    lines.push_back(fmt::format(
+        "  asymptote ({}): {}; p {:.4g} kPa, e {:.4f}, psi_sigma {:.2f} deg, psi_epsilon {:.2f} "
+        "deg over a window of {:.3g} strain and {:.3g} of ln p",
+        ToString(a.path_kind), ToString(a.status), a.mean_stress_kpa, a.void_ratio, a.psi_sigma_deg,
+        a.psi_epsilon_deg, a.window_strain, a.window_lnp));
+  }
+  return lines;
+}
+
+}  // namespace granasym::dem
