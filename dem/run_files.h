@@ -3,6 +3,8 @@
 // beside it (CheckpointPath), which a restart reads back, checked against its
 // scene, to continue bit-identically. Both are written atomically; a file that
 // cannot be written ends the run with a FileError that says what was kept.
+// Beside them: the counts of a summary, and the packing a result holds read
+// back (ReadResultPacking).
 #pragma once
 
 #include <cstdint>
