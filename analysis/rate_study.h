@@ -9,131 +9,29 @@
 // (E, ψ_ε, rate) the line ln(1+e) = N − λ ln p of its asymptotic states (the
 // NCL at ψ_ε = 0°, the CSL at 90°, the NEL beyond); and whether the two
 // smallest I* agree within their intervals in e, ψ_σ and the CSL's position
-// (SPEC §8.2: rate-independent).
+// (SPEC §8.2: rate-independent); the stiffness scaling (§1), the extension
+// sweep (§3) and, with analysis/drained_study.h, the drained triaxial cases.
 //
+// Pure statistics: `RateStudy::Analyse` takes the states and reads no file.
 // Rate cases are the cases whose `figures` key names "rate" (the programme
 // says which cases make up the rate study: studies/programmes/rate.toml);
-// a study without them has no rate files. Files in the study folder:
-//
-//   rate_states.csv        one row per rate case and detector stage: its E, ψ_ε, start
-//                          p_0, rule, I* or ‖D‖, and the asymptotic state of the state table
-//   rate_summary.csv       per (E, ψ_ε, p_0, rate): means and 95 % intervals over replicates
-//   rate_lines.csv         per (E, ψ_ε, rate): N, λ and ln(1+e) at the reference p (± 95 %);
-//                          at ψ_ε = 0° the mean of the paths' own lines (RateState::path_n)
-//   rate_quasi_static.csv  per (E, ψ_ε, p_0, quantity): the limit a ± 95 %, the slope b ± 95 %
-//   rate_independence.csv  per (E, ψ_ε, p_0): the two smallest I* compared, and the verdict
-//   rate_stiffness.csv     per (other E, ψ_ε, p_0, rate): ψ_σ and the CSL against the main E
-//   rate_extension.csv     per (E, rate, p_0, ψ_ε ≥ 90°): σ_r/p, ψ_σ, liquefied replicates
-//   rate_extension_limit.csv per (E, rate, p_0): ψ_ε(d) ± 95 %, or where it liquefies
-//   rate_drained_states.csv  one row per drained triaxial rate case (constant σ_r)
-//   rate_drained.csv         per (E, σ_r, ε̇_a): means and 95 % intervals
-//   rate_drained_limit.csv   per (E, σ_r): M, ln(1+e), ln p as I → 0; the two slowest rates
-//   rate_drained_critical_state.csv per E: quasi-static M, φ_c, the CSL and M's p-dependence
+// analysis/rate_cases.h reads them from a study folder, analysis/rate_files.h
+// writes the analysis' files (rate_*.csv) and reads its states back, and
+// analysis/quasi_static_selection.h picks the states a rate study's models
+// are calibrated to.
 #pragma once
 
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <string>
 #include <vector>
 
-#include "common/enum_names.h"
+#include "analysis/drained_study.h"
+#include "analysis/estimate.h"
+#include "analysis/rate_options.h"
 #include "dem/strain_path_stage.h"
-#include "study/state_table.h"
 
 namespace granasym::analysis {
-
-enum class Agreement { kAgree, kDiffer, kUndetermined };
-}  // namespace granasym::analysis
-
-template <>
-struct granasym::EnumNames<granasym::analysis::Agreement> {
-  static constexpr EnumEntry<analysis::Agreement> kEntries[] = {
-      {analysis::Agreement::kAgree, "agree", "the difference is inside its 95 % interval"},
-      {analysis::Agreement::kDiffer, "differ", "the difference is outside its 95 % interval"},
-      {analysis::Agreement::kUndetermined, "undetermined",
-       "an estimate lacks its interval (fewer than two states, or three points for a line)"},
-  };
-};
-
-namespace granasym::analysis {
-
-// The study's table of asymptotic states, which the analyses read.
-using study::CsvNumber;
-using study::CsvText;
-using study::Interval;
-using study::MeanInterval95;
-using study::ReadStateTable;
-using study::StateRow;
-using study::TableKind;
-using study::TableStatus;
-
-// The published critical-state stress ratio of frictional spheres without
-// rolling resistance that the study's quasi-static M is set against (issue 10
-// §2); `source` says where the numbers come from and how they were converted.
-// No triaxial value at μ ≈ 0.5 was found in a retrievable text, so the band is
-// bounded by two shear-zone frictions read as tan φ = τ/σ_n:
-//   Latham, Abe & Mora (2005), "Macroscopic friction response of rotational
-//   and non-rotational lattice solid gouge models in 2D and 3D";
-//   Mair, Frye & Marone (2002), J. Geophys. Res. 107(B10), 2219,
-//   doi:10.1029/2001JB000516.
-struct LiteratureBand {
-  double low, high;
-  const char* source;  // one sentence, for captions and the report
-};
-inline constexpr LiteratureBand kSphereCriticalStateRatio = {
-    0.81, 0.95,
-    "M = 0.81 from the 3D DEM of rotating spheres of Latham, Abe & Mora (2005, 'Macroscopic "
-    "friction response of rotational and non-rotational lattice solid gouge models in 2D and "
-    "3D': macroscopic friction 0.38 for contact friction μ_P ≥ 0.3, sheared between plates) to "
-    "0.95 from the glass-bead shear zones of Mair, Frye & Marone (2002, J. Geophys. Res. "
-    "107(B10) 2219: sliding friction 0.45), each friction read as tan φ and M = 6 sin φ/(3 − "
-    "sin φ); read as sin φ they give 0.87 and 1.06, so the band brackets rather than checks a "
-    "triaxial value"};
-
-struct RateStudyOptions {
-  // Detector statuses of the states that enter means, lines, fits and verdicts.
-  std::vector<TableStatus> statuses = {TableStatus::kDetected};
-  // ψ_ε = 0° states also when drifting: on the isotropic path the detector's
-  // ψ_σ and slope tests are at the noise level of a small sample (the
-  // study's own NCL fit takes them for the same reason, state_table.h).
-  std::vector<TableStatus> ncl_statuses = {TableStatus::kDetected, TableStatus::kDrifting};
-  // Validity flags that exclude a state (a gas or liquefied sample, overlaps
-  // that make a result unreliable, SPEC §8.3).
-  std::vector<std::string> excluded_flags = {"gas", "overlap_above_10pct"};
-  // The quasi-static line is fitted through the states of this many of the
-  // smallest I* values (with usable states); at least 2.
-  int fit_rates = 3;
-  // The mean stress (kPa) at which a line's position is read and compared.
-  double reference_p_kpa = 100.0;
-  // The published band the quasi-static M is compared with.
-  LiteratureBand literature_m = kSphereCriticalStateRatio;
-  bool IsValid(std::string* why) const;
-};
-
-// A mean (or a fitted value) with its standard error and the half-width of
-// its two-sided 95 % interval (Student t with `dof` degrees of freedom);
-// NaN errors when there is no interval.
-struct Estimate {
-  double mean = std::numeric_limits<double>::quiet_NaN();
-  double standard_error = std::numeric_limits<double>::quiet_NaN();
-  double half_width = std::numeric_limits<double>::quiet_NaN();
-  int n = 0;    // values
-  int dof = 0;  // degrees of freedom of the interval (0: none)
-  bool has_interval() const { return dof >= 1 && std::isfinite(standard_error); }
-  static Estimate Of(const std::vector<double>& values);  // mean over n, dof n − 1
-  static Estimate Fitted(double value, double standard_error, int points);  // dof points − 2
-};
-
-// Whether two estimates agree: the difference b − a against the half-width
-// of its 95 % interval, t_{ν} sqrt(se_a² + se_b²), ν by Welch–Satterthwaite
-// (rounded down, so the interval is not narrower than it should be).
-struct Comparison {
-  Agreement agreement = Agreement::kUndetermined;
-  double difference = std::numeric_limits<double>::quiet_NaN();
-  double half_width = std::numeric_limits<double>::quiet_NaN();
-};
-Comparison Compare(const Estimate& a, const Estimate& b);
 
 // One rate case's asymptotic state (a row of rate_states.csv).
 struct RateState {
@@ -293,68 +191,6 @@ struct ExtensionLimit {
   std::string Text() const;  // "psi_epsilon(d) = 127.2 +- 3.1 deg", "liquefied at ..."
 };
 
-// Drained triaxial compression (constant σ_r, constant ε̇_a) from the NC
-// states: the critical state under stress control. The isochoric paths from
-// loose NC states liquefy as I* → 0, so the quasi-static M, φ_c and CSL come
-// from these cases. On a drained path p moves only from σ_r to about
-// 1.4 σ_r, so a constant ε̇_a keeps I nearly fixed; the analysis uses the
-// I(d_max) measured over each asymptote's window.
-struct DrainedState {
-  int replicate = 1;
-  std::string case_name, stage, flags;
-  TableStatus status = TableStatus::kNoResult;
-  double youngs_modulus_mpa = 0, radial_stress_kpa = 0, axial_strain_rate = 0;  // ε̇_a (1/s)
-  double p_kpa = 0, e = 0, ln_1_plus_e = 0, psi_sigma_deg = 0, q_over_p = 0;
-  double inertial_number_dmin = 0, inertial_number_dmax = 0;
-};
-
-// Per (E, σ_r, ε̇_a): the replicates' means.
-struct DrainedGroup {
-  double youngs_modulus_mpa = 0, radial_stress_kpa = 0, axial_strain_rate = 0;
-  int states = 0, used = 0;
-  Estimate p_kpa, e, ln_1_plus_e, psi_sigma_deg, q_over_p, inertial_number_dmax;
-};
-
-// Per (E, σ_r): y = a + b·I(d_max) through the usable states of every rate
-// (at least two rates): M = q/p, ln(1+e) and ln p as I → 0; and the two
-// slowest rates compared in M and ln(1+e) (rate_independent when both
-// agree within the 95 % interval of their difference).
-struct DrainedLimit {
-  double youngs_modulus_mpa = 0, radial_stress_kpa = 0;
-  int rates = 0, points = 0;
-  double i_min = std::numeric_limits<double>::quiet_NaN();
-  double i_max = std::numeric_limits<double>::quiet_NaN();
-  Estimate m, ln_1_plus_e, ln_p_kpa;                          // the limits a
-  Estimate m_slope;                                           // b of M
-  double slowest = std::numeric_limits<double>::quiet_NaN();  // ε̇_a (1/s)
-  double next = std::numeric_limits<double>::quiet_NaN();
-  Comparison m_change, ln_1_plus_e_change;  // next − slowest
-  std::string verdict, reason;              // rate_independent, rate_dependent, undetermined
-  bool valid() const { return std::isfinite(m.mean); }
-};
-
-// Per E: the quasi-static critical state from the limits of every σ_r.
-struct DrainedCriticalState {
-  double youngs_modulus_mpa = 0;
-  int starts = 0;       // σ_r with a limit
-  Estimate m;           // mean of the limits' M (Student t, starts − 1 dof)
-  Estimate phi_c_deg;   // φ_c = asin(3M/(6 + M)), its interval by the delta method
-  Estimate m_per_ln_p;  // slope of the limits' M against ln p: M's p-dependence
-  Estimate lambda;      // the CSL ln(1+e) = Γ − λ ln(p / 1 kPa) through the limits
-  double gamma = std::numeric_limits<double>::quiet_NaN();
-  Estimate position;  // ln(1+e) on it at the reference p
-  std::string Text(double reference_p_kpa) const;
-};
-
-struct DrainedStudy {
-  std::vector<DrainedState> states;
-  std::vector<DrainedGroup> groups;            // by (E, σ_r, ε̇_a)
-  std::vector<DrainedLimit> limits;            // by (E, σ_r)
-  std::vector<DrainedCriticalState> critical;  // by E
-  // `usable`: the rate study's rule for a state's status and flags.
-  static DrainedStudy Analyse(std::vector<DrainedState> states, const RateStudyOptions& options);
-};
-
 struct RateStudy {
   RateStudyOptions options;
   std::vector<RateState> states;  // every row, usable or not
@@ -381,70 +217,5 @@ struct RateStudy {
   std::vector<std::string> Answers() const;
   static RateStudy Analyse(std::vector<RateState> states, const RateStudyOptions& options = {});
 };
-
-// §4 (issue 10): the quasi-static states that `study calibrate` fits the
-// models to in a rate study, and that figure rate (e) sets beside the
-// paper-rate ones: the rate cases at one I* and the reference modulus. By
-// default the smallest I* whose ψ_ε = 90° cases have usable states from at
-// least two starts (so that it has a CSL); `inertial_number` chooses it.
-// With them, the drained triaxial cases of the reference modulus at the
-// slowest axial rate of each σ_r that has usable states: the critical state
-// under stress control, which the isochoric paths from loose NC states do
-// not reach as I* → 0 (they liquefy).
-struct QuasiStaticSelection {
-  double inertial_number = std::numeric_limits<double>::quiet_NaN();
-  double youngs_modulus_mpa = std::numeric_limits<double>::quiet_NaN();
-  std::vector<std::string> cases;          // case names, each once, in the states' order
-  std::vector<std::string> drained_cases;  // likewise, the drained cases
-  std::string reason;                      // why there is none (empty when valid)
-  bool valid() const { return !cases.empty(); }
-};
-QuasiStaticSelection SelectQuasiStatic(const RateStudy& study,
-                                       std::optional<double> inertial_number = std::nullopt);
-// DIR/calibration/quasi_static.toml, written by `study calibrate` for a rate
-// study: the selection its calibrations were fitted to.
-inline constexpr char kQuasiStaticSelectionFile[] = "calibration/quasi_static.toml";
-void WriteQuasiStaticSelection(const std::string& directory, const QuasiStaticSelection& s);
-// The selection written there, or nullopt without the file (InputError when malformed).
-std::optional<QuasiStaticSelection> ReadQuasiStaticSelection(const std::string& directory);
-
-// The rate study of a study folder from its rate_states.csv and
-// rate_drained_states.csv (ReadRateStates, ReadDrainedStates), analysed with
-// the default options; nullopt when it has neither.
-std::optional<RateStudy> ReadRateStudy(const std::string& directory);
-
-// Whether a case's `figures` key ("10, rate") names the rate study.
-bool ServesRateStudy(const std::string& figures);
-
-// Reads the rate cases of the study folder (their case.toml, their result and
-// their parent's, for the rate rule, E and the start) against the rows of
-// its state table, analyses them and writes the rate files; returns nullopt,
-// and removes rate files of an earlier run, when there are no rate cases.
-std::optional<RateStudy> WriteRateStudy(const std::string& directory,
-                                        const std::vector<StateRow>& rows,
-                                        const RateStudyOptions& options = {});
-
-// Writes the rate files of an analysed study into `directory`.
-void WriteRateFiles(const std::string& directory, const RateStudy& study);
-
-// DIR/rate_states.csv back (InputError naming the file when malformed); empty
-// when the study has no rate cases (no file).
-std::vector<RateState> ReadRateStates(const std::string& directory);
-// DIR/rate_drained_states.csv back (the same rules).
-std::vector<DrainedState> ReadDrainedStates(const std::string& directory);
-
-// The file names, for the report and the figures.
-inline constexpr char kRateStatesFile[] = "rate_states.csv";
-inline constexpr char kRateSummaryFile[] = "rate_summary.csv";
-inline constexpr char kRateLinesFile[] = "rate_lines.csv";
-inline constexpr char kRateStiffnessFile[] = "rate_stiffness.csv";
-inline constexpr char kRateQuasiStaticFile[] = "rate_quasi_static.csv";
-inline constexpr char kRateIndependenceFile[] = "rate_independence.csv";
-inline constexpr char kRateExtensionFile[] = "rate_extension.csv";
-inline constexpr char kRateExtensionLimitFile[] = "rate_extension_limit.csv";
-inline constexpr char kRateDrainedStatesFile[] = "rate_drained_states.csv";
-inline constexpr char kRateDrainedFile[] = "rate_drained.csv";
-inline constexpr char kRateDrainedLimitFile[] = "rate_drained_limit.csv";
-inline constexpr char kRateDrainedCriticalFile[] = "rate_drained_critical_state.csv";
 
 }  // namespace granasym::analysis

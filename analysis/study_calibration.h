@@ -10,13 +10,13 @@
 //
 // The data: a study's detected states whose OCR refers to the study's NCL
 // (other samples, e.g. φ = 0, stay out), or a rate study's quasi-static set
-// (analysis/rate_study.h, QuasiStaticSelection): its ψ_ε = 0° states also
+// (analysis/quasi_static_selection.h): its ψ_ε = 0° states also
 // when drifting, its other states with the drained cases when detected.
 #pragma once
 
 #include <string>
 
-#include "analysis/rate_study.h"
+#include "analysis/quasi_static_selection.h"
 #include "calibration/calibration_config.h"
 
 namespace granasym::analysis {

@@ -11,7 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "analysis/rate_study.h"
+#include "analysis/quasi_static_selection.h"
+#include "analysis/rate_files.h"
 #include "analysis/study_calibration.h"
 #include "calibration/model_parameters.h"
 #include "common/error.h"

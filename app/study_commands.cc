@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/rate_study.h"
+#include "analysis/rate_cases.h"
 #include "app/enum_option.h"
 #include "app/progress.h"
 #include "app/signals.h"
@@ -47,7 +47,7 @@ bool ParseShard(const std::string& text, int* index, int* count) {
 }
 
 // The state table, then the analyses that belong with it: a study with rate
-// cases gets the rate study's files (analysis/rate_study.h).
+// cases gets the rate study's files (analysis/rate_cases.h, analysis/rate_files.h).
 void WriteTables(const std::string& directory) {
   std::printf("%s", study::WriteStateTable(directory).Text().c_str());
   if (const std::optional<analysis::RateStudy> rate =

@@ -232,7 +232,7 @@ std::map<std::string, std::set<std::string>> ListValues(const Table& top) {
 // Every combination of the lists of `vary` (the last key varies fastest),
 // restricted to the values the scale keeps; none when a list is left empty.
 std::vector<Variables> Combinations(const std::string& origin, const std::string& key,
-                                    const Value* vary, ScaleExpansion& expansion) {
+                                    const Value* vary, const ScaleExpansion& expansion) {
   std::vector<Variables> combinations{Variables{}};
   if (!vary) return combinations;
   for (const auto& [name, list] : TableAt(origin, key, *vary)) {
@@ -290,6 +290,335 @@ std::string FormatTable(const Table& table) {
   return out.str();
 }
 
+// The sections of a programme, in the order Programme::Parse reads them.
+
+const Table kEmpty;
+
+// The table `key` of `top`, or an empty one when it is absent.
+const Table& OptionalTable(const std::string& origin, const Table& top, const std::string& key) {
+  const Value* value = FindKey(top, key);
+  return value ? TableAt(origin, key, *value) : kEmpty;
+}
+
+// [study]: the name, description and NCL case.
+void ParseStudy(const std::string& origin, const Table& top, Programme* programme) {
+  const Table& study = OptionalTable(origin, top, "study");
+  CheckKeys(origin, "study.", study, {"name", "description", "ncl"});
+  programme->name = StringAt(origin, "study.name", study, "", true);
+  programme->description = StringAt(origin, "study.description", study, "", false);
+  programme->ncl_case = StringAt(origin, "study.ncl", study, "", false);
+}
+
+// One [scale.<name>] table: its count and replicates, its `only` lists
+// (into `only` as values) and its `variables` (into `variables`).
+ScaleSpec ParseScale(const std::string& origin, const std::string& name, const Value& value,
+                     std::map<std::string, std::vector<Value>>* only, Variables* variables) {
+  const std::string prefix = "scale." + name + ".";
+  const Table& table = TableAt(origin, "scale." + name, value);
+  CheckKeys(origin, prefix, table, {"count", "replicates", "only", "variables"});
+  ScaleSpec spec;
+  if (!FindKey(table, "count")) Fail(origin, prefix + "count", "is missing");
+  spec.count = IntAt(origin, prefix + "count", table, 0, 2, 2000000000);
+  spec.replicates = static_cast<int>(IntAt(origin, prefix + "replicates", table, 1, 1, 1000));
+  if (const Value* restrictions = FindKey(table, "only")) {
+    for (const auto& [variable, list] : TableAt(origin, prefix + "only", *restrictions)) {
+      const std::string where = prefix + "only." + variable;
+      if (!list.is_array() || list.as_array().empty()) {
+        Fail(origin, where, "must be a non-empty array of the values kept");
+      }
+      for (const Value& item : list.as_array()) {
+        if (!(item.is_string() || item.is_integer() || item.is_floating())) {
+          Fail(origin, where, "must hold numbers or strings, not " + TypeName(item));
+        }
+        (*only)[variable].push_back(item);
+        spec.only[variable].push_back(ValueText(item));
+      }
+    }
+  }
+  if (const Value* defined = FindKey(table, "variables")) {
+    for (const auto& [variable, item] : TableAt(origin, prefix + "variables", *defined)) {
+      if (item.is_table() || item.is_array()) {
+        Fail(origin, prefix + "variables." + variable,
+             "must be a number, a string or a boolean, not " + TypeName(item));
+      }
+      (*variables)[variable] = item;
+      spec.variables[variable] = ValueText(item);
+    }
+  }
+  return spec;
+}
+
+// [scale.*]: every scale into the programme, each defining the same
+// placeholders; returns the lists and placeholders of `scale`, whose
+// restrictions are checked against the programme's lists.
+ScaleExpansion ParseScales(const std::string& origin, const Table& top, Scale scale,
+                           Programme* programme) {
+  const Value* scales = FindKey(top, "scale");
+  if (!scales) Fail(origin, "scale", "is missing: give [scale.tiny], [scale.small], [scale.paper]");
+  ScaleExpansion expansion;
+  expansion.scale = scale;
+  std::optional<std::set<std::string>> variable_names;  // the same at every scale
+  std::string first_scale;
+  for (const auto& [name, value] : TableAt(origin, "scale", *scales)) {
+    const std::optional<Scale> parsed = FromString<Scale>(name);
+    if (!parsed) {
+      Fail(origin, "scale." + name, "is not a scale: expected " + AllowedNames<Scale>());
+    }
+    std::map<std::string, std::vector<Value>> only;
+    Variables variables;
+    const ScaleSpec spec = ParseScale(origin, name, value, &only, &variables);
+    std::set<std::string> names;
+    for (const auto& [variable, unused] : variables) names.insert(variable);
+    if (!variable_names) {
+      variable_names = names;
+      first_scale = name;
+    } else if (*variable_names != names) {
+      auto list = [](const std::set<std::string>& set) {
+        std::string text;
+        for (const std::string& n : set) text += (text.empty() ? "" : ", ") + n;
+        return text.empty() ? std::string("none") : text;
+      };
+      Fail(origin, "scale." + name + ".variables",
+           "defines " + list(names) + " but [scale." + first_scale + ".variables] defines " +
+               list(*variable_names) + ": every scale gives the same placeholders");
+    }
+    if (*parsed == scale) {
+      expansion.only = std::move(only);
+      expansion.variables = std::move(variables);
+    }
+    programme->scales[*parsed] = spec;
+  }
+  programme->At(scale);  // the scale asked for exists
+  return expansion;
+}
+
+// `[scale.X.only]` against the programme's `vary` and `each` lists: a
+// restriction that could take no effect is an error.
+void CheckRestrictions(const std::string& origin, const Table& top,
+                       const ScaleExpansion& expansion) {
+  const std::map<std::string, std::set<std::string>> list_values = ListValues(top);
+  for (const auto& [variable, values] : expansion.only) {
+    const std::string where =
+        "scale." + std::string(ToString(expansion.scale)) + ".only." + variable;
+    const auto it = list_values.find(variable);
+    if (it == list_values.end()) {
+      Fail(origin, where, "names no variable of a `vary` or `each` list of the programme");
+    }
+    for (const Value& value : values) {
+      if (!it->second.count(ValueKey(value))) {
+        Fail(origin, where,
+             "keeps " + ValueText(value) + ", which no list of '" + variable + "' holds");
+      }
+    }
+  }
+}
+
+// [sample]; a relative GSD path is resolved against `base_directory`.
+void ParseSample(const std::string& origin, const Table& top, const std::string& base_directory,
+                 SampleSpec* s) {
+  const Table& sample = OptionalTable(origin, top, "sample");
+  CheckKeys(origin, "sample.", sample,
+            {"reference_count", "reference_cell_size_mm", "seed", "gsd", "max_attempts"});
+  s->reference_count =
+      IntAt(origin, "sample.reference_count", sample, s->reference_count, 2, 2000000000);
+  s->reference_cell_size_mm =
+      DoubleAt(origin, "sample.reference_cell_size_mm", sample, s->reference_cell_size_mm);
+  s->seed = IntAt(origin, "sample.seed", sample, s->seed, 0, int64_t{1} << 53);
+  s->max_attempts = IntAt(origin, "sample.max_attempts", sample, s->max_attempts, 1, 1000000000);
+  const std::string gsd = StringAt(origin, "sample.gsd", sample, "", false);
+  if (!gsd.empty()) {
+    s->gsd_path = std::filesystem::path(gsd).is_absolute()
+                      ? gsd
+                      : (std::filesystem::path(base_directory) / gsd).lexically_normal().string();
+  }
+}
+
+// [scene]: the tables every run's scene starts from.
+Table SharedScene(const std::string& origin, const Table& top) {
+  Table shared;
+  if (const Value* scene = FindKey(top, "scene")) {
+    shared = TableAt(origin, "scene", *scene);
+    for (const auto& [key, unused] : shared) {
+      if (key == "sample" || key == "stage") {
+        Fail(origin, "scene." + key,
+             "cannot be shared: the sample comes from [sample] or `from`, stages from "
+             "[[run.stage]]");
+      }
+    }
+  }
+  return shared;
+}
+
+// A case's `from` ("sample", "RUN" or "RUN@STAGE") against the cases before it.
+void ResolveParent(const std::string& origin, const std::string& case_where,
+                   const std::string& from, const Programme& programme, CaseSpec* spec) {
+  if (from == "sample") return;
+  const size_t at = from.find('@');
+  spec->parent = from.substr(0, at);
+  if (at != std::string::npos) spec->parent_stage = from.substr(at + 1);
+  const CaseSpec* parent = programme.Find(spec->parent);
+  const Scale scale = programme.scale;
+  if (!parent) {
+    Fail(origin, case_where + ".from",
+         "= '" + from + "' names no earlier case at scale " + ToString(scale) +
+             ": parents come before their children (and [scale." + ToString(scale) +
+             ".only] keeps a child only with its parent)");
+  }
+  if (spec->parent_stage.empty()) return;
+  bool found = false;
+  for (const std::string& stage : parent->stage_names) found |= stage == spec->parent_stage;
+  if (!found) {
+    std::string known;
+    for (const std::string& stage : parent->stage_names) {
+      known += (known.empty() ? "" : ", ") + stage;
+    }
+    Fail(origin, case_where + ".from",
+         "= '" + from + "': case '" + spec->parent + "' has no stage '" + spec->parent_stage +
+             "' (its stages: " + known + ")");
+  }
+}
+
+// The [[run.stage]] tables of a case, each repeated for its `each` lists;
+// their names go into the case.
+Array ExpandStages(const std::string& origin, const std::string& where, const Array& stages,
+                   const Variables& variables, const ScaleExpansion& expansion, CaseSpec* spec) {
+  Array stage_tables;
+  for (size_t k = 0; k < stages.size(); ++k) {
+    const std::string stage_where = where + ".stage[" + std::to_string(k + 1) + "]";
+    Table stage = TableAt(origin, stage_where, stages[k]);
+    const bool repeats = stage.count("each") > 0;
+    const Value each = repeats ? stage.at("each") : Value();
+    stage.erase("each");
+    for (const Variables& repeat :
+         Combinations(origin, stage_where + ".each", repeats ? &each : nullptr, expansion)) {
+      Variables all = variables;
+      for (const auto& [var, value] : repeat) all[var] = value;
+      Value expanded = Substitute(Value(stage), all, origin, stage_where);
+      const Table& table = expanded.as_table();
+      const std::string stage_name =
+          StringAt(origin, stage_where + ".name", table,
+                   "stage" + std::to_string(stage_tables.size() + 1), false);
+      for (const std::string& existing : spec->stage_names) {
+        if (existing == stage_name) {
+          Fail(origin, stage_where + ".name",
+               "gives '" + stage_name + "' twice in case '" + spec->name + "'");
+        }
+      }
+      spec->stage_names.push_back(stage_name);
+      stage_tables.push_back(expanded);
+    }
+  }
+  if (stage_tables.empty()) {
+    const Scale scale = expansion.scale;
+    Fail(origin, where + ".stage",
+         "gives case '" + spec->name + "' no stage at scale " + ToString(scale) + ": [scale." +
+             ToString(scale) + ".only] leaves its `each` lists empty");
+  }
+  return stage_tables;
+}
+
+// One [[run]] (`where`: "run[K]") into its cases, one per combination of its
+// `vary` lists; `names` holds the case names so far.
+void ExpandRun(const std::string& origin, const std::string& where, const Table& run,
+               const Table& shared, const ScaleExpansion& expansion, std::set<std::string>* names,
+               Programme* programme) {
+  CheckKeys(origin, where + ".", run, {"name", "from", "vary", "figures", "scene", "stage"});
+  const std::string name_template = StringAt(origin, where + ".name", run, "", true);
+  const std::string from_template = StringAt(origin, where + ".from", run, "", true);
+  const FigureSet figures = FigureSet::Parse(StringAt(origin, where + ".figures", run, "", false),
+                                             origin, where + ".figures");
+  const Value* stages = FindKey(run, "stage");
+  if (!stages || !stages->is_array() || stages->as_array().empty()) {
+    Fail(origin, where + ".stage", "is missing: a run needs at least one [[run.stage]]");
+  }
+  Table overrides;
+  if (const Value* scene = FindKey(run, "scene")) {
+    overrides = TableAt(origin, where + ".scene", *scene);
+  }
+  for (Variables variables :
+       Combinations(origin, where + ".vary", FindKey(run, "vary"), expansion)) {
+    CaseSpec spec;
+    spec.run = name_template;
+    spec.figures = figures;
+    for (const auto& [var, value] : variables) spec.variables[var] = ValueText(value);
+    for (const auto& [var, value] : expansion.variables) variables[var] = value;
+    spec.name =
+        Substitute(Value(name_template), variables, origin, where + ".name").as_string().str;
+    if (!ValidName(spec.name)) {
+      Fail(origin, where + ".name",
+           "gives '" + spec.name +
+               "', which is not a valid case name (letters, digits, '_', '-', '.'; not "
+               "'sample')");
+    }
+    if (!names->insert(spec.name).second) {
+      Fail(origin, where + ".name", "gives '" + spec.name + "' twice: case names are unique");
+    }
+    const std::string from =
+        Substitute(Value(from_template), variables, origin, where + ".from").as_string().str;
+    ResolveParent(origin, where + " (case '" + spec.name + "')", from, *programme, &spec);
+    Table scene = shared;
+    MergeInto(scene, Substitute(Value(overrides), variables, origin, where + ".scene").as_table());
+    scene["stage"] =
+        Value(ExpandStages(origin, where, stages->as_array(), variables, expansion, &spec));
+    spec.scene_body = FormatTable(scene);
+    programme->cases.push_back(std::move(spec));
+  }
+}
+
+// [[run]]: every case of the programme, parents before their children.
+void ExpandRuns(const std::string& origin, const Table& top, const ScaleExpansion& expansion,
+                Programme* programme) {
+  const Table shared = SharedScene(origin, top);
+  const Value* runs = FindKey(top, "run");
+  if (!runs || !runs->is_array() || runs->as_array().empty()) {
+    Fail(origin, "run", "is missing: a programme needs at least one [[run]]");
+  }
+  std::set<std::string> names;
+  for (size_t r = 0; r < runs->as_array().size(); ++r) {
+    const std::string where = "run[" + std::to_string(r + 1) + "]";
+    const Table& run = TableAt(origin, where, runs->as_array()[r]);
+    ExpandRun(origin, where, run, shared, expansion, &names, programme);
+  }
+}
+
+// [[model_run]]: the element tests of the constitutive models.
+void ExpandModelRuns(const std::string& origin, const Table& top, const ScaleExpansion& expansion,
+                     Programme* programme) {
+  const Value* models = FindKey(top, "model_run");
+  if (!models) return;
+  if (!models->is_array()) Fail(origin, "model_run", "must be an array of tables [[model_run]]");
+  std::set<std::string> model_names;
+  for (size_t m = 0; m < models->as_array().size(); ++m) {
+    const std::string where = "model_run[" + std::to_string(m + 1) + "]";
+    const Table& entry = TableAt(origin, where, models->as_array()[m]);
+    CheckKeys(origin, where + ".", entry,
+              {"name", "vary", "figures", "model", "initial", "integration", "stage"});
+    const std::string name_template = StringAt(origin, where + ".name", entry, "", true);
+    for (Variables variables :
+         Combinations(origin, where + ".vary", FindKey(entry, "vary"), expansion)) {
+      ModelCaseSpec spec;
+      spec.name =
+          Substitute(Value(name_template), variables, origin, where + ".name").as_string().str;
+      if (!ValidName(spec.name) || !model_names.insert(spec.name).second) {
+        Fail(origin, where + ".name",
+             "gives '" + spec.name + "': model runs need unique, valid folder names");
+      }
+      spec.figures = FigureSet::Parse(StringAt(origin, where + ".figures", entry, "", false),
+                                      origin, where + ".figures");
+      for (const auto& [var, value] : variables) spec.variables[var] = ValueText(value);
+      for (const auto& [var, value] : expansion.variables) variables[var] = value;
+      Table test;
+      for (const char* key : {"model", "initial", "integration", "stage"}) {
+        if (const Value* value = FindKey(entry, key)) {
+          test[key] = Substitute(*value, variables, origin, where + "." + key);
+        }
+      }
+      spec.text = FormatTable(test);
+      programme->model_cases.push_back(std::move(spec));
+    }
+  }
+}
+
 }  // namespace
 
 double SampleSpec::CellSizeMm(int64_t count) const {
@@ -319,266 +648,12 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
   Programme programme;
   programme.origin = origin;
   programme.scale = scale;
-
-  static const Table kEmpty;
-  const Value* study_value = FindKey(top, "study");
-  const Table& study = study_value ? TableAt(origin, "study", *study_value) : kEmpty;
-  CheckKeys(origin, "study.", study, {"name", "description", "ncl"});
-  programme.name = StringAt(origin, "study.name", study, "", true);
-  programme.description = StringAt(origin, "study.description", study, "", false);
-  programme.ncl_case = StringAt(origin, "study.ncl", study, "", false);
-
-  const Value* scales = FindKey(top, "scale");
-  if (!scales) Fail(origin, "scale", "is missing: give [scale.tiny], [scale.small], [scale.paper]");
-  ScaleExpansion expansion;
-  expansion.scale = scale;
-  std::optional<std::set<std::string>> variable_names;  // the same at every scale
-  std::string first_scale;
-  for (const auto& [name, value] : TableAt(origin, "scale", *scales)) {
-    const std::optional<Scale> parsed = FromString<Scale>(name);
-    if (!parsed) {
-      Fail(origin, "scale." + name, "is not a scale: expected " + AllowedNames<Scale>());
-    }
-    const std::string prefix = "scale." + name + ".";
-    const Table& table = TableAt(origin, "scale." + name, value);
-    CheckKeys(origin, prefix, table, {"count", "replicates", "only", "variables"});
-    ScaleSpec spec;
-    if (!FindKey(table, "count")) Fail(origin, prefix + "count", "is missing");
-    spec.count = IntAt(origin, prefix + "count", table, 0, 2, 2000000000);
-    spec.replicates = static_cast<int>(IntAt(origin, prefix + "replicates", table, 1, 1, 1000));
-    std::map<std::string, std::vector<Value>> only;
-    if (const Value* restrictions = FindKey(table, "only")) {
-      for (const auto& [variable, list] : TableAt(origin, prefix + "only", *restrictions)) {
-        const std::string where = prefix + "only." + variable;
-        if (!list.is_array() || list.as_array().empty()) {
-          Fail(origin, where, "must be a non-empty array of the values kept");
-        }
-        for (const Value& item : list.as_array()) {
-          if (!(item.is_string() || item.is_integer() || item.is_floating())) {
-            Fail(origin, where, "must hold numbers or strings, not " + TypeName(item));
-          }
-          only[variable].push_back(item);
-          spec.only[variable].push_back(ValueText(item));
-        }
-      }
-    }
-    Variables variables;
-    std::set<std::string> names;
-    if (const Value* defined = FindKey(table, "variables")) {
-      for (const auto& [variable, item] : TableAt(origin, prefix + "variables", *defined)) {
-        if (item.is_table() || item.is_array()) {
-          Fail(origin, prefix + "variables." + variable,
-               "must be a number, a string or a boolean, not " + TypeName(item));
-        }
-        variables[variable] = item;
-        spec.variables[variable] = ValueText(item);
-        names.insert(variable);
-      }
-    }
-    if (!variable_names) {
-      variable_names = names;
-      first_scale = name;
-    } else if (*variable_names != names) {
-      auto list = [](const std::set<std::string>& set) {
-        std::string text;
-        for (const std::string& n : set) text += (text.empty() ? "" : ", ") + n;
-        return text.empty() ? std::string("none") : text;
-      };
-      Fail(origin, prefix + "variables",
-           "defines " + list(names) + " but [scale." + first_scale + ".variables] defines " +
-               list(*variable_names) + ": every scale gives the same placeholders");
-    }
-    if (*parsed == scale) {
-      expansion.only = std::move(only);
-      expansion.variables = std::move(variables);
-    }
-    programme.scales[*parsed] = spec;
-  }
-  programme.At(scale);  // the scale asked for exists
-  const std::map<std::string, std::set<std::string>> list_values = ListValues(top);
-  for (const auto& [variable, values] : expansion.only) {
-    const std::string where = "scale." + std::string(ToString(scale)) + ".only." + variable;
-    const auto it = list_values.find(variable);
-    if (it == list_values.end()) {
-      Fail(origin, where, "names no variable of a `vary` or `each` list of the programme");
-    }
-    for (const Value& value : values) {
-      if (!it->second.count(ValueKey(value))) {
-        Fail(origin, where,
-             "keeps " + ValueText(value) + ", which no list of '" + variable + "' holds");
-      }
-    }
-  }
-
-  const Value* sample_value = FindKey(top, "sample");
-  const Table& sample = sample_value ? TableAt(origin, "sample", *sample_value) : kEmpty;
-  CheckKeys(origin, "sample.", sample,
-            {"reference_count", "reference_cell_size_mm", "seed", "gsd", "max_attempts"});
-  SampleSpec& s = programme.sample;
-  s.reference_count =
-      IntAt(origin, "sample.reference_count", sample, s.reference_count, 2, 2000000000);
-  s.reference_cell_size_mm =
-      DoubleAt(origin, "sample.reference_cell_size_mm", sample, s.reference_cell_size_mm);
-  s.seed = IntAt(origin, "sample.seed", sample, s.seed, 0, int64_t{1} << 53);
-  s.max_attempts = IntAt(origin, "sample.max_attempts", sample, s.max_attempts, 1, 1000000000);
-  const std::string gsd = StringAt(origin, "sample.gsd", sample, "", false);
-  if (!gsd.empty()) {
-    s.gsd_path = std::filesystem::path(gsd).is_absolute()
-                     ? gsd
-                     : (std::filesystem::path(base_directory) / gsd).lexically_normal().string();
-  }
-
-  Table shared;
-  if (const Value* scene = FindKey(top, "scene")) {
-    shared = TableAt(origin, "scene", *scene);
-    for (const auto& [key, unused] : shared) {
-      if (key == "sample" || key == "stage") {
-        Fail(origin, "scene." + key,
-             "cannot be shared: the sample comes from [sample] or `from`, stages from "
-             "[[run.stage]]");
-      }
-    }
-  }
-
-  const Value* runs = FindKey(top, "run");
-  if (!runs || !runs->is_array() || runs->as_array().empty()) {
-    Fail(origin, "run", "is missing: a programme needs at least one [[run]]");
-  }
-  std::set<std::string> names;
-  for (size_t r = 0; r < runs->as_array().size(); ++r) {
-    const std::string where = "run[" + std::to_string(r + 1) + "]";
-    const Table& run = TableAt(origin, where, runs->as_array()[r]);
-    CheckKeys(origin, where + ".", run, {"name", "from", "vary", "figures", "scene", "stage"});
-    const std::string name_template = StringAt(origin, where + ".name", run, "", true);
-    const std::string from_template = StringAt(origin, where + ".from", run, "", true);
-    const FigureSet figures = FigureSet::Parse(StringAt(origin, where + ".figures", run, "", false),
-                                               origin, where + ".figures");
-    const Value* stages = FindKey(run, "stage");
-    if (!stages || !stages->is_array() || stages->as_array().empty()) {
-      Fail(origin, where + ".stage", "is missing: a run needs at least one [[run.stage]]");
-    }
-    Table overrides;
-    if (const Value* scene = FindKey(run, "scene")) {
-      overrides = TableAt(origin, where + ".scene", *scene);
-    }
-    for (Variables variables :
-         Combinations(origin, where + ".vary", FindKey(run, "vary"), expansion)) {
-      CaseSpec spec;
-      spec.run = name_template;
-      spec.figures = figures;
-      for (const auto& [var, value] : variables) spec.variables[var] = ValueText(value);
-      for (const auto& [var, value] : expansion.variables) variables[var] = value;
-      spec.name =
-          Substitute(Value(name_template), variables, origin, where + ".name").as_string().str;
-      const std::string case_where = where + " (case '" + spec.name + "')";
-      if (!ValidName(spec.name)) {
-        Fail(origin, where + ".name",
-             "gives '" + spec.name +
-                 "', which is not a valid case name (letters, digits, '_', '-', '.'; not "
-                 "'sample')");
-      }
-      if (!names.insert(spec.name).second) {
-        Fail(origin, where + ".name", "gives '" + spec.name + "' twice: case names are unique");
-      }
-      const std::string from =
-          Substitute(Value(from_template), variables, origin, where + ".from").as_string().str;
-      if (from != "sample") {
-        const size_t at = from.find('@');
-        spec.parent = from.substr(0, at);
-        if (at != std::string::npos) spec.parent_stage = from.substr(at + 1);
-        const CaseSpec* parent = programme.Find(spec.parent);
-        if (!parent) {
-          Fail(origin, case_where + ".from",
-               "= '" + from + "' names no earlier case at scale " + ToString(scale) +
-                   ": parents come before their children (and [scale." + ToString(scale) +
-                   ".only] keeps a child only with its parent)");
-        }
-        if (!spec.parent_stage.empty()) {
-          bool found = false;
-          for (const std::string& stage : parent->stage_names) found |= stage == spec.parent_stage;
-          if (!found) {
-            std::string known;
-            for (const std::string& stage : parent->stage_names) {
-              known += (known.empty() ? "" : ", ") + stage;
-            }
-            Fail(origin, case_where + ".from",
-                 "= '" + from + "': case '" + spec.parent + "' has no stage '" + spec.parent_stage +
-                     "' (its stages: " + known + ")");
-          }
-        }
-      }
-      Table scene = shared;
-      MergeInto(scene,
-                Substitute(Value(overrides), variables, origin, where + ".scene").as_table());
-      Array stage_tables;
-      for (size_t k = 0; k < stages->as_array().size(); ++k) {
-        const std::string stage_where = where + ".stage[" + std::to_string(k + 1) + "]";
-        Table stage = TableAt(origin, stage_where, stages->as_array()[k]);
-        const bool repeats = stage.count("each") > 0;
-        const Value each = repeats ? stage.at("each") : Value();
-        stage.erase("each");
-        for (const Variables& repeat :
-             Combinations(origin, stage_where + ".each", repeats ? &each : nullptr, expansion)) {
-          Variables all = variables;
-          for (const auto& [var, value] : repeat) all[var] = value;
-          Value expanded = Substitute(Value(stage), all, origin, stage_where);
-          const Table& table = expanded.as_table();
-          const std::string stage_name =
-              StringAt(origin, stage_where + ".name", table,
-                       "stage" + std::to_string(stage_tables.size() + 1), false);
-          for (const std::string& existing : spec.stage_names) {
-            if (existing == stage_name) {
-              Fail(origin, stage_where + ".name",
-                   "gives '" + stage_name + "' twice in case '" + spec.name + "'");
-            }
-          }
-          spec.stage_names.push_back(stage_name);
-          stage_tables.push_back(expanded);
-        }
-      }
-      if (stage_tables.empty()) {
-        Fail(origin, where + ".stage",
-             "gives case '" + spec.name + "' no stage at scale " + ToString(scale) + ": [scale." +
-                 ToString(scale) + ".only] leaves its `each` lists empty");
-      }
-      scene["stage"] = Value(stage_tables);
-      spec.scene_body = FormatTable(scene);
-      programme.cases.push_back(std::move(spec));
-    }
-  }
-  if (const Value* models = FindKey(top, "model_run")) {
-    if (!models->is_array()) Fail(origin, "model_run", "must be an array of tables [[model_run]]");
-    std::set<std::string> model_names;
-    for (size_t m = 0; m < models->as_array().size(); ++m) {
-      const std::string where = "model_run[" + std::to_string(m + 1) + "]";
-      const Table& entry = TableAt(origin, where, models->as_array()[m]);
-      CheckKeys(origin, where + ".", entry,
-                {"name", "vary", "figures", "model", "initial", "integration", "stage"});
-      const std::string name_template = StringAt(origin, where + ".name", entry, "", true);
-      for (Variables variables :
-           Combinations(origin, where + ".vary", FindKey(entry, "vary"), expansion)) {
-        ModelCaseSpec spec;
-        spec.name =
-            Substitute(Value(name_template), variables, origin, where + ".name").as_string().str;
-        if (!ValidName(spec.name) || !model_names.insert(spec.name).second) {
-          Fail(origin, where + ".name",
-               "gives '" + spec.name + "': model runs need unique, valid folder names");
-        }
-        spec.figures = FigureSet::Parse(StringAt(origin, where + ".figures", entry, "", false),
-                                        origin, where + ".figures");
-        for (const auto& [var, value] : variables) spec.variables[var] = ValueText(value);
-        for (const auto& [var, value] : expansion.variables) variables[var] = value;
-        Table test;
-        for (const char* key : {"model", "initial", "integration", "stage"}) {
-          if (const Value* value = FindKey(entry, key)) {
-            test[key] = Substitute(*value, variables, origin, where + "." + key);
-          }
-        }
-        spec.text = FormatTable(test);
-        programme.model_cases.push_back(std::move(spec));
-      }
-    }
-  }
+  ParseStudy(origin, top, &programme);
+  const ScaleExpansion expansion = ParseScales(origin, top, scale, &programme);
+  CheckRestrictions(origin, top, expansion);
+  ParseSample(origin, top, base_directory, &programme.sample);
+  ExpandRuns(origin, top, expansion, &programme);
+  ExpandModelRuns(origin, top, expansion, &programme);
   if (programme.cases.empty()) {
     Fail(origin, "scale." + std::string(ToString(scale)) + ".only",
          "leaves the programme no case at this scale");

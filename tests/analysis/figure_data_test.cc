@@ -7,7 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "analysis/rate_study.h"
+#include "analysis/quasi_static_selection.h"
+#include "analysis/rate_files.h"
 #include "common/error.h"
 #include "common/text_file.h"
 #include "study/state_table.h"

@@ -10,6 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "analysis/quasi_static_selection.h"
+#include "analysis/rate_cases.h"
+#include "analysis/rate_files.h"
 #include "common/csv_table.h"
 #include "common/error.h"
 #include "common/statistics.h"
@@ -467,45 +470,6 @@ TEST(RateStudy, UsableStatesFollowTheStatusesAndFlags) {
   EXPECT_EQ(study.ReferenceModulus(), 500);
 }
 
-TEST(ServesRateStudy, NamesTheRateFigureKey) {
-  EXPECT_TRUE(ServesRateStudy("rate"));
-  EXPECT_TRUE(ServesRateStudy("10, rate"));
-  EXPECT_FALSE(ServesRateStudy("10, 16"));
-  // An entry that names nothing the paper has is an error, not "no".
-  EXPECT_THROW(ServesRateStudy("rates"), InputError);
-}
-
-TEST(WriteRateFiles, TheStatesReadBackAndEveryTableHasItsRows) {
-  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "write";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const RateStudy study = RateStudy::Analyse(CriticalStates());
-  WriteRateFiles(dir.string(), study);
-  const std::vector<RateState> back = ReadRateStates(dir.string());
-  ASSERT_EQ(back.size(), study.states.size());
-  for (size_t k = 0; k < back.size(); ++k) {
-    EXPECT_EQ(back[k].rule, study.states[k].rule);
-    EXPECT_EQ(back[k].start_p_kpa, study.states[k].start_p_kpa);
-    EXPECT_NEAR(back[k].psi_sigma_deg, study.states[k].psi_sigma_deg, 1e-8);
-    EXPECT_NEAR(back[k].ln_1_plus_e, study.states[k].ln_1_plus_e, 1e-9);
-  }
-  // The analysis of what was read back is the same.
-  const RateStudy again = RateStudy::Analyse(back);
-  ASSERT_EQ(again.verdicts.size(), study.verdicts.size());
-  EXPECT_EQ(again.verdicts[0].verdict, study.verdicts[0].verdict);
-  auto rows = [&dir](const char* name) {
-    const CsvTextTable table = CsvTextTable::ReadFile((dir / name).string());
-    return table.rows.size();
-  };
-  EXPECT_EQ(rows(kRateSummaryFile), study.groups.size());
-  EXPECT_EQ(rows(kRateLinesFile), study.lines.size());
-  EXPECT_EQ(rows(kRateQuasiStaticFile), study.quasi_static.size());
-  EXPECT_EQ(rows(kRateIndependenceFile), 2u);
-  const CsvTextTable verdicts = CsvTextTable::ReadFile((dir / kRateIndependenceFile).string());
-  EXPECT_EQ(verdicts.rows[0][verdicts.Column("verdict")], "rate_dependent");
-  EXPECT_EQ(verdicts.rows[0][verdicts.Column("psi_sigma_deg_agreement")], "differ");
-}
-
 TEST(ExtensionSweep, TheLimitDIsTheRootOfTheLineThroughTheLastSteps) {
   const RateStudy study = RateStudy::Analyse(rate_fixture::ExtensionSweep());
   ASSERT_EQ(study.extension_limits.size(), 2u);  // from 20 and from 100 kPa
@@ -567,74 +531,6 @@ TEST(ExtensionSweep, ASweepThatLiquefiesFirstSaysWhere) {
   EXPECT_EQ(beyond.extension_limits[0].result, "not_reached");
   EXPECT_NE(beyond.extension_limits[0].Text().find("beyond"), std::string::npos);
   EXPECT_TRUE(RateStudy::Analyse(CriticalStates()).extension_limits.empty());
-}
-
-TEST(ExtensionSweep, BothFilesHaveTheirRows) {
-  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "extension";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const RateStudy study = RateStudy::Analyse(rate_fixture::ExtensionSweep());
-  WriteRateFiles(dir.string(), study);
-  const CsvTextTable steps = CsvTextTable::ReadFile((dir / kRateExtensionFile).string());
-  EXPECT_EQ(steps.rows.size(), 9u);
-  EXPECT_EQ(steps.rows[2][steps.Column("status")], "liquefied");
-  const CsvTextTable limits = CsvTextTable::ReadFile((dir / kRateExtensionLimitFile).string());
-  ASSERT_EQ(limits.rows.size(), 2u);
-  EXPECT_EQ(limits.rows[1][limits.Column("result")], "limit_d");
-  EXPECT_NEAR(std::stod(limits.rows[1][limits.Column("psi_d_deg_mean")]), 120.0, 1e-6);
-  EXPECT_NE(limits.rows[0][limits.Column("text")].find("liquefied at psi_epsilon = 110"),
-            std::string::npos);
-}
-
-TEST(QuasiStatic, TheSmallestRateWithACslFromTwoStartsIsTheCalibratedSet) {
-  std::vector<RateState> states = CriticalStates();
-  for (RateState& s : states) {
-    s.case_name = fmt::format("nc{:g}_psi90_{}{:g}", s.start_p_kpa,
-                              s.rule == dem::RateRule::kInertial ? "I" : "D", s.rate());
-  }
-  // At 3e-4 only one start keeps usable states: 1e-3 is the smallest with a CSL.
-  for (RateState& s : states) {
-    if (s.rule == dem::RateRule::kInertial && s.inertial_number == 3e-4 && s.start_p_kpa == 20) {
-      s.flags = "gas";
-    }
-  }
-  RateStudy study = RateStudy::Analyse(states);
-  // The drained cases: at the slowest axial rate of each σ_r, except at
-  // 20 kPa, where the slowest has no usable state (a gas) and the next is
-  // taken; another modulus stays out.
-  std::vector<DrainedState> drained = DrainedStates(0.0);
-  for (DrainedState& s : drained) {
-    if (s.radial_stress_kpa == 20 && s.inertial_number_dmax == 3e-4) s.flags = "gas";
-  }
-  DrainedState soft = drained.front();
-  soft.youngs_modulus_mpa = 100;
-  soft.case_name = "nc5_drained_soft";
-  drained.push_back(soft);
-  study.drained = DrainedStudy::Analyse(drained, study.options);
-  const QuasiStaticSelection chosen = SelectQuasiStatic(study);
-  ASSERT_TRUE(chosen.valid()) << chosen.reason;
-  EXPECT_EQ(chosen.inertial_number, 1e-3);
-  EXPECT_EQ(chosen.youngs_modulus_mpa, 500);
-  EXPECT_EQ(chosen.cases, (std::vector<std::string>{"nc20_psi90_I0.001", "nc100_psi90_I0.001"}));
-  EXPECT_EQ(chosen.drained_cases,
-            (std::vector<std::string>{"nc5_drained_I0.0003", "nc20_drained_I0.001",
-                                      "nc100_drained_I0.0003", "nc500_drained_I0.0003"}));
-  // Asked for: any I* the study has, also one without a CSL.
-  EXPECT_EQ(SelectQuasiStatic(study, 3e-4).cases.size(), 2u);
-  const QuasiStaticSelection none = SelectQuasiStatic(study, 0.5);
-  EXPECT_FALSE(none.valid());
-  EXPECT_NE(none.reason.find("no rate case runs at I* = 0.5"), std::string::npos) << none.reason;
-  EXPECT_NE(none.reason.find("0.0003, 0.001, 0.003, 0.01"), std::string::npos) << none.reason;
-  // Written and read back.
-  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "selection";
-  fs::remove_all(dir);
-  EXPECT_FALSE(ReadQuasiStaticSelection(dir.string()).has_value());
-  WriteQuasiStaticSelection(dir.string(), chosen);
-  const std::optional<QuasiStaticSelection> back = ReadQuasiStaticSelection(dir.string());
-  ASSERT_TRUE(back.has_value());
-  EXPECT_EQ(back->inertial_number, 1e-3);
-  EXPECT_EQ(back->cases, chosen.cases);
-  EXPECT_EQ(back->drained_cases, chosen.drained_cases);
 }
 
 TEST(DrainedStudy, LimitsAsIGoesToZeroAndTheQuasiStaticCriticalState) {
@@ -713,83 +609,6 @@ TEST(DrainedStudy, UnusableStatesAreLeftOutAndAStartNeedsTwoRates) {
   EXPECT_NE(d.limits[0].reason.find("0 usable of 3"), std::string::npos) << d.limits[0].reason;
   EXPECT_EQ(d.limits[1].points, 6);  // 20 kPa without replicate 1
   EXPECT_EQ(d.critical.at(0).starts, 3);
-}
-
-TEST(DrainedStudy, TheFilesReadBackAndMalformedNumbersNameTheLine) {
-  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "drained";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  EXPECT_TRUE(ReadDrainedStates(dir.string()).empty());
-  RateStudy study = RateStudy::Analyse(CriticalStates());
-  study.drained = DrainedStudy::Analyse(DrainedStates(4.0), study.options);
-  WriteRateFiles(dir.string(), study);
-  const std::vector<DrainedState> back = ReadDrainedStates(dir.string());
-  ASSERT_EQ(back.size(), study.drained.states.size());
-  const DrainedStudy again = DrainedStudy::Analyse(back, study.options);
-  EXPECT_NEAR(again.critical.at(0).m.mean, kM0, 1e-8);
-  EXPECT_NEAR(again.critical.at(0).lambda.mean, kLambda, 1e-7);
-  auto table = [&dir](const char* name) { return CsvTextTable::ReadFile((dir / name).string()); };
-  EXPECT_EQ(table(kRateDrainedFile).rows.size(), 12u);
-  EXPECT_EQ(table(kRateDrainedLimitFile).rows.size(), 4u);
-  const CsvTextTable critical = table(kRateDrainedCriticalFile);
-  ASSERT_EQ(critical.rows.size(), 1u);
-  EXPECT_NEAR(std::stod(critical.rows[0][critical.Column("m_mean")]), kM0, 1e-8);
-  EXPECT_NE(study.Text().find("drained critical state as I -> 0, E 500 MPa: M = 0.920"),
-            std::string::npos)
-      << study.Text();
-  // A malformed number names the file, its line and the column.
-  std::string text;
-  {
-    std::ifstream in(dir / kRateDrainedStatesFile);
-    text.assign(std::istreambuf_iterator<char>(in), {});
-  }
-  const size_t at = text.find(",500,5,");
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, 7, ",500,five,");
-  std::ofstream(dir / kRateDrainedStatesFile) << text;
-  try {
-    ReadDrainedStates(dir.string());
-    FAIL() << "accepted a malformed number";
-  } catch (const InputError& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(kRateDrainedStatesFile), std::string::npos) << message;
-    EXPECT_NE(message.find("line 3"), std::string::npos) << message;
-    EXPECT_NE(message.find("radial_stress_kpa"), std::string::npos) << message;
-  }
-}
-
-TEST(ReadRateStates, MalformedNumbersNameTheFileAndLine) {
-  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "read";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  EXPECT_TRUE(ReadRateStates(dir.string()).empty());  // no file: no rate study
-  const std::string header =
-      "replicate,case_name,stage,kind,status,youngs_modulus_mpa,psi_epsilon_deg,start_p_kpa,"
-      "rate_rule,inertial_number_target,stretching_rate_per_s,p_kpa,e,ln_1_plus_e,"
-      "psi_sigma_deg,q_over_p,ocr,inertial_number_dmin,inertial_number_dmax,stiffness_number,"
-      "flags\n";
-  std::ofstream(dir / kRateStatesFile)
-      << "# comment\n"
-      << header
-      << "1,nc20_psi90_I0.001,psi90,csl,detected,500,90,20,inertial,0.001,167,6,0.7,0.53,25.4,"
-         "1.0,1.9,0.0002,0.001,41666,\n";
-  const std::vector<RateState> states = ReadRateStates(dir.string());
-  ASSERT_EQ(states.size(), 1u);
-  EXPECT_EQ(states[0].rule, dem::RateRule::kInertial);
-  EXPECT_DOUBLE_EQ(states[0].rate(), 0.001);
-  EXPECT_DOUBLE_EQ(states[0].start_p_kpa, 20);
-  std::ofstream(dir / kRateStatesFile)
-      << header
-      << "1,c,s,csl,detected,500,90,twenty,inertial,0.001,167,6,0.7,0.53,25.4,1.0,1.9,0.0002,"
-         "0.001,41666,\n";
-  try {
-    ReadRateStates(dir.string());
-    FAIL() << "accepted a malformed number";
-  } catch (const InputError& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find("line 2"), std::string::npos) << message;
-    EXPECT_NE(message.find("start_p_kpa"), std::string::npos) << message;
-  }
 }
 
 }  // namespace

@@ -7,7 +7,8 @@
 #include <fstream>
 #include <string>
 
-#include "analysis/rate_study.h"
+#include "analysis/quasi_static_selection.h"
+#include "analysis/rate_files.h"
 #include "common/error.h"
 #include "common/text_file.h"
 #include "tests/analysis/rate_states_fixture.h"

@@ -1,0 +1,201 @@
+// The checks of the DEM (paper Fig. 8 and Sec. 5, Figs. 20-22): analysis/figure_families.h.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <set>
+
+#include "analysis/figure_families.h"
+#include "common/hdf5_file.h"
+#include "common/time_series.h"
+#include "dem/run_record_names.h"
+
+namespace granasym::analysis::figures {
+namespace {
+
+// The counterpart of a variant case: "phi0_nc100_psi90" → "nc100_psi90",
+// "ncl_phi0" → "ncl".
+std::string Counterpart(const std::string& name, const std::string& tag) {
+  if (name.rfind(tag + "_", 0) == 0) return name.substr(tag.size() + 1);
+  const std::string suffix = "_" + tag;
+  if (name.size() > suffix.size() &&
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
+    return name.substr(0, name.size() - suffix.size());
+  }
+  return "";
+}
+
+// Variant cases (tag) against their counterparts: NCLs in ln(1+e)–p and the
+// 90° paths in a second panel.
+FigureSpec Variants(const Context& ctx, FigureSpec spec, const std::string& tag,
+                    const std::function<std::string(const CaseData&)>& label) {
+  BlockFile ncl({"p_kpa", "ln_1_plus_e"});
+  BlockFile paths({"p_kpa", "q_kpa", "psi_sigma_deg", "eps_s"});
+  std::vector<const CaseData*> pairs;
+  for (const CaseData* c : ctx.Serving(spec.figure)) {
+    const std::string other = Counterpart(c->name, tag);
+    const CaseData* reference = FindCase(ctx.cases, 1, other);
+    if (reference && reference->finished && !reference->path.empty()) pairs.push_back(reference);
+    pairs.push_back(c);
+  }
+  for (const CaseData* c : pairs) {
+    const bool is_ncl = std::abs(c->NominalPsiEpsilon()) < 0.5;
+    const std::string title =
+        label(*c) + (is_ncl ? "" : ", " + DirectionLabel(*c) + ", " + StartLabel(ctx.cases, *c));
+    if (is_ncl) {
+      ncl.Add(title, Rows({&c->path.p, &c->path.ln_v}));
+    } else {
+      paths.Add(title, Rows({&c->path.p, &c->path.q, &c->path.psi_sigma, &c->path.eps_s}));
+    }
+  }
+  if (ncl.blocks() == 0 && paths.blocks() == 0) {
+    return NotDrawn(spec, "no finished case serves " + spec.figure);
+  }
+  if (ncl.blocks() == 0 || paths.blocks() == 0) {
+    return NotDrawn(spec, ncl.blocks() == 0 ? "no NCL to compare" : "no ψ_ε = 90° path to compare");
+  }
+  ncl.Write(ctx.File(spec.stem + "_ncl.tsv"));
+  paths.Write(ctx.File(spec.stem + "_paths.tsv"));
+  Set(&spec, "stem", spec.stem);
+  Set(&spec, "n_ncl", ncl.blocks());
+  Set(&spec, "n_paths", paths.blocks());
+  return spec;
+}
+
+}  // namespace
+
+FigureSpec Fig08(const Context& ctx) {
+  FigureSpec spec =
+      Spec("fig08_overlaps", "8", "Relative overlaps along the isotropic NCL",
+           "Frequency of relative overlaps Δu/(r_i + r_j) among the contacts (a) at the end "
+           "of each ψ_ε = 0° stage of the NCL case (replicate 1, /series_histogram), and "
+           "(b) the coordination number against p along the same path. The paper takes "
+           "2 % as the limit of accuracy and 10 % as unreliable.",
+           "overlaps.gp");
+  const CaseData* ncl = FindCase(ctx.cases, 1, ctx.study_ncl);
+  if (!ncl || !ncl->finished) return NotDrawn(spec, "the NCL case has no result");
+  const Hdf5File file = Hdf5File::OpenRead(ncl->directory + "/result.h5");
+  const std::string edges_name = std::string(dem::record::kSeriesHistogram) + "/edges";
+  if (!file.Exists(edges_name)) return NotDrawn(spec, "the NCL case has no overlap histograms");
+  const std::vector<double> edges = file.ReadDoubles(edges_name);
+  const std::vector<double> counts = dem::ReadHistogramRows(file);
+  const size_t bins = edges.size() - 1;
+  BlockFile histograms({"relative_overlap", "fraction", "contacts"});
+  for (const dem::StageRecord& stage : ncl->stages) {
+    const size_t row = static_cast<size_t>(stage.last_row);
+    if ((row + 1) * bins > counts.size()) continue;
+    double total = 0;
+    for (size_t b = 0; b < bins; ++b) total += counts[row * bins + b];
+    if (!(total > 0)) continue;
+    std::vector<std::vector<double>> rows;
+    for (size_t b = 0; b < bins; ++b) {
+      const double centre = edges[b] > 0 ? std::sqrt(edges[b] * edges[b + 1]) : edges[b + 1] / 2;
+      rows.push_back({centre, counts[row * bins + b] / total, counts[row * bins + b]});
+    }
+    histograms.Add(fmt::format("p = {} kPa", Short(stage.validity.final_mean_stress_kpa)), rows);
+  }
+  if (histograms.blocks() == 0) return NotDrawn(spec, "the NCL histograms are empty");
+  histograms.Write(ctx.File("fig08_histograms.tsv"));
+  const TimeSeries series = TimeSeries::Read(file, dem::record::kSeries);
+  BlockFile contacts({"p_kpa", "coordination", "contacts"});
+  const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
+  const std::vector<double>& z = series.Values(dem::record::kColumnCoordination);
+  const std::vector<double>& n = series.Values(dem::record::kColumnContacts);
+  std::vector<std::vector<double>> rows;
+  for (size_t k = 0; k < p.size(); ++k) {
+    if (p[k] > 0) rows.push_back({p[k], z[k], n[k]});
+  }
+  contacts.Add("ψ_ε = 0°", rows);
+  contacts.Write(ctx.File("fig08_contacts.tsv"));
+  Set(&spec, "n_histograms", histograms.blocks());
+  Set(&spec, "has_contacts", contacts.blocks());
+  return spec;
+}
+
+FigureSpec Fig20(const Context& ctx) {
+  FigureSpec spec =
+      Spec("fig20_friction", "20", "Contact friction φ = 0 against φ = 0.5 rad",
+           "(a) The isotropic NCL in ln(1+e) against p and (b) the stress paths q against "
+           "p of the ψ_ε = 90° tests from NC states, for frictionless contacts (cases "
+           "serving Fig. 20) and the paper's φ = 0.5 rad (the same cases without the "
+           "phi0 tag), replicate 1.",
+           "friction.gp");
+  return Variants(ctx, spec, "phi0", [](const CaseData& c) {
+    return c.name.find("phi0") != std::string::npos ? "φ = 0" : "φ = 0.5 rad";
+  });
+}
+
+FigureSpec Sec52(const Context& ctx) {
+  FigureSpec spec =
+      Spec("sec52_time_step", "Sec. 5.2", "Time-step independence: Δt against Δt/5",
+           "(a) The isotropic NCL in ln(1+e) against p and (b) ψ_σ against the shear "
+           "strain ε_s of the ψ_ε = 90° path from NC 100 kPa, with the programme's time "
+           "step and with a fifth of it (cases serving Sec. 5.2 against the same cases "
+           "without the dt5 tag), replicate 1.",
+           "time_step.gp");
+  return Variants(ctx, spec, "dt5",
+                  [](const CaseData& c) { return fmt::format("Δt = {:.3g} s", c.time_step); });
+}
+
+// The paper's Fig. 21 is da Cruz et al.'s μ*(I) from plane shear; the study's
+// own counterpart is the critical-state stress ratio against I.
+FigureSpec Fig21(const Context& ctx) {
+  FigureSpec spec = Spec("fig21_friction_inertial", "21",
+                         "Critical-state stress ratio against the inertial number",
+                         "The stress ratio M = q/p of the detected isochoric (ψ_ε = 90°) and "
+                         "drained triaxial asymptotic states, all replicates, against their "
+                         "inertial number for the smallest and the largest diameter: the study's "
+                         "counterpart of the paper's Fig. 21 (da Cruz et al.'s μ*(I), which "
+                         "grows with I beyond about 10^{-2}).",
+                         "friction_inertial.gp");
+  BlockFile file({"inertial_number", "q_over_p"});
+  std::vector<std::vector<double>> dmin, dmax;
+  for (const StateRow& row : ctx.states) {
+    if ((row.kind != TableKind::kCsl && row.kind != TableKind::kTriaxial) ||
+        row.status != TableStatus::kDetected) {
+      continue;
+    }
+    if (!(row.q_over_p > 0)) continue;
+    if (row.inertial_number_dmin > 0) dmin.push_back({row.inertial_number_dmin, row.q_over_p});
+    if (row.inertial_number_dmax > 0) dmax.push_back({row.inertial_number_dmax, row.q_over_p});
+  }
+  if (dmin.empty() && dmax.empty()) {
+    return NotDrawn(spec, "no detected isochoric or triaxial asymptotic state");
+  }
+  file.Add("I(d_{min})", dmin);
+  file.Add("I(d_{max})", dmax);
+  file.Write(ctx.File("fig21_friction_inertial.tsv"));
+  return spec;
+}
+
+FigureSpec Fig22(const Context& ctx) {
+  FigureSpec spec =
+      Spec("fig22_inertial_number", "22", "Inertial number against mean stress",
+           "The inertial number I = ‖D‖ d √(2ρ_s/p) (paper Eq. 5) for the smallest and the "
+           "largest particle diameter along the cases serving Figs. 21–22 (the isotropic "
+           "NCL, replicate 1), with I = 10^{-2} (quasi-static) and the stricter 10^{-3}.",
+           "inertial.gp");
+  BlockFile file({"p_kpa", "inertial_number"});
+  std::set<const CaseData*> cases;
+  for (const char* f : {"21", "22"}) {
+    for (const CaseData* c : ctx.Serving(f)) cases.insert(c);
+  }
+  for (const CaseData* c : cases) {
+    auto positive = [&](const std::vector<double>& i) {
+      std::vector<std::vector<double>> rows;
+      for (size_t k = 0; k < c->path.p.size(); ++k) {
+        if (c->path.p[k] > 0 && i[k] > 0) rows.push_back({c->path.p[k], i[k]});
+      }
+      return rows;
+    };
+    file.Add("d_{min}, " + DirectionLabel(*c), positive(c->path.i_dmin));
+    file.Add("d_{max}, " + DirectionLabel(*c), positive(c->path.i_dmax));
+  }
+  if (file.blocks() == 0) return NotDrawn(spec, "no finished case serves Figs. 21-22");
+  file.Write(ctx.File("fig22_inertial.tsv"));
+  Set(&spec, "n_curves", file.blocks());
+  return spec;
+}
+
+}  // namespace granasym::analysis::figures

@@ -1,0 +1,273 @@
+#include "analysis/figure_context.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "common/hdf5_file.h"
+#include "common/text_file.h"
+#include "common/time_series.h"
+#include "dem/run_record_names.h"
+#include "study/study_folder.h"
+
+namespace granasym::analysis::figures {
+using study::CaseRecord;
+using study::ReadCaseRecords;
+namespace fs = std::filesystem;
+namespace {
+
+std::string Clean(std::string s) {
+  for (char& c : s) {
+    if (c == '\t' || c == '\n') c = ' ';
+  }
+  return s;
+}
+
+std::string Quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+double AttributeOr(const Hdf5File& file, const std::string& group, const char* name,
+                   double fallback) {
+  return file.HasAttribute(group, name) ? file.ReadDoubleAttribute(group, name) : fallback;
+}
+
+Path ReadPath(const TimeSeries& series, int64_t first, int64_t last, int half_rows) {
+  Path path;
+  if (series.rows() == 0 || last < first) return path;
+  first = std::max<int64_t>(first, 0);
+  last = std::min<int64_t>(last, static_cast<int64_t>(series.rows()) - 1);
+  auto slice = [&](const char* name) {
+    const std::vector<double>& v = series.Values(name);
+    return std::vector<double>(v.begin() + first, v.begin() + last + 1);
+  };
+  path.p = slice(dem::record::kColumnMeanStress);
+  path.ln_v = slice(dem::record::kColumnLnVolume);
+  path.psi_sigma = slice(dem::record::kColumnPsiSigma);
+  path.q = slice(dem::record::kColumnDeviator);
+  path.i_dmin = slice(dem::record::kColumnInertialNumberDmin);
+  path.i_dmax = slice(dem::record::kColumnInertialNumberDmax);
+  const std::vector<double> eps_a = slice(dem::record::kColumnAxialStrain),
+                            eps_r = slice(dem::record::kColumnRadialStrain);
+  path.eps_s.resize(eps_a.size());
+  for (size_t k = 0; k < eps_a.size(); ++k) {
+    path.eps_s[k] = 2.0 * ((eps_a[k] - eps_a[0]) - (eps_r[k] - eps_r[0])) / 3.0;
+  }
+  path.psi_epsilon = PathPsiEpsilon(eps_a, eps_r, half_rows);
+  return path;
+}
+
+std::vector<CaseData> LoadCases(const std::string& directory, int half_rows) {
+  std::vector<CaseData> cases;
+  for (const CaseRecord& record : ReadCaseRecords(directory)) {
+    const fs::path folder(record.directory);
+    CaseData c;
+    c.directory = record.directory;
+    c.name = record.name;
+    c.replicate = record.replicate;
+    c.figures = record.figures;
+    c.parent_name = record.parent_name();
+    c.parent_stage = record.parent_stage;
+    c.finished = record.Done().finished;
+    if (c.finished) {
+      const Hdf5File file = Hdf5File::OpenRead((folder / "result.h5").string());
+      c.stages = dem::ReadStageRecords(file);
+      for (size_t k = 0; k < c.stages.size(); ++k) {
+        const std::string group = dem::StageGroup(k);
+        c.stage_psi_epsilon.push_back(AttributeOr(file, group, dem::record::kStagePsiEpsilonDeg,
+                                                  std::numeric_limits<double>::quiet_NaN()));
+        c.stage_radial_stress.push_back(AttributeOr(file, group, dem::record::kStageRadialStressKpa,
+                                                    std::numeric_limits<double>::quiet_NaN()));
+      }
+      c.time_step = dem::ReadSummary(file).time_step;
+      const TimeSeries series = TimeSeries::Read(file, dem::record::kSeries);
+      if (!c.stages.empty()) {
+        c.path = ReadPath(series, c.stages.front().first_row, c.stages.back().last_row, half_rows);
+      }
+    }
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+// The NCL of a replicate and NCL case from DIR/asymptotic_states.h5.
+std::map<std::pair<int, std::string>, NclLine> ReadNclFits(const std::string& directory) {
+  std::map<std::pair<int, std::string>, NclLine> fits;
+  const Hdf5File file = Hdf5File::OpenRead(directory + "/asymptotic_states.h5");
+  if (!file.Exists("/ncl_fit/N")) return fits;
+  const std::vector<int64_t> replicate = file.ReadInts("/ncl_fit/replicate");
+  const std::vector<std::string> names = file.ReadStrings("/ncl_fit/case");
+  const std::vector<double> n = file.ReadDoubles("/ncl_fit/N");
+  const std::vector<double> lambda = file.ReadDoubles("/ncl_fit/lambda_star");
+  for (size_t k = 0; k < replicate.size() && k < names.size() && k < n.size() && k < lambda.size();
+       ++k) {
+    if (std::isfinite(n[k]) && std::isfinite(lambda[k]) && lambda[k] > 0) {
+      fits[{static_cast<int>(replicate[k]), names[k]}] = NclLine{n[k], lambda[k]};
+    }
+  }
+  return fits;
+}
+
+std::string StudyNclName(const std::string& directory) {
+  return study::StudyNclCase(directory).value_or("ncl");
+}
+
+}  // namespace
+
+void BlockFile::Add(const std::string& title, const std::vector<std::vector<double>>& rows) {
+  std::string block;
+  for (size_t k = 0; k < columns_.size(); ++k) block += columns_[k] + "\t";
+  block += Clean(title) + "\n";
+  int kept = 0;
+  for (const std::vector<double>& row : rows) {
+    if (row.empty()) {  // a break in the curve (one blank line)
+      if (kept > 0) block += "\n";
+      continue;
+    }
+    bool finite = true;
+    for (double v : row) finite = finite && std::isfinite(v);
+    if (!finite) continue;
+    for (size_t k = 0; k < row.size(); ++k) {
+      block += fmt::format("{}{:.8g}", k ? "\t" : "", row[k]);
+    }
+    block += "\n";
+    ++kept;
+  }
+  if (kept == 0) return;
+  text_ += (blocks_ ? "\n\n" : "") + block;
+  ++blocks_;
+  titles_ += (titles_.empty() ? "\"" : " \"") + Clean(title) + "\"";
+}
+
+void BlockFile::Write(const std::string& path) const { WriteTextFileAtomically(path, text_); }
+
+std::vector<std::vector<double>> Rows(std::initializer_list<const std::vector<double>*> columns) {
+  std::vector<std::vector<double>> rows;
+  const size_t n = (*columns.begin())->size();
+  for (size_t k = 0; k < n; ++k) {
+    std::vector<double> row;
+    for (const std::vector<double>* column : columns) row.push_back((*column)[k]);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string Short(double v) {
+  if (!std::isfinite(v)) return "?";
+  const double a = std::abs(v);
+  if (a >= 10) return fmt::format("{:.0f}", v);
+  if (a >= 1) return fmt::format("{:.3g}", v);
+  return fmt::format("{:.2g}", v);
+}
+
+const CaseData* FindCase(const std::vector<CaseData>& cases, int replicate,
+                         const std::string& name) {
+  for (const CaseData& c : cases) {
+    if (c.replicate == replicate && c.name == name) return &c;
+  }
+  return nullptr;
+}
+
+std::string StartLabel(const std::vector<CaseData>& cases, const CaseData& c) {
+  const CaseData* parent = FindCase(cases, c.replicate, c.parent_name);
+  if (!parent || !parent->finished)
+    return "from " + (c.parent_name.empty() ? "the sample" : c.parent_name);
+  size_t k = parent->stages.size() - 1;
+  for (size_t j = 0; j < parent->stages.size(); ++j) {
+    if (parent->stages[j].name == c.parent_stage) k = j;
+  }
+  // Two significant digits: the stop condition overshoots its target slightly.
+  double p = parent->stages[k].validity.final_mean_stress_kpa;
+  if (p > 0) {
+    const double unit = std::pow(10.0, std::floor(std::log10(p)) - 1);
+    p = std::round(p / unit) * unit;
+  }
+  const double psi = parent->stage_psi_epsilon[k];
+  const std::string kind = std::abs(psi - 180) < 1 ? "OC" : std::abs(psi) < 1 ? "NC" : "";
+  return fmt::format("{}{}{} kPa", kind, kind.empty() ? "" : " ", Short(p));
+}
+
+std::string DirectionLabel(const CaseData& c) {
+  for (size_t k = 0; k < c.stages.size(); ++k) {
+    if (std::isfinite(c.stage_radial_stress[k])) {
+      return fmt::format("σ_r = {} kPa", Short(c.stage_radial_stress[k]));
+    }
+  }
+  return fmt::format("ψ_ε = {}°", Short(c.NominalPsiEpsilon()));
+}
+
+bool UsableState(const StateRow& row) {
+  return (row.status == TableStatus::kDetected || row.status == TableStatus::kDrifting) &&
+         row.p_kpa > 0 && std::isfinite(row.ln_1_plus_e);
+}
+
+std::string ModelTitle(const std::string& name) {
+  if (name == "hypoplastic_clay") return "hypoplastic clay (Mašín 2005)";
+  if (name == "modified_cam_clay") return "Modified Cam clay";
+  if (name == "hypoplastic_sand") return "hypoplastic sand (von Wolffersdorff 1996)";
+  std::string title = name;
+  std::replace(title.begin(), title.end(), '_', ' ');
+  return title;
+}
+
+Context ReadContext(const std::string& directory, const FigureDataOptions& options) {
+  Context ctx;
+  ctx.directory = directory;
+  ctx.data = directory + "/figures/data";
+  ctx.options = options;
+  ctx.cases = LoadCases(directory, options.psi_epsilon_half_rows);
+  ctx.states = study::ReadStateTable(directory);
+  ctx.ncl_fits = ReadNclFits(directory);
+  ctx.study_ncl = StudyNclName(directory);
+  std::vector<std::string> overlaid, absent;
+  for (const std::string& name : options.models) {
+    const std::string folder = directory + "/calibration/" + name + "/plot_data";
+    if (fs::exists(folder + "/model_curve.csv") && fs::exists(folder + "/model_lines.dat")) {
+      ctx.models.push_back(ReadModelOverlay(folder, name));
+      overlaid.push_back(ModelTitle(name));
+    } else {
+      absent.push_back(ModelTitle(name));
+    }
+  }
+  auto join = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (size_t k = 0; k < v.size(); ++k) s += (k ? ", " : "") + v[k];
+    return s;
+  };
+  ctx.models_note = overlaid.empty()
+                        ? "No calibrated model is overlaid"
+                        : "Models overlaid (DIR/calibration/<model>/plot_data): " + join(overlaid);
+  if (!absent.empty())
+    ctx.models_note += "; not calibrated in this study, so not shown: " + join(absent);
+  ctx.models_note += ".";
+  return ctx;
+}
+
+FigureSpec Spec(const std::string& stem, const std::string& figure, const std::string& title,
+                const std::string& caption, const std::string& script) {
+  FigureSpec spec;
+  spec.stem = stem;
+  spec.figure = figure;
+  spec.title = title;
+  spec.caption = caption;
+  spec.script = script;
+  return spec;
+}
+
+FigureSpec NotDrawn(FigureSpec spec, const std::string& why) {
+  spec.not_drawn = why;
+  spec.caption += " Not drawn: " + why + ".";
+  return spec;
+}
+
+void Set(FigureSpec* spec, const std::string& name, int value) {
+  spec->variables.emplace_back(name, std::to_string(value));
+}
+void Set(FigureSpec* spec, const std::string& name, const std::string& value) {
+  spec->variables.emplace_back(name, Quoted(value));
+}
+
+}  // namespace granasym::analysis::figures

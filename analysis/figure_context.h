@@ -1,0 +1,135 @@
+// What the figure families of analysis/figure_data.h share: the study
+// folder as the figures read it (`Context`: the cases with replicate 1's
+// paths, the state table, the NCLs, the calibrated models), the data files
+// they write (`BlockFile`), the entries of figures/index.tsv (`Spec`,
+// `NotDrawn`, `Set`) and the legends' labels. Internal to the analysis
+// library: analysis/figure_families.h lists the families.
+#pragma once
+
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "analysis/figure_data.h"
+#include "dem/run_record.h"
+#include "study/case_record.h"
+
+namespace granasym::analysis::figures {
+
+using study::FigureSet;
+using study::TableKind;
+using study::TableStatus;
+
+// ---------------------------------------------------------------- data files
+
+// A data file of blocks: a header (column names, then the legend title) and rows.
+class BlockFile {
+ public:
+  explicit BlockFile(std::vector<std::string> columns) : columns_(std::move(columns)) {}
+  // Adds a block; rows with a non-finite value are dropped; an empty block
+  // is not written (gnuplot warns about blocks without points).
+  void Add(const std::string& title, const std::vector<std::vector<double>>& rows);
+  int blocks() const { return blocks_; }
+  // The blocks' titles as gnuplot words ("a b" "c"), for legend entries of
+  // blocks drawn with `pt variable` (whose own key sample is a dot).
+  const std::string& titles() const { return titles_; }
+  void Write(const std::string& path) const;
+
+ private:
+  std::vector<std::string> columns_;
+  std::string text_, titles_;
+  int blocks_ = 0;
+};
+
+// The rows of equally long columns.
+std::vector<std::vector<double>> Rows(std::initializer_list<const std::vector<double>*> columns);
+
+// A number for a legend: 3 significant digits, no exponent for kPa values.
+std::string Short(double v);
+
+// ---------------------------------------------------------------- the study folder
+
+struct Path {
+  std::vector<double> p, ln_v, psi_sigma, psi_epsilon, eps_s, q, i_dmin, i_dmax;
+  bool empty() const { return p.empty(); }
+};
+
+struct CaseData {
+  std::string name, directory, parent_name, parent_stage;
+  int replicate = 1;
+  FigureSet figures;
+  bool finished = false;
+  // From the result.
+  std::vector<dem::StageRecord> stages;
+  std::vector<double> stage_psi_epsilon;  // nominal ψ_ε per stage (NaN: not a strain path)
+  std::vector<double> stage_radial_stress;
+  double time_step = 0;
+  double friction = std::numeric_limits<double>::quiet_NaN();
+  Path path;  // the case's own rows
+  bool Serves(const std::string& figure) const { return figures.Contains(figure); }
+  double NominalPsiEpsilon() const {
+    for (double v : stage_psi_epsilon) {
+      if (std::isfinite(v)) return v;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+};
+
+const CaseData* FindCase(const std::vector<CaseData>& cases, int replicate,
+                         const std::string& name);
+// "NC 100 kPa", "OC 20 kPa" (unloaded from the NCL), from the parent stage.
+std::string StartLabel(const std::vector<CaseData>& cases, const CaseData& c);
+// "σ_r = 100 kPa" for a drained triaxial case, else "ψ_ε = 90°".
+std::string DirectionLabel(const CaseData& c);
+
+// A detected or drifting state with a positive p and a finite ln(1+e).
+bool UsableState(const StateRow& row);
+
+// "hypoplastic clay (Mašín 2005)" for "hypoplastic_clay".
+std::string ModelTitle(const std::string& name);
+
+struct Context {
+  std::string directory, data;  // DIR, DIR/figures/data
+  FigureDataOptions options;
+  std::vector<CaseData> cases;
+  std::vector<StateRow> states;
+  std::map<std::pair<int, std::string>, NclLine> ncl_fits;
+  std::string study_ncl;
+  std::vector<ModelOverlay> models;
+  std::string models_note;  // which models are overlaid, which absent
+
+  std::string File(const std::string& name) const { return data + "/" + name; }
+  // Replicate 1's finished cases that serve `figure`.
+  std::vector<const CaseData*> Serving(const std::string& figure) const {
+    std::vector<const CaseData*> out;
+    for (const CaseData& c : cases) {
+      if (c.replicate == 1 && c.finished && !c.path.empty() && c.Serves(figure)) out.push_back(&c);
+    }
+    return out;
+  }
+  NclLine StudyNcl(int replicate) const {
+    const auto it = ncl_fits.find({replicate, study_ncl});
+    return it == ncl_fits.end() ? NclLine{} : it->second;
+  }
+};
+
+// The study folder `directory` as the figures read it: its cases (with
+// replicate 1's paths), its state table and NCL fits, the study's NCL case
+// and the calibrated models of `options` that it has.
+Context ReadContext(const std::string& directory, const FigureDataOptions& options);
+
+// ---------------------------------------------------------------- index entries
+
+FigureSpec Spec(const std::string& stem, const std::string& figure, const std::string& title,
+                const std::string& caption, const std::string& script);
+// `spec` without an image: `why` is its reason and ends its caption.
+FigureSpec NotDrawn(FigureSpec spec, const std::string& why);
+// A gnuplot variable of the figure's script: a number, or a text quoted.
+void Set(FigureSpec* spec, const std::string& name, int value);
+void Set(FigureSpec* spec, const std::string& name, const std::string& value);
+
+}  // namespace granasym::analysis::figures

@@ -1,0 +1,41 @@
+// The quasi-static states of a rate study (issue 10 §4) that `study
+// calibrate` fits the models to, and the file that records them for the
+// figures and the report (DIR/calibration/quasi_static.toml).
+#pragma once
+
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/rate_study.h"
+
+namespace granasym::analysis {
+
+// §4 (issue 10): the quasi-static states that `study calibrate` fits the
+// models to in a rate study, and that figure rate (e) sets beside the
+// paper-rate ones: the rate cases at one I* and the reference modulus. By
+// default the smallest I* whose ψ_ε = 90° cases have usable states from at
+// least two starts (so that it has a CSL); `inertial_number` chooses it.
+// With them, the drained triaxial cases of the reference modulus at the
+// slowest axial rate of each σ_r that has usable states: the critical state
+// under stress control, which the isochoric paths from loose NC states do
+// not reach as I* → 0 (they liquefy).
+struct QuasiStaticSelection {
+  double inertial_number = std::numeric_limits<double>::quiet_NaN();
+  double youngs_modulus_mpa = std::numeric_limits<double>::quiet_NaN();
+  std::vector<std::string> cases;          // case names, each once, in the states' order
+  std::vector<std::string> drained_cases;  // likewise, the drained cases
+  std::string reason;                      // why there is none (empty when valid)
+  bool valid() const { return !cases.empty(); }
+};
+QuasiStaticSelection SelectQuasiStatic(const RateStudy& study,
+                                       std::optional<double> inertial_number = std::nullopt);
+// DIR/calibration/quasi_static.toml, written by `study calibrate` for a rate
+// study: the selection its calibrations were fitted to.
+inline constexpr char kQuasiStaticSelectionFile[] = "calibration/quasi_static.toml";
+void WriteQuasiStaticSelection(const std::string& directory, const QuasiStaticSelection& s);
+// The selection written there, or nullopt without the file (InputError when malformed).
+std::optional<QuasiStaticSelection> ReadQuasiStaticSelection(const std::string& directory);
+
+}  // namespace granasym::analysis

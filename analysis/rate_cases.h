@@ -1,0 +1,37 @@
+// The rate cases of a study folder as the rate study's input: the rows of
+// the state table whose case's `figures` key names "rate", completed from
+// the case's result (its stage's rate rule, I* or ‖D‖, ψ_ε or the drained
+// stage's σ_r and ε̇_a, E, κ, the ψ_ε = 0° path's own NCL) and its parent's
+// (the start p_0). `WriteRateStudy` reads them, analyses them
+// (analysis/rate_study.h) and writes the rate files (analysis/rate_files.h).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/rate_study.h"
+
+namespace granasym::analysis {
+
+// Whether a case's `figures` key ("10, rate") names the rate study.
+bool ServesRateStudy(const std::string& figures);
+
+// The states of the rate cases of a study folder.
+struct RateCases {
+  bool any = false;  // whether a row of the table serves the rate study
+  std::vector<RateState> states;
+  std::vector<DrainedState> drained;
+};
+// Reads the case folders of the rows of the state table that serve the rate
+// study (a row without a result or stage is left out).
+RateCases ReadRateCases(const std::string& directory, const std::vector<StateRow>& rows);
+
+// Reads the rate cases of the study folder against the rows of its state
+// table, analyses them and writes the rate files; returns nullopt, and
+// removes rate files of an earlier run, when there are no rate cases.
+std::optional<RateStudy> WriteRateStudy(const std::string& directory,
+                                        const std::vector<StateRow>& rows,
+                                        const RateStudyOptions& options = {});
+
+}  // namespace granasym::analysis

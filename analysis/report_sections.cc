@@ -1,0 +1,661 @@
+#include "analysis/report_sections.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "analysis/quasi_static_selection.h"
+#include "analysis/rate_files.h"
+#include "analysis/report_tables.h"
+#include "common/config.h"
+#include "common/error.h"
+#include "common/provenance.h"
+#include "common/text_file.h"
+
+namespace granasym::analysis::report {
+namespace fs = std::filesystem;
+using study::CaseRecord;
+using study::FigureSet;
+namespace {
+
+// A figure stem must be a plain file name inside figures/.
+void CheckStem(const std::string& stem, const CsvTextTable& table, int line) {
+  const bool plain =
+      !stem.empty() && stem[0] != '.' && std::all_of(stem.begin(), stem.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+      });
+  if (!plain) {
+    throw InputError(table.origin + ": line " + std::to_string(line) + ": stem '" + stem +
+                     "' is not a plain file name (letters, digits, '_', '-', '.'; not starting "
+                     "with '.')");
+  }
+}
+
+// The states behind a figure: the rows of the state table whose `figures`
+// column names it ("10", "Sec. 5.2"; the rate study's figures draw its own tables).
+std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string& entry) {
+  if (!study.states || entry.empty() || entry.rfind(FigureSet::kRate, 0) == 0) return std::nullopt;
+  const CsvTextTable& states = *study.states;
+  const int figures = states.Find("figures");
+  if (figures < 0) return std::nullopt;
+  const std::vector<std::string> wanted = {
+      "replicate", "case", "stage",         "kind",     "status", "psi_epsilon_deg",
+      "p_kpa",     "e",    "psi_sigma_deg", "q_over_p", "ocr",    "flags"};
+  std::vector<int> columns;
+  Block table;
+  table.type = Block::Type::kTable;
+  for (const std::string& name : wanted) {
+    const int c = states.Find(name);
+    if (c < 0) continue;
+    columns.push_back(c);
+    table.header.push_back(name);
+  }
+  for (const auto& fields : states.rows) {
+    if (!FigureSet::Parse(fields[figures], study.Path("asymptotic_states.csv"), "figures")
+             .Contains(entry)) {
+      continue;
+    }
+    std::vector<Cell> row;
+    for (int c : columns) {
+      Cell cell = FieldCell(fields[c]);
+      if (states.columns[c] == "status") cell.css = StatusCss(fields[c]);
+      if (states.columns[c] == "flags" && !fields[c].empty()) cell.css = "flagged";
+      row.push_back(std::move(cell));
+    }
+    table.rows.push_back(std::move(row));
+  }
+  if (table.rows.empty()) {
+    const std::string what = entry.rfind("Sec.", 0) == 0 ? entry : "figure " + entry;
+    return Paragraph(Plain("No row of the state table names " + what + "."));
+  }
+  Block details;
+  details.type = Block::Type::kDetails;
+  details.text = Plain(fmt::format("{} row{} of the state table behind {}", table.rows.size(),
+                                   table.rows.size() == 1 ? "" : "s",
+                                   entry.rfind("Sec.", 0) == 0 ? entry : "figure " + entry));
+  details.children.push_back(std::move(table));
+  return details;
+}
+
+}  // namespace
+
+Section OverviewSection(const StudyFolder& study, const std::vector<CaseRow>& cases, int figures,
+                        int figures_missing, int models) {
+  Section section{"overview", "Overview", 2, {}};
+  Block table;
+  table.type = Block::Type::kTable;
+  table.header = {"item", "value"};
+  auto add = [&table](const std::string& item, Inline value, const std::string& css = "") {
+    table.rows.push_back({Cell{Plain(item), ""}, Cell{std::move(value), css}});
+  };
+  add("programme", Plain(Lookup(study.record, "programme", "?")));
+  add("scale", Plain(Lookup(study.record, "scale", "?")));
+  add("replicates", Plain(Lookup(study.record, "replicates", "?")));
+  add("spheres per sample", Plain(Lookup(study.record, "count", "?")));
+  add("threads per case", Plain(Lookup(study.record, "threads", "?")));
+  add("computed by", Code(Lookup(study.record, "program_version", "?")));
+  add("report written by", Code(ProgramVersion()));
+  std::map<std::string, int> by_status;
+  for (const CaseRow& c : cases) ++by_status[c.status];
+  std::string counts = fmt::format("{} case folders", cases.size());
+  for (const auto& [status, count] : by_status) counts += fmt::format(", {} {}", count, status);
+  add("cases", Plain(counts));
+  if (study.states) {
+    const CsvTextTable& states = *study.states;
+    std::map<std::string, int> by_state;
+    const int status = states.Find("status");
+    for (const auto& row : states.rows) ++by_state[status >= 0 ? row[status] : "?"];
+    std::string text = fmt::format("{} rows", states.rows.size());
+    for (const auto& [name, count] : by_state) text += fmt::format(", {} {}", count, name);
+    add("asymptotic states", Plain(text));
+  }
+  add("figures",
+      Plain(fmt::format("{} in figures/index.tsv, {} without their PNG", figures, figures_missing)),
+      figures_missing > 0 ? "flagged" : "");
+  add("models calibrated", Plain(fmt::format("{} of 3", models)));
+  section.blocks.push_back(std::move(table));
+  if (study.absent.empty()) {
+    section.blocks.push_back(Paragraph(Plain("Every input of the report is present.")));
+  } else {
+    Block list;
+    list.type = Block::Type::kList;
+    for (const std::string& name : study.absent) list.items.push_back(Code(name));
+    section.blocks.push_back(
+        Note(Plain("Inputs absent when the report was written (each section says what to run):")));
+    section.blocks.push_back(std::move(list));
+  }
+  return section;
+}
+
+std::vector<Section> FigureSections(const StudyFolder& study, int* figures, int* missing,
+                                    std::vector<std::string>* absent) {
+  std::vector<Section> sections;
+  Section top{"figures", "Figures", 2, {}};
+  if (!study.Exists("figures/index.tsv")) {
+    absent->push_back("figures/index.tsv");
+    top.blocks.push_back(Note(Plain("Figures not drawn: run ") +
+                              DirectoryHint("figures", study.directory) + Plain(".")));
+    sections.push_back(std::move(top));
+    return sections;
+  }
+  const CsvTextTable index =
+      CsvTextTable::ReadFile(study.Path("figures/index.tsv"), CsvTextTable::Format::kTsv);
+  const size_t stem = index.Column("stem"), figure = index.Column("figure"),
+               title = index.Column("title"), caption = index.Column("caption");
+  top.blocks.push_back(Paragraph(Plain(fmt::format("{} figures, listed in ", index.rows.size())) +
+                                 Link("figures/index.tsv", "figures/index.tsv", true) +
+                                 Plain("; each image links to itself at full size.")));
+  std::set<std::string> indexed;
+  std::vector<Section> figure_sections;
+  for (size_t r = 0; r < index.rows.size(); ++r) {
+    const std::vector<std::string>& row = index.rows[r];
+    CheckStem(row[stem], index, index.line_numbers[r]);
+    indexed.insert(row[stem]);
+    ++*figures;
+    Section section;
+    section.level = 3;
+    section.title = "Figure " + row[figure] + ": " + row[title];
+    const std::string png = "figures/" + row[stem] + ".png";
+    const std::string pdf = "figures/" + row[stem] + ".pdf";
+    if (study.Exists(png)) {
+      Block image;
+      image.type = Block::Type::kFigure;
+      image.image = png;
+      image.text = Plain("Figure " + row[figure] + ": " + row[title]);
+      section.blocks.push_back(std::move(image));
+    } else {
+      ++*missing;
+      absent->push_back(png);
+      section.blocks.push_back(Note(Code(png) + Plain(" is missing: run ") +
+                                    DirectoryHint("figures", study.directory) +
+                                    Plain(" to draw it.")));
+    }
+    if (!row[caption].empty()) section.blocks.push_back(Paragraph(Plain(row[caption])));
+    Inline files = study.Exists(pdf) ? Plain("PDF: ") + Link(pdf, UrlPath(pdf), true)
+                                     : Plain("No PDF (") + Code(pdf) + Plain(" is absent)");
+    // Data files drawn from, by the figure's stem (figures/<stem>.csv, .dat, ...).
+    std::vector<std::string> data;
+    for (const auto& entry : fs::directory_iterator(study.Path("figures"))) {
+      const std::string name = entry.path().filename().string();
+      const std::string extension = entry.path().extension().string();
+      if (entry.path().stem().string() == row[stem] && extension != ".png" && extension != ".pdf") {
+        data.push_back("figures/" + name);
+      }
+    }
+    std::sort(data.begin(), data.end());
+    for (const std::string& file : data)
+      files = files + Plain("; data: ") + Link(file, UrlPath(file), true);
+    section.blocks.push_back(Paragraph(files + Plain(".")));
+    if (std::optional<Block> states = StatesOfFigure(study, row[figure])) {
+      section.blocks.push_back(std::move(*states));
+    }
+    figure_sections.push_back(std::move(section));
+  }
+  std::vector<std::string> unindexed;
+  for (const auto& entry : fs::directory_iterator(study.Path("figures"))) {
+    if (entry.path().extension() == ".png" && !indexed.count(entry.path().stem().string())) {
+      unindexed.push_back("figures/" + entry.path().filename().string());
+    }
+  }
+  std::sort(unindexed.begin(), unindexed.end());
+  if (!unindexed.empty()) {
+    Block list;
+    list.type = Block::Type::kList;
+    for (const std::string& file : unindexed) list.items.push_back(Link(file, UrlPath(file), true));
+    top.blocks.push_back(Note(Plain("Images in figures/ that index.tsv does not list:")));
+    top.blocks.push_back(std::move(list));
+  }
+  sections.push_back(std::move(top));
+  for (Section& section : figure_sections) sections.push_back(std::move(section));
+  return sections;
+}
+
+Section ModelSection(const StudyFolder& study, const std::string& model, bool* calibrated,
+                     std::vector<std::string>* absent) {
+  Section section{"calibration-" + Slug(model), "Calibration: " + model, 3, {}};
+  const std::string folder = "calibration/" + model;
+  *calibrated = false;
+  if (!study.Exists(folder)) {
+    absent->push_back(folder + "/");
+    section.blocks.push_back(Note(Plain("Not calibrated: ") + Code(folder + "/") +
+                                  Plain(" is absent (run ") +
+                                  DirectoryHint("calibrate", study.directory) + Plain(").")));
+    return section;
+  }
+  const std::string parameters = folder + "/parameters.csv";
+  if (study.Exists(parameters)) {
+    *calibrated = true;
+    const CsvTextTable table = CsvTextTable::ReadFile(study.Path(parameters));
+    const size_t name = table.Column("parameter"), value = table.Column("value"),
+                 error = table.Column("std_error"), low = table.Column("ci95_low"),
+                 high = table.Column("ci95_high"), status = table.Column("status");
+    Block block;
+    block.type = Block::Type::kTable;
+    block.header = {"parameter", "value", "standard error", "95 % interval", "status"};
+    std::map<std::string, int> by_status;
+    for (const auto& row : table.rows) {
+      const std::optional<double> v = Number(row[value]), s = Number(row[error]),
+                                  lo = Number(row[low]), hi = Number(row[high]);
+      const std::string interval =
+          lo && hi ? fmt::format("[{:.6g}, {:.6g}]", *lo, *hi) : std::string("—");
+      block.rows.push_back({Cell{Code(row[name]), ""},
+                            Cell{Plain(v ? fmt::format("{:.6g}", *v) : row[value]), "num"},
+                            Cell{Plain(s                    ? fmt::format("{:.3g}", *s)
+                                       : row[error].empty() ? "—"
+                                                            : row[error]),
+                                 "num"},
+                            Cell{Plain(interval), "num"},
+                            Cell{Plain(row[status]), StatusCss(row[status])}});
+      ++by_status[row[status]];
+    }
+    std::string counts;
+    for (const auto& [state, count] : by_status) {
+      counts += fmt::format("{}{} {}", counts.empty() ? "" : ", ", count, state);
+    }
+    section.blocks.push_back(
+        Paragraph(Plain(fmt::format("{} parameters ({}), from ", table.rows.size(), counts)) +
+                  Link(parameters, UrlPath(parameters), true) + Plain(".")));
+    section.blocks.push_back(std::move(block));
+  } else {
+    absent->push_back(parameters);
+    section.blocks.push_back(Note(Code(parameters) + Plain(" is absent: no fitted parameters.")));
+  }
+  const std::string warnings = folder + "/warnings.txt";
+  if (study.Exists(warnings)) {
+    Block list;
+    list.type = Block::Type::kList;
+    for (const std::string& line : TextLines(ReadTextFile(study.Path(warnings)))) {
+      if (!line.empty()) list.items.push_back(Plain(line));
+    }
+    if (list.items.empty()) {
+      section.blocks.push_back(Paragraph(Plain("No warnings.")));
+    } else {
+      section.blocks.push_back(Paragraph(Plain(fmt::format("{} warnings:", list.items.size()))));
+      section.blocks.push_back(std::move(list));
+    }
+  } else {
+    absent->push_back(warnings);
+    section.blocks.push_back(Note(Code(warnings) + Plain(" is absent.")));
+  }
+  const std::string summary = folder + "/summary.txt";
+  if (study.Exists(summary)) {
+    Block details;
+    details.type = Block::Type::kDetails;
+    details.text = Plain("Summary of the fit (") + Code(summary) + Plain(")");
+    details.preformatted = ReadTextFile(study.Path(summary));
+    if (details.preformatted.empty()) details.preformatted = "(empty)\n";
+    section.blocks.push_back(std::move(details));
+  } else {
+    absent->push_back(summary);
+    section.blocks.push_back(Note(Code(summary) + Plain(" is absent.")));
+  }
+  const std::string model_toml = folder + "/model.toml";
+  if (study.Exists(model_toml)) {
+    section.blocks.push_back(Paragraph(Plain("The calibrated model, for ") +
+                                       Code("granasym model run") + Plain(": ") +
+                                       Link(model_toml, UrlPath(model_toml), true) + Plain(".")));
+  } else {
+    absent->push_back(model_toml);
+    section.blocks.push_back(Note(Code(model_toml) + Plain(" is absent.")));
+  }
+  return section;
+}
+
+Section StatesSection(const StudyFolder& study) {
+  Section section{"asymptotic-states", "Asymptotic states", 2, {}};
+  if (!study.states) {
+    section.blocks.push_back(MissingTableNote("asymptotic_states.csv", study.directory));
+    return section;
+  }
+  const CsvTextTable& states = *study.states;
+  const size_t kind = states.Column("kind"), status = states.Column("status");
+  states.Column("case");
+  states.Column("stage");
+  states.Column("replicate");
+  section.blocks.push_back(Paragraph(
+      Plain(fmt::format("{} rows: one per detector-carrying stage of every case, and one per case "
+                        "without a result, from ",
+                        states.rows.size())) +
+      Link("asymptotic_states.csv", "asymptotic_states.csv", true) + Plain(" (full precision; ") +
+      Code("asymptotic_states.h5") +
+      Plain(" with units). OCR and p_e* refer to the NCL named in ncl_reference.")));
+  // Counts by kind and status.
+  std::map<std::string, std::map<std::string, int>> counts;
+  std::set<std::string> statuses;
+  for (const auto& row : states.rows) {
+    ++counts[row[kind]][row[status]];
+    statuses.insert(row[status]);
+  }
+  Block count_table;
+  count_table.type = Block::Type::kTable;
+  count_table.header = {"kind"};
+  for (const std::string& name : statuses) count_table.header.push_back(name);
+  for (const auto& [name, by_status] : counts) {
+    std::vector<Cell> row = {Cell{Plain(name), ""}};
+    for (const std::string& state : statuses) {
+      const auto found = by_status.find(state);
+      row.push_back(Cell{Plain(found == by_status.end() ? "" : std::to_string(found->second)),
+                         found == by_status.end() ? "num" : "num " + StatusCss(state)});
+    }
+    count_table.rows.push_back(std::move(row));
+  }
+  section.blocks.push_back(std::move(count_table));
+  // The table itself; the detector's long description is given once below.
+  const int detector = states.Find("detector");
+  const int case_column = static_cast<int>(states.Column("case"));
+  std::vector<std::string> detectors;
+  Block table = TableOf(states);
+  for (size_t r = 0; r < states.rows.size(); ++r) {
+    const std::string& case_id = states.rows[r][case_column];
+    if (fs::exists(study.Path("cases/" + case_id + "/case.toml"))) {
+      table.rows[r][case_column].content =
+          Link(case_id, UrlPath("cases/" + case_id + "/scene.toml"));
+    }
+    if (detector < 0) continue;
+    const std::string& text = states.rows[r][detector];
+    if (text.empty()) continue;
+    auto found = std::find(detectors.begin(), detectors.end(), text);
+    if (found == detectors.end()) found = detectors.insert(detectors.end(), text);
+    table.rows[r][detector] = Cell{Plain(fmt::format("D{}", found - detectors.begin() + 1)), ""};
+  }
+  section.blocks.push_back(
+      Paragraph(Plain("Each case links to the scene it ran; D<n> names the detector below.")));
+  section.blocks.push_back(std::move(table));
+  if (!detectors.empty()) {
+    Block list;
+    list.type = Block::Type::kList;
+    for (size_t d = 0; d < detectors.size(); ++d) {
+      list.items.push_back(Plain(fmt::format("D{}: ", d + 1)) + Plain(detectors[d]));
+    }
+    section.blocks.push_back(Paragraph(Plain("Detectors:")));
+    section.blocks.push_back(std::move(list));
+  }
+  return section;
+}
+
+Section ReplicateSection(const StudyFolder& study) {
+  Section section{"replicate-summary", "Replicate summary", 2, {}};
+  if (!study.summary) {
+    section.blocks.push_back(MissingTableNote("asymptotic_states_summary.csv", study.directory));
+    return section;
+  }
+  const CsvTextTable& summary = *study.summary;
+  section.blocks.push_back(Paragraph(
+      Plain("Per case and stage: the mean over the replicates' detected states ± the half-width "
+            "of its 95 % confidence interval (Student t; none below two states), from ") +
+      Link("asymptotic_states_summary.csv", "asymptotic_states_summary.csv", true) + Plain(".")));
+  Block table = MeanIntervalTable(summary);
+  section.blocks.push_back(std::move(table));
+  return section;
+}
+
+// The rate study (analysis/rate_study.h): only for a study with rate cases.
+std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::string>* absent) {
+  if (!study.Exists(kRateStatesFile)) return std::nullopt;
+  Section section{"rate-study", "Rate study", 2, {}};
+  section.blocks.push_back(Paragraph(
+      Plain("The asymptotic states of the cases whose ") + Code("figures") +
+      Plain(" key names the rate study: proportional paths at fixed inertial numbers I* (the "
+            "stretching rate set from the measured p, ‖D‖ = I* √(p/2ρ_s)/d) and at constant "
+            "‖D‖, from NC states at several p_0, by Young's modulus E. Usable states are those "
+            "the tables' comments name; every number below has its 95 % interval (Student t). "
+            "Figures rate (a)–(e) above draw them.")));
+  if (const std::optional<RateStudy> rate = ReadRateStudy(study.directory)) {
+    const std::vector<std::string> answers = rate->Answers();
+    if (!answers.empty())
+      section.blocks.push_back(Paragraph(Plain("The answers, from the tables below:")));
+    for (const std::string& answer : answers) section.blocks.push_back(Paragraph(Plain(answer)));
+  }
+  if (const std::optional<QuasiStaticSelection> selection =
+          ReadQuasiStaticSelection(study.directory)) {
+    section.blocks.push_back(Paragraph(
+        Plain(fmt::format("The calibrated models (Parameters, and figure rate (e)) were fitted to "
+                          "the quasi-static states only: the {} rate cases at I* = {:g} and "
+                          "the {} drained triaxial cases at the slowest axial rate of each "
+                          "σ_r, E = {:g} MPa, from ",
+                          selection->cases.size(), selection->inertial_number,
+                          selection->drained_cases.size(), selection->youngs_modulus_mpa)) +
+        Link(kQuasiStaticSelectionFile, UrlPath(kQuasiStaticSelectionFile), true) + Plain(".")));
+  }
+  struct Table {
+    const char* file;
+    const char* title;
+    const char* description;
+    bool folded;
+  };
+  const Table tables[] = {
+      {kRateIndependenceFile, "Rate independence",
+       "Per (E, ψ_ε, p_0): the two smallest I* compared in ln(1+e), ψ_σ and the position of the "
+       "CSL (ln(1+e) of the ψ_ε = 90° line at the reference p); rate_independent when all "
+       "three agree within the 95 % interval of their difference, rate_dependent when one "
+       "differs, undetermined when an interval is missing (the reason says which).",
+       false},
+      {kRateQuasiStaticFile, "Quasi-static limits",
+       "Per (E, ψ_ε, p_0) and quantity: the limit a of y = a + b·I(d_max) as I → 0, fitted "
+       "through the states of the smallest I*; for ψ_ε = 90° the q_over_p rows are the "
+       "quasi-static critical-state ratio M_0.",
+       false},
+      {kRateLinesFile, "Lines at each rate",
+       "Per (E, ψ_ε, rate): ln(1+e) = N − λ ln(p / 1 kPa) through the states of every start "
+       "(the CSL at 90°, the NEL beyond; at ψ_ε = 0° the NCL as the mean of the paths' own "
+       "lines, whose states all lie at the stress cap) and its position at the reference p.",
+       false},
+      {kRateStiffnessFile, "Stiffness scaling",
+       "Per other Young's modulus, ψ_ε, p_0 and rate: ψ_σ and the position of the CSL of that "
+       "rate against those at the main modulus, with the stiffness numbers κ of both; "
+       "stiffness_independent when both agree within the 95 % interval of the difference. "
+       "Stiffness scaling shortens a run (steps per unit strain ∝ √(E/p)/I) where this holds.",
+       false},
+      {kRateDrainedCriticalFile, "Quasi-static critical state from drained tests",
+       "Per E: drained triaxial compression (constant σ_r = p_0, constant axial rate) from the "
+       "NC states, extrapolated as I → 0 at each σ_r and then combined: the critical-state "
+       "ratio M (mean over σ_r), φ_c = asin(3M/(6+M)), the slope of M against ln p (zero "
+       "within its interval: M does not depend on p) and the CSL through the limits. These "
+       "are the study's quasi-static M, φ_c and CSL where the isochoric paths liquefy.",
+       false},
+      {kRateDrainedLimitFile, "Drained critical states as I → 0, per σ_r",
+       "Per (E, σ_r): the limits of M, ln(1+e) and ln p of y = a + b·I(d_max) through the "
+       "states of every axial rate, and the two slowest rates compared in M and ln(1+e).",
+       false},
+      {kRateDrainedFile, "Drained critical states per σ_r and rate",
+       "Per (E, σ_r, axial rate): the asymptotic state's means over the replicates (q_over_p "
+       "is M).",
+       true},
+      {kRateExtensionLimitFile, "How far the extension states go",
+       "Per (E, rate, p_0): the sweep of ψ_ε from 90° upwards ends at the limit d, where the "
+       "asymptotic σ_r/p is zero within its 95 % interval (ψ_ε(d) is the root of the "
+       "least-squares line of σ_r/p against ψ_ε through the last steps, with its interval), or "
+       "at the first ψ_ε at which most replicates liquefied (a gas: mechanical coordination "
+       "below 3 or p below 0.5 kPa), or it reaches neither.",
+       false},
+      {kRateExtensionFile, "Extension sweep, step by step",
+       "Per (E, rate, p_0, ψ_ε ≥ 90°): σ_r/p and ψ_σ of the asymptotic states, the replicates "
+       "that liquefied, and the step's status.",
+       true},
+      {kRateSummaryFile, "Means per start and rate",
+       "Per (E, ψ_ε, p_0, rate): the asymptotic state's means over the replicates.", true},
+  };
+  for (const Table& t : tables) {
+    section.blocks.push_back(
+        Paragraph(Plain(std::string(t.title) + ". " + t.description + " From ") +
+                  Link(t.file, UrlPath(t.file), true) + Plain(".")));
+    if (!study.Exists(t.file)) {
+      absent->push_back(t.file);
+      section.blocks.push_back(
+          Note(Code(t.file) + Plain(" is absent: run ") +
+               Code("granasym study merge " + study.directory + " --out " + study.directory) +
+               Plain(".")));
+      continue;
+    }
+    const CsvTextTable table = CsvTextTable::ReadFile(study.Path(t.file));
+    for (const std::string& comment : table.comments) {
+      section.blocks.push_back(Paragraph(Plain(comment)));
+    }
+    if (table.rows.empty()) {
+      section.blocks.push_back(Paragraph(Plain("No rows.")));
+      continue;
+    }
+    Block block =
+        MeanIntervalTable(table, {"verdict", "ln_1_plus_e_agreement", "psi_sigma_deg_agreement",
+                                  "csl_position_agreement", "m_agreement", "result", "status"});
+    if (!t.folded) {
+      section.blocks.push_back(std::move(block));
+      continue;
+    }
+    Block details;
+    details.type = Block::Type::kDetails;
+    details.text = Plain(fmt::format("{} rows", table.rows.size()));
+    details.children.push_back(std::move(block));
+    section.blocks.push_back(std::move(details));
+  }
+  return section;
+}
+
+Section CsvSection(const std::optional<CsvTextTable>& table, const std::string& id,
+                   const std::string& title, const std::string& file, Inline description,
+                   const std::string& directory) {
+  Section section{id, title, 2, {}};
+  if (!table) {
+    section.blocks.push_back(MissingTableNote(file, directory));
+    return section;
+  }
+  section.blocks.push_back(Paragraph(std::move(description) + Plain(" From ") +
+                                     Link(file, UrlPath(file), true) + Plain(".")));
+  for (const std::string& comment : table->comments) {
+    section.blocks.push_back(Paragraph(Plain(comment)));
+  }
+  if (table->rows.empty()) {
+    section.blocks.push_back(Paragraph(Plain("No rows.")));
+  } else {
+    section.blocks.push_back(TableOf(*table));
+  }
+  return section;
+}
+
+Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRow>& cases) {
+  Section section{"run-times-and-keys", "Run times and keys", 2, {}};
+  if (cases.empty()) {
+    section.blocks.push_back(Note(Plain("No case folders (") + Code("cases/r<K>/<case>/") +
+                                  Plain(") in this study folder.")));
+  } else {
+    section.blocks.push_back(Paragraph(
+        Plain("From each case's ") + Code("done.toml") + Plain(" (written when it ended) and ") +
+        Code("case.toml") +
+        Plain(": the key is the SHA-256 of its canonical scene, its parent's key, the program "
+              "version and the thread count. Steps: the case's own (its engine steps less the "
+              "step it started from: the end of the parent's stage it forks from) and the "
+              "engine total.")));
+    Block table;
+    table.type = Block::Type::kTable;
+    table.header = {"case",      "replicate",        "parent",    "status",
+                    "own steps", "engine steps",     "particles", "particle-steps",
+                    "wall s",    "particle-steps/s", "key",       "message"};
+    int64_t own_steps = 0;
+    double particle_steps = 0, wall_seconds = 0;
+    int done = 0;
+    for (const CaseRow& c : cases) {
+      const double ps = static_cast<double>(c.own_steps) * static_cast<double>(c.particles);
+      const CaseRecord& r = c.record;
+      std::vector<Cell> row = {
+          Cell{Link(r.id, UrlPath("cases/" + r.id + "/" + CaseRecord::kFileName)), ""},
+          Cell{Plain(std::to_string(r.replicate)), "num"},
+          Cell{r.parent.empty() ? Plain("sample") : Plain(r.parent), ""},
+          Cell{Plain(c.status), StatusCss(c.status)}};
+      if (c.done) {
+        ++done;
+        own_steps += c.own_steps;
+        particle_steps += ps;
+        wall_seconds += c.wall_seconds;
+        row.push_back(Cell{Plain(std::to_string(c.own_steps)), "num"});
+        row.push_back(Cell{Plain(std::to_string(c.steps)), "num"});
+        row.push_back(Cell{Plain(std::to_string(c.particles)), "num"});
+        row.push_back(Cell{Plain(fmt::format("{:.4g}", ps)), "num"});
+        row.push_back(Cell{Plain(fmt::format("{:.3f}", c.wall_seconds)), "num"});
+        row.push_back(Cell{Plain(c.wall_seconds > 0 ? fmt::format("{:.3g}", ps / c.wall_seconds)
+                                                    : std::string("—")),
+                           "num"});
+      } else {
+        for (int k = 0; k < 6; ++k) row.push_back(Cell{Plain("—"), "num"});
+      }
+      row.push_back(Cell{Code(r.key), ""});
+      row.push_back(Cell{Plain(c.message), "text"});
+      table.rows.push_back(std::move(row));
+      table.row_css.push_back("");
+    }
+    table.rows.push_back(
+        {Cell{Plain(fmt::format("total: {} finished of {}", done, cases.size())), ""},
+         Cell{Plain(""), ""}, Cell{Plain(""), ""}, Cell{Plain(""), ""},
+         Cell{Plain(std::to_string(own_steps)), "num"}, Cell{Plain(""), ""}, Cell{Plain(""), ""},
+         Cell{Plain(fmt::format("{:.4g}", particle_steps)), "num"},
+         Cell{Plain(fmt::format("{:.3f}", wall_seconds)), "num"},
+         Cell{Plain(wall_seconds > 0 ? fmt::format("{:.3g}", particle_steps / wall_seconds)
+                                     : std::string("—")),
+              "num"},
+         Cell{Plain(""), ""}, Cell{Plain(""), ""}});
+    table.row_css.push_back("total");
+    section.blocks.push_back(Paragraph(Plain(fmt::format(
+        "{} finished cases: {} steps of their own, {:.4g} particle-steps, {:.1f} s of case wall "
+        "time (cases run in parallel: the study's elapsed time is shorter).",
+        done, own_steps, particle_steps, wall_seconds))));
+    section.blocks.push_back(std::move(table));
+  }
+  // Model runs (element tests of the constitutive models).
+  std::vector<fs::path> models;
+  if (study.Exists("models")) {
+    for (const auto& entry : fs::directory_iterator(study.Path("models"))) {
+      if (entry.is_directory()) models.push_back(entry.path());
+    }
+  }
+  std::sort(models.begin(), models.end());
+  if (!models.empty()) {
+    Block table;
+    table.type = Block::Type::kTable;
+    table.header = {"model run", "status", "wall s", "key", "message"};
+    for (const fs::path& folder : models) {
+      const std::string name = "models/" + folder.filename().string();
+      if (!fs::exists(folder / "done.toml")) {
+        table.rows.push_back({Cell{Code(name), ""}, Cell{Plain("not_run"), StatusCss("not_run")},
+                              Cell{Plain("—"), "num"}, Cell{Plain(""), ""},
+                              Cell{Plain("no done.toml"), "text"}});
+        continue;
+      }
+      const ConfigTable done = ConfigTable::ParseFile((folder / "done.toml").string());
+      const std::string status = done.GetString("termination", "?");
+      table.rows.push_back(
+          {Cell{Link(name, UrlPath(name + "/done.toml"), true), ""},
+           Cell{Plain(status), StatusCss(status)},
+           Cell{Plain(fmt::format("{:.3f}", done.GetDouble("wall_seconds", 0.0, Range::Any()))),
+                "num"},
+           Cell{Code(done.GetString("key", "")), ""},
+           Cell{Plain(done.GetString("message", "")), "text"}});
+    }
+    section.blocks.push_back(Paragraph(Plain(
+        fmt::format("{} element tests of the constitutive models (deterministic: not replicated):",
+                    models.size()))));
+    section.blocks.push_back(std::move(table));
+  }
+  return section;
+}
+
+Section ProvenanceSection(const StudyFolder& study) {
+  Section section{"provenance", "Provenance", 2, {}};
+  section.blocks.push_back(
+      Paragraph(Plain("The study record ") + Link("study.toml", "study.toml", true) +
+                Plain(", written by ") + Code("granasym study run") +
+                Plain("; each case's key is in the table of run times, its scene in ") +
+                Code("cases/r<K>/<case>/scene.toml") + Plain(".")));
+  Block table;
+  table.type = Block::Type::kTable;
+  table.header = {"key", "value"};
+  for (const auto& [key, value] : study.record) {
+    table.rows.push_back({Cell{Code(key), ""}, Cell{Plain(value), ""}});
+  }
+  section.blocks.push_back(std::move(table));
+  return section;
+}
+
+}  // namespace granasym::analysis::report

@@ -1,0 +1,53 @@
+// The sections of the report (analysis/report.h), each from what the study
+// folder holds (report_folder.h), in the order WriteReport puts them; an
+// absent input is a note in its place and its name in `absent`.
+// Internal to the analysis library.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "analysis/report_document.h"
+#include "analysis/report_folder.h"
+
+namespace granasym::analysis::report {
+
+// The study at a glance: programme, scale, cases and states by status,
+// figures and models, and the inputs that are absent.
+Section OverviewSection(const StudyFolder& study, const std::vector<CaseRow>& cases, int figures,
+                        int figures_missing, int models);
+
+// "Figures", then one section per row of figures/index.tsv: the image (or
+// a note), the caption, the files and the state table's rows behind it;
+// counts the figures and those without their PNG.
+std::vector<Section> FigureSections(const StudyFolder& study, int* figures, int* missing,
+                                    std::vector<std::string>* absent);
+
+// One calibrated model: its parameters with intervals and statuses, the
+// warnings, the summary and model.toml; `calibrated` when it has parameters.
+Section ModelSection(const StudyFolder& study, const std::string& model, bool* calibrated,
+                     std::vector<std::string>* absent);
+
+// The table of asymptotic states with counts by kind and status.
+Section StatesSection(const StudyFolder& study);
+
+// The replicate means with their 95 % intervals.
+Section ReplicateSection(const StudyFolder& study);
+
+// The rate study (analysis/rate_study.h): its answers and tables; only for
+// a study with rate cases.
+std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::string>* absent);
+
+// A CSV of the state table shown whole under `description`.
+Section CsvSection(const std::optional<CsvTextTable>& table, const std::string& id,
+                   const std::string& title, const std::string& file, Inline description,
+                   const std::string& directory);
+
+// Each case's run time, steps and key, with totals; the model runs.
+Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRow>& cases);
+
+// study.toml, key by key.
+Section ProvenanceSection(const StudyFolder& study);
+
+}  // namespace granasym::analysis::report
