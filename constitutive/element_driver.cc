@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "common/stopwatch.h"
+#include "constitutive/model_traits.h"
 
 namespace granasym {
 
@@ -117,18 +118,6 @@ ModelState CheckedInitialState(const ConstitutiveModel& model, double mean_stres
         "initial state p = {} kPa, psi_sigma = {} deg, e = {} is outside the model's domain: {}",
         mean_stress, psi_sigma / kDegree, void_ratio, why));
   }
-  if (model.kind() == ModelKind::kModifiedCamClay) {
-    const auto& cam_clay = static_cast<const ModifiedCamClay&>(model);
-    const double f = cam_clay.YieldFunction(state.stress, state.internal[0]);
-    const double m = cam_clay.parameters().critical_state_ratio;
-    if (f > cam_clay.parameters().yield_tolerance * m * m * state.internal[0] * state.internal[0]) {
-      throw InputError(fmt::format(
-          "initial state p = {} kPa, psi_sigma = {} deg, e = {} lies outside the Cam clay yield "
-          "surface (p_c = {:.6g} kPa from the elastic line, f = {:.6g} kPa²); raise OCR or lower "
-          "psi_sigma",
-          mean_stress, psi_sigma / kDegree, void_ratio, state.internal[0], f));
-    }
-  }
   return state;
 }
 }  // namespace
@@ -149,17 +138,19 @@ IntegratorOptions DefaultIntegratorOptions(ModelKind model) {
   IntegratorOptions options;
   options.kind = IntegratorKind::kArkodeErk;
   options.arkode_order = 5;
-  // Both hypoplastic models (clay and sand) at 1e-8, Cam clay at 1e-9.
-  const double tolerance = model == ModelKind::kModifiedCamClay ? 1e-9 : 1e-8;
-  options.relative_tolerance = options.absolute_tolerance = tolerance;
+  options.relative_tolerance = options.absolute_tolerance = Traits(model).integrator_tolerance;
   return options;
+}
+
+bool HasStressPointMethod(const ConstitutiveModel& model) {
+  return dynamic_cast<const ModifiedCamClay*>(&model) != nullptr;
 }
 
 namespace {
 
-// `options` with tolerances left at 0 replaced by the model's defaults.
-IntegratorOptions WithModelDefaults(IntegratorOptions options, ModelKind model) {
-  const IntegratorOptions defaults = DefaultIntegratorOptions(model);
+// `options` with tolerances left at 0 replaced by those of `defaults`.
+IntegratorOptions WithDefaultTolerances(IntegratorOptions options,
+                                        const IntegratorOptions& defaults) {
   if (options.relative_tolerance == 0.0) options.relative_tolerance = defaults.relative_tolerance;
   if (options.absolute_tolerance == 0.0) options.absolute_tolerance = defaults.absolute_tolerance;
   return options;
@@ -169,8 +160,9 @@ IntegratorOptions WithModelDefaults(IntegratorOptions options, ModelKind model) 
 
 bool ElementTestOptions::IsValid(std::string* why) const {
   std::string inner;
-  // Zero tolerances mean "the model's default" (any model's will do here).
-  if (!WithModelDefaults(integrator, ModelKind::kHypoplasticClay).IsValid(&inner)) {
+  // Zero tolerances mean "the model's default", valid for every model: the
+  // integrator's own defaults stand in for it here.
+  if (!WithDefaultTolerances(integrator, IntegratorOptions()).IsValid(&inner)) {
     return Fail(why, "integrator." + inner);
   }
   if (!stress_point.IsValid(&inner)) return Fail(why, "stress_point." + inner);
@@ -847,9 +839,9 @@ ElementTest::ElementTest(const ConstitutiveModel& model, const ElementTestOption
     : model_(model), options_(options) {
   std::string why;
   GRANASYM_CHECK(options.IsValid(&why)) << why;
-  options_.integrator = WithModelDefaults(options.integrator, model.kind());
-  GRANASYM_CHECK(options.method == DriveMethod::kRateIntegration ||
-                 model.kind() == ModelKind::kModifiedCamClay)
+  options_.integrator =
+      WithDefaultTolerances(options.integrator, DefaultIntegratorOptions(model.kind()));
+  GRANASYM_CHECK(options.method == DriveMethod::kRateIntegration || HasStressPointMethod(model))
       << "the stress-point method exists for Modified Cam clay only";
 }
 
@@ -877,8 +869,8 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
   if (options_.method == DriveMethod::kRateIntegration) {
     integrator = Integrator::Create(options_.integrator);
   } else {
-    stress_point = std::make_unique<CamClayStressPoint>(static_cast<const ModifiedCamClay&>(model_),
-                                                        options_.stress_point);
+    stress_point = std::make_unique<CamClayStressPoint>(
+        dynamic_cast<const ModifiedCamClay&>(model_), options_.stress_point);
   }
 
   double time = 0.0;

@@ -18,12 +18,8 @@
 namespace granasym {
 
 // [model] table: kind = "hypoplastic_clay" | "modified_cam_clay" | "hypoplastic_sand" and
-// its parameters.
+// its parameters, the keys of its traits (constitutive/model_traits.h).
 std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& model_table);
-// The valid values of a model parameter, by its key in model files
-// (phi_c_deg, lambda_star, ..., beta): the models' own conditions and sane
-// magnitudes. Calibration bounds its fits with the same ranges.
-Range ParameterRange(const std::string& key);
 // [initial] table: mean_stress_kpa, psi_sigma_deg, and void_ratio or ocr.
 ModelState ReadInitialState(const ConstitutiveModel& model, const ConfigTable& initial_table);
 // The `type` of a [[stage]]: which LoadingStage helper makes it.
