@@ -162,24 +162,25 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
     const AxisymmetricStress s = RecordStress(record);
     p.push_back(s.mean());
     q.push_back(s.deviator());
-    psi_sigma.push_back(s.psi());
-    psi_epsilon.push_back(RecordStretching(record).psi());
+    psi_sigma.push_back(s.psi() / kDegree);
+    psi_epsilon.push_back(RecordStretching(record).psi() / kDegree);
     ocr.push_back(record.ocr);
     path.push_back(record.strain_path);
     stage.push_back(record.stage);
     internal.insert(internal.end(), record.internal.begin(), record.internal.end());
   }
   file->CreateGroup(group);
-  file->WriteDoubles(group + "/time", time, "s");
+  const std::string at = group + "/";
+  file->WriteDoubles(at + quantity::kTime, time, "s");
   file->WriteMatrix(group + "/stress", stress, n, 6, "kPa");
   file->WriteMatrix(group + "/strain", strain, n, 6, "1");
   file->WriteMatrix(group + "/stretching", stretching, n, 6, "1/s");
-  file->WriteDoubles(group + "/void_ratio", e, "1");
-  file->WriteDoubles(group + "/mean_stress", p, "kPa");
-  file->WriteDoubles(group + "/deviator_stress", q, "kPa");
-  file->WriteDoubles(group + "/psi_sigma", psi_sigma, "rad");
-  file->WriteDoubles(group + "/psi_epsilon", psi_epsilon, "rad");
-  file->WriteDoubles(group + "/ocr", ocr, "1");
+  file->WriteDoubles(at + quantity::kVoidRatio, e, "1");
+  file->WriteDoubles(at + quantity::kMeanStress, p, "kPa");
+  file->WriteDoubles(at + quantity::kDeviator, q, "kPa");
+  file->WriteDoubles(at + quantity::kPsiSigma, psi_sigma, "deg");
+  file->WriteDoubles(at + quantity::kPsiEpsilon, psi_epsilon, "deg");
+  file->WriteDoubles(at + quantity::kOverconsolidation, ocr, "1");
   file->WriteDoubles(group + "/strain_path", path, "1");
   file->WriteInts(group + "/stage", stage, "1");
   if (num_internal > 0) {
@@ -206,9 +207,11 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
 }
 
 void WriteElementTestCsv(const ElementTestResult& result, const std::string& path) {
-  std::vector<std::string> columns = {"time_s",      "stress_a_kpa",  "stress_r_kpa",    "p_kpa",
-                                      "q_kpa",       "void_ratio",    "strain_a",        "strain_r",
-                                      "strain_path", "psi_sigma_deg", "psi_epsilon_deg", "ocr"};
+  const std::vector<std::string> columns = {
+      quantity::kTime,        quantity::kAxialStress,  quantity::kRadialStress,
+      quantity::kMeanStress,  quantity::kDeviator,     quantity::kVoidRatio,
+      quantity::kAxialStrain, quantity::kRadialStrain, "strain_path",
+      quantity::kPsiSigma,    quantity::kPsiEpsilon,   quantity::kOverconsolidation};
   std::vector<std::vector<double>> values(columns.size());
   for (const ElementTestRecord& r : result.history) {
     const AxisymmetricStress s = RecordStress(r);
@@ -257,14 +260,14 @@ void WriteAsymptotes(const ConstitutiveModel& model, const AsymptoteTable& table
   auto write = [&](const std::string& sub, const std::vector<AsymptoticState>& states) {
     std::vector<double> psi_e, psi_s, ocr, ratio;
     for (const AsymptoticState& s : states) {
-      psi_e.push_back(s.psi_epsilon);
-      psi_s.push_back(s.psi_sigma);
+      psi_e.push_back(s.psi_epsilon / kDegree);
+      psi_s.push_back(s.psi_sigma / kDegree);
       ocr.push_back(s.ocr);
       ratio.push_back(s.stress_ratio);
     }
-    file->WriteDoubles(sub + "/psi_epsilon", psi_e, "rad");
-    file->WriteDoubles(sub + "/psi_sigma", psi_s, "rad");
-    file->WriteDoubles(sub + "/ocr", ocr, "1");
+    file->WriteDoubles(sub + "/" + quantity::kPsiEpsilon, psi_e, "deg");
+    file->WriteDoubles(sub + "/" + quantity::kPsiSigma, psi_s, "deg");
+    file->WriteDoubles(sub + "/" + quantity::kOverconsolidation, ocr, "1");
     file->WriteDoubles(sub + "/stress_ratio", ratio, "1");
   };
   if (!table.analytic.empty()) {
