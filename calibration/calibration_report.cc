@@ -437,6 +437,87 @@ std::string SummaryText(const CalibrationRun& run) {
   return s;
 }
 
+namespace {
+
+// /fits/<fitter>: a fit's summary, values, uncertainties, history, residuals
+// and export orders (`units`: the parameters' units, comma-separated).
+void WriteFitHdf5(const FitResult& fit, const ModelParameters& parameters, const std::string& units,
+                  Hdf5File* file) {
+  std::string group = "/fits/" + fit.summary.fitter;
+  for (char& c : group) c = (c == ':' || c == '+') ? '_' : c;
+  file->CreateGroup(group);
+  file->SetAttribute(group, "fitter", fit.summary.fitter);
+  file->SetAttribute(group, "termination", ToString(fit.summary.termination));
+  file->SetAttribute(group, "message", fit.summary.message);
+  file->SetAttribute(group, "report", fit.summary.Report());
+  file->SetAttribute(group, "iterations", int64_t{fit.summary.iterations});
+  file->SetAttribute(group, "evaluations", int64_t{fit.summary.evaluations});
+  file->SetAttribute(group, "initial_cost", fit.summary.initial_cost);
+  file->SetAttribute(group, "final_cost", fit.summary.final_cost);
+  file->SetAttribute(group, "wall_s", fit.summary.wall_seconds);
+  file->SetAttribute(group, "residual_variance", fit.residual_variance);
+  file->SetAttribute(group, "degrees_of_freedom", int64_t{fit.degrees_of_freedom});
+  file->SetAttribute(group, "condition_number", fit.condition_number);
+  std::string warnings;
+  for (const std::string& w : fit.warnings) warnings += w + "\n";
+  file->SetAttribute(group, "warnings", warnings);
+  file->WriteDoubles(group + "/values", fit.values, units);
+  std::vector<int64_t> free_index(fit.free_indices.begin(), fit.free_indices.end());
+  file->WriteInts(group + "/free_index", free_index, "1");
+  file->WriteDoubles(group + "/standard_errors", fit.standard_errors);
+  file->WriteDoubles(group + "/lower_95", fit.lower_95);
+  file->WriteDoubles(group + "/upper_95", fit.upper_95);
+  const size_t n = fit.free_indices.size();
+  std::vector<double> cov, cor;
+  for (size_t r = 0; r < n; ++r) {
+    for (size_t c = 0; c < n; ++c) {
+      cov.push_back(fit.covariance.size() ? fit.covariance(r, c) : std::nan(""));
+      cor.push_back(fit.correlation.size() ? fit.correlation(r, c) : std::nan(""));
+    }
+  }
+  if (n > 0) {
+    file->WriteMatrix(group + "/covariance", cov, n, n, "parameter units squared");
+    file->WriteMatrix(group + "/correlation", cor, n, n, "1");
+  }
+  std::vector<double> hist_eval, hist_cost;
+  for (const HistoryPoint& h : fit.history) {
+    hist_eval.push_back(static_cast<double>(h.evaluation));
+    hist_cost.push_back(h.cost);
+  }
+  file->WriteDoubles(group + "/history/evaluation", hist_eval, "1");
+  file->WriteDoubles(group + "/history/cost", hist_cost, "1");
+  std::vector<double> d_psi, d_v, m_psi, m_v, ln_ocr;
+  for (const PointResidual& r : fit.residuals) {
+    d_psi.push_back(r.psi_sigma_residual_deg);
+    d_v.push_back(r.ln_volume_residual);
+    m_psi.push_back(r.psi_sigma_model / kDegree);
+    m_v.push_back(r.ln_volume_model);
+    ln_ocr.push_back(r.ln_ocr_model);
+  }
+  file->WriteDoubles(group + "/residuals/" + quantity::kPsiSigma, d_psi, "deg");
+  file->WriteDoubles(group + "/residuals/" + quantity::kLnVolume, d_v, "1");
+  file->WriteDoubles(group + "/model/" + quantity::kPsiSigma, m_psi, "deg");
+  file->WriteDoubles(group + "/model/" + quantity::kLnVolume, m_v, "1");
+  file->WriteDoubles(group + "/model/ln_ocr", ln_ocr, "1");
+  for (const ExportedParameters& e : ExportOrders(parameters.kind(), fit.values)) {
+    std::string order;
+    std::vector<double> values;
+    for (const auto& v : e.values) {
+      order += (order.empty() ? "" : ",") + v.first;
+      values.push_back(v.second);
+    }
+    const std::string name =
+        group + (e.program.rfind("UMAT", 0) == 0 || e.program.rfind("Modified", 0) == 0
+                     ? "/export_umat"
+                     : "/export_plaxis");
+    file->WriteDoubles(name, values);
+    file->SetAttribute(name, "program", e.program);
+    file->SetAttribute(name, "order", order);
+  }
+}
+
+}  // namespace
+
 void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path) {
   const CalibrationProblem& problem = *run.problem;
   const ModelParameters& parameters = problem.parameters();
@@ -510,79 +591,7 @@ void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path) {
     dataset_names += d.name + " (" + d.origin + ")\n";
   file.WriteString("/data/datasets", dataset_names);
 
-  for (const FitResult& fit : run.fits) {
-    std::string group = "/fits/" + fit.summary.fitter;
-    for (char& c : group) c = (c == ':' || c == '+') ? '_' : c;
-    file.CreateGroup(group);
-    file.SetAttribute(group, "fitter", fit.summary.fitter);
-    file.SetAttribute(group, "termination", ToString(fit.summary.termination));
-    file.SetAttribute(group, "message", fit.summary.message);
-    file.SetAttribute(group, "report", fit.summary.Report());
-    file.SetAttribute(group, "iterations", int64_t{fit.summary.iterations});
-    file.SetAttribute(group, "evaluations", int64_t{fit.summary.evaluations});
-    file.SetAttribute(group, "initial_cost", fit.summary.initial_cost);
-    file.SetAttribute(group, "final_cost", fit.summary.final_cost);
-    file.SetAttribute(group, "wall_s", fit.summary.wall_seconds);
-    file.SetAttribute(group, "residual_variance", fit.residual_variance);
-    file.SetAttribute(group, "degrees_of_freedom", int64_t{fit.degrees_of_freedom});
-    file.SetAttribute(group, "condition_number", fit.condition_number);
-    std::string warnings;
-    for (const std::string& w : fit.warnings) warnings += w + "\n";
-    file.SetAttribute(group, "warnings", warnings);
-    file.WriteDoubles(group + "/values", fit.values, units);
-    std::vector<int64_t> free_index(fit.free_indices.begin(), fit.free_indices.end());
-    file.WriteInts(group + "/free_index", free_index, "1");
-    file.WriteDoubles(group + "/standard_errors", fit.standard_errors);
-    file.WriteDoubles(group + "/lower_95", fit.lower_95);
-    file.WriteDoubles(group + "/upper_95", fit.upper_95);
-    const size_t n = fit.free_indices.size();
-    std::vector<double> cov, cor;
-    for (size_t r = 0; r < n; ++r) {
-      for (size_t c = 0; c < n; ++c) {
-        cov.push_back(fit.covariance.size() ? fit.covariance(r, c) : std::nan(""));
-        cor.push_back(fit.correlation.size() ? fit.correlation(r, c) : std::nan(""));
-      }
-    }
-    if (n > 0) {
-      file.WriteMatrix(group + "/covariance", cov, n, n, "parameter units squared");
-      file.WriteMatrix(group + "/correlation", cor, n, n, "1");
-    }
-    std::vector<double> hist_eval, hist_cost;
-    for (const HistoryPoint& h : fit.history) {
-      hist_eval.push_back(static_cast<double>(h.evaluation));
-      hist_cost.push_back(h.cost);
-    }
-    file.WriteDoubles(group + "/history/evaluation", hist_eval, "1");
-    file.WriteDoubles(group + "/history/cost", hist_cost, "1");
-    std::vector<double> d_psi, d_v, m_psi, m_v, ln_ocr;
-    for (const PointResidual& r : fit.residuals) {
-      d_psi.push_back(r.psi_sigma_residual_deg);
-      d_v.push_back(r.ln_volume_residual);
-      m_psi.push_back(r.psi_sigma_model / kDegree);
-      m_v.push_back(r.ln_volume_model);
-      ln_ocr.push_back(r.ln_ocr_model);
-    }
-    file.WriteDoubles(group + "/residuals/" + quantity::kPsiSigma, d_psi, "deg");
-    file.WriteDoubles(group + "/residuals/" + quantity::kLnVolume, d_v, "1");
-    file.WriteDoubles(group + "/model/" + quantity::kPsiSigma, m_psi, "deg");
-    file.WriteDoubles(group + "/model/" + quantity::kLnVolume, m_v, "1");
-    file.WriteDoubles(group + "/model/ln_ocr", ln_ocr, "1");
-    for (const ExportedParameters& e : ExportOrders(parameters.kind(), fit.values)) {
-      std::string order;
-      std::vector<double> values;
-      for (const auto& v : e.values) {
-        order += (order.empty() ? "" : ",") + v.first;
-        values.push_back(v.second);
-      }
-      const std::string name =
-          group + (e.program.rfind("UMAT", 0) == 0 || e.program.rfind("Modified", 0) == 0
-                       ? "/export_umat"
-                       : "/export_plaxis");
-      file.WriteDoubles(name, values);
-      file.SetAttribute(name, "program", e.program);
-      file.SetAttribute(name, "order", order);
-    }
-  }
+  for (const FitResult& fit : run.fits) WriteFitHdf5(fit, parameters, units, &file);
   file.WriteString("/summary", SummaryText(run));
   file.Commit();
 }
