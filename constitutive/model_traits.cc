@@ -221,6 +221,7 @@ std::vector<ExportedParameters> HypoplasticClayExports(const std::vector<double>
 
 ModelTraits HypoplasticClayTraits() {
   // Bounds wide enough for clays and for DEM sphere packings (small λ*).
+  // Parameters: {key, start from, identified by, typical, lower, upper}.
   return {ModelKind::kHypoplasticClay,
           "hypoplastic clay",
           {{parameter::kPhiC, ParameterStart::kCslStressRatio, Identification::kOffIsotropicAxis,
