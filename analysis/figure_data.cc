@@ -44,7 +44,8 @@ FigureSpec ModelPaths(const Context& ctx, FigureSpec spec, const fs::path& root,
   for (const fs::path& folder : folders) {
     const CsvTable table = CsvTable::ReadFile((folder / "result.csv").string());
     if (table.rows.empty()) continue;
-    const size_t p = table.Column("p_kpa"), e = table.Column("void_ratio"),
+    const size_t p = table.Column("p_kpa"),
+                 e = table.Column(quantity::kVoidRatio, quantity::former::kVoidRatio),
                  psi = table.Column("psi_sigma_deg"), dir = table.Column("psi_epsilon_deg"),
                  ocr = table.Column("ocr");
     std::vector<std::vector<double>> rows;

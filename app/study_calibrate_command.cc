@@ -45,11 +45,10 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
   calibrate->callback([] {
     std::vector<ModelKind> kinds;
     for (const std::string& m : models) {
-      const auto kind = calibration::FromString<ModelKind>(m);
-      if (!kind || !calibration::IsCalibrated(*kind)) {
-        throw InputError("--models: '" + m +
-                         "' is not valid: expected hypoplastic_clay, modified_cam_clay, "
-                         "hypoplastic_sand (comma-separated)");
+      const auto kind = FromString<ModelKind>(m);
+      if (!kind) {
+        throw InputError("--models: '" + m + "' is not valid: expected " +
+                         AllowedNames<ModelKind>() + " (comma-separated)");
       }
       kinds.push_back(*kind);
     }

@@ -57,7 +57,7 @@ StateDataset HundredStates() {
 ModelParameters Start() {
   ModelParameters p = ModelParameters::Defaults(ModelKind::kHypoplasticClay);
   const double factors[] = {1.15, 0.8, 1.4, 0.95, 1.3};
-  for (int i = 0; i < kNumParameters; ++i) p.mutable_specs()[i].value = kTruth[i] * factors[i];
+  for (int i = 0; i < kNumClayParameters; ++i) p.mutable_specs()[i].value = kTruth[i] * factors[i];
   return p;
 }
 

@@ -13,9 +13,7 @@
 #include "common/root_finding.h"
 #include "common/state_measures.h"
 #include "constitutive/element_driver.h"
-#include "constitutive/hypoplastic_clay.h"
 #include "constitutive/hypoplastic_sand.h"
-#include "constitutive/modified_cam_clay.h"
 
 namespace granasym::calibration {
 
@@ -43,30 +41,14 @@ const double kHighestPsiSigma = std::atan(std::sqrt(2.0)) - 1e-6;
 
 using StressMap = std::function<bool(double psi_sigma, Prediction*, std::string*)>;
 
-// Modified Cam clay on the Roscoe surface, see the header.
-bool CamClayAsymptote(const std::vector<double>& v, double psi_sigma, Prediction* out,
-                      std::string*) {
-  const double m = CriticalStateRatio(v[kCriticalFrictionAngle] * kDegree);
-  const double lambda = v[kLambdaStar], kappa = v[kKappaStar], nu = v[kShearParameter];
-  const double eta = 3.0 * std::tan(psi_sigma) / std::sqrt(2.0);
-  const double c = 2.0 * (1.0 + nu) / (9.0 * (1.0 - 2.0 * nu));
-  const double m2_minus = m * m - eta * eta;
-  const double rate_v = lambda * m2_minus;
-  const double rate_s = eta * (kappa * c * m2_minus + 2.0 * (lambda - kappa));
+// The model's closed-form asymptote of a stress direction as a Prediction.
+bool AsymptoteOf(const ConstitutiveModel& model, double psi_sigma, Prediction* out,
+                 std::string* why) {
+  double psi_epsilon = 0.0, ln_ocr = 0.0;
+  if (!model.AsymptoteOfStressDirection(psi_sigma, &psi_epsilon, &ln_ocr, why)) return false;
   out->psi_sigma = psi_sigma;
-  out->psi_epsilon = std::atan2(3.0 / std::sqrt(2.0) * rate_s, rate_v);
-  out->ln_ocr = (1.0 - kappa / lambda) * std::log1p(eta * eta / (m * m));
-  out->clamped = false;
-  return true;
-}
-
-bool HypoplasticAsymptote(const HypoplasticClay& model, double psi_sigma, Prediction* out,
-                          std::string* why) {
-  AsymptoticState state;
-  if (!AnalyticAsymptoteForStress(model, psi_sigma, &state, why)) return false;
-  out->psi_sigma = psi_sigma;
-  out->psi_epsilon = state.psi_epsilon;
-  out->ln_ocr = std::log(state.ocr);
+  out->psi_epsilon = psi_epsilon;
+  out->ln_ocr = ln_ocr;
   out->clamped = false;
   return true;
 }
@@ -192,7 +174,6 @@ bool SandPath(const HypoplasticSand& model, double psi_epsilon, const std::vecto
 
 AsymptotePredictor::AsymptotePredictor(ModelKind kind, const PredictorOptions& options)
     : kind_(kind), options_(options) {
-  GRANASYM_CHECK(IsCalibrated(kind)) << "calibration does not fit " << ToString(kind);
   std::string why;
   GRANASYM_CHECK(options_.IsValid(&why)) << why;
 }
@@ -202,11 +183,12 @@ bool AsymptotePredictor::PredictAtPressures(const std::vector<double>& parameter
                                             const std::vector<double>& mean_stresses,
                                             std::vector<StatePrediction>* states,
                                             std::string* why) const {
-  GRANASYM_CHECK(kind_ == ModelKind::kHypoplasticSand) << "PredictAtPressures: sand model only";
   GRANASYM_CHECK(psi_epsilons.size() == mean_stresses.size());
   const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind_, parameters, why);
   if (!model) return false;
-  const auto& sand = static_cast<const HypoplasticSand&>(*model);
+  // The closed forms on the axes are Bauer's limit void ratios (SandPath).
+  const auto* sand = dynamic_cast<const HypoplasticSand*>(model.get());
+  GRANASYM_CHECK(sand != nullptr) << "PredictAtPressures: sand model only";
   states->assign(psi_epsilons.size(), StatePrediction());
   std::vector<bool> done(psi_epsilons.size(), false);
   for (size_t k = 0; k < psi_epsilons.size(); ++k) {
@@ -221,7 +203,7 @@ bool AsymptotePredictor::PredictAtPressures(const std::vector<double>& parameter
       }
     }
     std::vector<StatePrediction> path;
-    if (!SandPath(sand, psi_epsilons[k], targets, options_, &path, why)) return false;
+    if (!SandPath(*sand, psi_epsilons[k], targets, options_, &path, why)) return false;
     for (size_t m = 0; m < members.size(); ++m) (*states)[members[m]] = path[m];
   }
   return true;
@@ -232,8 +214,11 @@ bool AsymptotePredictor::Predict(const std::vector<double>& parameters,
                                  const std::vector<double>& psi_sigmas,
                                  std::vector<Prediction>* by_stretching,
                                  std::vector<Prediction>* by_stress, std::string* why) const {
-  if (kind_ == ModelKind::kHypoplasticSand) {
-    *why = "the sand model has no p-independent asymptotes: use PredictAtPressures";
+  if (!Traits(kind_).linear_ncl) {
+    *why = fmt::format(
+        "the {} model has no p-independent asymptotes (its NCL is curved in ln(1+e)-ln p): use "
+        "PredictAtPressures",
+        Traits(kind_).title);
     return false;
   }
   const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind_, parameters, why);
@@ -241,17 +226,10 @@ bool AsymptotePredictor::Predict(const std::vector<double>& parameters,
   by_stretching->assign(psi_epsilons.size(), Prediction());
   by_stress->assign(psi_sigmas.size(), Prediction());
 
-  StressMap map;
-  if (kind_ == ModelKind::kHypoplasticClay) {
-    const auto* clay = static_cast<const HypoplasticClay*>(model.get());
-    map = [clay](double psi, Prediction* out, std::string* w) {
-      return HypoplasticAsymptote(*clay, psi, out, w);
-    };
-  } else {
-    map = [&parameters](double psi, Prediction* out, std::string* w) {
-      return CamClayAsymptote(parameters, psi, out, w);
-    };
-  }
+  const ConstitutiveModel& asymptotes = *model;
+  const StressMap map = [&asymptotes](double psi, Prediction* out, std::string* w) {
+    return AsymptoteOf(asymptotes, psi, out, w);
+  };
   for (size_t k = 0; k < psi_sigmas.size(); ++k) {
     const double psi = std::min(std::max(psi_sigmas[k], kLowestPsiSigma), kHighestPsiSigma);
     if (!map(psi, &(*by_stress)[k], why)) return false;
@@ -289,8 +267,9 @@ bool AsymptotePredictor::Predict(const std::vector<double>& parameters,
 
 bool AsymptotePredictor::Curve(const std::vector<double>& parameters, int points,
                                std::vector<Prediction>* curve, std::string* why) const {
-  if (kind_ == ModelKind::kHypoplasticSand) {
-    *why = "the sand model has no analytic asymptotic state boundary surface";
+  if (!Traits(kind_).linear_ncl) {
+    *why = fmt::format("the {} model has no analytic asymptotic state boundary surface",
+                       Traits(kind_).title);
     return false;
   }
   const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind_, parameters, why);
@@ -298,12 +277,7 @@ bool AsymptotePredictor::Curve(const std::vector<double>& parameters, int points
   curve->assign(static_cast<size_t>(points), Prediction());
   for (int i = 0; i < points; ++i) {
     const double psi = kLowestPsiSigma + (kHighestPsiSigma - kLowestPsiSigma) * i / (points - 1);
-    Prediction& out = (*curve)[static_cast<size_t>(i)];
-    const bool ok =
-        kind_ == ModelKind::kHypoplasticClay
-            ? HypoplasticAsymptote(static_cast<const HypoplasticClay&>(*model), psi, &out, why)
-            : CamClayAsymptote(parameters, psi, &out, why);
-    if (!ok) return false;
+    if (!AsymptoteOf(*model, psi, &(*curve)[static_cast<size_t>(i)], why)) return false;
   }
   return true;
 }

@@ -3,14 +3,11 @@
 // ln(1+e) = N − λ* ln(p OCR/p_r) parallel to the NCL; for a stress direction
 // ψ_σ (ASBS cross-sections) the OCR of the state boundary surface.
 //
-// Analytic (default):
-//   hypoplastic clay: the ASBS of Mašín & Herle (2005), ψ_σ → (ψ_ε, OCR) from
-//   constitutive/asymptotic_states.h, inverted for ψ_ε on a ψ_σ grid refined
-//   by the Illinois method;
-//   Modified Cam clay: on the Roscoe surface (ψ_σ ↔ η = q/p, p_c/p = 1 + η²/M²)
-//   proportional stretching keeps η and moves p and p_c together, so
-//   ε̇_v ∝ λ*(M² − η²), ε̇_s ∝ η[κ* c (M² − η²) + 2(λ* − κ*)], c = 2(1+ν)/(9(1−2ν)),
-//   tan ψ_ε = (3/√2) ε̇_s/ε̇_v and ln OCR = (1 − κ*/λ*) ln(1 + η²/M²).
+// Analytic (default), for the models with a linear NCL (ModelTraits::linear_ncl):
+//   the model's closed form ψ_σ → (ψ_ε, OCR)
+//   (ConstitutiveModel::AsymptoteOfStressDirection: the ASBS of Mašín & Herle
+//   (2005) for the hypoplastic clay, the Roscoe surface for Modified Cam
+//   clay), inverted for ψ_ε on a ψ_σ grid refined by the Illinois method.
 // Hypoplastic sand (not homogeneous in p, no analytic ASBS; SPEC §7): the
 // state at the DEM state's own p, along proportional stretching at its ψ_ε
 // from an isotropic state on the limit line e_i far from it (a tenth of the

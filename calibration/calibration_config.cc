@@ -60,189 +60,214 @@ std::vector<std::string> ExpandGlob(const ConfigTable& t, const std::string& key
   return matches;
 }
 
+// [parameters.<key>]: the user's choices for the model's parameters.
+std::vector<ParameterChoice> ReadParameterChoices(const ConfigTable& parameters,
+                                                  const ModelParameters& defaults) {
+  std::vector<ParameterChoice> choices;
+  for (const ParameterSpec& spec : defaults.specs()) {
+    if (!parameters.Has(spec.name)) continue;
+    const ConfigTable t = parameters.GetTable(spec.name);
+    ParameterChoice choice;
+    choice.name = spec.name;
+    choice.free = t.GetBool("free", true);
+    choice.has_value = t.Has("value");
+    // Values and bounds lie where the model is defined.
+    if (choice.has_value) choice.value = t.GetDouble("value", spec.domain);
+    choice.has_lower = t.Has("lower");
+    if (choice.has_lower) choice.lower = t.GetDouble("lower", spec.domain);
+    choice.has_upper = t.Has("upper");
+    if (choice.has_upper) choice.upper = t.GetDouble("upper", spec.domain);
+    if (!choice.free && !choice.has_value) {
+      t.Fail("value", "a fixed parameter (free = false) needs a value");
+    }
+    const double lower = choice.has_lower ? choice.lower : spec.lower;
+    const double upper = choice.has_upper ? choice.upper : spec.upper;
+    if (choice.free && !(lower < upper)) {
+      t.Fail(choice.has_lower ? "lower" : "upper",
+             fmt::format("lower = {} must be below upper = {}", lower, upper));
+    }
+    if (choice.free && choice.has_value && !(choice.value >= lower && choice.value <= upper)) {
+      t.Fail("value", fmt::format("value = {} lies outside [{}, {}]", choice.value, lower, upper));
+    }
+    choices.push_back(choice);
+  }
+  parameters.CheckNoUnknownKeys();
+  return choices;
+}
+
+// The selections of a study dataset (study_state_reader.h).
+void ReadStudySelections(const ConfigTable& t, StudyReadOptions* o) {
+  if (t.Has("kinds")) {
+    o->kinds = t.GetStrings("kinds");
+    for (const std::string& kind : o->kinds) {
+      if (std::find(StudyTableKinds().begin(), StudyTableKinds().end(), kind) ==
+          StudyTableKinds().end()) {
+        t.Fail("kinds", "holds '" + kind +
+                            "': expected a list of ncl, csl, compression, "
+                            "extension, triaxial");
+      }
+    }
+    if (o->kinds.empty()) t.Fail("kinds", "is empty: give at least one kind or leave it out");
+  }
+  if (t.Has("statuses")) {
+    o->statuses = t.GetStrings("statuses");
+    for (const std::string& status : o->statuses) {
+      if (std::find(StudyTableStatuses().begin(), StudyTableStatuses().end(), status) ==
+          StudyTableStatuses().end()) {
+        t.Fail("statuses", "holds '" + status +
+                               "': expected a list of detected, drifting, "
+                               "not_reached, gas, invalid, no_result");
+      }
+    }
+    if (o->statuses.empty()) t.Fail("statuses", "is empty: give at least one status");
+  }
+  if (t.Has("exclude_flags")) o->exclude_flags = t.GetStrings("exclude_flags");
+  if (t.Has("ncl_references")) o->ncl_references = t.GetStrings("ncl_references");
+  if (t.Has("cases")) {
+    o->cases = t.GetStrings("cases");
+    if (o->cases.empty()) t.Fail("cases", "is empty: name at least one case or leave it out");
+  }
+  if (t.Has("psi_epsilon_range_deg")) {
+    const std::vector<double> range =
+        t.GetDoubles("psi_epsilon_range_deg", Range::Closed(-180, 180));
+    if (range.size() != 2 || !(range[0] < range[1])) {
+      t.Fail("psi_epsilon_range_deg", "must be [lo, hi] with -180 <= lo < hi <= 180 (deg)");
+    }
+    o->psi_epsilon_min_deg = range[0];
+    o->psi_epsilon_max_deg = range[1];
+  }
+  o->triaxial_kind_tolerance_deg = t.GetDouble(
+      "triaxial_kind_tolerance_deg", o->triaxial_kind_tolerance_deg, Range::Closed(0, 44));
+}
+
+// The keys of a DEM dataset besides its files (dem_state_reader.h).
+void ReadDemOptions(const ConfigTable& t, DemReadOptions* o) {
+  o->ncl_min_p_kpa = t.GetDouble("ncl_min_p_kpa", o->ncl_min_p_kpa, Range::NonNegative());
+  o->max_line_points =
+      static_cast<int>(t.GetInt("max_line_points", o->max_line_points, Range::AtLeast(2)));
+  if (t.Has("asbs_ln_1_plus_e")) {
+    // Each value: ln(1+e) of a void ratio e > 0; NaN fails Range::Contains.
+    o->asbs_ln_1_plus_e = t.GetDoubles("asbs_ln_1_plus_e", Range::Positive());
+    if (o->asbs_ln_1_plus_e.empty()) {
+      t.Fail("asbs_ln_1_plus_e", "is empty: give at least one ln(1+e) value or leave the key out");
+    }
+  }
+}
+
+// The keys of a CSV dataset besides its file (csv_state_reader.h).
+void ReadCsvOptions(const ConfigTable& t, CsvReadOptions* o) {
+  // "auto" or one StateKind name.
+  o->kind = t.GetString("kind", o->kind);
+  if (o->kind != "auto" && !FromString<StateKind>(o->kind)) {
+    t.Fail("kind", "= '" + o->kind + "' is not valid: expected auto, " + AllowedNames<StateKind>());
+  }
+  o->ignore_columns = SplitComma(t.GetString("ignore_columns", ""));
+}
+
+// One [[dataset]] (the k-th, 0-based), its paths resolved against `origin`.
+DatasetConfig ReadDataset(const ConfigTable& t, size_t k, const std::string& origin) {
+  DatasetConfig d;
+  d.name = t.GetString("name", fmt::format("dataset{}", k + 1));
+  const bool has_dem = t.Has("dem"), has_csv = t.Has("csv"), has_study = t.Has("study");
+  if (int{has_dem} + int{has_csv} + int{has_study} != 1) {
+    t.Fail(has_dem || has_csv || has_study ? "study" : "dem",
+           "give exactly one of study = \"STUDY_DIR\", dem = \"RUN.h5\" (or an array of files "
+           "and globs) and csv = \"FILE.csv\"");
+  }
+  d.is_dem = has_dem;
+  d.is_study = has_study;
+  if (has_dem) {
+    const std::vector<std::string> given = t.GetStrings("dem");
+    if (given.empty()) t.Fail("dem", "is an empty array: give at least one result file");
+    for (const std::string& entry : given) {
+      for (const std::string& file : ExpandGlob(t, "dem", Resolve(origin, entry))) {
+        d.paths.push_back(file);
+      }
+    }
+  } else {
+    d.paths.push_back(Resolve(origin, t.GetString(has_csv ? "csv" : "study")));
+  }
+  d.path = d.paths.front();
+  const double weight = t.GetDouble("weight", 1.0, Range::NonNegative());
+  const double u_psi = t.GetDouble("psi_sigma_uncertainty_deg", 0.5, Range::Positive());
+  const double u_v = t.GetDouble("ln_1_plus_e_uncertainty", 0.002, Range::Positive());
+  // The keys every kind of dataset has.
+  const auto set_weights = [&](auto* o) {
+    o->weight = weight;
+    o->psi_sigma_uncertainty_deg = u_psi;
+    o->ln_volume_uncertainty = u_v;
+  };
+  if (has_study) {
+    set_weights(&d.study);
+    ReadStudySelections(t, &d.study);
+  }
+  if (has_dem) {
+    set_weights(&d.dem);
+    ReadDemOptions(t, &d.dem);
+  } else if (has_csv) {
+    set_weights(&d.csv);
+    ReadCsvOptions(t, &d.csv);
+  }
+  return d;
+}
+
+// [fitter] and [fitter.nlopt].
+void ReadFitter(const ConfigTable& f, CalibrationConfig* config) {
+  config->method = f.GetEnum("method", config->method);
+  config->fix_undetermined = f.GetBool("fix_undetermined", config->fix_undetermined);
+  config->ceres.max_iterations = static_cast<int>(
+      f.GetInt("max_iterations", config->ceres.max_iterations, Range::Closed(1, 1e6)));
+  config->ceres.uncertainty.scale_by_residual_variance =
+      f.GetBool("scale_by_residual_variance", config->ceres.uncertainty.scale_by_residual_variance);
+  if (f.Has("nlopt")) {
+    const ConfigTable t = f.GetTable("nlopt");
+    config->nlopt.algorithm = t.GetEnum("algorithm", config->nlopt.algorithm);
+    config->nlopt.starts =
+        static_cast<int>(t.GetInt("starts", config->nlopt.starts, Range::Closed(1, 1000)));
+    config->nlopt.max_evaluations = static_cast<int>(
+        t.GetInt("max_evaluations", config->nlopt.max_evaluations, Range::Closed(10, 1e8)));
+    config->nlopt.seed = static_cast<uint64_t>(t.GetInt("seed", 1, Range::NonNegative()));
+    config->nlopt.polish = t.GetEnum("polish", config->nlopt.polish);
+  }
+  config->nlopt.uncertainty = config->ceres.uncertainty;
+  config->nlopt.ceres = config->ceres;
+}
+
+// The output paths: beside the calibration file unless [output] names them.
+void ReadOutput(const ConfigTable& root, CalibrationConfig* config) {
+  const std::filesystem::path stem = std::filesystem::path(config->origin).replace_extension("");
+  config->hdf5_path = stem.string() + ".h5";
+  config->summary_path = stem.string() + ".txt";
+  config->plot_data_dir = stem.string() + "_plots";
+  if (root.Has("output")) {
+    const ConfigTable o = root.GetTable("output");
+    if (o.Has("hdf5")) config->hdf5_path = Resolve(config->origin, o.GetString("hdf5"));
+    if (o.Has("summary")) config->summary_path = Resolve(config->origin, o.GetString("summary"));
+    if (o.Has("plot_data")) {
+      config->plot_data_dir = Resolve(config->origin, o.GetString("plot_data"));
+    }
+  }
+}
+
 }  // namespace
 
 CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
   CalibrationConfig config;
   config.origin = root.origin();
   const ConfigTable model = root.GetTable("model");
-  config.model = model.GetEnum(
-      "kind", ModelKind::kHypoplasticClay,
-      {ModelKind::kHypoplasticClay, ModelKind::kModifiedCamClay, ModelKind::kHypoplasticSand});
+  config.model = model.GetEnum("kind", ModelKind::kHypoplasticClay);
   config.predictor.method = model.GetEnum("asymptotes", AsymptoteMethod::kAnalytic);
-
-  const ModelParameters defaults = ModelParameters::Defaults(config.model);
   if (root.Has("parameters")) {
-    const ConfigTable parameters = root.GetTable("parameters");
-    for (const ParameterSpec& spec : defaults.specs()) {
-      if (!parameters.Has(spec.name)) continue;
-      const ConfigTable t = parameters.GetTable(spec.name);
-      ParameterChoice choice;
-      choice.name = spec.name;
-      choice.free = t.GetBool("free", true);
-      choice.has_value = t.Has("value");
-      // Values and bounds lie where the model is defined.
-      if (choice.has_value) choice.value = t.GetDouble("value", spec.domain);
-      choice.has_lower = t.Has("lower");
-      if (choice.has_lower) choice.lower = t.GetDouble("lower", spec.domain);
-      choice.has_upper = t.Has("upper");
-      if (choice.has_upper) choice.upper = t.GetDouble("upper", spec.domain);
-      if (!choice.free && !choice.has_value) {
-        t.Fail("value", "a fixed parameter (free = false) needs a value");
-      }
-      const double lower = choice.has_lower ? choice.lower : spec.lower;
-      const double upper = choice.has_upper ? choice.upper : spec.upper;
-      if (choice.free && !(lower < upper)) {
-        t.Fail(choice.has_lower ? "lower" : "upper",
-               fmt::format("lower = {} must be below upper = {}", lower, upper));
-      }
-      if (choice.free && choice.has_value && !(choice.value >= lower && choice.value <= upper)) {
-        t.Fail("value",
-               fmt::format("value = {} lies outside [{}, {}]", choice.value, lower, upper));
-      }
-      config.parameters.push_back(choice);
-    }
-    parameters.CheckNoUnknownKeys();
+    config.parameters =
+        ReadParameterChoices(root.GetTable("parameters"), ModelParameters::Defaults(config.model));
   }
-
   const std::vector<ConfigTable> datasets = root.GetTableArray("dataset");
   if (datasets.empty()) root.Fail("dataset", "at least one [[dataset]] is needed");
   for (size_t k = 0; k < datasets.size(); ++k) {
-    const ConfigTable& t = datasets[k];
-    DatasetConfig d;
-    d.name = t.GetString("name", fmt::format("dataset{}", k + 1));
-    const bool has_dem = t.Has("dem"), has_csv = t.Has("csv"), has_study = t.Has("study");
-    if (int{has_dem} + int{has_csv} + int{has_study} != 1) {
-      t.Fail(has_dem || has_csv || has_study ? "study" : "dem",
-             "give exactly one of study = \"STUDY_DIR\", dem = \"RUN.h5\" (or an array of files "
-             "and globs) and csv = \"FILE.csv\"");
-    }
-    d.is_dem = has_dem;
-    d.is_study = has_study;
-    if (has_dem) {
-      const std::vector<std::string> given = t.GetStrings("dem");
-      if (given.empty()) t.Fail("dem", "is an empty array: give at least one result file");
-      for (const std::string& entry : given) {
-        for (const std::string& file : ExpandGlob(t, "dem", Resolve(config.origin, entry))) {
-          d.paths.push_back(file);
-        }
-      }
-    } else {
-      d.paths.push_back(Resolve(config.origin, t.GetString(has_csv ? "csv" : "study")));
-    }
-    d.path = d.paths.front();
-    const double weight = t.GetDouble("weight", 1.0, Range::NonNegative());
-    const double u_psi = t.GetDouble("psi_sigma_uncertainty_deg", 0.5, Range::Positive());
-    const double u_v = t.GetDouble("ln_1_plus_e_uncertainty", 0.002, Range::Positive());
-    if (has_study) {
-      StudyReadOptions& o = d.study;
-      o.weight = weight;
-      o.psi_sigma_uncertainty_deg = u_psi;
-      o.ln_volume_uncertainty = u_v;
-      if (t.Has("kinds")) {
-        o.kinds = t.GetStrings("kinds");
-        for (const std::string& kind : o.kinds) {
-          if (std::find(StudyTableKinds().begin(), StudyTableKinds().end(), kind) ==
-              StudyTableKinds().end()) {
-            t.Fail("kinds", "holds '" + kind +
-                                "': expected a list of ncl, csl, compression, "
-                                "extension, triaxial");
-          }
-        }
-        if (o.kinds.empty()) t.Fail("kinds", "is empty: give at least one kind or leave it out");
-      }
-      if (t.Has("statuses")) {
-        o.statuses = t.GetStrings("statuses");
-        for (const std::string& status : o.statuses) {
-          if (std::find(StudyTableStatuses().begin(), StudyTableStatuses().end(), status) ==
-              StudyTableStatuses().end()) {
-            t.Fail("statuses", "holds '" + status +
-                                   "': expected a list of detected, drifting, "
-                                   "not_reached, gas, invalid, no_result");
-          }
-        }
-        if (o.statuses.empty()) t.Fail("statuses", "is empty: give at least one status");
-      }
-      if (t.Has("exclude_flags")) o.exclude_flags = t.GetStrings("exclude_flags");
-      if (t.Has("ncl_references")) o.ncl_references = t.GetStrings("ncl_references");
-      if (t.Has("cases")) {
-        o.cases = t.GetStrings("cases");
-        if (o.cases.empty()) t.Fail("cases", "is empty: name at least one case or leave it out");
-      }
-      if (t.Has("psi_epsilon_range_deg")) {
-        const std::vector<double> range =
-            t.GetDoubles("psi_epsilon_range_deg", Range::Closed(-180, 180));
-        if (range.size() != 2 || !(range[0] < range[1])) {
-          t.Fail("psi_epsilon_range_deg", "must be [lo, hi] with -180 <= lo < hi <= 180 (deg)");
-        }
-        o.psi_epsilon_min_deg = range[0];
-        o.psi_epsilon_max_deg = range[1];
-      }
-      o.triaxial_kind_tolerance_deg = t.GetDouble(
-          "triaxial_kind_tolerance_deg", o.triaxial_kind_tolerance_deg, Range::Closed(0, 44));
-    }
-    if (has_dem) {
-      d.dem.weight = weight;
-      d.dem.psi_sigma_uncertainty_deg = u_psi;
-      d.dem.ln_volume_uncertainty = u_v;
-      d.dem.ncl_min_p_kpa = t.GetDouble("ncl_min_p_kpa", d.dem.ncl_min_p_kpa, Range::NonNegative());
-      d.dem.max_line_points =
-          static_cast<int>(t.GetInt("max_line_points", d.dem.max_line_points, Range::AtLeast(2)));
-      if (t.Has("asbs_ln_1_plus_e")) {
-        // Each value: ln(1+e) of a void ratio e > 0; NaN fails Range::Contains.
-        d.dem.asbs_ln_1_plus_e = t.GetDoubles("asbs_ln_1_plus_e", Range::Positive());
-        if (d.dem.asbs_ln_1_plus_e.empty()) {
-          t.Fail("asbs_ln_1_plus_e",
-                 "is empty: give at least one ln(1+e) value or leave the key out");
-        }
-      }
-    } else if (has_csv) {
-      d.csv.weight = weight;
-      d.csv.psi_sigma_uncertainty_deg = u_psi;
-      d.csv.ln_volume_uncertainty = u_v;
-      // "auto" or one StateKind name.
-      d.csv.kind = t.GetString("kind", d.csv.kind);
-      if (d.csv.kind != "auto" && !FromString<StateKind>(d.csv.kind)) {
-        t.Fail("kind",
-               "= '" + d.csv.kind + "' is not valid: expected auto, " + AllowedNames<StateKind>());
-      }
-      d.csv.ignore_columns = SplitComma(t.GetString("ignore_columns", ""));
-    }
-    config.datasets.push_back(d);
+    config.datasets.push_back(ReadDataset(datasets[k], k, config.origin));
   }
-
-  if (root.Has("fitter")) {
-    const ConfigTable f = root.GetTable("fitter");
-    config.method = f.GetEnum("method", config.method);
-    config.fix_undetermined = f.GetBool("fix_undetermined", config.fix_undetermined);
-    config.ceres.max_iterations = static_cast<int>(
-        f.GetInt("max_iterations", config.ceres.max_iterations, Range::Closed(1, 1e6)));
-    config.ceres.uncertainty.scale_by_residual_variance = f.GetBool(
-        "scale_by_residual_variance", config.ceres.uncertainty.scale_by_residual_variance);
-    if (f.Has("nlopt")) {
-      const ConfigTable t = f.GetTable("nlopt");
-      config.nlopt.algorithm = t.GetEnum("algorithm", config.nlopt.algorithm);
-      config.nlopt.starts =
-          static_cast<int>(t.GetInt("starts", config.nlopt.starts, Range::Closed(1, 1000)));
-      config.nlopt.max_evaluations = static_cast<int>(
-          t.GetInt("max_evaluations", config.nlopt.max_evaluations, Range::Closed(10, 1e8)));
-      config.nlopt.seed = static_cast<uint64_t>(t.GetInt("seed", 1, Range::NonNegative()));
-      config.nlopt.polish = t.GetEnum("polish", config.nlopt.polish);
-    }
-    config.nlopt.uncertainty = config.ceres.uncertainty;
-    config.nlopt.ceres = config.ceres;
-  }
-
-  const std::filesystem::path stem = std::filesystem::path(config.origin).replace_extension("");
-  config.hdf5_path = stem.string() + ".h5";
-  config.summary_path = stem.string() + ".txt";
-  config.plot_data_dir = stem.string() + "_plots";
-  if (root.Has("output")) {
-    const ConfigTable o = root.GetTable("output");
-    if (o.Has("hdf5")) config.hdf5_path = Resolve(config.origin, o.GetString("hdf5"));
-    if (o.Has("summary")) config.summary_path = Resolve(config.origin, o.GetString("summary"));
-    if (o.Has("plot_data")) config.plot_data_dir = Resolve(config.origin, o.GetString("plot_data"));
-  }
+  if (root.Has("fitter")) ReadFitter(root.GetTable("fitter"), &config);
+  ReadOutput(root, &config);
   std::string why;
   if (!config.ceres.IsValid(&why) || !config.nlopt.IsValid(&why)) root.Fail("fitter", why);
   root.CheckNoUnknownKeys();

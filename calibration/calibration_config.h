@@ -8,11 +8,10 @@
 //   [parameters.lambda_star]      # one table per parameter, all optional:
 //   free = true                   #   fitted (default) or fixed at `value`
 //   value = 0.1                   #   start or fixed value; default: from the data
-//   lower = 0.001                 #   bounds of the fit; default: model_parameters.cc
-//   upper = 0.5
-//   # names: phi_c_deg, lambda_star, kappa_star, n_intercept, and r
-//   # (hypoplastic_clay) or poisson_ratio (modified_cam_clay); hypoplastic_sand:
-//   # phi_c_deg, h_s_kpa, n, e_d0, e_c0, e_i0, alpha, beta
+//   lower = 0.001                 #   bounds of the fit; default: the model's
+//   upper = 0.5                   #   traits (constitutive/model_traits.cc)
+//   # names: the keys of the model's parameter vector, as in its [model]
+//   # table (ModelTraits::parameters; model.toml of a calibration lists them)
 //
 //   [[dataset]]                   # one or more; exactly one of study, dem, csv
 //   name = "dem"

@@ -27,11 +27,13 @@ CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
     datasets_[d].Validate();
     for (const AsymptoticStatePoint& point : datasets_[d].points) {
       int s = -1, a = -1;
-      if (point.kind == StateKind::kAsbs && parameters_.kind() == ModelKind::kHypoplasticSand) {
+      if (point.kind == StateKind::kAsbs && !parameters_.traits().linear_ncl) {
         throw InputError(fmt::format(
             "dataset '{}': {}: ASBS cross-section points need a model with an analytic ASBS "
-            "(hypoplastic_clay or modified_cam_clay), not hypoplastic_sand",
-            datasets_[d].name, point.source));
+            "({}), not {}",
+            datasets_[d].name, point.source,
+            ModelNamesWhere([](const ModelTraits& t) { return t.linear_ncl; }),
+            ToString(parameters_.kind())));
       }
       if (point.HasStretching()) {
         for (size_t k = 0; k < psi_epsilons_.size(); ++k) {
@@ -78,38 +80,64 @@ CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
   }
 }
 
-std::vector<std::pair<int, std::string>> Unidentifiable(const std::vector<StateDataset>& datasets,
-                                                        const ModelParameters& parameters) {
-  std::vector<std::pair<int, std::string>> found;
-  if (!HasLinearNcl(parameters.kind())) return found;
-  std::set<double> ln_p_with_line;  // distinct p among points on asymptotic lines
-  int non_isotropic = 0;            // points with ψ_ε ≠ 0 or ASBS points
-  std::set<double> non_isotropic_directions;
-  for (const StateDataset& dataset : datasets) {
-    for (const AsymptoticStatePoint& point : dataset.points) {
-      if (!point.IsFitted()) continue;
-      ln_p_with_line.insert(std::round(std::log(point.mean_stress) * 1e6));
-      if (point.kind != StateKind::kNcl) {
-        ++non_isotropic;
-        if (point.kind == StateKind::kCsl) continue;  // OCR_c and ψ_σ(c) need φ_c only
-        non_isotropic_directions.insert(point.kind == StateKind::kAsbs ? point.psi_sigma + 10.0
-                                                                       : point.psi_epsilon);
+namespace {
+
+// What the fitted asymptotic states of `datasets` hold, for identifiability.
+struct StateCoverage {
+  std::set<double> ln_p_with_line;            // distinct p among points on asymptotic lines
+  int non_isotropic = 0;                      // points with ψ_ε ≠ 0 or ASBS points
+  std::set<double> non_isotropic_directions;  // besides the critical state
+
+  explicit StateCoverage(const std::vector<StateDataset>& datasets) {
+    for (const StateDataset& dataset : datasets) {
+      for (const AsymptoticStatePoint& point : dataset.points) {
+        if (!point.IsFitted()) continue;
+        ln_p_with_line.insert(std::round(std::log(point.mean_stress) * 1e6));
+        if (point.kind != StateKind::kNcl) {
+          ++non_isotropic;
+          if (point.kind == StateKind::kCsl) continue;  // OCR_c and ψ_σ(c) need φ_c only
+          non_isotropic_directions.insert(point.kind == StateKind::kAsbs ? point.psi_sigma + 10.0
+                                                                         : point.psi_epsilon);
+        }
       }
     }
   }
-  auto check = [&](int index, bool identified, const std::string& need) {
-    if (parameters.specs()[index].free && !identified) found.emplace_back(index, need);
-  };
-  check(kLambdaStar, ln_p_with_line.size() >= 2,
-        "lambda_star needs asymptotic states at two or more mean stresses");
-  check(kCriticalFrictionAngle, non_isotropic > 0,
-        "phi_c needs states away from the isotropic axis (CSL, compression, extension or ASBS)");
-  check(kKappaStar, non_isotropic > 0,
-        "kappa_star acts on asymptotes only through the OCR of non-isotropic states; none given");
-  check(kShearParameter, non_isotropic_directions.size() >= 2,
-        fmt::format("{} needs non-isotropic states in two or more directions besides the "
-                    "critical state",
-                    parameters.specs()[kShearParameter].name));
+
+  // Whether these states can identify a parameter determined by `by`
+  // (kJacobian: judged from the fit instead, see calibration_report.h).
+  bool Identifies(Identification by) const {
+    switch (by) {
+      case Identification::kTwoMeanStresses:
+        return ln_p_with_line.size() >= 2;
+      case Identification::kOffIsotropicAxis:
+        return non_isotropic > 0;
+      case Identification::kTwoOffAxisDirections:
+        return non_isotropic_directions.size() >= 2;
+      case Identification::kAnyState:
+      case Identification::kJacobian:
+        return true;
+    }
+    return true;
+  }
+};
+
+}  // namespace
+
+std::vector<std::pair<int, std::string>> Unidentifiable(const std::vector<StateDataset>& datasets,
+                                                        const ModelParameters& parameters) {
+  std::vector<std::pair<int, std::string>> found;
+  const StateCoverage coverage(datasets);
+  const std::vector<FittedParameter>& fitted = parameters.traits().parameters;
+  // By requirement first (the most basic data first), then in parameter order.
+  for (Identification by : EnumValues<Identification>()) {
+    for (size_t i = 0; i < fitted.size(); ++i) {
+      if (fitted[i].identified_by != by || !parameters.specs()[i].free) continue;
+      if (!coverage.Identifies(by)) {
+        found.emplace_back(static_cast<int>(i),
+                           fmt::format("{} needs {}", fitted[i].traits.key, EnumDescription(by)));
+      }
+    }
+  }
   return found;
 }
 
@@ -131,8 +159,7 @@ std::vector<double> CalibrationProblem::FreeStart() const {
 
 bool CalibrationProblem::Evaluate(const std::vector<double>& values,
                                   std::vector<PointResidual>* residuals, std::string* why) const {
-  if (parameters_.kind() == ModelKind::kHypoplasticSand)
-    return EvaluateSand(values, residuals, why);
+  if (!parameters_.traits().linear_ncl) return EvaluateAtOwnPressures(values, residuals, why);
   std::vector<Prediction> by_stretching, by_stress;
   if (!predictor_.Predict(values, psi_epsilons_, asbs_psi_sigmas_, &by_stretching, &by_stress,
                           why)) {
@@ -168,9 +195,9 @@ bool CalibrationProblem::Evaluate(const std::vector<double>& values,
   return true;
 }
 
-bool CalibrationProblem::EvaluateSand(const std::vector<double>& values,
-                                      std::vector<PointResidual>* residuals,
-                                      std::string* why) const {
+bool CalibrationProblem::EvaluateAtOwnPressures(const std::vector<double>& values,
+                                                std::vector<PointResidual>* residuals,
+                                                std::string* why) const {
   // Every point at its own p: states along its ψ_ε, unloading points on e_i.
   std::vector<double> psi_epsilons, mean_stresses;
   for (const StateDataset& dataset : datasets_) {

@@ -36,11 +36,12 @@ struct PointResidual {
 };
 
 // The free parameters that these data cannot identify whatever the fit
-// (structurally: e.g. lambda* without states at two mean stresses, r or ν
-// without non-isotropic states in two directions besides the critical
-// state), each with what data it needs, in parameter order. The sand's
-// parameters are judged from the Jacobian instead (DeterminedFit,
-// calibration_report.h), so none is listed for it.
+// (structurally, by FittedParameter::identified_by of the model's traits:
+// e.g. lambda* without states at two mean stresses, r or ν without
+// non-isotropic states in two directions besides the critical state), each
+// with what data it needs, by requirement (Identification order) and then in
+// parameter order. The sand's parameters are judged from the Jacobian
+// instead (RunCalibration, calibration_report.h), so none is listed for it.
 std::vector<std::pair<int, std::string>> Unidentifiable(const std::vector<StateDataset>& datasets,
                                                         const ModelParameters& parameters);
 
@@ -77,8 +78,9 @@ class CalibrationProblem {
   long evaluations() const { return evaluations_; }
 
  private:
-  bool EvaluateSand(const std::vector<double>& values, std::vector<PointResidual>* residuals,
-                    std::string* why) const;
+  // A model without a linear NCL (the sand): each state at its own p.
+  bool EvaluateAtOwnPressures(const std::vector<double>& values,
+                              std::vector<PointResidual>* residuals, std::string* why) const;
 
   std::vector<StateDataset> datasets_;
   ModelParameters parameters_;

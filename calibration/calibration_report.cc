@@ -17,6 +17,7 @@
 #include "common/csv_table.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
+#include "common/quantity_names.h"
 #include "common/state_measures.h"
 #include "common/statistics.h"
 #include "common/text_file.h"
@@ -74,6 +75,27 @@ void SandStart(const StartingValues& start, const std::vector<StateDataset>& dat
   set(kSandDensestVoidRatio, 0.6 * e_i0 * ratio);
 }
 
+// The estimate of the clay models' starting values for `role`; nullptr for
+// the roles of the sand (SandStart) and typical values.
+const Estimate* EstimateFor(const StartingValues& start, ParameterStart role) {
+  switch (role) {
+    case ParameterStart::kCslStressRatio:
+      return &start.critical_friction_angle_deg;
+    case ParameterStart::kNclSlope:
+      return &start.lambda_star;
+    case ParameterStart::kUnloadingSlope:
+      return &start.kappa_star;
+    case ParameterStart::kNclIntercept:
+      return &start.n_intercept;
+    case ParameterStart::kTypical:
+    case ParameterStart::kBauerNcl:
+    case ParameterStart::kCslVoidRatio:
+    case ParameterStart::kDensestFraction:
+      return nullptr;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 ModelParameters ChooseParameters(ModelKind kind, const std::vector<ParameterChoice>& choices,
@@ -81,19 +103,21 @@ ModelParameters ChooseParameters(ModelKind kind, const std::vector<ParameterChoi
                                  const std::vector<StateDataset>& datasets) {
   ModelParameters parameters = ModelParameters::Defaults(kind);
   std::vector<ParameterSpec>& specs = parameters.mutable_specs();
-  auto from_data = [&specs](int index, const Estimate& e) {
-    if (e.from_data) {
-      specs[index].value = std::min(std::max(e.value, specs[index].lower), specs[index].upper);
-    } else if (index == kKappaStar) {
-      specs[index].value = e.value;
+  const std::vector<FittedParameter>& fitted = parameters.traits().parameters;
+  if (parameters.traits().linear_ncl) {
+    // Each parameter from its estimate, clamped into its bounds; κ* takes
+    // its assumed value (λ*/5 of the data) too.
+    for (size_t i = 0; i < fitted.size(); ++i) {
+      const Estimate* e = EstimateFor(start, fitted[i].start);
+      if (e == nullptr) continue;
+      if (e->from_data) {
+        specs[i].value = std::min(std::max(e->value, specs[i].lower), specs[i].upper);
+      } else if (fitted[i].start == ParameterStart::kUnloadingSlope) {
+        specs[i].value = e->value;
+      }
     }
-  };
-  if (HasLinearNcl(kind)) {
-    from_data(kCriticalFrictionAngle, start.critical_friction_angle_deg);
-    from_data(kLambdaStar, start.lambda_star);
-    from_data(kKappaStar, start.kappa_star);
-    from_data(kNIntercept, start.n_intercept);
   } else {
+    // Bauer's law: the starts come from the clay-type estimates together.
     SandStart(start, datasets, &specs);
   }
   for (const ParameterChoice& choice : choices) {
@@ -313,9 +337,9 @@ std::string FitText(const CalibrationRun& run, const FitResult& fit) {
 }
 
 std::string PointsText(const CalibrationRun& run, const FitResult& fit) {
-  std::string s =
-      fmt::format("  {:<12} {:>10} {:>8} {:>9} {:>9} {:>10} {:>11}  {}\n", "kind", "p_kpa", "e",
-                  "psi_eps", "psi_sig", "d_psi_deg", "d_ln(1+e)", "source");
+  std::string s = fmt::format("  {:<12} {:>10} {:>8} {:>9} {:>9} {:>10} {:>11}  {}\n", "kind",
+                              quantity::kMeanStress, quantity::kVoidRatio, "psi_eps", "psi_sig",
+                              "d_psi_deg", "d_ln(1+e)", "source");
   for (const PointResidual& r : fit.residuals) {
     const AsymptoticStatePoint& p = run.problem->datasets()[r.dataset].points[r.point];
     s += fmt::format("  {:<12} {:>10.4g} {:>8.4f} {:>9.3f} {:>9.3f} {:>10.4f} {:>11.3e}  {}{}\n",
@@ -413,6 +437,87 @@ std::string SummaryText(const CalibrationRun& run) {
   return s;
 }
 
+namespace {
+
+// /fits/<fitter>: a fit's summary, values, uncertainties, history, residuals
+// and export orders (`units`: the parameters' units, comma-separated).
+void WriteFitHdf5(const FitResult& fit, const ModelParameters& parameters, const std::string& units,
+                  Hdf5File* file) {
+  std::string group = "/fits/" + fit.summary.fitter;
+  for (char& c : group) c = (c == ':' || c == '+') ? '_' : c;
+  file->CreateGroup(group);
+  file->SetAttribute(group, "fitter", fit.summary.fitter);
+  file->SetAttribute(group, "termination", ToString(fit.summary.termination));
+  file->SetAttribute(group, "message", fit.summary.message);
+  file->SetAttribute(group, "report", fit.summary.Report());
+  file->SetAttribute(group, "iterations", int64_t{fit.summary.iterations});
+  file->SetAttribute(group, "evaluations", int64_t{fit.summary.evaluations});
+  file->SetAttribute(group, "initial_cost", fit.summary.initial_cost);
+  file->SetAttribute(group, "final_cost", fit.summary.final_cost);
+  file->SetAttribute(group, "wall_s", fit.summary.wall_seconds);
+  file->SetAttribute(group, "residual_variance", fit.residual_variance);
+  file->SetAttribute(group, "degrees_of_freedom", int64_t{fit.degrees_of_freedom});
+  file->SetAttribute(group, "condition_number", fit.condition_number);
+  std::string warnings;
+  for (const std::string& w : fit.warnings) warnings += w + "\n";
+  file->SetAttribute(group, "warnings", warnings);
+  file->WriteDoubles(group + "/values", fit.values, units);
+  std::vector<int64_t> free_index(fit.free_indices.begin(), fit.free_indices.end());
+  file->WriteInts(group + "/free_index", free_index, "1");
+  file->WriteDoubles(group + "/standard_errors", fit.standard_errors);
+  file->WriteDoubles(group + "/lower_95", fit.lower_95);
+  file->WriteDoubles(group + "/upper_95", fit.upper_95);
+  const size_t n = fit.free_indices.size();
+  std::vector<double> cov, cor;
+  for (size_t r = 0; r < n; ++r) {
+    for (size_t c = 0; c < n; ++c) {
+      cov.push_back(fit.covariance.size() ? fit.covariance(r, c) : std::nan(""));
+      cor.push_back(fit.correlation.size() ? fit.correlation(r, c) : std::nan(""));
+    }
+  }
+  if (n > 0) {
+    file->WriteMatrix(group + "/covariance", cov, n, n, "parameter units squared");
+    file->WriteMatrix(group + "/correlation", cor, n, n, "1");
+  }
+  std::vector<double> hist_eval, hist_cost;
+  for (const HistoryPoint& h : fit.history) {
+    hist_eval.push_back(static_cast<double>(h.evaluation));
+    hist_cost.push_back(h.cost);
+  }
+  file->WriteDoubles(group + "/history/evaluation", hist_eval, "1");
+  file->WriteDoubles(group + "/history/cost", hist_cost, "1");
+  std::vector<double> d_psi, d_v, m_psi, m_v, ln_ocr;
+  for (const PointResidual& r : fit.residuals) {
+    d_psi.push_back(r.psi_sigma_residual_deg);
+    d_v.push_back(r.ln_volume_residual);
+    m_psi.push_back(r.psi_sigma_model / kDegree);
+    m_v.push_back(r.ln_volume_model);
+    ln_ocr.push_back(r.ln_ocr_model);
+  }
+  file->WriteDoubles(group + "/residuals/" + quantity::kPsiSigma, d_psi, "deg");
+  file->WriteDoubles(group + "/residuals/" + quantity::kLnVolume, d_v, "1");
+  file->WriteDoubles(group + "/model/" + quantity::kPsiSigma, m_psi, "deg");
+  file->WriteDoubles(group + "/model/" + quantity::kLnVolume, m_v, "1");
+  file->WriteDoubles(group + "/model/ln_ocr", ln_ocr, "1");
+  for (const ExportedParameters& e : ExportOrders(parameters.kind(), fit.values)) {
+    std::string order;
+    std::vector<double> values;
+    for (const auto& v : e.values) {
+      order += (order.empty() ? "" : ",") + v.first;
+      values.push_back(v.second);
+    }
+    const std::string name =
+        group + (e.program.rfind("UMAT", 0) == 0 || e.program.rfind("Modified", 0) == 0
+                     ? "/export_umat"
+                     : "/export_plaxis");
+    file->WriteDoubles(name, values);
+    file->SetAttribute(name, "program", e.program);
+    file->SetAttribute(name, "order", order);
+  }
+}
+
+}  // namespace
+
 void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path) {
   const CalibrationProblem& problem = *run.problem;
   const ModelParameters& parameters = problem.parameters();
@@ -432,12 +537,14 @@ void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path) {
       file.SetAttribute("/calibration", "ceres_nlopt_not_compared", run.agreement_not_compared);
     }
   }
-  std::string names, units;
+  std::string names, symbols, units;
   for (const ParameterSpec& spec : parameters.specs()) {
     names += (names.empty() ? "" : ",") + spec.name;
+    symbols += (symbols.empty() ? "" : ",") + spec.symbol;
     units += (units.empty() ? "" : ",") + spec.units;
   }
   file.SetAttribute("/calibration", "parameter_names", names);
+  file.SetAttribute("/calibration", "parameter_symbols", symbols);
   file.SetAttribute("/calibration", "parameter_units", units);
   std::vector<int64_t> free_flags;
   std::vector<double> start, lower, upper;
@@ -468,10 +575,11 @@ void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path) {
       sources += point.source + "\n";
     }
   }
-  file.WriteDoubles("/data/p_kpa", p, "kPa");
-  file.WriteDoubles("/data/e", e, "1");
-  file.WriteDoubles("/data/psi_sigma_deg", psi_s, "deg");
-  file.WriteDoubles("/data/psi_epsilon_deg", psi_e, "deg");
+  const std::string data = "/data/";
+  file.WriteDoubles(data + quantity::kMeanStress, p, "kPa");
+  file.WriteDoubles(data + quantity::kVoidRatio, e, "1");
+  file.WriteDoubles(data + quantity::kPsiSigma, psi_s, "deg");
+  file.WriteDoubles(data + quantity::kPsiEpsilon, psi_e, "deg");
   file.WriteDoubles("/data/weight", weight, "1");
   file.WriteInts("/data/dataset", dataset_index, "1");
   file.WriteInts("/data/kind", kind, "1");
@@ -483,96 +591,22 @@ void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path) {
     dataset_names += d.name + " (" + d.origin + ")\n";
   file.WriteString("/data/datasets", dataset_names);
 
-  for (const FitResult& fit : run.fits) {
-    std::string group = "/fits/" + fit.summary.fitter;
-    for (char& c : group) c = (c == ':' || c == '+') ? '_' : c;
-    file.CreateGroup(group);
-    file.SetAttribute(group, "fitter", fit.summary.fitter);
-    file.SetAttribute(group, "termination", ToString(fit.summary.termination));
-    file.SetAttribute(group, "message", fit.summary.message);
-    file.SetAttribute(group, "report", fit.summary.Report());
-    file.SetAttribute(group, "iterations", int64_t{fit.summary.iterations});
-    file.SetAttribute(group, "evaluations", int64_t{fit.summary.evaluations});
-    file.SetAttribute(group, "initial_cost", fit.summary.initial_cost);
-    file.SetAttribute(group, "final_cost", fit.summary.final_cost);
-    file.SetAttribute(group, "wall_s", fit.summary.wall_seconds);
-    file.SetAttribute(group, "residual_variance", fit.residual_variance);
-    file.SetAttribute(group, "degrees_of_freedom", int64_t{fit.degrees_of_freedom});
-    file.SetAttribute(group, "condition_number", fit.condition_number);
-    std::string warnings;
-    for (const std::string& w : fit.warnings) warnings += w + "\n";
-    file.SetAttribute(group, "warnings", warnings);
-    file.WriteDoubles(group + "/values", fit.values, units);
-    std::vector<int64_t> free_index(fit.free_indices.begin(), fit.free_indices.end());
-    file.WriteInts(group + "/free_index", free_index, "1");
-    file.WriteDoubles(group + "/standard_errors", fit.standard_errors);
-    file.WriteDoubles(group + "/lower_95", fit.lower_95);
-    file.WriteDoubles(group + "/upper_95", fit.upper_95);
-    const size_t n = fit.free_indices.size();
-    std::vector<double> cov, cor;
-    for (size_t r = 0; r < n; ++r) {
-      for (size_t c = 0; c < n; ++c) {
-        cov.push_back(fit.covariance.size() ? fit.covariance(r, c) : std::nan(""));
-        cor.push_back(fit.correlation.size() ? fit.correlation(r, c) : std::nan(""));
-      }
-    }
-    if (n > 0) {
-      file.WriteMatrix(group + "/covariance", cov, n, n, "parameter units squared");
-      file.WriteMatrix(group + "/correlation", cor, n, n, "1");
-    }
-    std::vector<double> hist_eval, hist_cost;
-    for (const HistoryPoint& h : fit.history) {
-      hist_eval.push_back(static_cast<double>(h.evaluation));
-      hist_cost.push_back(h.cost);
-    }
-    file.WriteDoubles(group + "/history/evaluation", hist_eval, "1");
-    file.WriteDoubles(group + "/history/cost", hist_cost, "1");
-    std::vector<double> d_psi, d_v, m_psi, m_v, ln_ocr;
-    for (const PointResidual& r : fit.residuals) {
-      d_psi.push_back(r.psi_sigma_residual_deg);
-      d_v.push_back(r.ln_volume_residual);
-      m_psi.push_back(r.psi_sigma_model / kDegree);
-      m_v.push_back(r.ln_volume_model);
-      ln_ocr.push_back(r.ln_ocr_model);
-    }
-    file.WriteDoubles(group + "/residuals/psi_sigma_deg", d_psi, "deg");
-    file.WriteDoubles(group + "/residuals/ln_1_plus_e", d_v, "1");
-    file.WriteDoubles(group + "/model/psi_sigma_deg", m_psi, "deg");
-    file.WriteDoubles(group + "/model/ln_1_plus_e", m_v, "1");
-    file.WriteDoubles(group + "/model/ln_ocr", ln_ocr, "1");
-    for (const ExportedParameters& e : ExportOrders(parameters.kind(), fit.values)) {
-      std::string order;
-      std::vector<double> values;
-      for (const auto& v : e.values) {
-        order += (order.empty() ? "" : ",") + v.first;
-        values.push_back(v.second);
-      }
-      const std::string name =
-          group + (e.program.rfind("UMAT", 0) == 0 || e.program.rfind("Modified", 0) == 0
-                       ? "/export_umat"
-                       : "/export_plaxis");
-      file.WriteDoubles(name, values);
-      file.SetAttribute(name, "program", e.program);
-      file.SetAttribute(name, "order", order);
-    }
-  }
+  for (const FitResult& fit : run.fits) WriteFitHdf5(fit, parameters, units, &file);
   file.WriteString("/summary", SummaryText(run));
   file.Commit();
 }
 
-void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::string& folder) {
-  std::filesystem::create_directories(folder);
-  const CalibrationProblem& problem = *run.problem;
-  const ModelKind kind = problem.parameters().kind();
-  std::string why;
-  const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind, fit.values, &why);
-  if (!model) throw RuntimeError("cannot make the fitted model: " + why);
-  // Data with the model's values and the ASBS normalisation by the fitted p_e*.
+namespace {
+
+// states.csv: the data with the model's values and the ASBS normalisation by
+// the fitted p_e*.
+void WriteStatesCsv(const CalibrationProblem& problem, const FitResult& fit,
+                    const ConstitutiveModel& model, const std::string& folder) {
   std::vector<std::vector<double>> columns(11);
   for (const PointResidual& r : fit.residuals) {
     const AsymptoticStatePoint& point = problem.datasets()[r.dataset].points[r.point];
     const double ln_v = std::log1p(point.void_ratio);
-    const double pe = model->EquivalentPressure(point.void_ratio);
+    const double pe = model.EquivalentPressure(point.void_ratio);
     const double q = 3.0 / std::sqrt(2.0) * std::tan(point.psi_sigma) * point.mean_stress;
     columns[0].push_back(static_cast<double>(point.kind));
     columns[1].push_back(r.dataset);
@@ -587,103 +621,83 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
     columns[10].push_back(q / pe);
   }
   WriteCsv(folder + "/states.csv",
-           {"kind", "dataset", "p_kpa", "ln_p", "ln_1_plus_e", "psi_sigma_deg", "psi_epsilon_deg",
-            "model_psi_sigma_deg", "model_ln_1_plus_e", "p_over_pe", "q_over_pe"},
+           {"kind", "dataset", quantity::kMeanStress, "ln_p", quantity::kLnVolume,
+            quantity::kPsiSigma, quantity::kPsiEpsilon, std::string("model_") + quantity::kPsiSigma,
+            std::string("model_") + quantity::kLnVolume, "p_over_pe", "q_over_pe"},
            columns);
+}
 
+// model_curve.csv: the model's asymptotes, one row per stress direction.
+void WriteModelCurve(const std::vector<Prediction>& curve, const std::string& folder) {
+  std::vector<std::vector<double>> c(6);
+  for (const Prediction& pr : curve) {
+    const double eta = 3.0 * std::tan(pr.psi_sigma) / std::sqrt(2.0);
+    c[0].push_back(pr.psi_sigma / kDegree);
+    c[1].push_back(pr.psi_epsilon / kDegree);
+    c[2].push_back(std::exp(pr.ln_ocr));
+    c[3].push_back(pr.ln_ocr);
+    c[4].push_back(std::exp(-pr.ln_ocr));
+    c[5].push_back(eta * std::exp(-pr.ln_ocr));
+  }
+  WriteCsv(folder + "/model_curve.csv",
+           {quantity::kPsiSigma, quantity::kPsiEpsilon, quantity::kOverconsolidation, "ln_ocr",
+            "p_over_pe", "q_over_pe"},
+           c);
+}
+
+// What the model lines span: the data's pressures and stretching directions.
+struct PlotRange {
   double p_min = std::numeric_limits<double>::infinity(), p_max = 0, ln_p_sum = 0;
   int count = 0;
-  std::set<double> directions = {0.0};
-  for (const StateDataset& d : problem.datasets()) {
-    for (const AsymptoticStatePoint& point : d.points) {
-      p_min = std::min(p_min, point.mean_stress);
-      p_max = std::max(p_max, point.mean_stress);
-      ln_p_sum += std::log(point.mean_stress);
-      ++count;
-      if (point.HasStretching()) directions.insert(point.psi_epsilon);
+  std::set<double> directions = {0.0};  // ψ_ε (rad) of the data, and 0°
+
+  explicit PlotRange(const CalibrationProblem& problem) {
+    for (const StateDataset& d : problem.datasets()) {
+      for (const AsymptoticStatePoint& point : d.points) {
+        p_min = std::min(p_min, point.mean_stress);
+        p_max = std::max(p_max, point.mean_stress);
+        ln_p_sum += std::log(point.mean_stress);
+        ++count;
+        if (point.HasStretching()) directions.insert(point.psi_epsilon);
+      }
     }
   }
-  const std::vector<double> list(directions.begin(), directions.end());
-  auto write_curve = [&folder](const std::vector<Prediction>& curve) {
-    std::vector<std::vector<double>> c(6);
-    for (const Prediction& pr : curve) {
-      const double eta = 3.0 * std::tan(pr.psi_sigma) / std::sqrt(2.0);
-      c[0].push_back(pr.psi_sigma / kDegree);
-      c[1].push_back(pr.psi_epsilon / kDegree);
-      c[2].push_back(std::exp(pr.ln_ocr));
-      c[3].push_back(pr.ln_ocr);
-      c[4].push_back(std::exp(-pr.ln_ocr));
-      c[5].push_back(eta * std::exp(-pr.ln_ocr));
-    }
-    WriteCsv(folder + "/model_curve.csv",
-             {"psi_sigma_deg", "psi_epsilon_deg", "ocr", "ln_ocr", "p_over_pe", "q_over_pe"}, c);
-  };
-  std::ostringstream out;  // model_lines.dat
-  if (kind == ModelKind::kHypoplasticSand) {
-    // States at the data's ψ_ε (and 0°, 90°) at the geometric-mean p.
-    std::set<double> curve_directions = directions;
-    curve_directions.insert(0.5 * kPi);
-    const double p_mid = std::exp(ln_p_sum / std::max(1, count));
-    std::vector<double> psi_list(curve_directions.begin(), curve_directions.end());
-    std::vector<StatePrediction> states;
-    if (!problem.predictor().PredictAtPressures(
-            fit.values, psi_list, std::vector<double>(psi_list.size(), p_mid), &states, &why)) {
-      throw RuntimeError("cannot evaluate the fitted sand model's states: " + why);
-    }
-    std::vector<Prediction> curve;
-    for (size_t k = 0; k < psi_list.size(); ++k) {
-      Prediction pr;
-      pr.psi_epsilon = psi_list[k];
-      pr.psi_sigma = states[k].psi_sigma;
-      pr.ln_ocr = states[k].ln_ocr;
-      curve.push_back(pr);
-    }
-    std::sort(curve.begin(), curve.end(),
-              [](const Prediction& a, const Prediction& b) { return a.psi_sigma < b.psi_sigma; });
-    write_curve(curve);
-    out << fmt::format(
-        "# sand model: states along proportional stretching at each psi_epsilon (integrated, "
-        "not straight lines); model_curve.csv holds them at p = {:.6g} kPa\n# columns "
-        "(comma-separated): psi_epsilon_deg, ln_p, ln_1_plus_e, psi_sigma_deg\n",
-        p_mid);
-    for (double psi : list) {
-      std::vector<double> pressures;
-      for (int i = 0; i <= 20; ++i) {
-        pressures.push_back(
-            std::exp(std::log(p_min / 2) + (std::log(p_max * 2) - std::log(p_min / 2)) * i / 20));
-      }
-      if (!problem.predictor().PredictAtPressures(
-              fit.values, std::vector<double>(pressures.size(), psi), pressures, &states, &why)) {
-        throw RuntimeError("cannot evaluate the fitted sand model's paths: " + why);
-      }
-      for (size_t i = 0; i < pressures.size(); ++i) {
-        out << fmt::format("{:.6g},{:.8g},{:.8g},{:.6g}\n", psi / kDegree, std::log(pressures[i]),
-                           states[i].ln_volume, states[i].psi_sigma / kDegree);
-      }
-      out << "\n\n";
-    }
-    WriteTextFileAtomically(folder + "/model_lines.dat", out.str());
-    return;
+  // The i-th of 21 values of ln p from p_min/2 to 2 p_max.
+  double LnP(int i) const {
+    return std::log(p_min / 2) + (std::log(p_max * 2) - std::log(p_min / 2)) * i / 20;
   }
+};
+
+// The comment line of model_lines.dat that names its columns.
+std::string ModelLinesColumns() {
+  return fmt::format("# columns (comma-separated): {}, ln_p, {}, {}\n", quantity::kPsiEpsilon,
+                     quantity::kLnVolume, quantity::kPsiSigma);
+}
+
+// A model with a linear NCL: its asymptotes by stress direction and its lines
+// in ln(1+e)-ln p, one gnuplot block per distinct ψ_ε of the data (NCL
+// first), spanning the data's pressure range.
+void WriteStraightModelLines(const CalibrationProblem& problem, const FitResult& fit,
+                             const PlotRange& range, const std::string& folder) {
+  std::string why;
+  const std::vector<double> list(range.directions.begin(), range.directions.end());
   const double n = fit.values[kNIntercept], lambda = fit.values[kLambdaStar];
   std::vector<Prediction> curve;
   if (!problem.predictor().Curve(fit.values, 400, &curve, &why)) {
     throw RuntimeError("cannot evaluate the fitted model's asymptotes: " + why);
   }
-  write_curve(curve);
-  // Model lines in ln(1+e)-ln p, one gnuplot block per distinct ψ_ε of the
-  // data (NCL first), spanning the data's pressure range.
+  WriteModelCurve(curve, folder);
   std::vector<Prediction> by_stretching, by_stress;
   if (!problem.predictor().Predict(fit.values, list, {}, &by_stretching, &by_stress, &why)) {
     throw RuntimeError("cannot evaluate the fitted model's asymptotes: " + why);
   }
+  std::ostringstream out;
   out << "# model asymptotic lines ln(1+e) = N - lambda* ln(p OCR(psi_epsilon)); one block per "
-         "psi_epsilon\n# columns (comma-separated): psi_epsilon_deg, ln_p, ln_1_plus_e, "
-         "psi_sigma_deg\n";
+         "psi_epsilon\n"
+      << ModelLinesColumns();
   for (size_t k = 0; k < list.size(); ++k) {
     for (int i = 0; i <= 20; ++i) {
-      const double ln_p =
-          std::log(p_min / 2) + (std::log(p_max * 2) - std::log(p_min / 2)) * i / 20;
+      const double ln_p = range.LnP(i);
       out << fmt::format("{:.6g},{:.8g},{:.8g},{:.6g}\n", list[k] / kDegree, ln_p,
                          n - lambda * (ln_p + by_stretching[k].ln_ocr),
                          by_stretching[k].psi_sigma / kDegree);
@@ -693,6 +707,72 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
   WriteTextFileAtomically(folder + "/model_lines.dat", out.str());
 }
 
+// A model without a linear NCL (the sand): its states at the data's ψ_ε (and
+// 0°, 90°) at the geometric-mean p, and its integrated paths at each ψ_ε.
+void WriteCurvedModelLines(const CalibrationProblem& problem, const FitResult& fit,
+                           const PlotRange& range, const std::string& folder) {
+  std::string why;
+  const std::vector<double> list(range.directions.begin(), range.directions.end());
+  std::set<double> curve_directions = range.directions;
+  curve_directions.insert(0.5 * kPi);
+  const double p_mid = std::exp(range.ln_p_sum / std::max(1, range.count));
+  std::vector<double> psi_list(curve_directions.begin(), curve_directions.end());
+  std::vector<StatePrediction> states;
+  if (!problem.predictor().PredictAtPressures(
+          fit.values, psi_list, std::vector<double>(psi_list.size(), p_mid), &states, &why)) {
+    throw RuntimeError("cannot evaluate the fitted sand model's states: " + why);
+  }
+  std::vector<Prediction> curve;
+  for (size_t k = 0; k < psi_list.size(); ++k) {
+    Prediction pr;
+    pr.psi_epsilon = psi_list[k];
+    pr.psi_sigma = states[k].psi_sigma;
+    pr.ln_ocr = states[k].ln_ocr;
+    curve.push_back(pr);
+  }
+  std::sort(curve.begin(), curve.end(),
+            [](const Prediction& a, const Prediction& b) { return a.psi_sigma < b.psi_sigma; });
+  WriteModelCurve(curve, folder);
+  std::ostringstream out;
+  out << fmt::format(
+             "# sand model: states along proportional stretching at each psi_epsilon "
+             "(integrated, not straight lines); model_curve.csv holds them at p = {:.6g} kPa\n",
+             p_mid)
+      << ModelLinesColumns();
+  for (double psi : list) {
+    std::vector<double> pressures;
+    for (int i = 0; i <= 20; ++i) pressures.push_back(std::exp(range.LnP(i)));
+    if (!problem.predictor().PredictAtPressures(
+            fit.values, std::vector<double>(pressures.size(), psi), pressures, &states, &why)) {
+      throw RuntimeError("cannot evaluate the fitted sand model's paths: " + why);
+    }
+    for (size_t i = 0; i < pressures.size(); ++i) {
+      out << fmt::format("{:.6g},{:.8g},{:.8g},{:.6g}\n", psi / kDegree, std::log(pressures[i]),
+                         states[i].ln_volume, states[i].psi_sigma / kDegree);
+    }
+    out << "\n\n";
+  }
+  WriteTextFileAtomically(folder + "/model_lines.dat", out.str());
+}
+
+}  // namespace
+
+void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::string& folder) {
+  std::filesystem::create_directories(folder);
+  const CalibrationProblem& problem = *run.problem;
+  std::string why;
+  const std::unique_ptr<ConstitutiveModel> model =
+      MakeModel(problem.parameters().kind(), fit.values, &why);
+  if (!model) throw RuntimeError("cannot make the fitted model: " + why);
+  WriteStatesCsv(problem, fit, *model, folder);
+  const PlotRange range(problem);
+  if (problem.parameters().traits().linear_ncl) {
+    WriteStraightModelLines(problem, fit, range, folder);
+  } else {
+    WriteCurvedModelLines(problem, fit, range, folder);
+  }
+}
+
 namespace {
 
 // The model's ASBS counts as beyond p/p_e* = 1 (OCR < 1) past this fraction:
@@ -700,102 +780,104 @@ namespace {
 // axis (London clay: OCR 0.9997 at psi_epsilon = 11 deg).
 constexpr double kAsbsTolerance = 0.01;
 
-}  // namespace
+// κ* < λ* (models with a linear NCL): fitted, and the data's own slopes.
+void CheckSlopes(const CalibrationRun& run, const std::vector<double>& v,
+                 std::vector<Finding>* findings) {
+  if (!(v[kKappaStar] < v[kLambdaStar])) {
+    findings->push_back({"kappa_not_below_lambda",
+                         fmt::format("kappa* = {:.4g} >= lambda* = {:.4g}: unloading would be "
+                                     "as steep as the NCL",
+                                     v[kKappaStar], v[kLambdaStar])});
+  }
+  const StartingValues& sv = run.starting_values;
+  if (sv.kappa_star.from_data && sv.lambda_star.from_data &&
+      !(sv.kappa_star.value < sv.lambda_star.value)) {
+    findings->push_back(
+        {"kappa_not_below_lambda",
+         fmt::format("the data's unloading slope kappa* = {:.4g} is not below their NCL slope "
+                     "lambda* = {:.4g} (no model with kappa* < lambda* fits both)",
+                     sv.kappa_star.value, sv.lambda_star.value)});
+  }
+}
 
-std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResult& fit,
-                                        std::vector<std::string>* diagnosis) {
-  std::vector<Finding> findings;
-  const CalibrationProblem& problem = *run.problem;
-  const ModelKind kind = problem.parameters().kind();
-  const std::vector<double>& v = fit.values;
+// The model's own ASBS (models with a linear NCL): OCR >= 1 on compression
+// asymptotes, closed, inside p/p_e* <= 1.
+void CheckModelAsbs(const CalibrationProblem& problem, const std::vector<double>& v,
+                    std::vector<Finding>* findings) {
   std::string why;
-  const std::unique_ptr<ConstitutiveModel> model = MakeModel(kind, v, &why);
-  if (!model) {
-    findings.push_back({"invalid_model", "the fitted parameters do not make a model: " + why});
-    return findings;
+  std::vector<Prediction> curve;
+  if (!problem.predictor().Curve(v, 200, &curve, &why)) {
+    findings->push_back({"asbs_outside", "the model's ASBS cross-section is not closed: " + why});
+    return;
   }
-  const bool clay = HasLinearNcl(kind);
-  // κ* < λ*.
-  if (clay) {
-    if (!(v[kKappaStar] < v[kLambdaStar])) {
-      findings.push_back({"kappa_not_below_lambda",
-                          fmt::format("kappa* = {:.4g} >= lambda* = {:.4g}: unloading would be "
-                                      "as steep as the NCL",
-                                      v[kKappaStar], v[kLambdaStar])});
+  double worst_ocr = std::numeric_limits<double>::infinity(), worst_psi = 0;
+  double widest = 0, widest_psi = 0;
+  int missing = 0;
+  for (const Prediction& pr : curve) {
+    if (!std::isfinite(pr.ln_ocr) || !std::isfinite(pr.psi_epsilon)) {
+      ++missing;
+      continue;
     }
-    const StartingValues& sv = run.starting_values;
-    if (sv.kappa_star.from_data && sv.lambda_star.from_data &&
-        !(sv.kappa_star.value < sv.lambda_star.value)) {
-      findings.push_back(
-          {"kappa_not_below_lambda",
-           fmt::format("the data's unloading slope kappa* = {:.4g} is not below their NCL slope "
-                       "lambda* = {:.4g} (no model with kappa* < lambda* fits both)",
-                       sv.kappa_star.value, sv.lambda_star.value)});
+    if (pr.psi_epsilon >= -1e-9 && pr.psi_epsilon <= 0.5 * kPi + 1e-9 &&
+        pr.ln_ocr < std::log(worst_ocr)) {
+      worst_ocr = std::exp(pr.ln_ocr);
+      worst_psi = pr.psi_epsilon;
     }
-  }
-  // The model's own ASBS (clay models): OCR >= 1 on compression asymptotes,
-  // closed, inside p/p_e* <= 1.
-  if (clay) {
-    std::vector<Prediction> curve;
-    if (!problem.predictor().Curve(v, 200, &curve, &why)) {
-      findings.push_back({"asbs_outside", "the model's ASBS cross-section is not closed: " + why});
-    } else {
-      double worst_ocr = std::numeric_limits<double>::infinity(), worst_psi = 0;
-      double widest = 0, widest_psi = 0;
-      int missing = 0;
-      for (const Prediction& pr : curve) {
-        if (!std::isfinite(pr.ln_ocr) || !std::isfinite(pr.psi_epsilon)) {
-          ++missing;
-          continue;
-        }
-        if (pr.psi_epsilon >= -1e-9 && pr.psi_epsilon <= 0.5 * kPi + 1e-9 &&
-            pr.ln_ocr < std::log(worst_ocr)) {
-          worst_ocr = std::exp(pr.ln_ocr);
-          worst_psi = pr.psi_epsilon;
-        }
-        if (std::exp(-pr.ln_ocr) > widest) {
-          widest = std::exp(-pr.ln_ocr);
-          widest_psi = pr.psi_sigma;
-        }
-      }
-      if (worst_ocr < 1 - kAsbsTolerance) {
-        findings.push_back(
-            {"ocr_below_one", fmt::format("the model's compression asymptote at psi_epsilon = "
-                                          "{:.3g} deg has OCR = {:.4g} < 1",
-                                          worst_psi / kDegree, worst_ocr)});
-      }
-      if (missing > 0) {
-        findings.push_back(
-            {"asbs_outside", fmt::format("the model's ASBS cross-section is not closed: {} of {} "
-                                         "stress directions have no asymptote",
-                                         missing, curve.size())});
-      }
-      if (widest > 1 + kAsbsTolerance) {
-        findings.push_back(
-            {"asbs_outside", fmt::format("the model's ASBS cross-section reaches p/p_e* = {:.4g} "
-                                         "> 1 (at psi_sigma = {:.3g} deg)",
-                                         widest, widest_psi / kDegree)});
-      }
+    if (std::exp(-pr.ln_ocr) > widest) {
+      widest = std::exp(-pr.ln_ocr);
+      widest_psi = pr.psi_sigma;
     }
   }
-  // The data against the fitted NCL: ln OCR = ln(p_e*(e)/p), uncertainty in
-  // ln p from that of ln(1+e) through the NCL slope (λ*, or the sand's local slope).
+  if (worst_ocr < 1 - kAsbsTolerance) {
+    findings->push_back(
+        {"ocr_below_one", fmt::format("the model's compression asymptote at psi_epsilon = "
+                                      "{:.3g} deg has OCR = {:.4g} < 1",
+                                      worst_psi / kDegree, worst_ocr)});
+  }
+  if (missing > 0) {
+    findings->push_back(
+        {"asbs_outside", fmt::format("the model's ASBS cross-section is not closed: {} of {} "
+                                     "stress directions have no asymptote",
+                                     missing, curve.size())});
+  }
+  if (widest > 1 + kAsbsTolerance) {
+    findings->push_back(
+        {"asbs_outside", fmt::format("the model's ASBS cross-section reaches p/p_e* = {:.4g} "
+                                     "> 1 (at psi_sigma = {:.3g} deg)",
+                                     widest, widest_psi / kDegree)});
+  }
+}
+
+// ln OCR at the critical state: the model's per CSL state, and the data's own
+// (the study table's) where every CSL state has one.
+struct CriticalStateOcrs {
+  std::vector<double> data, model;
+};
+
+// The data against the fitted NCL: ln OCR = ln(p_e*(e)/p), uncertainty in
+// ln p from that of ln(1+e) through the NCL slope (λ*, or the sand's local
+// slope). Collects the critical states' OCRs on the way.
+CriticalStateOcrs CheckStatesAgainstNcl(const CalibrationProblem& problem, const FitResult& fit,
+                                        const ConstitutiveModel& model,
+                                        std::vector<Finding>* findings) {
+  const std::vector<double>& v = fit.values;
+  const bool linear_ncl = problem.parameters().traits().linear_ncl;
   int ocr_low = 0, beyond = 0;
   double ocr_low_worst = 1, beyond_worst = 1;
-  std::vector<double> dem_csl_ocr, model_csl_ocr;
+  CriticalStateOcrs csl;
   for (const PointResidual& r : fit.residuals) {
     const AsymptoticStatePoint& point = problem.datasets()[r.dataset].points[r.point];
     if (!point.IsAsymptotic()) continue;
-    const double pe = model->EquivalentPressure(point.void_ratio);
+    const double pe = model.EquivalentPressure(point.void_ratio);
     const double ocr = pe / point.mean_stress;
-    const double slope = clay ? v[kLambdaStar] : 0.0;
+    const double slope = linear_ncl ? v[kLambdaStar] : 0.0;
     double margin = 0;
-    if (clay) {
+    if (linear_ncl) {
       margin = std::exp(-2 * point.ln_volume_uncertainty / slope);
     } else {
       // d ln p_e / d ln(1+e) of e_i(p_e) by a difference.
       const double e2 = std::expm1(std::log1p(point.void_ratio) + point.ln_volume_uncertainty);
-      const double pe2 = model->EquivalentPressure(e2);
+      const double pe2 = model.EquivalentPressure(e2);
       margin = pe2 > 0 && pe > 0 ? std::min(1.0, std::pow(pe2 / pe, 2.0)) : 1.0;
     }
     const bool below = ocr < margin;
@@ -807,63 +889,73 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
       beyond_worst = std::min(beyond_worst, ocr);
     }
     if (point.kind == StateKind::kCsl && std::isfinite(r.ln_ocr_model)) {
-      model_csl_ocr.push_back(r.ln_ocr_model);
-      if (std::isfinite(point.source_ocr)) dem_csl_ocr.push_back(std::log(point.source_ocr));
+      csl.model.push_back(r.ln_ocr_model);
+      if (std::isfinite(point.source_ocr)) csl.data.push_back(std::log(point.source_ocr));
     }
   }
   if (ocr_low > 0) {
-    findings.push_back(
+    findings->push_back(
         {"ocr_below_one", fmt::format("{} NCL/compression states lie above the fitted NCL by more "
                                       "than twice their uncertainty (OCR down to {:.4g} < 1)",
                                       ocr_low, ocr_low_worst)});
   }
   if (beyond > 0) {
-    findings.push_back(
+    findings->push_back(
         {"asbs_outside", fmt::format("{} states lie beyond the fitted model's p/p_e* = 1 by more "
                                      "than twice their uncertainty (p/p_e* up to {:.4g})",
                                      beyond, 1.0 / beyond_worst)});
   }
-  // OCR at the critical state: the data's own (study table) or against the
-  // data's NCL fit (starting values), against the model's.
-  if (!model_csl_ocr.empty()) {
-    std::string against = "the study table's own OCR";
-    if (dem_csl_ocr.size() != model_csl_ocr.size()) {
-      dem_csl_ocr.clear();
-      const StartingValues& sv = run.starting_values;
-      // A straight NCL fit is the clay models' reference only (the sand's
-      // e_i is curved in ln(1+e)-ln p).
-      if (clay && sv.lambda_star.from_data && sv.n_intercept.from_data &&
-          sv.lambda_star.points >= 2) {
-        for (const StateDataset& d : problem.datasets()) {
-          for (const AsymptoticStatePoint& point : d.points) {
-            if (point.kind != StateKind::kCsl) continue;
-            dem_csl_ocr.push_back((sv.n_intercept.value - std::log1p(point.void_ratio)) /
-                                      sv.lambda_star.value -
-                                  std::log(point.mean_stress));
-          }
+  return csl;
+}
+
+// OCR at the critical state: the data's own (study table) or against the
+// data's NCL fit (starting values), against the model's.
+void CheckCriticalStateOcr(const CalibrationRun& run, CriticalStateOcrs csl,
+                           std::vector<Finding>* findings, std::vector<std::string>* diagnosis) {
+  if (csl.model.empty()) return;
+  const CalibrationProblem& problem = *run.problem;
+  const ModelTraits& traits = problem.parameters().traits();
+  std::string against = "the study table's own OCR";
+  if (csl.data.size() != csl.model.size()) {
+    csl.data.clear();
+    const StartingValues& sv = run.starting_values;
+    // A straight NCL fit is the reference of the models with a linear NCL
+    // only (the sand's e_i is curved in ln(1+e)-ln p).
+    if (traits.linear_ncl && sv.lambda_star.from_data && sv.n_intercept.from_data &&
+        sv.lambda_star.points >= 2) {
+      for (const StateDataset& d : problem.datasets()) {
+        for (const AsymptoticStatePoint& point : d.points) {
+          if (point.kind != StateKind::kCsl) continue;
+          csl.data.push_back((sv.n_intercept.value - std::log1p(point.void_ratio)) /
+                                 sv.lambda_star.value -
+                             std::log(point.mean_stress));
         }
-        against = "the OCR against the data's own NCL fit";
       }
-    }
-    if (!dem_csl_ocr.empty()) {
-      const double dem = std::exp(Mean(dem_csl_ocr)), fitted = std::exp(Mean(model_csl_ocr));
-      diagnosis->push_back(fmt::format("critical state: data OCR {:.3g} ({}), model OCR {:.3g}",
-                                       dem, against, fitted));
-      if (std::abs(std::log(dem / fitted)) > std::log(1.25)) {
-        findings.push_back(
-            {"csl_ocr_mismatch",
-             fmt::format("the data put the CSL at OCR = {:.3g} ({}, mean of {} states), the "
-                         "model at OCR = {:.3g}{}: the model cannot place its CSL and NCL as "
-                         "the data do",
-                         dem, against, dem_csl_ocr.size(), fitted,
-                         kind == ModelKind::kHypoplasticClay ? " (2 for hypoplastic clay)"
-                         : kind == ModelKind::kModifiedCamClay
-                             ? " (2^(1 - kappa*/lambda*) for Modified Cam clay)"
-                             : "")});
-      }
+      against = "the OCR against the data's own NCL fit";
     }
   }
-  // Structural misfit per kind.
+  if (csl.data.empty()) return;
+  const double dem = std::exp(Mean(csl.data)), fitted = std::exp(Mean(csl.model));
+  diagnosis->push_back(
+      fmt::format("critical state: data OCR {:.3g} ({}), model OCR {:.3g}", dem, against, fitted));
+  if (std::abs(std::log(dem / fitted)) > std::log(1.25)) {
+    const std::string model_ocr =
+        std::string(traits.critical_state_ocr).empty()
+            ? ""
+            : fmt::format(" ({} for {})", traits.critical_state_ocr, traits.title);
+    findings->push_back(
+        {"csl_ocr_mismatch",
+         fmt::format("the data put the CSL at OCR = {:.3g} ({}, mean of {} states), the "
+                     "model at OCR = {:.3g}{}: the model cannot place its CSL and NCL as "
+                     "the data do",
+                     dem, against, csl.data.size(), fitted, model_ocr)});
+  }
+}
+
+// Structural misfit: per kind, the mean residuals against twice the states'
+// mean uncertainty; one diagnosis line per kind.
+void DiagnoseStructuralMisfit(const CalibrationProblem& problem, const FitResult& fit,
+                              std::vector<Finding>* findings, std::vector<std::string>* diagnosis) {
   for (StateKind k : {StateKind::kNcl, StateKind::kCsl, StateKind::kCompression,
                       StateKind::kExtension, StateKind::kAsbs}) {
     std::vector<double> dv, dpsi, uv, upsi;
@@ -895,7 +987,7 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
     const bool volume = std::abs(mv) > 2 * Mean(uv);
     const bool stress = !dpsi.empty() && std::abs(mpsi) > 2 * Mean(upsi);
     if (volume || stress) {
-      findings.push_back(
+      findings->push_back(
           {"structural_misfit",
            fmt::format("{}: the model is systematically {}{}{} (more than twice the states' mean "
                        "uncertainty)",
@@ -909,6 +1001,28 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
                               : "")});
     }
   }
+}
+
+}  // namespace
+
+std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResult& fit,
+                                        std::vector<std::string>* diagnosis) {
+  std::vector<Finding> findings;
+  const CalibrationProblem& problem = *run.problem;
+  std::string why;
+  const std::unique_ptr<ConstitutiveModel> model =
+      MakeModel(problem.parameters().kind(), fit.values, &why);
+  if (!model) {
+    findings.push_back({"invalid_model", "the fitted parameters do not make a model: " + why});
+    return findings;
+  }
+  if (problem.parameters().traits().linear_ncl) {
+    CheckSlopes(run, fit.values, &findings);
+    CheckModelAsbs(problem, fit.values, &findings);
+  }
+  const CriticalStateOcrs csl = CheckStatesAgainstNcl(problem, fit, *model, &findings);
+  CheckCriticalStateOcr(run, csl, &findings, diagnosis);
+  DiagnoseStructuralMisfit(problem, fit, &findings, diagnosis);
   return findings;
 }
 

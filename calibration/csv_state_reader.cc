@@ -10,6 +10,7 @@
 
 #include "common/csv_table.h"
 #include "common/error.h"
+#include "common/quantity_names.h"
 #include "common/state_measures.h"
 
 namespace granasym::calibration {
@@ -37,8 +38,9 @@ const std::vector<Quantity>& Quantities() {
 constexpr double kVolumeMeasureTolerance = 1e-6;
 
 const std::vector<std::string>& PlainColumns() {
-  static const std::vector<std::string> plain = {
-      "e", "ln_1_plus_e", "weight", "psi_sigma_uncertainty_deg", "ln_1_plus_e_uncertainty"};
+  static const std::vector<std::string> plain = {quantity::kVoidRatio, quantity::kLnVolume,
+                                                 "weight", "psi_sigma_uncertainty_deg",
+                                                 "ln_1_plus_e_uncertainty"};
   return plain;
 }
 
@@ -170,8 +172,8 @@ StateDataset ParseStatesCsv(const std::string& text, const std::string& origin,
 
   const auto p = FindQuantity(table, options, "p_");
   if (!p) Missing(table, "mean stress (p_kpa, p_mpa or p_pa)");
-  const auto e = FindPlain(table, options, "e");
-  const auto ln_v = FindPlain(table, options, "ln_1_plus_e");
+  const auto e = FindPlain(table, options, quantity::kVoidRatio);
+  const auto ln_v = FindPlain(table, options, quantity::kLnVolume);
   if (!e && !ln_v) Missing(table, "void ratio (e or ln_1_plus_e)");
   const auto psi_s = FindQuantity(table, options, "psi_sigma_");
   const auto q = FindQuantity(table, options, "q_");
@@ -261,8 +263,8 @@ void WriteStatesCsv(const StateDataset& dataset, const std::string& path) {
     columns[7].push_back(std::log1p(point.void_ratio));
   }
   WriteCsv(path,
-           {"p_kpa", "e", "psi_sigma_deg", "psi_epsilon_deg", "weight", "psi_sigma_uncertainty_deg",
-            "ln_1_plus_e_uncertainty", "ln_1_plus_e"},
+           {quantity::kMeanStress, quantity::kVoidRatio, quantity::kPsiSigma, quantity::kPsiEpsilon,
+            "weight", "psi_sigma_uncertainty_deg", "ln_1_plus_e_uncertainty", quantity::kLnVolume},
            columns);
 }
 

@@ -8,6 +8,7 @@
 
 #include "common/state_measures.h"
 #include "common/statistics.h"
+#include "constitutive/model_traits.h"
 
 namespace granasym::calibration {
 
@@ -20,6 +21,17 @@ double FrictionAngleFromPsiSigma(double psi_sigma) {
   return std::asin(3.0 * m / (6.0 + m)) / kDegree;
 }
 
+// The key of the parameter that the estimate for `role` starts (the first
+// such parameter of the models' traits).
+const char* KeyStartedBy(ParameterStart role) {
+  for (ModelKind kind : EnumValues<ModelKind>()) {
+    for (const FittedParameter& p : Traits(kind).parameters) {
+      if (p.start == role) return p.traits.key;
+    }
+  }
+  return ToString(role);
+}
+
 std::string Line(const char* name, const Estimate& e) {
   if (!e.from_data) return fmt::format("  {:<12} {:>10.5g}  (assumed: {})", name, e.value, e.note);
   return fmt::format("  {:<12} {:>10.5g} ± {:<10.3g} ({} points: {})", name, e.value,
@@ -30,8 +42,10 @@ std::string Line(const char* name, const Estimate& e) {
 
 std::string StartingValues::Report() const {
   return "starting values from the data (± one standard error):\n" +
-         Line("phi_c_deg", critical_friction_angle_deg) + "\n" + Line("lambda_star", lambda_star) +
-         "\n" + Line("kappa_star", kappa_star) + "\n" + Line("n_intercept", n_intercept);
+         Line(KeyStartedBy(ParameterStart::kCslStressRatio), critical_friction_angle_deg) + "\n" +
+         Line(KeyStartedBy(ParameterStart::kNclSlope), lambda_star) + "\n" +
+         Line(KeyStartedBy(ParameterStart::kUnloadingSlope), kappa_star) + "\n" +
+         Line(KeyStartedBy(ParameterStart::kNclIntercept), n_intercept);
 }
 
 StartingValues EstimateStartingValues(const std::vector<StateDataset>& datasets) {

@@ -45,9 +45,9 @@ struct Range {
 // Ranges shared by the DEM's scenes and the models' test files: stresses up
 // to 10 GPa (grains crush long before), strain rates up to 1e6 1/s, and
 // logarithmic strains of a stage up to 20 (the cell changes by e^20).
-inline const Range kStressKpa = {0.0, 1e7, false, true};
-inline const Range kStrainRate = {0.0, 1e6, false, true};
-inline const Range kStageStrain = Range::Closed(-20.0, 20.0);
+inline constexpr Range kStressKpa = {0.0, 1e7, false, true};
+inline constexpr Range kStrainRate = {0.0, 1e6, false, true};
+inline constexpr Range kStageStrain = {-20.0, 20.0, true, true};
 
 class ConfigTable {
  public:

@@ -182,6 +182,11 @@ size_t CsvTable::Column(const std::string& name) const {
   return static_cast<size_t>(c);
 }
 
+size_t CsvTable::Column(const std::string& name, const std::string& former_name) const {
+  const int former = Find(former_name);
+  return Find(name) < 0 && former >= 0 ? static_cast<size_t>(former) : Column(name);
+}
+
 int CsvTable::Find(const std::string& name) const {
   for (size_t c = 0; c < columns.size(); ++c) {
     if (columns[c] == name) return static_cast<int>(c);

@@ -36,6 +36,10 @@ struct CsvTable {
   static CsvTable Parse(const std::string& text, const std::string& origin);
   // Index of a column; InputError listing the available columns if missing.
   size_t Column(const std::string& name) const;
+  // Index of `name`, else of `former_name`, its spelling in files written
+  // before a renaming (common/quantity_names.h); InputError naming `name` if
+  // neither is present.
+  size_t Column(const std::string& name, const std::string& former_name) const;
   // Index of a column, or -1.
   int Find(const std::string& name) const;
   std::vector<double> ColumnValues(const std::string& name) const;

@@ -4,11 +4,16 @@
 // Units are part of the name where the quantity has one; angles are in
 // degrees; stresses are compression positive. Header-only, no dependencies.
 //
-// Renamed in issue 33 (old names are still read): the model outputs'
-// stress_a_kpa -> sigma_a_kpa, stress_r_kpa -> sigma_r_kpa,
-// void_ratio -> e, strain_a -> eps_a, strain_r -> eps_r, and in their HDF5
-// files mean_stress -> p_kpa, deviator_stress -> q_kpa,
+// Renamed in issue 33 (the old names are the constants of `former` below,
+// which readers still accept): the element tests' CSV (`model run --csv`,
+// result.csv of a study's model runs) stress_a_kpa -> sigma_a_kpa,
+// stress_r_kpa -> sigma_r_kpa, void_ratio -> e, strain_a -> eps_a,
+// strain_r -> eps_r; their HDF5 (`model run --out`, result.h5) time ->
+// time_s, void_ratio -> e, mean_stress -> p_kpa, deviator_stress -> q_kpa,
+// psi_sigma / psi_epsilon (radians) -> psi_sigma_deg / psi_epsilon_deg
+// (degrees, units "deg"); and the asymptotes' HDF5 (`model asymptotes`)
 // psi_sigma / psi_epsilon (radians) -> psi_sigma_deg / psi_epsilon_deg.
+// The calibration's outputs already used these names.
 #pragma once
 
 namespace granasym::quantity {
@@ -27,5 +32,20 @@ inline constexpr char kShearStrain[] = "eps_s";
 inline constexpr char kPsiSigma[] = "psi_sigma_deg";      // stress path angle ψ_σ
 inline constexpr char kPsiEpsilon[] = "psi_epsilon_deg";  // strain path angle ψ_ε
 inline constexpr char kOverconsolidation[] = "ocr";
+
+// The names of the models' outputs before issue 33 (see above), for readers
+// of older files: CsvTable::Column(name, former_name).
+namespace former {
+inline constexpr char kTime[] = "time";                 // HDF5
+inline constexpr char kMeanStress[] = "mean_stress";    // HDF5
+inline constexpr char kDeviator[] = "deviator_stress";  // HDF5
+inline constexpr char kAxialStress[] = "stress_a_kpa";
+inline constexpr char kRadialStress[] = "stress_r_kpa";
+inline constexpr char kVoidRatio[] = "void_ratio";
+inline constexpr char kAxialStrain[] = "strain_a";
+inline constexpr char kRadialStrain[] = "strain_r";
+inline constexpr char kPsiSigmaRadians[] = "psi_sigma";      // HDF5, in radians
+inline constexpr char kPsiEpsilonRadians[] = "psi_epsilon";  // HDF5, in radians
+}  // namespace former
 
 }  // namespace granasym::quantity

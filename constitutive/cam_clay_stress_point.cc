@@ -112,171 +112,177 @@ ModelState CamClayStressPoint::ElasticPath(const ModelState& state, const Vector
   return out;
 }
 
+double CamClayStressPoint::ScaledYield(const ModelState& state) const {
+  const double m2 =
+      model_.parameters().critical_state_ratio * model_.parameters().critical_state_ratio;
+  return model_.YieldFunction(state.stress, state.internal[0]) /
+         (m2 * state.internal[0] * state.internal[0]);
+}
+
+bool CamClayStressPoint::CorrectDrift(ModelState* s) const {
+  const double m2 =
+      model_.parameters().critical_state_ratio * model_.parameters().critical_state_ratio;
+  const double yield_tolerance = model_.parameters().yield_tolerance;
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const double f = model_.YieldFunction(s->stress, s->internal[0]);
+    const double p_c = s->internal[0];
+    if (std::abs(f) <= yield_tolerance * m2 * p_c * p_c) return true;
+    const Vector6 n = model_.YieldGradient(s->stress, p_c);
+    const Matrix6 elastic = model_.ElasticStiffness(s->stress, s->void_ratio);
+    double lambda, kappa;
+    model_.CompressionSlopes(s->void_ratio, &lambda, &kappa);
+    const double p = MeanStress(s->stress);
+    const double hardening = p_c * m2 * (2.0 * p - p_c) / (lambda - kappa);
+    const Vector6 elastic_n = elastic * n;
+    const double denominator = Contract<double>(n, elastic_n) + m2 * p * hardening;
+    ModelState corrected = *s;
+    if (denominator > 0) {
+      const double multiplier = f / denominator;
+      corrected.stress -= multiplier * elastic_n;
+      corrected.internal[0] += multiplier * hardening;
+    }
+    const double f_new = model_.YieldFunction(corrected.stress, corrected.internal[0]);
+    if (!(denominator > 0) || !(std::abs(f_new) < std::abs(f)) || !(corrected.internal[0] > 0)) {
+      // Normal correction of the stress alone.
+      corrected = *s;
+      corrected.stress -= f / Contract<double>(n, n) * n;
+    }
+    *s = corrected;
+  }
+  const double p_c = s->internal[0];
+  return std::abs(model_.YieldFunction(s->stress, p_c)) <= 10 * yield_tolerance * m2 * p_c * p_c;
+}
+
+double CamClayStressPoint::ElasticFraction(const ModelState& current,
+                                           const Vector6& strain_increment) const {
+  const double yield_tolerance = model_.parameters().yield_tolerance;
+  const Vector6 n = model_.YieldGradient(current.stress, current.internal[0]);
+  const Matrix6 elastic = model_.ElasticStiffness(current.stress, current.void_ratio);
+  const bool on_surface = ScaledYield(current) >= -yield_tolerance;
+  if (on_surface && Contract<double>(n, elastic * strain_increment) >= 0) return 0.0;
+  double lo = 0.0, hi = 1.0;
+  if (on_surface) {
+    // Elastic unloading then reloading: bracket the second crossing.
+    constexpr int kSamples = 32;
+    double previous = 0.0;
+    bool found = false;
+    for (int i = 1; i <= kSamples && !found; ++i) {
+      const double a = static_cast<double>(i) / kSamples;
+      if (ScaledYield(ElasticPath(current, strain_increment, a)) < -yield_tolerance) {
+        previous = a;
+        for (int j = i + 1; j <= kSamples; ++j) {
+          const double b = static_cast<double>(j) / kSamples;
+          if (ScaledYield(ElasticPath(current, strain_increment, b)) > 0) {
+            lo = previous;
+            hi = b;
+            found = true;
+            break;
+          }
+          previous = b;
+        }
+        break;
+      }
+    }
+    if (!found) lo = hi = 0.0;
+  }
+  if (!(hi > lo)) return lo;
+  // Pegasus iteration on f(α) along the exact elastic path.
+  double f_lo = ScaledYield(ElasticPath(current, strain_increment, lo));
+  double f_hi = ScaledYield(ElasticPath(current, strain_increment, hi));
+  double a = hi;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    a = hi - f_hi * (hi - lo) / (f_hi - f_lo);
+    const double f_a = ScaledYield(ElasticPath(current, strain_increment, a));
+    if (std::abs(f_a) <= yield_tolerance) break;
+    if ((f_a < 0) == (f_hi < 0)) {
+      f_lo = f_lo * f_hi / (f_hi + f_a);
+    } else {
+      lo = hi;
+      f_lo = f_hi;
+    }
+    hi = a;
+    f_hi = f_a;
+  }
+  return a;
+}
+
+bool CamClayStressPoint::IntegratePlastic(const Vector6& plastic_increment, ModelState* current,
+                                          Summary* summary) const {
+  double done = 0.0, step = 1.0;
+  std::string why;
+  while (done < 1.0) {
+    if (summary->substeps + summary->rejected_substeps >= options_.max_substeps) {
+      summary->message = fmt::format("more than {} substeps", options_.max_substeps);
+      return false;
+    }
+    const Vector6 d = step * plastic_increment;
+    ModelRate first, second;
+    bool ok = model_.Rate(*current, d, &first, nullptr, &why);
+    ModelState predictor = *current;
+    double error = 0.0;
+    ModelState corrector = *current;
+    if (ok) {
+      predictor.stress += first.stress_rate;
+      predictor.internal += first.internal_rate;
+      predictor.void_ratio = std::expm1(std::log1p(current->void_ratio) + Trace<double>(d));
+      ok = model_.Rate(predictor, d, &second, nullptr, &why);
+    }
+    if (ok) {
+      corrector.stress += 0.5 * (first.stress_rate + second.stress_rate);
+      corrector.internal += 0.5 * (first.internal_rate + second.internal_rate);
+      corrector.void_ratio = predictor.void_ratio;
+      const double stress_error = 0.5 *
+                                  FrobeniusNorm<double>(second.stress_rate - first.stress_rate) /
+                                  FrobeniusNorm<double>(corrector.stress);
+      const double hardening_error =
+          0.5 * std::abs(second.internal_rate[0] - first.internal_rate[0]) / corrector.internal[0];
+      error = std::max(stress_error, hardening_error);
+      ok = std::isfinite(error) && model_.IsAdmissible(corrector, &why);
+    }
+    if (!ok || error > options_.tolerance) {
+      ++summary->rejected_substeps;
+      step *= ok ? std::max(0.9 * std::sqrt(options_.tolerance / error), 0.1) : 0.25;
+      if (step < 1e-14) {
+        summary->message = "substep below 1e-14 of the increment" + (why.empty() ? "" : ": " + why);
+        return false;
+      }
+      continue;
+    }
+    *current = corrector;
+    if (!CorrectDrift(current)) {
+      summary->message = "drift correction did not converge";
+      return false;
+    }
+    ++summary->substeps;
+    done += step;
+    const double growth =
+        error > 0 ? std::min(0.9 * std::sqrt(options_.tolerance / error), 1.1) : 1.1;
+    step = std::min(step * std::max(growth, 0.1), 1.0 - done);
+  }
+  return true;
+}
+
 CamClayStressPoint::Summary CamClayStressPoint::UpdateModifiedEuler(const Vector6& strain_increment,
                                                                     ModelState* state,
                                                                     Matrix6* tangent) const {
   Summary summary;
-  const double m2 =
-      model_.parameters().critical_state_ratio * model_.parameters().critical_state_ratio;
   const double yield_tolerance = model_.parameters().yield_tolerance;
-  auto scaled_f = [&](const ModelState& s) {
-    return model_.YieldFunction(s.stress, s.internal[0]) / (m2 * s.internal[0] * s.internal[0]);
-  };
-  // Consistent drift correction onto f = 0 (Sloan et al. 2001, Sec. 4).
-  auto correct_drift = [&](ModelState* s) -> bool {
-    for (int iteration = 0; iteration < 20; ++iteration) {
-      const double f = model_.YieldFunction(s->stress, s->internal[0]);
-      const double p_c = s->internal[0];
-      if (std::abs(f) <= yield_tolerance * m2 * p_c * p_c) return true;
-      const Vector6 n = model_.YieldGradient(s->stress, p_c);
-      const Matrix6 elastic = model_.ElasticStiffness(s->stress, s->void_ratio);
-      double lambda, kappa;
-      model_.CompressionSlopes(s->void_ratio, &lambda, &kappa);
-      const double p = MeanStress(s->stress);
-      const double hardening = p_c * m2 * (2.0 * p - p_c) / (lambda - kappa);
-      const Vector6 elastic_n = elastic * n;
-      const double denominator = Contract<double>(n, elastic_n) + m2 * p * hardening;
-      ModelState corrected = *s;
-      if (denominator > 0) {
-        const double multiplier = f / denominator;
-        corrected.stress -= multiplier * elastic_n;
-        corrected.internal[0] += multiplier * hardening;
-      }
-      const double f_new = model_.YieldFunction(corrected.stress, corrected.internal[0]);
-      if (!(denominator > 0) || !(std::abs(f_new) < std::abs(f)) || !(corrected.internal[0] > 0)) {
-        // Normal correction of the stress alone.
-        corrected = *s;
-        corrected.stress -= f / Contract<double>(n, n) * n;
-      }
-      *s = corrected;
-    }
-    const double p_c = s->internal[0];
-    return std::abs(model_.YieldFunction(s->stress, p_c)) <= 10 * yield_tolerance * m2 * p_c * p_c;
-  };
-
   ModelState current = *state;
-  if (scaled_f(current) > yield_tolerance && !correct_drift(&current)) {
+  if (ScaledYield(current) > yield_tolerance && !CorrectDrift(&current)) {
     summary.message = "start state outside the yield surface and drift correction failed";
     return summary;
   }
   const ModelState trial = ElasticPath(current, strain_increment, 1.0);
-  double fraction = 1.0;  // elastic fraction α of the increment
-  if (scaled_f(trial) > yield_tolerance) {
-    const Vector6 n = model_.YieldGradient(current.stress, current.internal[0]);
-    const Matrix6 elastic = model_.ElasticStiffness(current.stress, current.void_ratio);
-    const bool on_surface = scaled_f(current) >= -yield_tolerance;
-    double lo = 0.0, hi = 1.0;
-    if (on_surface && Contract<double>(n, elastic * strain_increment) >= 0) {
-      fraction = 0.0;
-    } else {
-      if (on_surface) {
-        // Elastic unloading then reloading: bracket the second crossing.
-        constexpr int kSamples = 32;
-        double previous = 0.0;
-        bool found = false;
-        for (int i = 1; i <= kSamples && !found; ++i) {
-          const double a = static_cast<double>(i) / kSamples;
-          if (scaled_f(ElasticPath(current, strain_increment, a)) < -yield_tolerance) {
-            previous = a;
-            for (int j = i + 1; j <= kSamples; ++j) {
-              const double b = static_cast<double>(j) / kSamples;
-              if (scaled_f(ElasticPath(current, strain_increment, b)) > 0) {
-                lo = previous;
-                hi = b;
-                found = true;
-                break;
-              }
-              previous = b;
-            }
-            break;
-          }
-        }
-        if (!found) lo = hi = 0.0;
-      }
-      if (hi > lo) {
-        // Pegasus iteration on f(α) along the exact elastic path.
-        double f_lo = scaled_f(ElasticPath(current, strain_increment, lo));
-        double f_hi = scaled_f(ElasticPath(current, strain_increment, hi));
-        double a = hi;
-        for (int iteration = 0; iteration < 100; ++iteration) {
-          a = hi - f_hi * (hi - lo) / (f_hi - f_lo);
-          const double f_a = scaled_f(ElasticPath(current, strain_increment, a));
-          if (std::abs(f_a) <= yield_tolerance) break;
-          if ((f_a < 0) == (f_hi < 0)) {
-            f_lo = f_lo * f_hi / (f_hi + f_a);
-          } else {
-            lo = hi;
-            f_lo = f_hi;
-          }
-          hi = a;
-          f_hi = f_a;
-        }
-        fraction = a;
-      } else {
-        fraction = lo;
-      }
-    }
+  if (ScaledYield(trial) > yield_tolerance) {
+    // Elastic up to the yield surface, then elastoplastic.
+    const double fraction = ElasticFraction(current, strain_increment);
     current = ElasticPath(current, strain_increment, fraction);
     summary.plastic = true;
+    if (!IntegratePlastic((1.0 - fraction) * strain_increment, &current, &summary)) {
+      return summary;
+    }
   } else {
     current = trial;
-  }
-
-  if (summary.plastic) {
-    const Vector6 plastic_increment = (1.0 - fraction) * strain_increment;
-    double done = 0.0, step = 1.0;
-    std::string why;
-    while (done < 1.0) {
-      if (summary.substeps + summary.rejected_substeps >= options_.max_substeps) {
-        summary.message = fmt::format("more than {} substeps", options_.max_substeps);
-        return summary;
-      }
-      const Vector6 d = step * plastic_increment;
-      ModelRate first, second;
-      bool ok = model_.Rate(current, d, &first, nullptr, &why);
-      ModelState predictor = current;
-      double error = 0.0;
-      ModelState corrector = current;
-      if (ok) {
-        predictor.stress += first.stress_rate;
-        predictor.internal += first.internal_rate;
-        predictor.void_ratio = std::expm1(std::log1p(current.void_ratio) + Trace<double>(d));
-        ok = model_.Rate(predictor, d, &second, nullptr, &why);
-      }
-      if (ok) {
-        corrector.stress += 0.5 * (first.stress_rate + second.stress_rate);
-        corrector.internal += 0.5 * (first.internal_rate + second.internal_rate);
-        corrector.void_ratio = predictor.void_ratio;
-        const double stress_error = 0.5 *
-                                    FrobeniusNorm<double>(second.stress_rate - first.stress_rate) /
-                                    FrobeniusNorm<double>(corrector.stress);
-        const double hardening_error = 0.5 *
-                                       std::abs(second.internal_rate[0] - first.internal_rate[0]) /
-                                       corrector.internal[0];
-        error = std::max(stress_error, hardening_error);
-        ok = std::isfinite(error) && model_.IsAdmissible(corrector, &why);
-      }
-      if (!ok || error > options_.tolerance) {
-        ++summary.rejected_substeps;
-        step *= ok ? std::max(0.9 * std::sqrt(options_.tolerance / error), 0.1) : 0.25;
-        if (step < 1e-14) {
-          summary.message =
-              "substep below 1e-14 of the increment" + (why.empty() ? "" : ": " + why);
-          return summary;
-        }
-        continue;
-      }
-      current = corrector;
-      if (!correct_drift(&current)) {
-        summary.message = "drift correction did not converge";
-        return summary;
-      }
-      ++summary.substeps;
-      done += step;
-      const double growth =
-          error > 0 ? std::min(0.9 * std::sqrt(options_.tolerance / error), 1.1) : 1.1;
-      step = std::min(step * std::max(growth, 0.1), 1.0 - done);
-    }
   }
   *state = current;
   if (tangent != nullptr) {

@@ -63,6 +63,20 @@ class CamClayStressPoint {
   // Exact elastic state after the fraction `fraction` of the increment.
   ModelState ElasticPath(const ModelState& state, const Vector6& strain_increment,
                          double fraction) const;
+  // Modified Euler's pieces. f/(M p_c)² at a state.
+  double ScaledYield(const ModelState& state) const;
+  // Consistent drift correction onto f = 0 (Sloan et al. 2001, Sec. 4), else
+  // a normal correction of the stress; false when f stays off the surface.
+  bool CorrectDrift(ModelState* state) const;
+  // The elastic fraction α of an increment whose elastic trial leaves the
+  // yield surface: 0 when loading from the surface, else the crossing
+  // (after elastic unloading, the second one) by the Pegasus method.
+  double ElasticFraction(const ModelState& current, const Vector6& strain_increment) const;
+  // Modified Euler substeps with local error control over the elastoplastic
+  // part of the increment, each followed by the drift correction; false
+  // with the message in `summary` on failure.
+  bool IntegratePlastic(const Vector6& plastic_increment, ModelState* current,
+                        Summary* summary) const;
 
   const ModifiedCamClay& model_;
   Options options_;

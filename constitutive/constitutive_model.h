@@ -107,6 +107,14 @@ class ConstitutiveModel {
   virtual int num_switches() const { return 0; }
   virtual void Switches(const ModelState& state, double* values) const {}
 
+  // The asymptotic state (paper Sec. 2, SPEC §7) of the stress direction ψ_σ
+  // (rad, compression positive), where the model has it in closed form:
+  // the direction ψ_ε (rad) of the stretching that leads to it and ln OCR.
+  // False, with the reason, where the model has none (the default) or ψ_σ is
+  // outside its domain.
+  virtual bool AsymptoteOfStressDirection(double psi_sigma, double* psi_epsilon, double* ln_ocr,
+                                          std::string* why) const;
+
   // Critical friction angle φ_c (rad) of the model, for the critical-state ratio.
   virtual double critical_friction_angle() const = 0;
   // One line with the parameters, for logs and HDF5 attributes.

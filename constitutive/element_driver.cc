@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "common/stopwatch.h"
+#include "constitutive/model_traits.h"
 
 namespace granasym {
 
@@ -117,18 +118,6 @@ ModelState CheckedInitialState(const ConstitutiveModel& model, double mean_stres
         "initial state p = {} kPa, psi_sigma = {} deg, e = {} is outside the model's domain: {}",
         mean_stress, psi_sigma / kDegree, void_ratio, why));
   }
-  if (model.kind() == ModelKind::kModifiedCamClay) {
-    const auto& cam_clay = static_cast<const ModifiedCamClay&>(model);
-    const double f = cam_clay.YieldFunction(state.stress, state.internal[0]);
-    const double m = cam_clay.parameters().critical_state_ratio;
-    if (f > cam_clay.parameters().yield_tolerance * m * m * state.internal[0] * state.internal[0]) {
-      throw InputError(fmt::format(
-          "initial state p = {} kPa, psi_sigma = {} deg, e = {} lies outside the Cam clay yield "
-          "surface (p_c = {:.6g} kPa from the elastic line, f = {:.6g} kPa²); raise OCR or lower "
-          "psi_sigma",
-          mean_stress, psi_sigma / kDegree, void_ratio, state.internal[0], f));
-    }
-  }
   return state;
 }
 }  // namespace
@@ -149,17 +138,19 @@ IntegratorOptions DefaultIntegratorOptions(ModelKind model) {
   IntegratorOptions options;
   options.kind = IntegratorKind::kArkodeErk;
   options.arkode_order = 5;
-  // Both hypoplastic models (clay and sand) at 1e-8, Cam clay at 1e-9.
-  const double tolerance = model == ModelKind::kModifiedCamClay ? 1e-9 : 1e-8;
-  options.relative_tolerance = options.absolute_tolerance = tolerance;
+  options.relative_tolerance = options.absolute_tolerance = Traits(model).integrator_tolerance;
   return options;
+}
+
+bool HasStressPointMethod(const ConstitutiveModel& model) {
+  return dynamic_cast<const ModifiedCamClay*>(&model) != nullptr;
 }
 
 namespace {
 
-// `options` with tolerances left at 0 replaced by the model's defaults.
-IntegratorOptions WithModelDefaults(IntegratorOptions options, ModelKind model) {
-  const IntegratorOptions defaults = DefaultIntegratorOptions(model);
+// `options` with tolerances left at 0 replaced by those of `defaults`.
+IntegratorOptions WithDefaultTolerances(IntegratorOptions options,
+                                        const IntegratorOptions& defaults) {
   if (options.relative_tolerance == 0.0) options.relative_tolerance = defaults.relative_tolerance;
   if (options.absolute_tolerance == 0.0) options.absolute_tolerance = defaults.absolute_tolerance;
   return options;
@@ -169,8 +160,9 @@ IntegratorOptions WithModelDefaults(IntegratorOptions options, ModelKind model) 
 
 bool ElementTestOptions::IsValid(std::string* why) const {
   std::string inner;
-  // Zero tolerances mean "the model's default" (any model's will do here).
-  if (!WithModelDefaults(integrator, ModelKind::kHypoplasticClay).IsValid(&inner)) {
+  // Zero tolerances mean "the model's default", valid for every model: the
+  // integrator's own defaults stand in for it here.
+  if (!WithDefaultTolerances(integrator, IntegratorOptions()).IsValid(&inner)) {
     return Fail(why, "integrator." + inner);
   }
   if (!stress_point.IsValid(&inner)) return Fail(why, "stress_point." + inner);
@@ -628,8 +620,177 @@ std::string DescribeStop(const StopCondition& stop) {
   return fmt::format("{}={:.6g}", ToString(stop.kind), stop.value);
 }
 
-// Cam clay stress-point stage: strain increments with Newton on the unknown
-// components and bisection onto stop crossings.
+// Strain increments of the stress-point method (Cam clay) under mixed
+// control: Newton on the unknown components of the strain increment (the
+// consistent tangent of the return mapping, forward differences of the
+// update itself for modified Euler) with a halving line search.
+class StressPointIncrements {
+ public:
+  // `rate_guess`: the stretching expected, for the first guess of the unknown
+  // components (later, those of the last increment).
+  StressPointIncrements(const CamClayStressPoint& stress_point, const ElementTestOptions& options,
+                        StageOde& ode, const Vector6& rate_guess, IntegrationSummary* counters)
+      : stress_point_(stress_point),
+        options_(options),
+        ode_(ode),
+        unknown_(ode.unknown()),
+        known_(ode.known()),
+        prescribed_(ode.prescribed()),
+        n_(static_cast<int>(unknown_.size())),
+        unknown_rate_guess_(rate_guess),
+        counters_(counters) {}
+
+  // One increment of duration h from y0 into y1; false with the reason.
+  bool Take(const std::vector<double>& y0, double h, std::vector<double>* y1, std::string* why) {
+    const ModelState start = ode_.StateOf(y0.data());
+    Vector6 strain = unknown_rate_guess_ * h;
+    for (int i : known_) strain[i] = prescribed_[i] * h;
+    ModelState end;
+    Eigen::VectorXd residual;
+    if (!SolveMixedControl(start, h, &strain, &end, &residual, why)) return false;
+    for (int i : unknown_) unknown_rate_guess_[i] = strain[i] / h;
+    y1->assign(ode_.dimension(), 0.0);
+    for (int i = 0; i < 6; ++i) (*y1)[kStress + i] = end.stress[i];
+    for (int i : unknown_) (*y1)[kStress + i] = y0[kStress + i] + prescribed_[i] * h;
+    (*y1)[kLogVolume] = y0[kLogVolume] + Trace<double>(strain);
+    for (int i = 0; i < 6; ++i) (*y1)[kStrain + i] = y0[kStrain + i] + strain[i];
+    (*y1)[kPath] = y0[kPath] + FrobeniusNorm<double>(strain);
+    for (int i = 0; i < end.internal.size(); ++i) (*y1)[kInternal + i] = end.internal[i];
+    return true;
+  }
+
+ private:
+  // The update of `start` by the strain increment `trial` and the residual
+  // of the stress-controlled components.
+  bool Solve(const ModelState& start, double h, const Vector6& trial, ModelState* out,
+             Matrix6* tangent, Eigen::VectorXd* residual, std::string* why) {
+    *out = start;
+    const CamClayStressPoint::Summary update = stress_point_.Update(trial, out, tangent);
+    ++counters_->rhs_evaluations;
+    counters_->nonlinear_iterations += update.iterations;
+    counters_->rejected_steps += update.rejected_substeps;
+    if (!update.success) {
+      *why = update.message;
+      return false;
+    }
+    residual->resize(n_);
+    for (int k = 0; k < n_; ++k) {
+      const int i = unknown_[k];
+      (*residual)[k] = out->stress[i] - start.stress[i] - prescribed_[i] * h;
+    }
+    return true;
+  }
+
+  // The strain increment whose stress-controlled components follow their
+  // prescribed rates: Newton on the unknown components from `strain`.
+  bool SolveMixedControl(const ModelState& start, double h, Vector6* strain, ModelState* end,
+                         Eigen::VectorXd* residual, std::string* why) {
+    const bool consistent =
+        stress_point_.options().method == CamClayStressPoint::Method::kReturnMapping;
+    Matrix6 tangent;
+    if (!Solve(start, h, *strain, end, n_ > 0 && consistent ? &tangent : nullptr, residual, why)) {
+      return false;
+    }
+    for (int iteration = 0; n_ > 0; ++iteration) {
+      const double scale =
+          std::max((end->stress - start.stress).cwiseAbs().maxCoeff(), 1e-12 * start.stress.norm());
+      if (residual->cwiseAbs().maxCoeff() <= options_.control_tolerance * 10 * scale) break;
+      if (iteration == options_.control_max_iterations) {
+        *why = fmt::format(
+            "mixed control of the strain increment did not converge (residual "
+            "{:.3g} kPa)",
+            residual->cwiseAbs().maxCoeff());
+        return false;
+      }
+      Eigen::MatrixXd block(n_, n_);
+      if (consistent) {
+        for (int a = 0; a < n_; ++a) {
+          for (int b = 0; b < n_; ++b) block(a, b) = tangent(unknown_[a], unknown_[b]);
+        }
+      } else {
+        // Modified Euler: forward differences of the update itself.
+        for (int b = 0; b < n_; ++b) {
+          Vector6 perturbed = *strain;
+          const double step = 1e-7 * std::max(FrobeniusNorm<double>(*strain), 1e-9);
+          perturbed[unknown_[b]] += step;
+          ModelState unused;
+          Eigen::VectorXd perturbed_residual;
+          if (!Solve(start, h, perturbed, &unused, nullptr, &perturbed_residual, why)) {
+            return false;
+          }
+          block.col(b) = (perturbed_residual - *residual) / step;
+        }
+      }
+      const Eigen::VectorXd correction = -block.fullPivLu().solve(*residual);
+      double fraction = 1.0;
+      bool improved = false;
+      for (int search = 0; search < 20; ++search) {
+        Vector6 candidate = *strain;
+        for (int k = 0; k < n_; ++k) candidate[unknown_[k]] += fraction * correction[k];
+        ModelState candidate_end;
+        Eigen::VectorXd candidate_residual;
+        Matrix6 candidate_tangent;
+        if (Solve(start, h, candidate, &candidate_end, consistent ? &candidate_tangent : nullptr,
+                  &candidate_residual, why) &&
+            candidate_residual.norm() < residual->norm()) {
+          *strain = candidate;
+          *end = candidate_end;
+          *residual = candidate_residual;
+          if (consistent) tangent = candidate_tangent;
+          improved = true;
+          break;
+        }
+        fraction *= 0.5;
+      }
+      if (!improved) {
+        *why = "mixed control of the strain increment stalled";
+        return false;
+      }
+    }
+    return true;
+  }
+
+  const CamClayStressPoint& stress_point_;
+  const ElementTestOptions& options_;
+  StageOde& ode_;
+  const std::vector<int>& unknown_;
+  const std::vector<int>& known_;
+  const Vector6& prescribed_;
+  const int n_;  // unknown components
+  Vector6 unknown_rate_guess_;
+  IntegrationSummary* counters_;
+};
+
+// The crossing of stop `crossed` inside the increment of duration h from
+// (t, y), whose end is `y_end`: bisection on the fraction of the increment
+// to stop_location_tolerance; `*y` becomes the state just past the crossing.
+// Returns the fraction reached.
+double LocateStop(StressPointIncrements& increments, StageOde& ode,
+                  const ElementTestOptions& options, double t, double h, int crossed,
+                  double g_crossed_before, const std::vector<double>& y_end,
+                  std::vector<double>* y) {
+  double lo = 0.0, hi = 1.0;
+  std::vector<double> y_hi = y_end, y_mid;
+  std::string why;
+  while ((hi - lo) > options.stop_location_tolerance) {
+    const double mid = 0.5 * (lo + hi);
+    if (!increments.Take(*y, mid * h, &y_mid, &why)) break;
+    std::vector<double> g(ode.num_roots());
+    ode.Roots(t + mid * h, y_mid.data(), g.data());
+    if ((g[crossed] < 0) == (g_crossed_before < 0) && g[crossed] != 0) {
+      lo = mid;
+    } else {
+      hi = mid;
+      y_hi = y_mid;
+    }
+  }
+  *y = y_hi;
+  return hi;
+}
+
+// Cam clay stress-point stage: strain increments of at most
+// max_strain_increment, each halved on failure, records at the stage's
+// output times, and stops located by bisection.
 IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
                                        const ElementTestOptions& options, StageOde& ode,
                                        const LoadingStage& stage, std::vector<double>* y,
@@ -637,11 +798,6 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
   Stopwatch stopwatch;
   IntegrationSummary summary;
   summary.termination = TerminationType::kReachedEnd;
-  const std::vector<int>& unknown = ode.unknown();
-  const std::vector<int>& known = ode.known();
-  const Vector6& prescribed = ode.prescribed();
-  const int n = static_cast<int>(unknown.size());
-  const int dim = ode.dimension();
 
   // Time per increment from the strain rate (known and, estimated, unknown parts).
   Vector6 rate_estimate;
@@ -654,103 +810,7 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
   const double stretching_norm = FrobeniusNorm<double>(rate_estimate);
   double dt = stretching_norm > 0 ? options.max_strain_increment / stretching_norm
                                   : stage.duration / 1000.0;
-
-  // One increment of duration h from y0 into y1; false with a message on failure.
-  Vector6 unknown_rate_guess = rate_estimate;
-  auto increment = [&](const std::vector<double>& y0, double h, std::vector<double>* y1,
-                       std::string* why) -> bool {
-    const ModelState start = ode.StateOf(y0.data());
-    Vector6 strain = unknown_rate_guess * h;
-    for (int i : known) strain[i] = prescribed[i] * h;
-    // Residual of the stress-controlled components for a trial increment.
-    auto solve = [&](const Vector6& trial, ModelState* out, Matrix6* tangent,
-                     Eigen::VectorXd* residual) -> bool {
-      *out = start;
-      const CamClayStressPoint::Summary update = stress_point.Update(trial, out, tangent);
-      ++summary.rhs_evaluations;
-      summary.nonlinear_iterations += update.iterations;
-      summary.rejected_steps += update.rejected_substeps;
-      if (!update.success) {
-        *why = update.message;
-        return false;
-      }
-      residual->resize(n);
-      for (int k = 0; k < n; ++k) {
-        const int i = unknown[k];
-        (*residual)[k] = out->stress[i] - start.stress[i] - prescribed[i] * h;
-      }
-      return true;
-    };
-    ModelState end;
-    Eigen::VectorXd residual;
-    const bool consistent =
-        stress_point.options().method == CamClayStressPoint::Method::kReturnMapping;
-    Matrix6 tangent;
-    if (!solve(strain, &end, n > 0 && consistent ? &tangent : nullptr, &residual)) return false;
-    for (int iteration = 0; n > 0; ++iteration) {
-      const double scale =
-          std::max((end.stress - start.stress).cwiseAbs().maxCoeff(), 1e-12 * start.stress.norm());
-      if (residual.cwiseAbs().maxCoeff() <= options.control_tolerance * 10 * scale) break;
-      if (iteration == options.control_max_iterations) {
-        *why = fmt::format(
-            "mixed control of the strain increment did not converge (residual "
-            "{:.3g} kPa)",
-            residual.cwiseAbs().maxCoeff());
-        return false;
-      }
-      Eigen::MatrixXd block(n, n);
-      if (consistent) {
-        for (int a = 0; a < n; ++a) {
-          for (int b = 0; b < n; ++b) block(a, b) = tangent(unknown[a], unknown[b]);
-        }
-      } else {
-        // Modified Euler: forward differences of the update itself.
-        for (int b = 0; b < n; ++b) {
-          Vector6 perturbed = strain;
-          const double step = 1e-7 * std::max(FrobeniusNorm<double>(strain), 1e-9);
-          perturbed[unknown[b]] += step;
-          ModelState unused;
-          Eigen::VectorXd perturbed_residual;
-          if (!solve(perturbed, &unused, nullptr, &perturbed_residual)) return false;
-          block.col(b) = (perturbed_residual - residual) / step;
-        }
-      }
-      const Eigen::VectorXd correction = -block.fullPivLu().solve(residual);
-      double fraction = 1.0;
-      bool improved = false;
-      for (int search = 0; search < 20; ++search) {
-        Vector6 candidate = strain;
-        for (int k = 0; k < n; ++k) candidate[unknown[k]] += fraction * correction[k];
-        ModelState candidate_end;
-        Eigen::VectorXd candidate_residual;
-        Matrix6 candidate_tangent;
-        if (solve(candidate, &candidate_end, consistent ? &candidate_tangent : nullptr,
-                  &candidate_residual) &&
-            candidate_residual.norm() < residual.norm()) {
-          strain = candidate;
-          end = candidate_end;
-          residual = candidate_residual;
-          if (consistent) tangent = candidate_tangent;
-          improved = true;
-          break;
-        }
-        fraction *= 0.5;
-      }
-      if (!improved) {
-        *why = "mixed control of the strain increment stalled";
-        return false;
-      }
-    }
-    for (int i : unknown) unknown_rate_guess[i] = strain[i] / h;
-    y1->assign(dim, 0.0);
-    for (int i = 0; i < 6; ++i) (*y1)[kStress + i] = end.stress[i];
-    for (int i : unknown) (*y1)[kStress + i] = y0[kStress + i] + prescribed[i] * h;
-    (*y1)[kLogVolume] = y0[kLogVolume] + Trace<double>(strain);
-    for (int i = 0; i < 6; ++i) (*y1)[kStrain + i] = y0[kStrain + i] + strain[i];
-    (*y1)[kPath] = y0[kPath] + FrobeniusNorm<double>(strain);
-    for (int i = 0; i < end.internal.size(); ++i) (*y1)[kInternal + i] = end.internal[i];
-    return true;
-  };
+  StressPointIncrements increments(stress_point, options, ode, rate_estimate, &summary);
 
   const int num_roots = ode.num_roots();
   std::vector<double> g_old(num_roots), g_new(num_roots);
@@ -773,11 +833,11 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
     }
     double h = std::min(h_current, stage.duration - t);
     // A failed increment (non-smooth transition, no convergence) is halved.
-    bool ok = increment(*y, h, &y_new, &why);
+    bool ok = increments.Take(*y, h, &y_new, &why);
     for (int halving = 0; !ok && halving < 30; ++halving) {
       ++summary.rejected_steps;
       h *= 0.5;
-      ok = increment(*y, h, &y_new, &why);
+      ok = increments.Take(*y, h, &y_new, &why);
     }
     if (!ok) {
       summary.termination = TerminationType::kFailure;
@@ -796,22 +856,7 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
       }
     }
     if (crossed >= 0) {
-      double lo = 0.0, hi = 1.0;
-      std::vector<double> y_hi = y_new, y_mid;
-      while ((hi - lo) > options.stop_location_tolerance) {
-        const double mid = 0.5 * (lo + hi);
-        if (!increment(*y, mid * h, &y_mid, &why)) break;
-        std::vector<double> g(num_roots);
-        ode.Roots(t + mid * h, y_mid.data(), g.data());
-        if ((g[crossed] < 0) == (g_old[crossed] < 0) && g[crossed] != 0) {
-          lo = mid;
-        } else {
-          hi = mid;
-          y_hi = y_mid;
-        }
-      }
-      *y = y_hi;
-      t += hi * h;
+      t += LocateStop(increments, ode, options, t, h, crossed, g_old[crossed], y_new, y) * h;
       summary.termination = TerminationType::kRootFound;
       summary.root_index = crossed;
       break;
@@ -823,7 +868,7 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
       std::vector<double> y_output;
       std::string output_why;
       const double fraction = next_output - t;
-      if (fraction > 0 && increment(*y, fraction, &y_output, &output_why)) {
+      if (fraction > 0 && increments.Take(*y, fraction, &y_output, &output_why)) {
         observer(next_output, y_output.data());
       }
       next_output += output_interval;
@@ -841,15 +886,154 @@ IntegrationSummary RunStressPointStage(const CamClayStressPoint& stress_point,
   return summary;
 }
 
+// The ODE state y of a model state (kStress, kLogVolume, kInternal; strains
+// and strain path 0).
+std::vector<double> OdeStateOf(const ModelState& state, int num_internal) {
+  std::vector<double> y(kInternal + num_internal, 0.0);
+  for (int i = 0; i < 6; ++i) y[kStress + i] = state.stress[i];
+  y[kLogVolume] = std::log1p(state.void_ratio);
+  for (int i = 0; i < num_internal; ++i) y[kInternal + i] = state.internal[i];
+  return y;
+}
+
+// A stage with the rate integrator, in pieces: a switch root (a kink of the
+// rate) ends a piece; the next starts there. Each switch stops the
+// integration at most kMaxSwitchStops times per stage: more means the state
+// slides along it (seen in path fuzzing at the Cam clay critical state),
+// where restarts only cost. A limit point of a stress-controlled stage ends
+// it as a failure. `stage_summary` sums the pieces as they end (it keeps
+// them when a piece throws).
+void IntegrateInPieces(Integrator& integrator, StageOde& ode, const LoadingStage& stage,
+                       const ElementTestOptions& options, int num_switches, std::vector<double>* y,
+                       const Integrator::Observer& observer, IntegrationSummary* stage_summary) {
+  std::vector<double> output_times;
+  for (int i = 1; i < stage.output_points; ++i) {
+    output_times.push_back(stage.duration * i / stage.output_points);
+  }
+  constexpr int kMaxSwitchStops = 20;
+  constexpr int kMaxSwitches = 10000;
+  std::vector<int> switch_stops(num_switches, 0);
+  double start = 0.0;
+  std::vector<double> roots_before(ode.num_roots());
+  for (int piece = 0;; ++piece) {
+    ode.Roots(start, y->data(), roots_before.data());
+    const IntegrationSummary part =
+        integrator.Integrate(ode, start, stage.duration, y->data(), output_times, observer);
+    if (piece == 0) {
+      *stage_summary = part;
+    } else {
+      stage_summary->Accumulate(part);
+      stage_summary->termination = part.termination;
+      stage_summary->message = part.message;
+      stage_summary->root_index = part.root_index;
+      stage_summary->final_time = part.final_time;
+    }
+    if (part.termination == TerminationType::kRootFound &&
+        part.root_index == ode.limit_point_root()) {
+      const ModelState there = ode.StateOf(y->data());
+      stage_summary->termination = TerminationType::kFailure;
+      stage_summary->root_index = kLimitPointStop;
+      stage_summary->message = fmt::format(
+          "limit point of the stress-controlled path at t = {:.9g} s (p = {:.6g} kPa, "
+          "q = {:.6g} kPa, e = {:.6g}): the block of dT/dD for the stress-controlled "
+          "components reached sigma_min/|dT/dD| = {:.3g} (limit_point_condition), so the "
+          "prescribed stress rates have no unique bounded stretching beyond it (softening, "
+          "or a critical state under stress control)",
+          part.final_time, MeanStress(there.stress), DeviatorStress(there.stress), there.void_ratio,
+          options.limit_point_condition);
+      break;
+    }
+    const bool switched =
+        part.termination == TerminationType::kRootFound && part.root_index >= ode.num_stops();
+    if (!switched) break;
+    if (piece == kMaxSwitches) {
+      stage_summary->termination = TerminationType::kFailure;
+      stage_summary->root_index = -1;
+      stage_summary->message = fmt::format(
+          "more than {} crossings of the model's switching surfaces (chattering at t = "
+          "{:.6g})",
+          kMaxSwitches, part.final_time);
+      break;
+    }
+    start = part.final_time;
+    const int which = part.root_index - ode.num_stops();
+    ode.PassSwitch(which, y->data(), roots_before[part.root_index]);
+    if (++switch_stops[which] >= kMaxSwitchStops) ode.DisableSwitch(which);
+    stage_summary->root_index = -1;
+    stage_summary->termination = TerminationType::kReachedEnd;
+  }
+}
+
+// One stage by either method; an asymptote stop that already holds ends it
+// at once, and a RuntimeError (a failed library call) is a failure.
+IntegrationSummary RunStage(const ConstitutiveModel& model, const ElementTestOptions& options,
+                            Integrator* integrator, const CamClayStressPoint* stress_point,
+                            StageOde& ode, const LoadingStage& stage, std::vector<double>* y,
+                            const Integrator::Observer& observer) {
+  IntegrationSummary stage_summary;
+  int satisfied = -1;
+  for (size_t s = 0; s < stage.stops.size() && satisfied < 0; ++s) {
+    if (stage.stops[s].kind == StopKind::kAsymptote &&
+        ode.StopFunction(stage.stops[s], 0.0, y->data()) <= 0) {
+      satisfied = static_cast<int>(s);
+    }
+  }
+  try {
+    if (satisfied >= 0) {
+      stage_summary.termination = TerminationType::kRootFound;
+      stage_summary.root_index = satisfied;
+    } else if (integrator) {
+      IntegrateInPieces(*integrator, ode, stage, options, model.num_switches(), y, observer,
+                        &stage_summary);
+    } else {
+      stage_summary = RunStressPointStage(*stress_point, options, ode, stage, y, observer);
+    }
+  } catch (const RuntimeError& error) {
+    stage_summary.termination = TerminationType::kFailure;
+    stage_summary.message = error.what();
+  }
+  return stage_summary;
+}
+
+// The report of a stage: its name, counters and the stop that ended it.
+StageSummary ReportStage(const LoadingStage& stage, const IntegrationSummary& stage_summary) {
+  StageSummary stage_report;
+  stage_report.name = stage.name;
+  stage_report.integration = stage_summary;
+  if (stage_summary.root_index >= 0 &&
+      stage_summary.root_index < static_cast<int>(stage.stops.size())) {
+    stage_report.stop = DescribeStop(stage.stops[stage_summary.root_index]);
+  } else {
+    stage_report.stop = stage_summary.root_index == kLimitPointStop ? "limit_point" : "duration";
+  }
+  return stage_report;
+}
+
+// Whether a stage ended well at a finite state inside the model's domain;
+// else (a success so far) its message says why the final state is invalid.
+bool StageEndValid(const ConstitutiveModel& model, StageOde& ode, const std::vector<double>& y,
+                   IntegrationSummary* stage_summary) {
+  bool valid = stage_summary->success();
+  if (valid) {
+    std::string why;
+    for (double value : y) valid = valid && std::isfinite(value);
+    valid = valid && model.IsAdmissible(ode.StateOf(y.data()), &why);
+    if (!valid && stage_summary->success()) {
+      stage_summary->message = "final state invalid: " + why;
+    }
+  }
+  return valid;
+}
+
 }  // namespace
 
 ElementTest::ElementTest(const ConstitutiveModel& model, const ElementTestOptions& options)
     : model_(model), options_(options) {
   std::string why;
   GRANASYM_CHECK(options.IsValid(&why)) << why;
-  options_.integrator = WithModelDefaults(options.integrator, model.kind());
-  GRANASYM_CHECK(options.method == DriveMethod::kRateIntegration ||
-                 model.kind() == ModelKind::kModifiedCamClay)
+  options_.integrator =
+      WithDefaultTolerances(options.integrator, DefaultIntegratorOptions(model.kind()));
+  GRANASYM_CHECK(options.method == DriveMethod::kRateIntegration || HasStressPointMethod(model))
       << "the stress-point method exists for Modified Cam clay only";
 }
 
@@ -866,19 +1050,15 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
   }
   summary.termination = TerminationType::kReachedEnd;
   summary.message.clear();
-  const int num_internal = model_.num_internal();
-  std::vector<double> y(kInternal + num_internal, 0.0);
-  for (int i = 0; i < 6; ++i) y[kStress + i] = initial.stress[i];
-  y[kLogVolume] = std::log1p(initial.void_ratio);
-  for (int i = 0; i < num_internal; ++i) y[kInternal + i] = initial.internal[i];
+  std::vector<double> y = OdeStateOf(initial, model_.num_internal());
 
   std::unique_ptr<Integrator> integrator;
   std::unique_ptr<CamClayStressPoint> stress_point;
   if (options_.method == DriveMethod::kRateIntegration) {
     integrator = Integrator::Create(options_.integrator);
   } else {
-    stress_point = std::make_unique<CamClayStressPoint>(static_cast<const ModifiedCamClay&>(model_),
-                                                        options_.stress_point);
+    stress_point = std::make_unique<CamClayStressPoint>(
+        dynamic_cast<const ModifiedCamClay&>(model_), options_.stress_point);
   }
 
   double time = 0.0;
@@ -889,111 +1069,15 @@ ElementTestResult ElementTest::Run(const ModelState& initial,
     const double stress_scale = std::max(mean_stress, 1e-6);
     StageOde ode(model_, stage, options_, stress_scale);
     if (k == 0) result.history.push_back(MakeRecord(model_, ode, 0.0, y.data(), stage_index));
-    auto observer = [&](double t, const double* state) {
+    const Integrator::Observer observer = [&](double t, const double* state) {
       result.history.push_back(MakeRecord(model_, ode, time + t, state, stage_index));
     };
-    IntegrationSummary stage_summary;
-    std::vector<double> y_start = y;
-    // An asymptote stop that already holds ends the stage at once.
-    int satisfied = -1;
-    for (size_t s = 0; s < stage.stops.size() && satisfied < 0; ++s) {
-      if (stage.stops[s].kind == StopKind::kAsymptote &&
-          ode.StopFunction(stage.stops[s], 0.0, y.data()) <= 0) {
-        satisfied = static_cast<int>(s);
-      }
-    }
-    try {
-      if (satisfied >= 0) {
-        stage_summary.termination = TerminationType::kRootFound;
-        stage_summary.root_index = satisfied;
-      } else if (integrator) {
-        std::vector<double> output_times;
-        for (int i = 1; i < stage.output_points; ++i) {
-          output_times.push_back(stage.duration * i / stage.output_points);
-        }
-        // A switch root (a kink of the rate) ends a piece; the next starts
-        // there. Each switch stops the integration at most kMaxSwitchStops
-        // times per stage: more means the state slides along it (seen in path
-        // fuzzing at the Cam clay critical state), where restarts only cost.
-        constexpr int kMaxSwitchStops = 20;
-        constexpr int kMaxSwitches = 10000;
-        std::vector<int> switch_stops(model_.num_switches(), 0);
-        double start = 0.0;
-        std::vector<double> roots_before(ode.num_roots());
-        for (int piece = 0;; ++piece) {
-          ode.Roots(start, y.data(), roots_before.data());
-          const IntegrationSummary part =
-              integrator->Integrate(ode, start, stage.duration, y.data(), output_times, observer);
-          if (piece == 0) {
-            stage_summary = part;
-          } else {
-            stage_summary.Accumulate(part);
-            stage_summary.termination = part.termination;
-            stage_summary.message = part.message;
-            stage_summary.root_index = part.root_index;
-            stage_summary.final_time = part.final_time;
-          }
-          if (part.termination == TerminationType::kRootFound &&
-              part.root_index == ode.limit_point_root()) {
-            const ModelState there = ode.StateOf(y.data());
-            stage_summary.termination = TerminationType::kFailure;
-            stage_summary.root_index = kLimitPointStop;
-            stage_summary.message = fmt::format(
-                "limit point of the stress-controlled path at t = {:.9g} s (p = {:.6g} kPa, "
-                "q = {:.6g} kPa, e = {:.6g}): the block of dT/dD for the stress-controlled "
-                "components reached sigma_min/|dT/dD| = {:.3g} (limit_point_condition), so the "
-                "prescribed stress rates have no unique bounded stretching beyond it (softening, "
-                "or a critical state under stress control)",
-                part.final_time, MeanStress(there.stress), DeviatorStress(there.stress),
-                there.void_ratio, options_.limit_point_condition);
-            break;
-          }
-          const bool switched =
-              part.termination == TerminationType::kRootFound && part.root_index >= ode.num_stops();
-          if (!switched) break;
-          if (piece == kMaxSwitches) {
-            stage_summary.termination = TerminationType::kFailure;
-            stage_summary.root_index = -1;
-            stage_summary.message = fmt::format(
-                "more than {} crossings of the model's switching surfaces (chattering at t = "
-                "{:.6g})",
-                kMaxSwitches, part.final_time);
-            break;
-          }
-          start = part.final_time;
-          const int which = part.root_index - ode.num_stops();
-          ode.PassSwitch(which, y.data(), roots_before[part.root_index]);
-          if (++switch_stops[which] >= kMaxSwitchStops) ode.DisableSwitch(which);
-          stage_summary.root_index = -1;
-          stage_summary.termination = TerminationType::kReachedEnd;
-        }
-      } else {
-        stage_summary = RunStressPointStage(*stress_point, options_, ode, stage, &y, observer);
-      }
-    } catch (const RuntimeError& error) {
-      stage_summary.termination = TerminationType::kFailure;
-      stage_summary.message = error.what();
-    }
-    StageSummary stage_report;
-    stage_report.name = stage.name;
-    stage_report.integration = stage_summary;
-    if (stage_summary.root_index >= 0 &&
-        stage_summary.root_index < static_cast<int>(stage.stops.size())) {
-      stage_report.stop = DescribeStop(stage.stops[stage_summary.root_index]);
-    } else {
-      stage_report.stop = stage_summary.root_index == kLimitPointStop ? "limit_point" : "duration";
-    }
-    summary.stages.push_back(stage_report);
+    const std::vector<double> y_start = y;
+    IntegrationSummary stage_summary =
+        RunStage(model_, options_, integrator.get(), stress_point.get(), ode, stage, &y, observer);
+    summary.stages.push_back(ReportStage(stage, stage_summary));
     summary.totals.Accumulate(stage_summary);
-    bool valid = stage_summary.success();
-    if (valid) {
-      for (double value : y) valid = valid && std::isfinite(value);
-      valid = valid && model_.IsAdmissible(ode.StateOf(y.data()), &why);
-      if (!valid && stage_summary.success()) {
-        stage_summary.message = "final state invalid: " + why;
-      }
-    }
-    if (!valid) {
+    if (!StageEndValid(model_, ode, y, &stage_summary)) {
       // The records of the valid part of the stage stay. A limit point ends
       // the path at a valid state, recorded as the last one (e.g. the peak
       // of a stress-controlled test); otherwise the state goes back to the

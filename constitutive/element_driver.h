@@ -113,11 +113,15 @@ struct EnumNames<DriveMethod> {
        "strain increments through a stress-point algorithm (Cam clay only)"},
   };
 };
+// Whether `model` has a stress-point algorithm (CamClayStressPoint: Modified
+// Cam clay).
+bool HasStressPointMethod(const ConstitutiveModel& model);
 
 // The default integrator of each model, chosen from the work-precision study
 // (bench/README.md, "Chosen defaults"; bench/constitutive_work_precision):
-// ARKODE ERK order 5 for every model, at rtol = atol = 1e-8 for the
-// hypoplastic clay and sand and 1e-9 for Modified Cam clay (for the sand on
+// ARKODE ERK order 5 for every model, at rtol = atol of the model's traits
+// (ModelTraits::integrator_tolerance): 1e-8 for the hypoplastic clay and
+// sand and 1e-9 for Modified Cam clay (for the sand on
 // its own paths, SandPaths in the benchmark, ERK 5 at 1e-8 is 2.0–6.8 times
 // faster than RKF23 at equal error on every path). Cam clay's rate form has
 // kinks at the yield surface and, at 1e-8, ERK 5 is slower than RKF23 at

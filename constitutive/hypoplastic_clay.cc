@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "constitutive/asymptotic_states.h"
 #include "constitutive/autodiff.h"
 #include "constitutive/stress_direction.h"
 
@@ -283,6 +284,15 @@ void HypoplasticClay::SignConstraints(Vector6* stress_codes,
                                       Eigen::VectorXd* internal_codes) const {
   *stress_codes << -2, -2, -2, 0, 0, 0;
   internal_codes->resize(0);
+}
+
+bool HypoplasticClay::AsymptoteOfStressDirection(double psi_sigma, double* psi_epsilon,
+                                                 double* ln_ocr, std::string* why) const {
+  AsymptoticState state;
+  if (!AnalyticAsymptoteForStress(*this, psi_sigma, &state, why)) return false;
+  *psi_epsilon = state.psi_epsilon;
+  *ln_ocr = std::log(state.ocr);
+  return true;
 }
 
 bool HypoplasticClay::ScaleState(double factor, ModelState* state) const {

@@ -48,6 +48,9 @@ class HypoplasticClay : public ConstitutiveModel {
   bool ScaleState(double factor, ModelState* state) const override;
   // Normal stresses strictly compressive (necessary for a negative-definite T).
   void SignConstraints(Vector6* stress_codes, Eigen::VectorXd* internal_codes) const override;
+  // On the ASBS (AsymptoteForStress below; asymptotic_states.h).
+  bool AsymptoteOfStressDirection(double psi_sigma, double* psi_epsilon, double* ln_ocr,
+                                  std::string* why) const override;
   double critical_friction_angle() const override { return parameters_.critical_friction_angle; }
   std::string Describe() const override;
 

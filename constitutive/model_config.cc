@@ -7,15 +7,15 @@
 
 #include "common/csv_table.h"
 #include "common/error.h"
+#include "common/quantity_names.h"
 #include "common/state_measures.h"
 #include "constitutive/hypoplastic_clay.h"
-#include "constitutive/hypoplastic_sand.h"
-#include "constitutive/modified_cam_clay.h"
+#include "constitutive/model_traits.h"
 
 namespace granasym {
 
 namespace {
-// Ranges of sane settings (kPa, 1/s, s); the parameters' own are ParameterRange.
+// Ranges of sane settings (kPa, 1/s, s); the parameters' own are in their traits.
 const Range kVoidRatio = {0.0, 20.0, false, true};                           // e of a state
 const Range kSignedRate = Range::Closed(-kStrainRate.max, kStrainRate.max);  // axial, Voigt
 const Range kDuration = {0.0, 1e9, false, true};                             // stage durations (s)
@@ -39,114 +39,10 @@ Range StopRange(StopKind kind) {
   return Range::Any();
 }
 
-// A failed consistency check of a model's parameters (several keys together).
-[[noreturn]] void FailParameters(const ConfigTable& table, const std::string& why) {
-  throw InputError(fmt::format("{}: [{}]: the parameters are not consistent: {}", table.origin(),
-                               table.KeyName(""), why));
-}
 }  // namespace
 
-Range ParameterRange(const std::string& key) {
-  if (key == "phi_c_deg") return Range::Open(0.0, 90.0);
-  if (key == "lambda_star" || key == "kappa_star" || key == "lambda" || key == "kappa") {
-    return {0.0, 2.0, false, true};
-  }
-  if (key == "n_intercept") return {0.0, 10.0, false, true};  // ln(1+e) at p_r
-  if (key == "e_n" || key == "e_d0" || key == "e_c0" || key == "e_i0") return kVoidRatio;
-  if (key == "r") return {0.0, 100.0, false, true};
-  if (key == "poisson_ratio") return Range::Open(-1.0, 0.5);
-  if (key == "h_s_kpa" || key == "shear_modulus_kpa") return {0.0, 1e9, false, true};
-  if (key == "n") return Range::Open(0.0, 1.0);
-  if (key == "alpha" || key == "beta") return {0.0, 10.0, false, true};
-  GRANASYM_CHECK(false) << "no range for model parameter " << key;
-  return Range::Any();
-}
-
 std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& table) {
-  // A parameter with its range.
-  auto parameter = [&table](const std::string& key) {
-    return table.GetDouble(key, ParameterRange(key));
-  };
-  const ModelKind kind = table.GetEnum("kind", ModelKind::kHypoplasticClay);
-  std::unique_ptr<ConstitutiveModel> model;
-  std::string why;
-  if (kind == ModelKind::kHypoplasticClay) {
-    HypoplasticClay::Parameters p;
-    p.critical_friction_angle = parameter("phi_c_deg") * kDegree;
-    p.lambda_star = parameter("lambda_star");
-    p.kappa_star = parameter("kappa_star");
-    if (!(p.kappa_star < p.lambda_star)) {
-      table.Fail("kappa_star", fmt::format("kappa_star = {} must be smaller than lambda_star = {}",
-                                           p.kappa_star, p.lambda_star));
-    }
-    p.n_intercept = parameter("n_intercept");
-    p.bulk_shear_ratio = parameter("r");
-    p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, kStressKpa);
-    p.minimum_mean_stress =
-        table.GetDouble("minimum_mean_stress_kpa", 1e-9, {0.0, 1e3, false, true});
-    if (!p.IsValid(&why)) FailParameters(table, why);
-    model = std::make_unique<HypoplasticClay>(p);
-  } else if (kind == ModelKind::kHypoplasticSand) {
-    HypoplasticSand::Parameters p;
-    p.critical_friction_angle = parameter("phi_c_deg") * kDegree;
-    p.granular_hardness = parameter("h_s_kpa");
-    p.compression_exponent = parameter("n");
-    p.densest_void_ratio0 = parameter("e_d0");
-    p.critical_void_ratio0 = parameter("e_c0");
-    p.loosest_void_ratio0 = parameter("e_i0");
-    // Bauer's lines must not cross: e_d < e_c < e_i at every p.
-    if (!(p.densest_void_ratio0 < p.critical_void_ratio0)) {
-      table.Fail("e_c0", fmt::format("e_c0 = {} must be greater than e_d0 = {}",
-                                     p.critical_void_ratio0, p.densest_void_ratio0));
-    }
-    if (!(p.critical_void_ratio0 < p.loosest_void_ratio0)) {
-      table.Fail("e_i0", fmt::format("e_i0 = {} must be greater than e_c0 = {}",
-                                     p.loosest_void_ratio0, p.critical_void_ratio0));
-    }
-    p.pyknotropy_exponent = parameter("alpha");
-    p.stiffness_exponent = parameter("beta");
-    p.minimum_mean_stress =
-        table.GetDouble("minimum_mean_stress_kpa", 1e-9, {0.0, 1e3, false, true});
-    // What remains is the sign of the f_b denominator, which α sets for given φ_c and e's.
-    if (!p.IsValid(&why)) FailParameters(table, why);
-    model = std::make_unique<HypoplasticSand>(p);
-  } else {
-    ModifiedCamClay::Parameters p;
-    p.form = table.GetEnum("form", ModifiedCamClay::CompressionForm::kLogLog);
-    const bool has_m = table.Has("critical_state_ratio");
-    const bool has_phi = table.Has("phi_c_deg");
-    if (has_m == has_phi) {
-      table.Fail("critical_state_ratio",
-                 "give exactly one of critical_state_ratio (M) and phi_c_deg");
-    }
-    p.critical_state_ratio = has_m ? table.GetDouble("critical_state_ratio", Range::Open(0.0, 3.0))
-                                   : CriticalStateRatio(parameter("phi_c_deg") * kDegree);
-    const std::string lambda_key =
-        p.form == ModifiedCamClay::CompressionForm::kLogLog ? "lambda_star" : "lambda";
-    const std::string kappa_key =
-        p.form == ModifiedCamClay::CompressionForm::kLogLog ? "kappa_star" : "kappa";
-    p.lambda = parameter(lambda_key);
-    p.kappa = parameter(kappa_key);
-    if (!(p.kappa < p.lambda)) {
-      table.Fail(kappa_key, fmt::format("{} = {} must be smaller than {} = {}", kappa_key, p.kappa,
-                                        lambda_key, p.lambda));
-    }
-    p.n_intercept =
-        parameter(p.form == ModifiedCamClay::CompressionForm::kLogLog ? "n_intercept" : "e_n");
-    const bool has_g = table.Has("shear_modulus_kpa");
-    if (has_g) {
-      p.elasticity = ModifiedCamClay::Elasticity::kConstantShearModulus;
-      p.shear_modulus = parameter("shear_modulus_kpa");
-    } else {
-      p.poisson_ratio = table.GetDouble("poisson_ratio", 0.25, ParameterRange("poisson_ratio"));
-    }
-    p.reference_pressure = table.GetDouble("reference_pressure_kpa", 1.0, kStressKpa);
-    p.yield_tolerance = table.GetDouble("yield_tolerance", 1e-9, Range::Open(0.0, 1e-2));
-    p.rate_form_band = table.GetDouble("rate_form_band", p.rate_form_band, Range::Open(0.0, 1e-2));
-    if (!p.IsValid(&why)) FailParameters(table, why);
-    model = std::make_unique<ModifiedCamClay>(p);
-  }
-  return model;
+  return Traits(table.GetEnum("kind", ModelKind::kHypoplasticClay)).read(table);
 }
 
 ModelState ReadInitialState(const ConstitutiveModel& model, const ConfigTable& table) {
@@ -266,24 +162,25 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
     const AxisymmetricStress s = RecordStress(record);
     p.push_back(s.mean());
     q.push_back(s.deviator());
-    psi_sigma.push_back(s.psi());
-    psi_epsilon.push_back(RecordStretching(record).psi());
+    psi_sigma.push_back(s.psi() / kDegree);
+    psi_epsilon.push_back(RecordStretching(record).psi() / kDegree);
     ocr.push_back(record.ocr);
     path.push_back(record.strain_path);
     stage.push_back(record.stage);
     internal.insert(internal.end(), record.internal.begin(), record.internal.end());
   }
   file->CreateGroup(group);
-  file->WriteDoubles(group + "/time", time, "s");
+  const std::string at = group + "/";
+  file->WriteDoubles(at + quantity::kTime, time, "s");
   file->WriteMatrix(group + "/stress", stress, n, 6, "kPa");
   file->WriteMatrix(group + "/strain", strain, n, 6, "1");
   file->WriteMatrix(group + "/stretching", stretching, n, 6, "1/s");
-  file->WriteDoubles(group + "/void_ratio", e, "1");
-  file->WriteDoubles(group + "/mean_stress", p, "kPa");
-  file->WriteDoubles(group + "/deviator_stress", q, "kPa");
-  file->WriteDoubles(group + "/psi_sigma", psi_sigma, "rad");
-  file->WriteDoubles(group + "/psi_epsilon", psi_epsilon, "rad");
-  file->WriteDoubles(group + "/ocr", ocr, "1");
+  file->WriteDoubles(at + quantity::kVoidRatio, e, "1");
+  file->WriteDoubles(at + quantity::kMeanStress, p, "kPa");
+  file->WriteDoubles(at + quantity::kDeviator, q, "kPa");
+  file->WriteDoubles(at + quantity::kPsiSigma, psi_sigma, "deg");
+  file->WriteDoubles(at + quantity::kPsiEpsilon, psi_epsilon, "deg");
+  file->WriteDoubles(at + quantity::kOverconsolidation, ocr, "1");
   file->WriteDoubles(group + "/strain_path", path, "1");
   file->WriteInts(group + "/stage", stage, "1");
   if (num_internal > 0) {
@@ -310,9 +207,11 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
 }
 
 void WriteElementTestCsv(const ElementTestResult& result, const std::string& path) {
-  std::vector<std::string> columns = {"time_s",      "stress_a_kpa",  "stress_r_kpa",    "p_kpa",
-                                      "q_kpa",       "void_ratio",    "strain_a",        "strain_r",
-                                      "strain_path", "psi_sigma_deg", "psi_epsilon_deg", "ocr"};
+  const std::vector<std::string> columns = {
+      quantity::kTime,        quantity::kAxialStress,  quantity::kRadialStress,
+      quantity::kMeanStress,  quantity::kDeviator,     quantity::kVoidRatio,
+      quantity::kAxialStrain, quantity::kRadialStrain, "strain_path",
+      quantity::kPsiSigma,    quantity::kPsiEpsilon,   quantity::kOverconsolidation};
   std::vector<std::vector<double>> values(columns.size());
   for (const ElementTestRecord& r : result.history) {
     const AxisymmetricStress s = RecordStress(r);
@@ -337,8 +236,9 @@ AsymptoteTable ComputeAsymptotes(const ConstitutiveModel& model, const ConfigTab
   AsymptoteTable out;
   const ConfigTable table = root.GetTable("asymptotes");
   const int points = static_cast<int>(table.GetInt("analytic_points", 200, Range::Closed(2, 1e6)));
-  if (model.kind() == ModelKind::kHypoplasticClay) {
-    out.analytic = AnalyticAsymptoteCurve(static_cast<const HypoplasticClay&>(model), points);
+  // The analytic ASBS curve is the hypoplastic clay's (asymptotic_states.h).
+  if (const auto* clay = dynamic_cast<const HypoplasticClay*>(&model)) {
+    out.analytic = AnalyticAsymptoteCurve(*clay, points);
   }
   if (table.Has("psi_epsilon_deg")) {
     AsymptoteSearchOptions options;
@@ -360,14 +260,14 @@ void WriteAsymptotes(const ConstitutiveModel& model, const AsymptoteTable& table
   auto write = [&](const std::string& sub, const std::vector<AsymptoticState>& states) {
     std::vector<double> psi_e, psi_s, ocr, ratio;
     for (const AsymptoticState& s : states) {
-      psi_e.push_back(s.psi_epsilon);
-      psi_s.push_back(s.psi_sigma);
+      psi_e.push_back(s.psi_epsilon / kDegree);
+      psi_s.push_back(s.psi_sigma / kDegree);
       ocr.push_back(s.ocr);
       ratio.push_back(s.stress_ratio);
     }
-    file->WriteDoubles(sub + "/psi_epsilon", psi_e, "rad");
-    file->WriteDoubles(sub + "/psi_sigma", psi_s, "rad");
-    file->WriteDoubles(sub + "/ocr", ocr, "1");
+    file->WriteDoubles(sub + "/" + quantity::kPsiEpsilon, psi_e, "deg");
+    file->WriteDoubles(sub + "/" + quantity::kPsiSigma, psi_s, "deg");
+    file->WriteDoubles(sub + "/" + quantity::kOverconsolidation, ocr, "1");
     file->WriteDoubles(sub + "/stress_ratio", ratio, "1");
   };
   if (!table.analytic.empty()) {
@@ -403,7 +303,7 @@ ElementTestResult RunElementTestInput(const ConfigTable& root, const std::string
   const ElementTestOptions options = root.Has("integration")
                                          ? ReadElementTestOptions(root.GetTable("integration"))
                                          : ElementTestOptions();
-  if (options.method == DriveMethod::kStressPoint && model->kind() != ModelKind::kModifiedCamClay) {
+  if (options.method == DriveMethod::kStressPoint && !HasStressPointMethod(*model)) {
     root.GetTable("integration").Fail("method", "stress_point exists for modified_cam_clay only");
   }
   const std::vector<LoadingStage> stages = ReadStages(root);

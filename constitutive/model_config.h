@@ -18,12 +18,8 @@
 namespace granasym {
 
 // [model] table: kind = "hypoplastic_clay" | "modified_cam_clay" | "hypoplastic_sand" and
-// its parameters.
+// its parameters, the keys of its traits (constitutive/model_traits.h).
 std::unique_ptr<ConstitutiveModel> ReadModel(const ConfigTable& model_table);
-// The valid values of a model parameter, by its key in model files
-// (phi_c_deg, lambda_star, ..., beta): the models' own conditions and sane
-// magnitudes. Calibration bounds its fits with the same ranges.
-Range ParameterRange(const std::string& key);
 // [initial] table: mean_stress_kpa, psi_sigma_deg, and void_ratio or ocr.
 ModelState ReadInitialState(const ConstitutiveModel& model, const ConfigTable& initial_table);
 // The `type` of a [[stage]]: which LoadingStage helper makes it.
@@ -63,10 +59,16 @@ ElementTestOptions ReadElementTestOptions(const ConfigTable& integration_table);
 ElementTestResult RunElementTestInput(const ConfigTable& root, const std::string& input,
                                       const std::string& out, const std::string& csv);
 
-// Writes the history (compression positive, with units) and the summaries under `group`.
+// Writes the history (compression positive, each dataset with its units) and
+// the summaries under `group`: time_s, stress, strain, stretching (Voigt
+// matrices), e, p_kpa, q_kpa, psi_sigma_deg, psi_epsilon_deg, ocr,
+// strain_path, stage and the internal variables (names of
+// common/quantity_names.h, which lists their former spellings).
 void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestResult& result,
                             const std::string& group, Hdf5File* file);
-// One row per record: time, stresses, strains, e, p, q, ψ_σ, ψ_ε, OCR, internals.
+// One row per record, compression positive: time_s, sigma_a_kpa,
+// sigma_r_kpa, p_kpa, q_kpa, e, eps_a, eps_r, strain_path, psi_sigma_deg,
+// psi_epsilon_deg, ocr (common/quantity_names.h).
 void WriteElementTestCsv(const ElementTestResult& result, const std::string& path);
 
 struct AsymptoteTable {

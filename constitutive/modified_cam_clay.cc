@@ -130,6 +130,39 @@ bool ModifiedCamClay::IsAdmissible(const ModelState& state, std::string* why) co
   return true;
 }
 
+bool ModifiedCamClay::IsAdmissibleStart(const ModelState& state, std::string* why) const {
+  if (!IsAdmissible(state, why)) return false;
+  const double p_c = state.internal[0];
+  const double f = YieldFunction(state.stress, p_c);
+  const double m = parameters_.critical_state_ratio;
+  if (f > parameters_.yield_tolerance * m * m * p_c * p_c) {
+    return Fail(why, fmt::format("the state lies outside the yield surface (p_c = {:.6g} kPa from "
+                                 "the elastic line, f = {:.6g} kPa²); raise OCR or lower psi_sigma",
+                                 p_c, f));
+  }
+  return true;
+}
+
+bool ModifiedCamClay::AsymptoteOfStressDirection(double psi_sigma, double* psi_epsilon,
+                                                 double* ln_ocr, std::string* why) const {
+  if (parameters_.form != CompressionForm::kLogLog ||
+      parameters_.elasticity != Elasticity::kPoissonRatio) {
+    return Fail(why,
+                "closed-form asymptotic states need the log-log form and Poisson-ratio elasticity");
+  }
+  const double m = parameters_.critical_state_ratio;
+  const double lambda = parameters_.lambda, kappa = parameters_.kappa;
+  const double nu = parameters_.poisson_ratio;
+  const double eta = 3.0 * std::tan(psi_sigma) / std::sqrt(2.0);
+  const double c = 2.0 * (1.0 + nu) / (9.0 * (1.0 - 2.0 * nu));
+  const double m2_minus = m * m - eta * eta;
+  const double rate_v = lambda * m2_minus;
+  const double rate_s = eta * (kappa * c * m2_minus + 2.0 * (lambda - kappa));
+  *psi_epsilon = std::atan2(3.0 / std::sqrt(2.0) * rate_s, rate_v);
+  *ln_ocr = (1.0 - kappa / lambda) * std::log1p(eta * eta / (m * m));
+  return true;
+}
+
 bool ModifiedCamClay::Rate(const ModelState& state, const Vector6& stretching, ModelRate* rate,
                            Matrix6* tangent, std::string* why) const {
   if (!IsAdmissible(state, why)) return false;

@@ -6,6 +6,11 @@
 // Both forms are exactly integrable along any path:
 //   ln(1+e) = N − λ* ln(p_c/p_r) + κ* ln(p_c/p)   (or e = e_N − λ ln(p_c/p_r) + κ ln(p_c/p)),
 // which fixes p_c from (p, e); on the CSL p = p_c/2, so OCR_c = 2^((λ−κ)/λ).
+// Asymptotic states (log-log form, Poisson-ratio elasticity): on the Roscoe
+// surface (ψ_σ ↔ η = q/p, p_c/p = 1 + η²/M²) proportional stretching keeps η
+// and moves p and p_c together, so
+//   ε̇_v ∝ λ*(M² − η²),  ε̇_s ∝ η[κ* c (M² − η²) + 2(λ* − κ*)],  c = 2(1+ν)/(9(1−2ν)),
+//   tan ψ_ε = (3/√2) ε̇_s/ε̇_v,  ln OCR = (1 − κ*/λ*) ln(1 + η²/M²).
 // Source: Roscoe & Burland (1968); Wood, Soil behaviour and critical state soil mechanics (1990).
 #pragma once
 
@@ -66,6 +71,8 @@ class ModifiedCamClay : public ConstitutiveModel {
   bool Jacobian(const ModelState& state, const Vector6& stretching, RateJacobian* jacobian,
                 std::string* why) const override;
   bool IsAdmissible(const ModelState& state, std::string* why) const override;
+  // Admissible and inside the yield surface (by yield_tolerance).
+  bool IsAdmissibleStart(const ModelState& state, std::string* why) const override;
   double EquivalentPressure(double void_ratio) const override;
   double VoidRatioForOcr(double mean_stress, double ocr) const override;
   ModelState MakeState(const Vector6& stress, double void_ratio) const override;
@@ -78,6 +85,9 @@ class ModifiedCamClay : public ConstitutiveModel {
   void Switches(const ModelState& state, double* values) const override;
   // p_c > 0 (single normal stresses may be tensile at high OCR).
   void SignConstraints(Vector6* stress_codes, Eigen::VectorXd* internal_codes) const override;
+  // The closed form of the file comment (log-log form, Poisson-ratio elasticity only).
+  bool AsymptoteOfStressDirection(double psi_sigma, double* psi_epsilon, double* ln_ocr,
+                                  std::string* why) const override;
   double critical_friction_angle() const override;
   std::string Describe() const override;
 

@@ -433,6 +433,215 @@ IntegrationSummary CvodeIntegrator::Integrate(OdeSystem& system, double t0, doub
   return summary;
 }
 
+namespace {
+
+// What ARKODE's explicit (ERKStep) and implicit (ARKStep) integrations share.
+struct ArkodeRun {
+  const IntegratorOptions& options;
+  OdeSystem& system;
+  double t0, t_end;
+  const std::vector<double>& output_times;
+  const Integrator::Observer& observer;
+  Context& context;
+  SerialVector& y;  // the state, in and out
+  CallbackData& data;
+  const SerialVector* constraints;  // nullptr: none
+};
+
+// ERKStep, restarted after a right-hand side that left the model's domain.
+void IntegrateErk(const ArkodeRun& run, IntegrationSummary* out) {
+  const IntegratorOptions& options = run.options;
+  OdeSystem& system = run.system;
+  const double t0 = run.t0, t_end = run.t_end;
+  const int n = system.dimension(), num_roots = system.num_roots();
+  Context& context = run.context;
+  SerialVector& y = run.y;
+  CallbackData& data = run.data;
+  const SerialVector* constraints = run.constraints;
+  IntegrationSummary& summary = *out;
+  IntegratorMemory memory(ERKStepCreate(RhsCallback, t0, y.get(), context.get()), ERKStepFree,
+                          "ERKStepCreate");
+  void* mem = memory.get();
+  Check(ERKStepSetUserData(mem, &data), "ERKStepSetUserData");
+  Check(ERKStepSetErrHandlerFn(mem, ErrorHandler, &data), "ERKStepSetErrHandlerFn");
+  Check(ERKStepSetOrder(mem, options.arkode_order), "ERKStepSetOrder");
+  data.accepted_time = t0;
+  data.accepted_state.assign(y.data(), y.data() + n);
+  Check(ERKStepSetPostprocessStepFn(mem, RecordAcceptedStep), "ERKStepSetPostprocessStepFn");
+  data.relative_tolerance = options.relative_tolerance;
+  data.absolute_tolerance = options.absolute_tolerance;
+  Check(ERKStepWFtolerances(mem, ErrorWeightCallback), "ERKStepWFtolerances");
+  Check(ERKStepSetMaxNumSteps(mem, options.max_steps), "ERKStepSetMaxNumSteps");
+  Check(ERKStepSetStopTime(mem, t_end), "ERKStepSetStopTime");
+  if (options.fixed_step > 0) {
+    Check(ERKStepSetFixedStep(mem, options.fixed_step), "ERKStepSetFixedStep");
+  } else {
+    if (options.initial_step > 0) {
+      Check(ERKStepSetInitStep(mem, options.initial_step), "ERKStepSetInitStep");
+    }
+    if (options.max_step > 0) Check(ERKStepSetMaxStep(mem, options.max_step), "ERKStepSetMaxStep");
+  }
+  if (constraints) {
+    Check(ERKStepSetConstraints(mem, constraints->get()), "ERKStepSetConstraints");
+  }
+  if (num_roots > 0) Check(ERKStepRootInit(mem, num_roots, RootCallback), "ERKStepRootInit");
+  // Counters of the restarts below, which reset ERKStep's own.
+  long steps = 0, rejected = 0, evaluations = 0;
+  auto add_counters = [&]() {
+    long value = 0;
+    Check(ERKStepGetNumSteps(mem, &value), "ERKStepGetNumSteps");
+    steps += value;
+    Check(ERKStepGetNumErrTestFails(mem, &value), "ERKStepGetNumErrTestFails");
+    rejected += value;
+    Check(ERKStepGetNumRhsEvals(mem, &value), "ERKStepGetNumRhsEvals");
+    evaluations += value;
+  };
+  // ERKStep cannot recover when a stage leaves the model's domain (it ends
+  // with ARK_RHSFUNC_FAIL even for a recoverable failure). The state at a
+  // failure is the last accepted one, so restart there with a quarter of
+  // the last step, as CVODE and ARKStep do internally (found by path
+  // fuzzing: Cam clay isochoric shear from OCR 8 drove a stage to p_c < 0).
+  constexpr int kMaxRestarts = 50;
+  int restarts = 0;
+  auto evolve = [&](double tout, double* t) {
+    while (true) {
+      const long failures_before = data.rhs_failures;
+      const int flag = ERKStepEvolve(mem, tout, y.get(), t, ARK_NORMAL);
+      if (flag >= 0 || data.rhs_failures == failures_before || restarts >= kMaxRestarts ||
+          (flag != ARK_RHSFUNC_FAIL && flag != ARK_REPTD_RHSFUNC_ERR &&
+           flag != ARK_UNREC_RHSFUNC_ERR)) {
+        return flag;
+      }
+      ++restarts;
+      double last_step = 0.0;
+      Check(ERKStepGetLastStep(mem, &last_step), "ERKStepGetLastStep");
+      add_counters();
+      ++rejected;
+      data.last_error.clear();
+      std::copy(data.accepted_state.begin(), data.accepted_state.end(), y.data());
+      *t = data.accepted_time;
+      Check(ERKStepReInit(mem, RhsCallback, data.accepted_time, y.get()), "ERKStepReInit");
+      Check(ERKStepSetStopTime(mem, tout), "ERKStepSetStopTime");
+      if (last_step > 0) {
+        Check(ERKStepSetInitStep(mem, 0.25 * last_step), "ERKStepSetInitStep");
+      }
+    }
+  };
+  SerialVector scratch(n, context);
+  auto read_last_step = [&](double* t_from, double* t_to, std::vector<double>* y_from,
+                            std::vector<double>* y_to) {
+    return LastStep(mem, ERKStepGetCurrentTime, ERKStepGetLastStep, ERKStepGetDky, scratch, t_from,
+                    t_to, y_from, y_to);
+  };
+  auto restart = [&](double t_from, const std::vector<double>& y_from, double t_to, double* t) {
+    std::copy(y_from.begin(), y_from.end(), y.data());
+    add_counters();
+    Check(ERKStepReInit(mem, RhsCallback, t_from, y.get()), "ERKStepReInit");
+    Check(ERKStepRootInit(mem, 0, nullptr), "ERKStepRootInit");
+    Check(ERKStepSetStopTime(mem, t_to), "ERKStepSetStopTime");
+    if (options.fixed_step == 0)
+      Check(ERKStepSetInitStep(mem, t_to - t_from), "ERKStepSetInitStep");
+    return ERKStepEvolve(mem, t_to, y.get(), t, ARK_NORMAL);
+  };
+  RunOutputLoop(
+      t0, t_end, run.output_times, y, num_roots, evolve,
+      [&](int* found) { Check(ERKStepGetRootInfo(mem, found), "ERKStepGetRootInfo"); },
+      [&](double tout) { Check(ERKStepSetStopTime(mem, tout), "ERKStepSetStopTime"); },
+      read_last_step, restart, run.observer, ARK_ROOT_RETURN, data, &summary);
+  add_counters();
+  summary.steps = steps;
+  summary.rejected_steps = rejected;
+  summary.rhs_evaluations = evaluations;
+}
+
+// ARKStep's DIRK methods with a dense linear solver.
+void IntegrateDirk(const ArkodeRun& run, IntegrationSummary* out) {
+  const IntegratorOptions& options = run.options;
+  OdeSystem& system = run.system;
+  const double t0 = run.t0, t_end = run.t_end;
+  const int n = system.dimension(), num_roots = system.num_roots();
+  Context& context = run.context;
+  SerialVector& y = run.y;
+  CallbackData& data = run.data;
+  const SerialVector* constraints = run.constraints;
+  IntegrationSummary& summary = *out;
+  IntegratorMemory memory(ARKStepCreate(nullptr, RhsCallback, t0, y.get(), context.get()),
+                          ARKStepFree, "ARKStepCreate");
+  void* mem = memory.get();
+  DenseMatrix matrix(n, context);
+  DenseLinearSolver linear_solver(y, matrix, context);
+  Check(ARKStepSetUserData(mem, &data), "ARKStepSetUserData");
+  Check(ARKStepSetErrHandlerFn(mem, ErrorHandler, &data), "ARKStepSetErrHandlerFn");
+  Check(ARKStepSetLinearSolver(mem, linear_solver.get(), matrix.get()), "ARKStepSetLinearSolver");
+  if (options.jacobian == JacobianKind::kExact && system.has_jacobian()) {
+    Check(ARKStepSetJacFn(mem, JacobianCallback), "ARKStepSetJacFn");
+  }
+  Check(ARKStepSetOrder(mem, options.arkode_order), "ARKStepSetOrder");
+  data.relative_tolerance = options.relative_tolerance;
+  data.absolute_tolerance = options.absolute_tolerance;
+  Check(ARKStepWFtolerances(mem, ErrorWeightCallback), "ARKStepWFtolerances");
+  Check(ARKStepSetMaxNumSteps(mem, options.max_steps), "ARKStepSetMaxNumSteps");
+  Check(ARKStepSetStopTime(mem, t_end), "ARKStepSetStopTime");
+  if (options.fixed_step > 0) {
+    Check(ARKStepSetFixedStep(mem, options.fixed_step), "ARKStepSetFixedStep");
+    // A fixed step needs the nonlinear systems solved well below the method error.
+    Check(ARKStepSetNonlinConvCoef(mem, 1e-6), "ARKStepSetNonlinConvCoef");
+  } else {
+    if (options.initial_step > 0) {
+      Check(ARKStepSetInitStep(mem, options.initial_step), "ARKStepSetInitStep");
+    }
+    if (options.max_step > 0) Check(ARKStepSetMaxStep(mem, options.max_step), "ARKStepSetMaxStep");
+  }
+  if (constraints) {
+    Check(ARKStepSetConstraints(mem, constraints->get()), "ARKStepSetConstraints");
+  }
+  if (num_roots > 0) Check(ARKStepRootInit(mem, num_roots, RootCallback), "ARKStepRootInit");
+  // Counters, summed over the restart at a root (ARKStepReInit resets them).
+  auto add_counters = [&]() {
+    long value = 0, explicit_evaluations = 0, implicit_evaluations = 0;
+    Check(ARKStepGetNumSteps(mem, &value), "ARKStepGetNumSteps");
+    summary.steps += value;
+    Check(ARKStepGetNumErrTestFails(mem, &value), "ARKStepGetNumErrTestFails");
+    summary.rejected_steps += value;
+    Check(ARKStepGetNumRhsEvals(mem, &explicit_evaluations, &implicit_evaluations),
+          "ARKStepGetNumRhsEvals");
+    summary.rhs_evaluations += explicit_evaluations + implicit_evaluations;
+    Check(ARKStepGetNumNonlinSolvIters(mem, &value), "ARKStepGetNumNonlinSolvIters");
+    summary.nonlinear_iterations += value;
+    Check(ARKStepGetNumNonlinSolvConvFails(mem, &value), "ARKStepGetNumNonlinSolvConvFails");
+    summary.nonlinear_failures += value;
+    Check(ARKStepGetNumJacEvals(mem, &value), "ARKStepGetNumJacEvals");
+    summary.jacobian_evaluations += value;
+    Check(ARKStepGetNumLinRhsEvals(mem, &value), "ARKStepGetNumLinRhsEvals");
+    summary.rhs_evaluations += value;
+  };
+  SerialVector scratch(n, context);
+  auto read_last_step = [&](double* t_from, double* t_to, std::vector<double>* y_from,
+                            std::vector<double>* y_to) {
+    return LastStep(mem, ARKStepGetCurrentTime, ARKStepGetLastStep, ARKStepGetDky, scratch, t_from,
+                    t_to, y_from, y_to);
+  };
+  auto restart = [&](double t_from, const std::vector<double>& y_from, double t_to, double* t) {
+    std::copy(y_from.begin(), y_from.end(), y.data());
+    add_counters();
+    Check(ARKStepReInit(mem, nullptr, RhsCallback, t_from, y.get()), "ARKStepReInit");
+    Check(ARKStepRootInit(mem, 0, nullptr), "ARKStepRootInit");
+    Check(ARKStepSetStopTime(mem, t_to), "ARKStepSetStopTime");
+    if (options.fixed_step == 0)
+      Check(ARKStepSetInitStep(mem, t_to - t_from), "ARKStepSetInitStep");
+    return ARKStepEvolve(mem, t_to, y.get(), t, ARK_NORMAL);
+  };
+  RunOutputLoop(
+      t0, t_end, run.output_times, y, num_roots,
+      [&](double tout, double* t) { return ARKStepEvolve(mem, tout, y.get(), t, ARK_NORMAL); },
+      [&](int* found) { Check(ARKStepGetRootInfo(mem, found), "ARKStepGetRootInfo"); },
+      [&](double tout) { Check(ARKStepSetStopTime(mem, tout), "ARKStepSetStopTime"); },
+      read_last_step, restart, run.observer, ARK_ROOT_RETURN, data, &summary);
+  add_counters();
+}
+
+}  // namespace
+
 IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, double t_end,
                                                double* y_in,
                                                const std::vector<double>& output_times,
@@ -444,180 +653,14 @@ IntegrationSummary ArkodeIntegrator::Integrate(OdeSystem& system, double t0, dou
   std::copy(y_in, y_in + n, y.data());
   CallbackData data;
   data.system = &system;
-  const int num_roots = system.num_roots();
   const std::unique_ptr<SerialVector> constraints = MakeConstraints(system, context);
   IntegrationSummary summary;
-
+  const ArkodeRun run{options_, system,  t0, t_end, output_times,
+                      observer, context, y,  data,  constraints.get()};
   if (options_.kind == IntegratorKind::kArkodeErk) {
-    IntegratorMemory memory(ERKStepCreate(RhsCallback, t0, y.get(), context.get()), ERKStepFree,
-                            "ERKStepCreate");
-    void* mem = memory.get();
-    Check(ERKStepSetUserData(mem, &data), "ERKStepSetUserData");
-    Check(ERKStepSetErrHandlerFn(mem, ErrorHandler, &data), "ERKStepSetErrHandlerFn");
-    Check(ERKStepSetOrder(mem, options_.arkode_order), "ERKStepSetOrder");
-    data.accepted_time = t0;
-    data.accepted_state.assign(y.data(), y.data() + n);
-    Check(ERKStepSetPostprocessStepFn(mem, RecordAcceptedStep), "ERKStepSetPostprocessStepFn");
-    data.relative_tolerance = options_.relative_tolerance;
-    data.absolute_tolerance = options_.absolute_tolerance;
-    Check(ERKStepWFtolerances(mem, ErrorWeightCallback), "ERKStepWFtolerances");
-    Check(ERKStepSetMaxNumSteps(mem, options_.max_steps), "ERKStepSetMaxNumSteps");
-    Check(ERKStepSetStopTime(mem, t_end), "ERKStepSetStopTime");
-    if (options_.fixed_step > 0) {
-      Check(ERKStepSetFixedStep(mem, options_.fixed_step), "ERKStepSetFixedStep");
-    } else {
-      if (options_.initial_step > 0) {
-        Check(ERKStepSetInitStep(mem, options_.initial_step), "ERKStepSetInitStep");
-      }
-      if (options_.max_step > 0)
-        Check(ERKStepSetMaxStep(mem, options_.max_step), "ERKStepSetMaxStep");
-    }
-    if (constraints) {
-      Check(ERKStepSetConstraints(mem, constraints->get()), "ERKStepSetConstraints");
-    }
-    if (num_roots > 0) Check(ERKStepRootInit(mem, num_roots, RootCallback), "ERKStepRootInit");
-    // Counters of the restarts below, which reset ERKStep's own.
-    long steps = 0, rejected = 0, evaluations = 0;
-    auto add_counters = [&]() {
-      long value = 0;
-      Check(ERKStepGetNumSteps(mem, &value), "ERKStepGetNumSteps");
-      steps += value;
-      Check(ERKStepGetNumErrTestFails(mem, &value), "ERKStepGetNumErrTestFails");
-      rejected += value;
-      Check(ERKStepGetNumRhsEvals(mem, &value), "ERKStepGetNumRhsEvals");
-      evaluations += value;
-    };
-    // ERKStep cannot recover when a stage leaves the model's domain (it ends
-    // with ARK_RHSFUNC_FAIL even for a recoverable failure). The state at a
-    // failure is the last accepted one, so restart there with a quarter of
-    // the last step, as CVODE and ARKStep do internally (found by path
-    // fuzzing: Cam clay isochoric shear from OCR 8 drove a stage to p_c < 0).
-    constexpr int kMaxRestarts = 50;
-    int restarts = 0;
-    auto evolve = [&](double tout, double* t) {
-      while (true) {
-        const long failures_before = data.rhs_failures;
-        const int flag = ERKStepEvolve(mem, tout, y.get(), t, ARK_NORMAL);
-        if (flag >= 0 || data.rhs_failures == failures_before || restarts >= kMaxRestarts ||
-            (flag != ARK_RHSFUNC_FAIL && flag != ARK_REPTD_RHSFUNC_ERR &&
-             flag != ARK_UNREC_RHSFUNC_ERR)) {
-          return flag;
-        }
-        ++restarts;
-        double last_step = 0.0;
-        Check(ERKStepGetLastStep(mem, &last_step), "ERKStepGetLastStep");
-        add_counters();
-        ++rejected;
-        data.last_error.clear();
-        std::copy(data.accepted_state.begin(), data.accepted_state.end(), y.data());
-        *t = data.accepted_time;
-        Check(ERKStepReInit(mem, RhsCallback, data.accepted_time, y.get()), "ERKStepReInit");
-        Check(ERKStepSetStopTime(mem, tout), "ERKStepSetStopTime");
-        if (last_step > 0) {
-          Check(ERKStepSetInitStep(mem, 0.25 * last_step), "ERKStepSetInitStep");
-        }
-      }
-    };
-    SerialVector scratch(n, context);
-    auto read_last_step = [&](double* t_from, double* t_to, std::vector<double>* y_from,
-                              std::vector<double>* y_to) {
-      return LastStep(mem, ERKStepGetCurrentTime, ERKStepGetLastStep, ERKStepGetDky, scratch,
-                      t_from, t_to, y_from, y_to);
-    };
-    auto restart = [&](double t_from, const std::vector<double>& y_from, double t_to, double* t) {
-      std::copy(y_from.begin(), y_from.end(), y.data());
-      add_counters();
-      Check(ERKStepReInit(mem, RhsCallback, t_from, y.get()), "ERKStepReInit");
-      Check(ERKStepRootInit(mem, 0, nullptr), "ERKStepRootInit");
-      Check(ERKStepSetStopTime(mem, t_to), "ERKStepSetStopTime");
-      if (options_.fixed_step == 0)
-        Check(ERKStepSetInitStep(mem, t_to - t_from), "ERKStepSetInitStep");
-      return ERKStepEvolve(mem, t_to, y.get(), t, ARK_NORMAL);
-    };
-    RunOutputLoop(
-        t0, t_end, output_times, y, num_roots, evolve,
-        [&](int* found) { Check(ERKStepGetRootInfo(mem, found), "ERKStepGetRootInfo"); },
-        [&](double tout) { Check(ERKStepSetStopTime(mem, tout), "ERKStepSetStopTime"); },
-        read_last_step, restart, observer, ARK_ROOT_RETURN, data, &summary);
-    add_counters();
-    summary.steps = steps;
-    summary.rejected_steps = rejected;
-    summary.rhs_evaluations = evaluations;
+    IntegrateErk(run, &summary);
   } else {
-    IntegratorMemory memory(ARKStepCreate(nullptr, RhsCallback, t0, y.get(), context.get()),
-                            ARKStepFree, "ARKStepCreate");
-    void* mem = memory.get();
-    DenseMatrix matrix(n, context);
-    DenseLinearSolver linear_solver(y, matrix, context);
-    Check(ARKStepSetUserData(mem, &data), "ARKStepSetUserData");
-    Check(ARKStepSetErrHandlerFn(mem, ErrorHandler, &data), "ARKStepSetErrHandlerFn");
-    Check(ARKStepSetLinearSolver(mem, linear_solver.get(), matrix.get()), "ARKStepSetLinearSolver");
-    if (options_.jacobian == JacobianKind::kExact && system.has_jacobian()) {
-      Check(ARKStepSetJacFn(mem, JacobianCallback), "ARKStepSetJacFn");
-    }
-    Check(ARKStepSetOrder(mem, options_.arkode_order), "ARKStepSetOrder");
-    data.relative_tolerance = options_.relative_tolerance;
-    data.absolute_tolerance = options_.absolute_tolerance;
-    Check(ARKStepWFtolerances(mem, ErrorWeightCallback), "ARKStepWFtolerances");
-    Check(ARKStepSetMaxNumSteps(mem, options_.max_steps), "ARKStepSetMaxNumSteps");
-    Check(ARKStepSetStopTime(mem, t_end), "ARKStepSetStopTime");
-    if (options_.fixed_step > 0) {
-      Check(ARKStepSetFixedStep(mem, options_.fixed_step), "ARKStepSetFixedStep");
-      // A fixed step needs the nonlinear systems solved well below the method error.
-      Check(ARKStepSetNonlinConvCoef(mem, 1e-6), "ARKStepSetNonlinConvCoef");
-    } else {
-      if (options_.initial_step > 0) {
-        Check(ARKStepSetInitStep(mem, options_.initial_step), "ARKStepSetInitStep");
-      }
-      if (options_.max_step > 0)
-        Check(ARKStepSetMaxStep(mem, options_.max_step), "ARKStepSetMaxStep");
-    }
-    if (constraints) {
-      Check(ARKStepSetConstraints(mem, constraints->get()), "ARKStepSetConstraints");
-    }
-    if (num_roots > 0) Check(ARKStepRootInit(mem, num_roots, RootCallback), "ARKStepRootInit");
-    // Counters, summed over the restart at a root (ARKStepReInit resets them).
-    auto add_counters = [&]() {
-      long value = 0, explicit_evaluations = 0, implicit_evaluations = 0;
-      Check(ARKStepGetNumSteps(mem, &value), "ARKStepGetNumSteps");
-      summary.steps += value;
-      Check(ARKStepGetNumErrTestFails(mem, &value), "ARKStepGetNumErrTestFails");
-      summary.rejected_steps += value;
-      Check(ARKStepGetNumRhsEvals(mem, &explicit_evaluations, &implicit_evaluations),
-            "ARKStepGetNumRhsEvals");
-      summary.rhs_evaluations += explicit_evaluations + implicit_evaluations;
-      Check(ARKStepGetNumNonlinSolvIters(mem, &value), "ARKStepGetNumNonlinSolvIters");
-      summary.nonlinear_iterations += value;
-      Check(ARKStepGetNumNonlinSolvConvFails(mem, &value), "ARKStepGetNumNonlinSolvConvFails");
-      summary.nonlinear_failures += value;
-      Check(ARKStepGetNumJacEvals(mem, &value), "ARKStepGetNumJacEvals");
-      summary.jacobian_evaluations += value;
-      Check(ARKStepGetNumLinRhsEvals(mem, &value), "ARKStepGetNumLinRhsEvals");
-      summary.rhs_evaluations += value;
-    };
-    SerialVector scratch(n, context);
-    auto read_last_step = [&](double* t_from, double* t_to, std::vector<double>* y_from,
-                              std::vector<double>* y_to) {
-      return LastStep(mem, ARKStepGetCurrentTime, ARKStepGetLastStep, ARKStepGetDky, scratch,
-                      t_from, t_to, y_from, y_to);
-    };
-    auto restart = [&](double t_from, const std::vector<double>& y_from, double t_to, double* t) {
-      std::copy(y_from.begin(), y_from.end(), y.data());
-      add_counters();
-      Check(ARKStepReInit(mem, nullptr, RhsCallback, t_from, y.get()), "ARKStepReInit");
-      Check(ARKStepRootInit(mem, 0, nullptr), "ARKStepRootInit");
-      Check(ARKStepSetStopTime(mem, t_to), "ARKStepSetStopTime");
-      if (options_.fixed_step == 0)
-        Check(ARKStepSetInitStep(mem, t_to - t_from), "ARKStepSetInitStep");
-      return ARKStepEvolve(mem, t_to, y.get(), t, ARK_NORMAL);
-    };
-    RunOutputLoop(
-        t0, t_end, output_times, y, num_roots,
-        [&](double tout, double* t) { return ARKStepEvolve(mem, tout, y.get(), t, ARK_NORMAL); },
-        [&](int* found) { Check(ARKStepGetRootInfo(mem, found), "ARKStepGetRootInfo"); },
-        [&](double tout) { Check(ARKStepSetStopTime(mem, tout), "ARKStepSetStopTime"); },
-        read_last_step, restart, observer, ARK_ROOT_RETURN, data, &summary);
-    add_counters();
+    IntegrateDirk(run, &summary);
   }
   std::copy(y.data(), y.data() + n, y_in);
   summary.wall_time_s = stopwatch.Seconds();

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -399,6 +400,40 @@ TEST(WriteFigureData, TheExtensionSweepHasItsFigureWhenItHasAnExtensionStep) {
       ReadTextFile((dir / "figures/data/rate_extension_liquefied.tsv").string());
   EXPECT_NE(liquefied.find("\n110\t0\t1\n120\t0\t1"), std::string::npos) << liquefied;
   // A rate study without ψ_ε > 90° has no sweep figure (the test above).
+}
+
+// Fig. 5 reads the model runs' result.csv by the names of
+// common/quantity_names.h and, in runs of older versions, by their former
+// names (void_ratio for e): both are drawn alike.
+TEST(WriteFigureData, ModelRunsWithTheFormerColumnNamesAreDrawnToo) {
+  const fs::path dir = BareStudy("model_paths");
+  const std::string rows =
+      "0,100,100,100,0,0.8,0,0,0,0,45,1\n1,150,120,130,30,0.75,0.01,0.002,0.02,10,45,1.1\n";
+  const std::vector<std::pair<std::string, std::string>> runs = {
+      {"current",
+       "time_s,sigma_a_kpa,sigma_r_kpa,p_kpa,q_kpa,e,eps_a,eps_r,strain_path,psi_sigma_deg,"
+       "psi_epsilon_deg,ocr\n"},
+      {"former",
+       "time_s,stress_a_kpa,stress_r_kpa,p_kpa,q_kpa,void_ratio,strain_a,strain_r,strain_path,"
+       "psi_sigma_deg,psi_epsilon_deg,ocr\n"}};
+  for (const auto& [name, header] : runs) {
+    fs::create_directories(dir / "models" / name);
+    WriteTextFileAtomically((dir / "models" / name / "result.csv").string(), header + rows);
+    WriteTextFileAtomically((dir / "models" / name / "done.toml").string(), "key = \"k\"\n");
+  }
+  const std::vector<FigureSpec> figures = WriteFigureData(dir.string());
+  ASSERT_EQ(Stems(figures), (std::vector<std::string>{"fig05_model_paths"}));
+  EXPECT_TRUE(figures[0].not_drawn.empty()) << figures[0].not_drawn;
+  const std::map<std::string, std::string> v(figures[0].variables.begin(),
+                                             figures[0].variables.end());
+  EXPECT_EQ(v.at("n_paths"), "2");
+  // Each block: p, ln(1 + e), ψ_σ of the last row.
+  const std::string data = ReadTextFile((dir / "figures/data/fig05_paths.tsv").string());
+  char last_row[64];
+  std::snprintf(last_row, sizeof(last_row), "130\t%.8g\t10\n", std::log1p(0.75));
+  const size_t first = data.find(last_row);
+  ASSERT_NE(first, std::string::npos) << data;
+  EXPECT_NE(data.find(last_row, first + 1), std::string::npos) << data;
 }
 
 }  // namespace

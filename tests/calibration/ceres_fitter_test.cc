@@ -20,7 +20,7 @@ namespace {
 ModelParameters StartAwayFrom(ModelKind kind, const std::vector<double>& truth) {
   ModelParameters parameters = ModelParameters::Defaults(kind);
   const double factors[] = {1.15, 0.8, 1.4, 0.95, 1.3};
-  for (int i = 0; i < kNumParameters; ++i)
+  for (int i = 0; i < kNumClayParameters; ++i)
     parameters.mutable_specs()[i].value = truth[i] * factors[i];
   return parameters;
 }
@@ -198,7 +198,7 @@ TEST(CeresFitter, WarnsAboutANearSingularCovariance) {
   // covariance can tell.
   data.psi_epsilons_deg = {0, 90};
   ModelParameters two = ModelParameters::Defaults(ModelKind::kHypoplasticClay);
-  for (int i = 0; i < kNumParameters; ++i) two.mutable_specs()[i].value = truth[i];
+  for (int i = 0; i < kNumClayParameters; ++i) two.mutable_specs()[i].value = truth[i];
   two.mutable_specs()[kShearParameter].free = false;
   CalibrationProblem degenerate(
       {testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, data)}, two,

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "common/quantity_names.h"
 
 namespace granasym {
 namespace {
@@ -174,6 +175,29 @@ TEST(CsvTable, RequireOnlyColumnsNamesTheUnknownColumnAndListsTheKnownOnes) {
   }
   EXPECT_EQ(table.Find("passing"), 1);
   EXPECT_EQ(table.Find("Passing"), -1);
+}
+
+// An element test's CSV before and after issue 33 (common/quantity_names.h).
+TEST(CsvTable, AColumnIsFoundByItsNameOrItsFormerName) {
+  const CsvTable old_file =
+      CsvTable::Parse("time_s,p_kpa,void_ratio\n0,100,0.8\n", "old_result.csv");
+  const CsvTable new_file = CsvTable::Parse("time_s,p_kpa,e\n0,100,0.8\n", "result.csv");
+  EXPECT_EQ(old_file.Column(quantity::kVoidRatio, quantity::former::kVoidRatio), 2u);
+  EXPECT_EQ(new_file.Column(quantity::kVoidRatio, quantity::former::kVoidRatio), 2u);
+  // Both present: the current name wins.
+  const CsvTable both = CsvTable::Parse("void_ratio,e\n0.7,0.8\n", "both.csv");
+  EXPECT_EQ(both.Column(quantity::kVoidRatio, quantity::former::kVoidRatio), 1u);
+  // Neither: the message names the current name and lists the columns.
+  try {
+    CsvTable::Parse("time_s,p_kpa\n0,100\n", "neither.csv")
+        .Column(quantity::kVoidRatio, quantity::former::kVoidRatio);
+    FAIL() << "found a column that is not there";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("neither.csv: missing column 'e' (columns present: time_s, p_kpa)"),
+              std::string::npos)
+        << message;
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "common/csv_table.h"
 #include "common/error.h"
 #include "tests/common/enum_spellings.h"
 
@@ -170,11 +171,36 @@ axial_strain = 0.05
     file.Commit();
   }
   const Hdf5File file = Hdf5File::OpenRead(path);
-  EXPECT_EQ(file.ReadStringAttribute("/element_test/mean_stress", "units"), "kPa");
-  EXPECT_EQ(file.ReadStringAttribute("/element_test/psi_sigma", "units"), "rad");
-  EXPECT_EQ(file.ReadDoubles("/element_test/mean_stress").size(), result.history.size());
+  // The names and units of common/quantity_names.h, angles in degrees.
+  EXPECT_EQ(file.ReadStringAttribute("/element_test/time_s", "units"), "s");
+  EXPECT_EQ(file.ReadStringAttribute("/element_test/p_kpa", "units"), "kPa");
+  EXPECT_EQ(file.ReadStringAttribute("/element_test/q_kpa", "units"), "kPa");
+  EXPECT_EQ(file.ReadStringAttribute("/element_test/e", "units"), "1");
+  EXPECT_EQ(file.ReadStringAttribute("/element_test/psi_sigma_deg", "units"), "deg");
+  EXPECT_EQ(file.ReadStringAttribute("/element_test/psi_epsilon_deg", "units"), "deg");
+  const std::vector<double> p = file.ReadDoubles("/element_test/p_kpa");
+  const std::vector<double> psi_sigma = file.ReadDoubles("/element_test/psi_sigma_deg");
+  ASSERT_EQ(p.size(), result.history.size());
+  ASSERT_EQ(psi_sigma.size(), result.history.size());
+  EXPECT_EQ(p.back(), RecordStress(result.history.back()).mean());
+  EXPECT_EQ(psi_sigma.back(), RecordStress(result.history.back()).psi() / kDegree);
+  EXPECT_GT(psi_sigma.back(), 1.0);  // degrees, not radians
   EXPECT_EQ(file.ReadStringAttribute("/element_test", "termination"), "reached_end");
   std::remove(path.c_str());
+
+  // The CSV: the same names, and the same numbers.
+  const std::string csv =
+      (std::filesystem::temp_directory_path() / "granasym_model_config_test.csv").string();
+  WriteElementTestCsv(result, csv);
+  const CsvTable table = CsvTable::ReadFile(csv);
+  EXPECT_EQ(table.columns,
+            (std::vector<std::string>{"time_s", "sigma_a_kpa", "sigma_r_kpa", "p_kpa", "q_kpa", "e",
+                                      "eps_a", "eps_r", "strain_path", "psi_sigma_deg",
+                                      "psi_epsilon_deg", "ocr"}));
+  ASSERT_EQ(table.rows.size(), result.history.size());
+  EXPECT_EQ(table.rows.back()[table.Column("e")], result.history.back().void_ratio);
+  EXPECT_EQ(table.rows.back()[table.Column("psi_sigma_deg")], psi_sigma.back());
+  std::remove(csv.c_str());
 }
 
 const char* kSand = R"(
