@@ -13,6 +13,7 @@
 #include "analysis/rate_files.h"
 #include "common/csv_table.h"
 #include "common/error.h"
+#include "common/quantity_names.h"
 #include "common/state_measures.h"
 #include "common/text_file.h"
 
