@@ -14,6 +14,11 @@
 //    NCL or a normal extension line). The window in ln p finds compression
 //    asymptotes at hundreds of kPa, where a window in strain spans decades
 //    of p;
+//    An extension asymptotic state is a proportional path towards the
+//    origin (SPEC §8.4): p falls while ψ_σ stays. Its windows count only
+//    where every sample has p at or above floor_kpa (the valid range, SPEC
+//    §8.3); the detector keeps the last window that held (last_held()), so
+//    that a path which held and then fell below the floor keeps its state;
 //  - stress-controlled (triaxial): over the last window_strain, ψ_ε from the
 //    strain increments of the two half-windows (not the noisy instantaneous
 //    rates) differs by less than psi_epsilon_tolerance_deg, the fitted
@@ -23,7 +28,9 @@
 // so noise in p does not bias them. Tolerance boundaries are strict.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/enum_names.h"
@@ -92,6 +99,9 @@ struct AsymptoteCriterion {
   double slope_tolerance = 0.1;            // compression, extension: relative change of the slope
   double psi_epsilon_tolerance_deg = 3.0;  // stress-controlled: ψ_ε(2nd half) − ψ_ε(1st half)
   double lnv_tolerance = 0.004;  // stress-controlled: fitted change of ln(1+e) across the window
+  // Extension: the floor of the valid range (kPa); windows reaching below it
+  // are not evaluated (SPEC §8.3, the paper's 0.5 kPa).
+  double floor_kpa = 0.5;
 
   // The defaults of a kind.
   static AsymptoteCriterion For(PathKind kind);
@@ -122,6 +132,12 @@ class AsymptoteDetector {
     double window_strain = 0;      // strain span
     double window_lnp = 0;         // |ln p(end) − ln p(start)|
     double window_start_time = 0;  // simulated time of its first sample (s)
+    double window_end_time = 0;    // and of its last
+    double window_end_strain = 0;  // accumulated strain of its last sample
+    // The range of p over the window's samples (kPa); below_floor when an
+    // extension window reaches below floor_kpa (it is then not evaluated).
+    double p_min_kpa = 0, p_max_kpa = 0;
+    bool below_floor = false;
     // The state: means over the window; ψ_ε from the strain increments.
     double psi_sigma = 0;  // (rad)
     double mean_stress_kpa = 0;
@@ -145,6 +161,12 @@ class AsymptoteDetector {
   void Add(const Sample& sample);
   // Evaluates the criterion of the kind over the last window.
   Result Evaluate() const;
+  // Extension: evaluates the last window and keeps it when it holds (call
+  // after each Add); other kinds: nothing.
+  void Track();
+  // The last window that held (extension; nullopt when none has).
+  const std::optional<Result>& last_held() const { return last_held_; }
+  void set_last_held(std::optional<Result> held) { last_held_ = std::move(held); }
   bool ready() const;  // a full window is available
   void Reset() { samples_.clear(); }
 
@@ -161,6 +183,13 @@ class AsymptoteDetector {
 
   AsymptoteCriterion criterion_;
   std::vector<Sample> samples_;
+  std::optional<Result> last_held_;
 };
+
+// A Result as numbers in a fixed order (a checkpoint keeps the last held
+// window this way), and back; Unpack throws std::invalid_argument on a
+// vector of the wrong length.
+std::vector<double> PackResult(const AsymptoteDetector::Result& result);
+AsymptoteDetector::Result UnpackResult(const std::vector<double>& values);
 
 }  // namespace granasym::dem

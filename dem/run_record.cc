@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
 #include <type_traits>
 
 #include "common/config.h"
@@ -506,6 +507,10 @@ void WriteStageRecord(Hdf5File& file, const std::string& group, const StageRecor
     file.SetAttribute(group, kAsymptotePathKind, std::string(ToString(a.path_kind)));
     file.SetAttribute(group, kAsymptoteStatus, std::string(ToString(a.status)));
     for (const auto& [name, value] : AsymptoteDoubles(a)) file.SetAttribute(group, name, *value);
+    file.SetAttribute(group, kAsymptotePMinKpa, a.p_min_kpa);
+    file.SetAttribute(group, kAsymptotePMaxKpa, a.p_max_kpa);
+    file.SetAttribute(group, kAsymptoteFloorKpa, a.criterion.floor_kpa);
+    file.SetAttribute(group, kAsymptoteBeforeEnd, int64_t{a.before_end});
   }
   if (spec) spec->Describe(file, group);
   if (stage.end_state) {
@@ -542,6 +547,12 @@ StageRecord ReadStageRecord(const Hdf5File& file, const std::string& group) {
       a.criterion.kind = a.path_kind;
       for (const auto& [name, value] : AsymptoteDoubles(a)) {
         *value = file.ReadDoubleAttribute(group, name);
+      }
+      if (file.HasAttribute(group, kAsymptotePMinKpa)) {
+        a.p_min_kpa = file.ReadDoubleAttribute(group, kAsymptotePMinKpa);
+        a.p_max_kpa = file.ReadDoubleAttribute(group, kAsymptotePMaxKpa);
+        a.criterion.floor_kpa = file.ReadDoubleAttribute(group, kAsymptoteFloorKpa);
+        a.before_end = file.ReadIntAttribute(group, kAsymptoteBeforeEnd) != 0;
       }
     } else {
       // Written by the single-criterion detector: its state and measures.
@@ -686,6 +697,8 @@ void WriteRunner(Hdf5File& file, const RunnerRecord& runner) {
                                    sample.eps_a, sample.eps_r, sample.time});
   }
   file.WriteMatrix(r + "/detector_samples", samples, runner.detector_samples.size(), 7);
+  if (runner.detector_held)
+    file.WriteDoubles(r + "/detector_held", PackResult(*runner.detector_held));
   file.SetAttribute(r, "target_distance", clock.target_distance);
   file.SetAttribute(r, "target_distance_strain", clock.target_distance_strain);
   file.SetAttribute(r, "gas_since_strain", clock.gas_since_strain);
@@ -723,6 +736,16 @@ RunnerRecord ReadRunner(const Hdf5File& file) {
   clock.target_distance_strain = file.ReadDoubleAttribute(r, "target_distance_strain");
   if (file.HasAttribute(r, "gas_since_strain"))
     clock.gas_since_strain = file.ReadDoubleAttribute(r, "gas_since_strain");
+  if (file.Exists(r + "/detector_held")) {
+    try {
+      runner.detector_held = UnpackResult(file.ReadDoubles(r + "/detector_held"));
+    } catch (const std::invalid_argument& e) {
+      throw InputError(
+          fmt::format("{}: {}/detector_held: {} (a checkpoint of another granasym "
+                      "cannot be continued)",
+                      file.path(), r, e.what()));
+    }
+  }
   return runner;
 }
 

@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -98,6 +99,13 @@ struct AsymptoteRecord {
   double lnv_change = 0;              // fitted change of ln(1+e) across the window
   double dlnp_dstrain = 0;            // d ln p / dε over the window
   double dln1pe_dlnp = 0;             // d ln(1+e) / d ln p over the window (−λ* on a line)
+  // The range of p over the window's samples (NaN without a window, and in
+  // records written before it was kept).
+  double p_min_kpa = std::numeric_limits<double>::quiet_NaN();
+  double p_max_kpa = std::numeric_limits<double>::quiet_NaN();
+  // Extension: the state is the last window that held, before the stage's
+  // end (the path went on: below the floor, or drifting).
+  bool before_end = false;
 };
 
 // One finished stage.
@@ -121,6 +129,7 @@ struct RunnerRecord {
   int64_t steps_since_output = 0;
   std::vector<double> controller_state;
   std::vector<AsymptoteDetector::Sample> detector_samples;
+  std::optional<AsymptoteDetector::Result> detector_held;  // the last extension window that held
 };
 
 struct Provenance {

@@ -131,6 +131,13 @@ inline constexpr char kAsymptotePsiEpsilonChangeDeg[] = "asymptote_psi_epsilon_c
 inline constexpr char kAsymptoteLnvChange[] = "asymptote_lnv_change";
 inline constexpr char kAsymptoteDlnpDstrain[] = "asymptote_dlnp_dstrain";
 inline constexpr char kAsymptoteDln1peDlnp[] = "asymptote_dln1pe_dlnp";
+// Written since extension states are kept above the floor (older records
+// have none): the range of p over the window, the floor of the valid range,
+// and whether the state is a window that held before the stage's end.
+inline constexpr char kAsymptotePMinKpa[] = "asymptote_p_min_kpa";
+inline constexpr char kAsymptotePMaxKpa[] = "asymptote_p_max_kpa";
+inline constexpr char kAsymptoteFloorKpa[] = "asymptote_floor_kpa";
+inline constexpr char kAsymptoteBeforeEnd[] = "asymptote_before_end";
 // The validity of every stage (dem/stage_validity.h).
 inline constexpr char kValidityMaxRelativeOverlap[] = "validity_max_relative_overlap";
 inline constexpr char kValidityMaxInertialNumberDmax[] = "validity_max_inertial_number_dmax";

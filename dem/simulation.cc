@@ -142,7 +142,7 @@ void Simulation::LoadCheckpoint() {
   checkpoint_ = {saved.engine.step, done()};
   if (done()) return;
   detection_.Restore(scene_.stages, runner_.stage, contents_.stages, runner_.clock.first_row,
-                     runner_.detector_samples);
+                     runner_.detector_samples, runner_.detector_held);
   if (!runner_.stage_started) return;
   controller_ = stage().spec->MakeController(context_);
   try {
@@ -202,6 +202,7 @@ void Simulation::WriteCheckpoint() {
   RunnerRecord runner = runner_;
   if (controller_) runner.controller_state = controller_->SaveState();
   runner.detector_samples = detection_.detector().samples();
+  runner.detector_held = detection_.detector().last_held();
   dem::WriteCheckpoint(CheckpointPath(options_.output_path), scene_, contents_, *engine_, threads_,
                        runner);
   checkpoint_ = {engine_->step(), done()};

@@ -35,9 +35,11 @@ void StageDetection::Start(const std::vector<Stage>& stages, int64_t index,
 
 void StageDetection::Restore(const std::vector<Stage>& stages, int64_t index,
                              const std::vector<StageRecord>& records, int64_t first_row,
-                             std::vector<AsymptoteDetector::Sample> samples) {
+                             std::vector<AsymptoteDetector::Sample> samples,
+                             std::optional<AsymptoteDetector::Result> held) {
   detector_ = AsymptoteDetector(stages[index].asymptote);
   detector_.set_samples(std::move(samples));
+  detector_.set_last_held(std::move(held));
   first_row_ = SamplesFirstRow(stages, index, records, first_row);
 }
 
@@ -52,6 +54,7 @@ void StageDetection::AddSample(const Engine& engine, const std::array<double, 3>
                  std::log1p(engine.void_ratio()), -std::log(cell[0] / reference[0]),
                  -0.5 * (std::log(cell[1] / reference[1]) + std::log(cell[2] / reference[2])),
                  engine.time()});
+  detector_.Track();
 }
 
 }  // namespace granasym::dem

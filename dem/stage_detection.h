@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "dem/asymptote_detector.h"
@@ -27,9 +28,11 @@ class StageDetection {
   // `samples`.
   void Restore(const std::vector<Stage>& stages, int64_t index,
                const std::vector<StageRecord>& records, int64_t first_row,
-               std::vector<AsymptoteDetector::Sample> samples);
+               std::vector<AsymptoteDetector::Sample> samples,
+               std::optional<AsymptoteDetector::Result> held = std::nullopt);
   // A sample of the engine's state (after a force evaluation with stress) at
-  // stage strain `strain`; its strains count from `reference_cell`.
+  // stage strain `strain`; its strains count from `reference_cell`. An
+  // extension stage then keeps the window if it holds (Track).
   void AddSample(const Engine& engine, const std::array<double, 3>& reference_cell, double strain);
 
   const AsymptoteDetector& detector() const { return detector_; }

@@ -21,6 +21,25 @@ int64_t FirstRowAfter(const TimeSeries& series, int64_t first, int64_t last, dou
   return last;
 }
 
+// The last of the stage's rows [first, last] at or before `time` (the
+// window's end); `first` when none.
+int64_t LastRowBefore(const TimeSeries& series, int64_t first, int64_t last, double time) {
+  const auto& times = series.Values(record::kColumnTime);
+  for (int64_t k = last; k >= first; --k) {
+    if (times[k] <= time) return k;
+  }
+  return first;
+}
+
+// An extension state keeps the flags of its rows (coordination, inertial
+// number) with their values, but they do not veto it (SPEC §8.3): a path
+// towards the origin at the paper's rate is a dense flow whose network is
+// thin. Only overlaps beyond the reliable do.
+bool VetoedByRows(PathKind kind, double mean_stress_kpa, const RowState& state) {
+  if (state.max_relative_overlap > kValidityLimits.overlap_unreliable) return true;
+  return kind != PathKind::kExtension && IsGas(mean_stress_kpa, state.mechanical_coordination);
+}
+
 }  // namespace
 
 std::optional<std::string> AsymptoteStop(const AsymptoteDetector::Result& result, PathKind kind,
@@ -32,8 +51,7 @@ std::optional<std::string> AsymptoteStop(const AsymptoteDetector::Result& result
     const RowState state = RowState::Mean(
         series, FirstRowAfter(series, detector_first_row, last_row, result.window_start_time),
         last_row);
-    valid = !IsGas(result.mean_stress_kpa, state.mechanical_coordination) &&
-            state.max_relative_overlap <= kValidityLimits.overlap_unreliable;
+    valid = !VetoedByRows(kind, result.mean_stress_kpa, state);
   }
   if (!valid) return std::nullopt;
   return fmt::format(
@@ -55,8 +73,12 @@ StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t fi
   record.failed = failed;
   const bool has_rows = record.last_row >= record.first_row;
   const bool detect = stage.detect_asymptote;
-  const AsymptoteDetector::Result result =
+  const AsymptoteDetector::Result end_result =
       detect ? detector.Evaluate() : AsymptoteDetector::Result{};
+  // An extension stage reports the last window that held above the floor,
+  // even when its path went on below it (SPEC §8.4).
+  const bool held_before = detect && !end_result.detected() && detector.last_held().has_value();
+  const AsymptoteDetector::Result& result = held_before ? *detector.last_held() : end_result;
   // The state: the window's rows when a full window exists, else the last row.
   const bool window = detect && result.window_strain > 0;
   RowState state;
@@ -64,7 +86,10 @@ StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t fi
     const int64_t state_row = window ? FirstRowAfter(series, detector_first_row, record.last_row,
                                                      result.window_start_time)
                                      : record.last_row;
-    state = RowState::Mean(series, state_row, record.last_row);
+    const int64_t state_last =
+        held_before ? LastRowBefore(series, state_row, record.last_row, result.window_end_time)
+                    : record.last_row;
+    state = RowState::Mean(series, state_row, state_last);
     record.validity = StageValidity::FromRows(series, record.first_row, record.last_row, state);
   }
   if (!detect) return record;
@@ -79,6 +104,8 @@ StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t fi
     a.psi_sigma_deg = result.psi_sigma / kDegree;
     a.psi_epsilon_deg = result.psi_epsilon / kDegree;
     a.q_over_p = result.q_over_p;
+    a.p_min_kpa = result.p_min_kpa;
+    a.p_max_kpa = result.p_max_kpa;
   } else if (has_rows) {
     a.mean_stress_kpa = series.Last(record::kColumnMeanStress);
     a.void_ratio = series.Last(record::kColumnVoidRatio);
@@ -86,6 +113,7 @@ StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t fi
     a.psi_epsilon_deg = series.Last(record::kColumnPsiEpsilon);
     a.q_over_p = 3.0 / std::sqrt(2.0) * std::tan(a.psi_sigma_deg * kDegree);
   }
+  a.before_end = held_before;
   a.coordination = state.coordination;
   a.mechanical_coordination = state.mechanical_coordination;
   a.inertial_number_dmin = state.inertial_number_dmin;
@@ -102,7 +130,10 @@ StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t fi
   const ValidityLimits& limits = kValidityLimits;
   if (failed || !has_rows || state.max_relative_overlap > limits.overlap_unreliable) {
     a.status = AsymptoteStatus::kInvalid;
-  } else if (IsGas(state.mean_stress_kpa, state.mechanical_coordination, limits)) {
+  } else if (result.detected() && !VetoedByRows(a.path_kind, state.mean_stress_kpa, state)) {
+    a.status = AsymptoteStatus::kDetected;
+  } else if (IsGas(state.mean_stress_kpa, state.mechanical_coordination, limits) ||
+             result.below_floor) {
     a.status = AsymptoteStatus::kGas;
   } else {
     a.status = result.status;
@@ -111,6 +142,17 @@ StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t fi
   if (result.detected() && !a.detected) {
     record.stop_reason += fmt::format("; not an asymptote: status {} ({})", ToString(a.status),
                                       EnumDescription(a.status));
+  }
+  if (held_before && a.detected) {
+    const double p_end = series.Last(record::kColumnMeanStress);
+    record.stop_reason += fmt::format(
+        "; the extension asymptote last held over p {:.4g}-{:.4g} kPa up to stage strain {:.4g}, "
+        "then {} (p {:.4g} kPa at the end)",
+        result.p_min_kpa, result.p_max_kpa, result.window_end_strain,
+        end_result.below_floor || !(p_end >= stage.asymptote.floor_kpa)
+            ? fmt::format("left the valid range p >= {:g} kPa", stage.asymptote.floor_kpa)
+            : std::string("drifted"),
+        p_end);
   }
   record.asymptote = a;
   record.asymptote_criterion = stage.asymptote.Describe();

@@ -8,6 +8,10 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <vector>
 
 #include "common/error.h"
 #include "common/state_measures.h"
@@ -82,9 +86,14 @@ TEST(AsymptoteDetector, DefaultCriteriaAreTheDocumentedOnes) {
     EXPECT_EQ(c.kind, kind);
     EXPECT_EQ(c.window_lnp, 1.0);
     EXPECT_EQ(c.window_strain, 0.3);
-    EXPECT_EQ(c.psi_tolerance_deg, 1.0);
+    // Extension: twice the standard error of ψ_σ's fitted change measured
+    // along the paper's extension paths (the criterion's comment).
+    EXPECT_EQ(c.psi_tolerance_deg, kind == PathKind::kExtension ? 2.0 : 1.0);
     EXPECT_EQ(c.slope_tolerance, 0.1);
   }
+  EXPECT_EQ(Criterion(PathKind::kExtension).floor_kpa, 0.5);
+  EXPECT_NE(Criterion(PathKind::kExtension).Describe().find("p >= 0.5 kPa"), std::string::npos);
+  EXPECT_EQ(Criterion(PathKind::kCompression).Describe().find("p >="), std::string::npos);
   const AsymptoteCriterion stress = Criterion(PathKind::kStressControlled);
   EXPECT_EQ(stress.window_strain, 0.15);
   EXPECT_EQ(stress.psi_tolerance_deg, 1.0);
@@ -321,6 +330,117 @@ TEST(ExtensionDetector, FallingMeanStressParallelToALineIsDetected) {
   EXPECT_NEAR(result.psi_epsilon / kDegree, 120.0, 1e-9);
 }
 
+// A proportional path towards the origin (SPEC §8.4): from p0 = 50 kPa, ln p
+// falls by `rate` per unit strain and ln(1+e) rises along a line of slope
+// −0.05 in ln(1+e)–ln p, while ψ_σ stays at 40° with Gaussian noise of
+// `noise_deg` (a fixed seed) — until strain `collapse`, where the network
+// is lost: p falls a hundredfold within 0.01 of strain and ψ_σ then wanders
+// by ±10°.
+Series TowardsTheOrigin(double rate, double noise_deg, double collapse) {
+  auto noise = std::make_shared<std::vector<double>>();
+  std::mt19937 generator(7);
+  std::normal_distribution<double> normal(0.0, noise_deg);
+  for (int k = 0; k < 20000; ++k) noise->push_back(normal(generator));
+  Series series;
+  series.psi_epsilon = [](double) { return 100.0 * kDegree; };
+  series.log_p = [rate, collapse](double strain) {
+    const double lnp = std::log(50.0) - rate * strain;
+    return strain <= collapse ? lnp
+                              : lnp - std::log(100.0) * std::min(1.0, (strain - collapse) / 0.01);
+  };
+  series.log_volume = [rate](double strain) { return std::log(1.7) + 0.05 * rate * strain; };
+  series.psi_sigma = [noise, collapse](double strain) {
+    const size_t k = static_cast<size_t>(std::lround(strain / 5e-4)) % noise->size();
+    const double wander = strain > collapse ? 10.0 * std::sin(40.0 * strain) : 0.0;
+    return (40.0 + (*noise)[k] + wander) * kDegree;
+  };
+  return series;
+}
+
+// Feeds samples 0 .. last with Track after each, as a run does.
+void FeedTracked(AsymptoteDetector& detector, const Series& series, int last) {
+  const double spacing = detector.criterion().sample_strain;
+  for (int k = 0; k <= last; ++k) {
+    detector.Add(At(series, k * spacing, spacing));
+    detector.Track();
+  }
+}
+
+TEST(ExtensionDetector, ANoisyPathTowardsTheOriginIsDetectedAboveTheFloor) {
+  // ln p falls by 8 per unit strain: from 50 kPa to the floor (0.5 kPa) at
+  // strain 0.58, on to 0.1 kPa at 0.78 (no collapse).
+  const Series series = TowardsTheOrigin(8.0, 1.5, 10.0);
+  AsymptoteDetector detector(Criterion(PathKind::kExtension));
+  FeedTracked(detector, series, 1560);
+  // The last window reaches below the floor: it is not evaluated.
+  const AsymptoteDetector::Result end = detector.Evaluate();
+  EXPECT_TRUE(end.below_floor);
+  EXPECT_FALSE(end.detected());
+  EXPECT_LT(end.p_min_kpa, 0.5);
+  // The last window that held lies wholly above the floor and ends where p
+  // reached it; its state is the path's.
+  ASSERT_TRUE(detector.last_held().has_value());
+  const AsymptoteDetector::Result& held = *detector.last_held();
+  EXPECT_TRUE(held.detected());
+  EXPECT_GE(held.p_min_kpa, 0.5);
+  EXPECT_LT(held.p_min_kpa, 0.5 * std::exp(8.0 * 5e-4 * 1.01));
+  EXPECT_NEAR(held.p_max_kpa / held.p_min_kpa, std::exp(1.0), 0.05);  // one window of ln p
+  EXPECT_NEAR(held.window_end_strain, std::log(100.0) / 8.0, 1e-3);
+  EXPECT_NEAR(held.psi_sigma / kDegree, 40.0, 0.5);
+  EXPECT_NEAR(held.slope_lnv_lnp, -0.05, 1e-9);
+  EXPECT_NEAR(held.psi_epsilon / kDegree, 100.0, 1e-9);
+}
+
+TEST(ExtensionDetector, APathThatNeverSettlesHoldsNoWindow) {
+  Series series = TowardsTheOrigin(8.0, 0.0, 10.0);
+  // ψ_σ still rising by 10° per 0.1 of strain all the way down.
+  series.psi_sigma = [](double strain) { return (20.0 + 100.0 * strain) * kDegree; };
+  AsymptoteDetector detector(Criterion(PathKind::kExtension));
+  FeedTracked(detector, series, 1560);
+  EXPECT_FALSE(detector.last_held().has_value());
+  EXPECT_FALSE(detector.Evaluate().detected());
+}
+
+TEST(ExtensionDetector, APathThatSettlesAndThenLosesItsNetworkKeepsItsState) {
+  // Proportional to strain 0.4 (p = 2 kPa), then collapsing to 0.02 kPa and
+  // wandering; further on a stationary stretch below the floor, which must
+  // not replace the state.
+  Series series = TowardsTheOrigin(8.0, 1.0, 0.4);
+  AsymptoteDetector detector(Criterion(PathKind::kExtension));
+  FeedTracked(detector, series, 800);
+  ASSERT_TRUE(detector.last_held().has_value());
+  const AsymptoteDetector::Result held = *detector.last_held();
+  EXPECT_LE(held.window_end_strain, 0.4 + 1e-9);
+  EXPECT_GE(held.p_min_kpa, 50.0 * std::exp(-8.0 * 0.4) * 0.999);
+  EXPECT_NEAR(held.psi_sigma / kDegree, 40.0, 0.5);
+  series.psi_sigma = [](double) { return 40.0 * kDegree; };
+  series.log_p = [](double strain) { return std::log(0.02) - 2.0 * (strain - 0.4); };
+  for (int k = 801; k <= 2000; ++k) {
+    detector.Add(At(series, k * 5e-4, 5e-4));
+    detector.Track();
+  }
+  ASSERT_TRUE(detector.last_held().has_value());
+  EXPECT_EQ(detector.last_held()->window_end_strain, held.window_end_strain);
+  EXPECT_TRUE(detector.Evaluate().below_floor);
+}
+
+TEST(ExtensionDetector, AWindowPacksIntoNumbersAndBack) {
+  AsymptoteDetector detector(Criterion(PathKind::kExtension));
+  FeedTracked(detector, TowardsTheOrigin(8.0, 1.0, 10.0), 700);
+  ASSERT_TRUE(detector.last_held().has_value());
+  const AsymptoteDetector::Result& held = *detector.last_held();
+  const AsymptoteDetector::Result back = UnpackResult(PackResult(held));
+  EXPECT_EQ(PackResult(back), PackResult(held));
+  EXPECT_EQ(back.status, held.status);
+  EXPECT_EQ(back.p_min_kpa, held.p_min_kpa);
+  std::vector<double> short_one = PackResult(held);
+  short_one.pop_back();
+  EXPECT_THROW(UnpackResult(short_one), std::invalid_argument);
+  std::vector<double> bad_status = PackResult(held);
+  bad_status[0] = 9;
+  EXPECT_THROW(UnpackResult(bad_status), std::invalid_argument);
+}
+
 // --- stress-controlled ---
 
 // A drained triaxial test: ψ_ε(ε) from dilation (ψ_ε > 90°) towards 90°.
@@ -466,6 +586,18 @@ TEST(AsymptoteCriterion, EachKindReadsItsOwnKeysOnly) {
   EXPECT_EQ(scene.stages[0].asymptote.kind, PathKind::kCompression);
   EXPECT_EQ(scene.stages[0].asymptote.window_lnp, 0.5);
   EXPECT_TRUE(scene.stages[0].detect_asymptote);
+}
+
+TEST(ExtensionDetector, TheFloorIsAKeyOfTheExtensionCriterionOnly) {
+  const std::string extension =
+      "[[stage]]\npsi_epsilon_deg = 100.0\nstretching_rate = 167.0\n[stage.stop]\n"
+      "strain_norm = 1.0\n[stage.asymptote]\n";
+  EXPECT_EQ(SceneError(extension + "floor_kpa = 2.0\n"), "");
+  EXPECT_NE(SceneError(extension + "floor_kpa = -1.0\n").find("floor_kpa"), std::string::npos);
+  const std::string compression =
+      "[[stage]]\npsi_epsilon_deg = 45.0\nstretching_rate = 167.0\n[stage.stop]\n"
+      "strain_norm = 1.0\n[stage.asymptote]\n";
+  EXPECT_NE(SceneError(compression + "floor_kpa = 2.0\n").find("floor_kpa"), std::string::npos);
 }
 
 }  // namespace
