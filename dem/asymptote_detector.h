@@ -15,7 +15,11 @@
 //    asymptotes at hundreds of kPa, where a window in strain spans decades
 //    of p;
 //    An extension asymptotic state is a proportional path towards the
-//    origin (SPEC §8.4): p falls while ψ_σ stays. Its windows count only
+//    origin (SPEC §8.4): p falls while ψ_σ stays. Since ln(1+e) rises at the
+//    rate ψ_ε imposes, its slope is stationary when the fitted rate of ln p
+//    is: the rates of the two half-windows differ by less than lnp_tolerance
+//    (in ln p over half a window), which stays meaningful where p barely
+//    moves (the dense flows of the paper's rate). Its windows count only
 //    where every sample has p at or above floor_kpa (the valid range, SPEC
 //    §8.3); the detector keeps the last window that held (last_held()), so
 //    that a path which held and then fell below the floor keeps its state;
@@ -93,10 +97,12 @@ struct AsymptoteCriterion {
   // Isochoric and stress-controlled: the window (0.15); compression and
   // extension: the longest window (0.3), for paths along which p changes slowly.
   double window_strain = 0.15;
-  double window_lnp = 1.0;                 // compression, extension: |Δ ln p| of the window
-  double psi_tolerance_deg = 1.0;          // fitted change of ψ_σ across the window (every kind)
-  double lnp_tolerance = 0.05;             // isochoric: fitted change of ln p across the window
-  double slope_tolerance = 0.1;            // compression, extension: relative change of the slope
+  double window_lnp = 1.0;         // compression, extension: |Δ ln p| of the window
+  double psi_tolerance_deg = 1.0;  // fitted change of ψ_σ across the window (every kind)
+  // Isochoric: fitted change of ln p across the window; extension (0.4): change
+  // of the fitted rate of ln p between the half-windows, over half a window.
+  double lnp_tolerance = 0.05;
+  double slope_tolerance = 0.1;  // compression: relative change of the slope d ln(1+e)/d ln p
   double psi_epsilon_tolerance_deg = 3.0;  // stress-controlled: ψ_ε(2nd half) − ψ_ε(1st half)
   double lnv_tolerance = 0.004;  // stress-controlled: fitted change of ln(1+e) across the window
   // Extension: the floor of the valid range (kPa); windows reaching below it

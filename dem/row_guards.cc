@@ -65,7 +65,12 @@ std::optional<std::string> LiquefiedStop(const TimeSeries& series, const Stage& 
   if (!stage.stop.liquefied) return std::nullopt;
   const double p = series.Last(record::kColumnMeanStress);
   const double z = series.Last(record::kColumnMechanicalCoordination);
-  if (!IsGas(p, z)) {
+  // An extension path is a dense flow with a thin network at the paper's
+  // rate (SPEC §8.3-8.4): only p below the detector's floor makes it a gas.
+  const bool extension = stage.asymptote.kind == PathKind::kExtension;
+  const double floor_kpa =
+      extension ? stage.asymptote.floor_kpa : kValidityLimits.gas_mean_stress_kpa;
+  if (extension ? p >= floor_kpa : !IsGas(p, z)) {
     clock->gas_since_strain = std::numeric_limits<double>::quiet_NaN();
     return std::nullopt;
   }
@@ -75,9 +80,10 @@ std::optional<std::string> LiquefiedStop(const TimeSeries& series, const Stage& 
     return std::nullopt;
   }
   return fmt::format(
-      "liquefied: a gas (p below {:g} kPa or mechanical coordination below {:g}) on every row "
-      "over {:.3g} of strain since {:.4g}; now p {:.4g} kPa, Z_m {:.3g}",
-      kValidityLimits.gas_mean_stress_kpa, kValidityLimits.gas_mechanical_coordination,
+      "liquefied: {} on every row over {:.3g} of strain since {:.4g}; now p {:.4g} kPa, Z_m {:.3g}",
+      extension ? fmt::format("p below the extension floor {:g} kPa", floor_kpa)
+                : fmt::format("a gas (p below {:g} kPa or mechanical coordination below {:g})",
+                              floor_kpa, kValidityLimits.gas_mechanical_coordination),
       clock->strain_norm - clock->gas_since_strain, clock->gas_since_strain, p, z);
 }
 

@@ -106,8 +106,10 @@ std::string DriftReason(const dem::AsymptoteRecord& a) {
       check(a.lnp_change, c.lnp_tolerance, "ln p changed by");
       break;
     case dem::PathKind::kCompression:
-    case dem::PathKind::kExtension:
       check(a.slope_change, c.slope_tolerance, "d ln(1+e)/d ln p changed by a fraction");
+      break;
+    case dem::PathKind::kExtension:
+      check(a.lnp_half_difference, c.lnp_tolerance, "the rate of ln p changed by");
       break;
     case dem::PathKind::kStressControlled:
       check(a.psi_epsilon_change_deg, c.psi_epsilon_tolerance_deg, "psi_epsilon changed by deg");
@@ -161,6 +163,9 @@ StateRow RowFrom(const CaseFolder& c, const dem::StageRecord& stage) {
   row.slope_change = a.slope_change;
   row.lnp_change = a.lnp_change;
   row.dln1pe_dlnp = a.dln1pe_dlnp;
+  row.window_p_min_kpa = a.window_strain > 0 ? a.p_min_kpa : kNaN;
+  row.window_p_max_kpa = a.window_strain > 0 ? a.p_max_kpa : kNaN;
+  row.held_before_end = a.before_end ? 1 : 0;
   row.ocr = kNaN;
   row.p_e_star_kpa = kNaN;
   return row;
@@ -171,11 +176,27 @@ StateRow MissingRow(const CaseFolder& c) {
   row.kind = TableKind::kNone;
   row.status = TableStatus::kNoResult;
   row.message = c.termination.empty() ? c.message : c.termination + ": " + c.message;
-  for (double* v : {&row.psi_epsilon_deg, &row.p_kpa, &row.e, &row.ln_1_plus_e, &row.psi_sigma_deg,
-                    &row.q_over_p, &row.ocr, &row.p_e_star_kpa, &row.inertial_number_dmin,
-                    &row.inertial_number_dmax, &row.coordination, &row.mechanical_coordination,
-                    &row.max_relative_overlap, &row.window_strain, &row.window_lnp,
-                    &row.psi_change_deg, &row.slope_change, &row.lnp_change, &row.dln1pe_dlnp}) {
+  for (double* v : {&row.psi_epsilon_deg,
+                    &row.p_kpa,
+                    &row.e,
+                    &row.ln_1_plus_e,
+                    &row.psi_sigma_deg,
+                    &row.q_over_p,
+                    &row.ocr,
+                    &row.p_e_star_kpa,
+                    &row.inertial_number_dmin,
+                    &row.inertial_number_dmax,
+                    &row.coordination,
+                    &row.mechanical_coordination,
+                    &row.max_relative_overlap,
+                    &row.window_strain,
+                    &row.window_lnp,
+                    &row.psi_change_deg,
+                    &row.slope_change,
+                    &row.lnp_change,
+                    &row.dln1pe_dlnp,
+                    &row.window_p_min_kpa,
+                    &row.window_p_max_kpa}) {
     *v = kNaN;
   }
   return row;
@@ -183,7 +204,11 @@ StateRow MissingRow(const CaseFolder& c) {
 
 // A path as monotone samples in x = ln p (the running extreme in the
 // direction the path moves: rising for compression, falling for extension).
-PathSamples MonotonePath(const TimeSeries& series, int64_t first, int64_t last, bool rising) {
+// Compression rows that are a gas are left out; extension rows below the
+// detector's floor (their thin network is what an extension state is, SPEC
+// §8.4).
+PathSamples MonotonePath(const TimeSeries& series, int64_t first, int64_t last, bool rising,
+                         double floor_kpa) {
   PathSamples path;
   const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
   const std::vector<double>& e = series.Values(dem::record::kColumnVoidRatio);
@@ -192,7 +217,7 @@ PathSamples MonotonePath(const TimeSeries& series, int64_t first, int64_t last, 
       series.Values(dem::record::kColumnMechanicalCoordination);
   for (int64_t r = first; r <= last && r < static_cast<int64_t>(p.size()); ++r) {
     const size_t k = static_cast<size_t>(r);
-    if (!(p[k] > 0) || dem::IsGas(p[k], coordination[k])) continue;
+    if (rising ? !(p[k] > 0) || dem::IsGas(p[k], coordination[k]) : !(p[k] >= floor_kpa)) continue;
     const double x = std::log(p[k]);
     if (!path.x.empty() && (rising ? x <= path.x.back() : x >= path.x.back())) continue;
     path.x.push_back(x);
@@ -280,7 +305,8 @@ using Member = std::variant<int StateRow::*, double StateRow::*, std::string Sta
 struct Column {
   const char* name;
   Member member;
-  const char* units = "";  // of a number column
+  const char* units = "";              // of a number column
+  bool since_extension_floor = false;  // absent from older tables: read as NaN or 0
 };
 const Column kColumns[] = {
     {table::kColumnReplicate, &StateRow::replicate},
@@ -308,6 +334,9 @@ const Column kColumns[] = {
     {table::kColumnSlopeChange, &StateRow::slope_change, "1"},
     {table::kColumnLnpChange, &StateRow::lnp_change, "1"},
     {table::kColumnSlope, &StateRow::dln1pe_dlnp, "1"},
+    {table::kColumnWindowPMin, &StateRow::window_p_min_kpa, "kPa", true},
+    {table::kColumnWindowPMax, &StateRow::window_p_max_kpa, "kPa", true},
+    {table::kColumnHeldBeforeEnd, &StateRow::held_before_end, "", true},
     {table::kColumnNclReference, &StateRow::ncl_reference},
     {table::kColumnRun, &StateRow::run},
     {table::kColumnFigures, &StateRow::figures},
@@ -503,6 +532,9 @@ StateRow JoinedRow(const ConvergenceRow& joined, const ConvergenceTolerance& tol
   row.e = std::expm1(joined.ln_1_plus_e);
   row.psi_sigma_deg = joined.psi_sigma_deg;
   row.q_over_p = 3.0 / std::sqrt(2.0) * std::tan(joined.psi_sigma_deg * M_PI / 180.0);
+  // The paths agree from where they joined to the end of their common range.
+  row.window_p_min_kpa = std::min(joined.joined_at_p_kpa, joined.overlap_to_p_kpa);
+  row.window_p_max_kpa = std::max(joined.joined_at_p_kpa, joined.overlap_to_p_kpa);
   return row;
 }
 
@@ -574,7 +606,8 @@ void ReadCases(const std::string& directory, std::vector<StateRow>* rows, PathGr
         if (!series) series = TimeSeries::Read(file, dem::record::kSeries);
         const bool rising = row.kind == TableKind::kCompression;
         ConvergencePath path{c.record.name, 0,
-                             MonotonePath(*series, stage.first_row, stage.last_row, rising)};
+                             MonotonePath(*series, stage.first_row, stage.last_row, rising,
+                                          stage.asymptote->criterion.floor_kpa)};
         if (path.samples.x.size() >= 2) {
           path.start_p = std::exp(rising ? path.samples.x.front() : path.samples.x.back());
           const double psi = std::round(row.psi_epsilon_deg * 1e6) / 1e6;
@@ -752,7 +785,16 @@ std::vector<StateRow> ReadStateTable(const std::string& directory) {
   const std::vector<int64_t> replicates =
       file.ReadInts(std::string(table::kStatesGroup) + "/" + table::kColumnReplicate);
   std::vector<StateRow> rows(replicates.size());
-  for (const Column& column : kColumns) ReadColumn(file, origin, column, &rows);
+  for (const Column& column : kColumns) {
+    if (column.since_extension_floor &&
+        !file.Exists(std::string(table::kStatesGroup) + "/" + column.name)) {
+      if (auto m = std::get_if<double StateRow::*>(&column.member)) {
+        for (StateRow& row : rows) row.** m = kNaN;
+      }
+      continue;
+    }
+    ReadColumn(file, origin, column, &rows);
+  }
   return rows;
 }
 

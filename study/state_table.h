@@ -34,6 +34,11 @@ struct StateRow {
   // The detector's window and measures (AsymptoteRecord).
   double window_strain = 0, window_lnp = 0, psi_change_deg = 0, slope_change = 0, lnp_change = 0,
          dln1pe_dlnp = 0;
+  // The range of p over the detector's window (kPa), and whether the state
+  // is an extension window that held before the path left the valid range
+  // or drifted (1) rather than the stage's last window (0).
+  double window_p_min_kpa = 0, window_p_max_kpa = 0;
+  int held_before_end = 0;
 };
 
 // The isotropic NCL ln(1+e) = N − λ* ln(p / 1 kPa) of one replicate and one

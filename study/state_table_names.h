@@ -71,6 +71,10 @@ constexpr char kColumnPsiChange[] = "psi_change_deg";
 constexpr char kColumnSlopeChange[] = "slope_change";
 constexpr char kColumnLnpChange[] = "lnp_change";
 constexpr char kColumnSlope[] = "dln1pe_dlnp";
+constexpr char kColumnWindowPMin[] = "window_p_min_kpa";  // kPa
+constexpr char kColumnWindowPMax[] = "window_p_max_kpa";  // kPa
+// Integer column: 1 for an extension state whose window held before the stage end.
+constexpr char kColumnHeldBeforeEnd[] = "held_before_end";
 // Text columns.
 constexpr char kColumnKind[] = "kind";  // ncl, csl, compression, extension, triaxial
 constexpr char kColumnStatus[] =

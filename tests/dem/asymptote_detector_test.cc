@@ -424,6 +424,50 @@ TEST(ExtensionDetector, APathThatSettlesAndThenLosesItsNetworkKeepsItsState) {
   EXPECT_TRUE(detector.Evaluate().below_floor);
 }
 
+// The dense flow of an extension path at the paper's rate: p stays near
+// 2 kPa (ln p scattering by 0.17 with a lag-one autocorrelation of 0.75,
+// as measured) while ln(1+e) rises and ψ_σ stays at 40°. The relative change
+// of d ln(1+e)/d ln p divides by a rate of ln p near zero; the change of the
+// rate of ln p does not, and the state is found.
+TEST(ExtensionDetector, ADenseFlowAtNearlyConstantPressureIsDetected) {
+  auto noise = std::make_shared<std::vector<double>>();
+  std::mt19937 generator(11);
+  std::normal_distribution<double> normal(0.0, 0.17 * std::sqrt(1 - 0.75 * 0.75));
+  double previous = 0;
+  for (int k = 0; k < 4000; ++k) {
+    // AR(1) per output row of 0.002 strain (4 samples), held between rows.
+    if (k % 4 == 0) previous = 0.75 * previous + normal(generator);
+    noise->push_back(previous);
+  }
+  Series series;
+  series.psi_epsilon = [](double) { return 100.0 * kDegree; };
+  series.log_p = [noise](double strain) {
+    const size_t k = static_cast<size_t>(std::lround(strain / 5e-4)) % noise->size();
+    return std::log(2.0) + (*noise)[k];
+  };
+  series.log_volume = [](double strain) { return std::log(1.7) + 0.3 * strain; };
+  series.psi_sigma = [](double) { return 40.0 * kDegree; };
+  AsymptoteDetector detector(Criterion(PathKind::kExtension));
+  FeedTracked(detector, series, 1200);
+  const AsymptoteDetector::Result end = detector.Evaluate();
+  EXPECT_FALSE(end.below_floor);
+  EXPECT_TRUE(end.detected()) << end.lnp_half_difference;
+  EXPECT_LT(end.lnp_half_difference, 0.4);
+  EXPECT_NEAR(end.mean_stress_kpa, 2.0, 0.3);
+  // The same path whose pressure stops falling halfway through the window
+  // (0.3 to 0.6 of strain; ln p falling by 6 per unit strain, then level):
+  // the rate of ln p changed by 6 × 0.15 = 0.9 of ln p over half a window,
+  // and no state is found there although ψ_σ is stationary.
+  Series bend = series;
+  bend.log_p = [](double strain) { return std::log(20.0) - 6.0 * std::min(strain, 0.45); };
+  AsymptoteDetector bent(Criterion(PathKind::kExtension));
+  FeedTracked(bent, bend, 1200);
+  const AsymptoteDetector::Result at_bend = bent.Evaluate();
+  EXPECT_NEAR(at_bend.lnp_half_difference, 0.9, 0.05);
+  EXPECT_LT(at_bend.psi_change_deg, 0.1);
+  EXPECT_FALSE(at_bend.detected());
+}
+
 TEST(ExtensionDetector, AWindowPacksIntoNumbersAndBack) {
   AsymptoteDetector detector(Criterion(PathKind::kExtension));
   FeedTracked(detector, TowardsTheOrigin(8.0, 1.0, 10.0), 700);
