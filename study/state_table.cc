@@ -202,13 +202,9 @@ StateRow MissingRow(const CaseFolder& c) {
   return row;
 }
 
-// A path as monotone samples in x = ln p (the running extreme in the
-// direction the path moves: rising for compression, falling for extension).
-// Compression rows that are a gas are left out; extension rows below the
-// detector's floor (their thin network is what an extension state is, SPEC
-// §8.4).
-PathSamples MonotonePath(const TimeSeries& series, int64_t first, int64_t last, bool rising,
-                         double floor_kpa) {
+// A compression path as samples of rising ln p (the running maximum), rows
+// that are a gas left out.
+PathSamples CompressionPath(const TimeSeries& series, int64_t first, int64_t last) {
   PathSamples path;
   const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
   const std::vector<double>& e = series.Values(dem::record::kColumnVoidRatio);
@@ -217,17 +213,32 @@ PathSamples MonotonePath(const TimeSeries& series, int64_t first, int64_t last, 
       series.Values(dem::record::kColumnMechanicalCoordination);
   for (int64_t r = first; r <= last && r < static_cast<int64_t>(p.size()); ++r) {
     const size_t k = static_cast<size_t>(r);
-    if (rising ? !(p[k] > 0) || dem::IsGas(p[k], coordination[k]) : !(p[k] >= floor_kpa)) continue;
+    if (!(p[k] > 0) || dem::IsGas(p[k], coordination[k])) continue;
     const double x = std::log(p[k]);
-    if (!path.x.empty() && (rising ? x <= path.x.back() : x >= path.x.back())) continue;
+    if (!path.x.empty() && x <= path.x.back()) continue;
     path.x.push_back(x);
-    path.ln_v.push_back(std::log1p(e[k]));
+    path.y.push_back(std::log1p(e[k]));
     path.psi.push_back(psi[k]);
   }
-  if (!rising) {  // ascending x for interpolation
-    std::reverse(path.x.begin(), path.x.end());
-    std::reverse(path.ln_v.begin(), path.ln_v.end());
-    std::reverse(path.psi.begin(), path.psi.end());
+  return path;
+}
+
+// An extension path as samples of rising ln(1+e) with ln p, rows below the
+// detector's floor left out (their thin network is what an extension state
+// is, SPEC §8.4).
+PathSamples ExtensionPath(const TimeSeries& series, int64_t first, int64_t last, double floor_kpa) {
+  PathSamples path;
+  const std::vector<double>& p = series.Values(dem::record::kColumnMeanStress);
+  const std::vector<double>& e = series.Values(dem::record::kColumnVoidRatio);
+  const std::vector<double>& psi = series.Values(dem::record::kColumnPsiSigma);
+  for (int64_t r = first; r <= last && r < static_cast<int64_t>(p.size()); ++r) {
+    const size_t k = static_cast<size_t>(r);
+    if (!(p[k] >= floor_kpa)) continue;
+    const double x = std::log1p(e[k]);
+    if (!path.x.empty() && x <= path.x.back()) continue;
+    path.x.push_back(x);
+    path.y.push_back(std::log(p[k]));
+    path.psi.push_back(psi[k]);
   }
   return path;
 }
@@ -252,46 +263,85 @@ double Smoothed(const std::vector<double>& x, const std::vector<double>& y, doub
 
 }  // namespace
 
-ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising,
-                         const ConvergenceTolerance& tolerance) {
-  ConvergenceRow row;
-  row.joined_at_p_kpa = row.ln_1_plus_e = row.psi_sigma_deg = kNaN;
-  row.overlap_from_p_kpa = row.overlap_to_p_kpa = kNaN;
-  if (a.x.size() < 2 || b.x.size() < 2) {
-    row.status = "no_overlap";
-    return row;
-  }
-  const double lo = std::max(a.x.front(), b.x.front()), hi = std::min(a.x.back(), b.x.back());
-  if (!(hi > lo)) {
-    row.status = "no_overlap";
-    return row;
-  }
-  row.overlap_from_p_kpa = std::exp(rising ? lo : hi);
-  row.overlap_to_p_kpa = std::exp(rising ? hi : lo);
-  const int n = tolerance.grid_points;
-  const double h = tolerance.smoothing_lnp;
+namespace {
+
+// Where two paths sampled on one axis join (see JoinPaths): the first grid
+// point, in the direction of travel (`forward`: ascending x), from which y
+// and ψ_σ stay within `y_tolerance` and `psi_tolerance` to the end of the
+// common range; NaN when they do not stay together over a quarter of it.
+// `lo`, `hi`: the common range.
+double JoinedAt(const PathSamples& a, const PathSamples& b, bool forward, double y_tolerance,
+                double psi_tolerance, double h, int n, double lo, double hi) {
   std::vector<bool> close(static_cast<size_t>(n));
   for (int g = 0; g < n; ++g) {
-    // Grid in the direction of travel.
     const double t = static_cast<double>(g) / (n - 1);
-    const double x = rising ? lo + t * (hi - lo) : hi - t * (hi - lo);
+    const double x = forward ? lo + t * (hi - lo) : hi - t * (hi - lo);
     close[static_cast<size_t>(g)] =
-        std::abs(Smoothed(a.x, a.ln_v, x, h) - Smoothed(b.x, b.ln_v, x, h)) <
-            tolerance.ln_1_plus_e &&
-        std::abs(Smoothed(a.x, a.psi, x, h) - Smoothed(b.x, b.psi, x, h)) < tolerance.psi_sigma_deg;
+        std::abs(Smoothed(a.x, a.y, x, h) - Smoothed(b.x, b.y, x, h)) < y_tolerance &&
+        std::abs(Smoothed(a.x, a.psi, x, h) - Smoothed(b.x, b.psi, x, h)) < psi_tolerance;
   }
   int first = n;
   while (first > 0 && close[static_cast<size_t>(first - 1)]) --first;
-  // Joined only if the paths stay together over at least a quarter of the range.
-  if (first > n - std::max(2, n / 4)) {
+  if (first > n - std::max(2, n / 4)) return kNaN;
+  const double t = static_cast<double>(first) / (n - 1);
+  return forward ? lo + t * (hi - lo) : hi - t * (hi - lo);
+}
+
+// The common x range of two paths; false (status no_overlap) when none.
+bool CommonRange(const PathSamples& a, const PathSamples& b, double* lo, double* hi,
+                 ConvergenceRow* row) {
+  row->joined_at_p_kpa = row->ln_1_plus_e = row->psi_sigma_deg = kNaN;
+  row->overlap_from_p_kpa = row->overlap_to_p_kpa = kNaN;
+  row->status = "no_overlap";
+  if (a.x.size() < 2 || b.x.size() < 2) return false;
+  *lo = std::max(a.x.front(), b.x.front());
+  *hi = std::min(a.x.back(), b.x.back());
+  return *hi > *lo;
+}
+
+}  // namespace
+
+ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising,
+                         const ConvergenceTolerance& tolerance) {
+  ConvergenceRow row;
+  double lo = 0, hi = 0;
+  if (!CommonRange(a, b, &lo, &hi, &row)) return row;
+  row.overlap_from_p_kpa = std::exp(rising ? lo : hi);
+  row.overlap_to_p_kpa = std::exp(rising ? hi : lo);
+  const double h = tolerance.smoothing_lnp;
+  const double x = JoinedAt(a, b, rising, tolerance.ln_1_plus_e, tolerance.psi_sigma_deg, h,
+                            tolerance.grid_points, lo, hi);
+  if (std::isnan(x)) {
     row.status = "not_joined";
     return row;
   }
-  const double t = static_cast<double>(first) / (n - 1);
-  const double x = rising ? lo + t * (hi - lo) : hi - t * (hi - lo);
   row.status = "joined";
   row.joined_at_p_kpa = std::exp(x);
-  row.ln_1_plus_e = 0.5 * (Smoothed(a.x, a.ln_v, x, h) + Smoothed(b.x, b.ln_v, x, h));
+  row.ln_1_plus_e = 0.5 * (Smoothed(a.x, a.y, x, h) + Smoothed(b.x, b.y, x, h));
+  row.psi_sigma_deg = 0.5 * (Smoothed(a.x, a.psi, x, h) + Smoothed(b.x, b.psi, x, h));
+  return row;
+}
+
+ConvergenceRow JoinExtensionPaths(const PathSamples& a, const PathSamples& b,
+                                  const ConvergenceTolerance& tolerance) {
+  ConvergenceRow row;
+  double lo = 0, hi = 0;
+  if (!CommonRange(a, b, &lo, &hi, &row)) return row;
+  const double h = tolerance.smoothing_ln_1_plus_e;
+  auto mean_p = [&](double x) {
+    return std::exp(0.5 * (Smoothed(a.x, a.y, x, h) + Smoothed(b.x, b.y, x, h)));
+  };
+  row.overlap_from_p_kpa = mean_p(lo);
+  row.overlap_to_p_kpa = mean_p(hi);
+  const double x = JoinedAt(a, b, true, tolerance.ln_p, tolerance.psi_sigma_deg, h,
+                            tolerance.grid_points, lo, hi);
+  if (std::isnan(x)) {
+    row.status = "not_joined";
+    return row;
+  }
+  row.status = "joined";
+  row.joined_at_p_kpa = mean_p(x);
+  row.ln_1_plus_e = x;
   row.psi_sigma_deg = 0.5 * (Smoothed(a.x, a.psi, x, h) + Smoothed(b.x, b.psi, x, h));
   return row;
 }
@@ -520,12 +570,21 @@ StateRow JoinedRow(const ConvergenceRow& joined, const ConvergenceTolerance& tol
   row.kind = joined.kind;
   row.status = TableStatus::kDetected;
   row.message.clear();
-  row.detector = fmt::format(
-      "path_convergence: paths of psi_epsilon = {:g} deg from different starting states agree "
-      "within {:g} in ln(1+e) and {:g} deg in psi_sigma (averaged over +-{:g} in ln p) from here "
-      "on, over at least a quarter of their common range",
-      joined.psi_epsilon_deg, tolerance.ln_1_plus_e, tolerance.psi_sigma_deg,
-      tolerance.smoothing_lnp);
+  row.detector =
+      joined.kind == TableKind::kExtension
+          ? fmt::format(
+                "path_convergence: extension paths of psi_epsilon = {:g} deg from different "
+                "starting states agree within {:g} in ln p and {:g} deg in psi_sigma at a common "
+                "ln(1+e) (averaged over +-{:g} in ln(1+e), p >= the detector's floor) from here "
+                "on, over at least a quarter of their common range",
+                joined.psi_epsilon_deg, tolerance.ln_p, tolerance.psi_sigma_deg,
+                tolerance.smoothing_ln_1_plus_e)
+          : fmt::format(
+                "path_convergence: paths of psi_epsilon = {:g} deg from different starting states "
+                "agree within {:g} in ln(1+e) and {:g} deg in psi_sigma (averaged over +-{:g} in "
+                "ln p) from here on, over at least a quarter of their common range",
+                joined.psi_epsilon_deg, tolerance.ln_1_plus_e, tolerance.psi_sigma_deg,
+                tolerance.smoothing_lnp);
   row.psi_epsilon_deg = joined.psi_epsilon_deg;
   row.p_kpa = joined.joined_at_p_kpa;
   row.ln_1_plus_e = joined.ln_1_plus_e;
@@ -606,10 +665,11 @@ void ReadCases(const std::string& directory, std::vector<StateRow>* rows, PathGr
         if (!series) series = TimeSeries::Read(file, dem::record::kSeries);
         const bool rising = row.kind == TableKind::kCompression;
         ConvergencePath path{c.record.name, 0,
-                             MonotonePath(*series, stage.first_row, stage.last_row, rising,
-                                          stage.asymptote->criterion.floor_kpa)};
+                             rising ? CompressionPath(*series, stage.first_row, stage.last_row)
+                                    : ExtensionPath(*series, stage.first_row, stage.last_row,
+                                                    stage.asymptote->criterion.floor_kpa)};
         if (path.samples.x.size() >= 2) {
-          path.start_p = std::exp(rising ? path.samples.x.front() : path.samples.x.back());
+          path.start_p = std::exp(rising ? path.samples.x.front() : path.samples.y.front());
           const double psi = std::round(row.psi_epsilon_deg * 1e6) / 1e6;
           (*paths)[{c.record.replicate, row.kind, psi}].push_back(std::move(path));
         }
@@ -631,7 +691,9 @@ std::vector<ConvergenceRow> JoinGroups(PathGroups* paths, const ConvergenceToler
       return a.start_p < b.start_p;
     });
     for (size_t k = 1; k < group.size(); ++k) {
-      ConvergenceRow row = JoinPaths(group[k - 1].samples, group[k].samples, rising, tolerance);
+      ConvergenceRow row =
+          rising ? JoinPaths(group[k - 1].samples, group[k].samples, true, tolerance)
+                 : JoinExtensionPaths(group[k - 1].samples, group[k].samples, tolerance);
       row.replicate = replicate;
       row.kind = kind;
       row.psi_epsilon_deg = psi;

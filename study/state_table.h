@@ -77,11 +77,21 @@ struct ConvergenceTolerance {
   // Each path is averaged over ±this in ln p at a grid point (a sample of a
   // few thousand spheres fluctuates by about ±1° in ψ_σ from row to row).
   double smoothing_lnp = 0.1;
+  // Extension paths are compared at a common ln(1+e) (JoinExtensionPaths):
+  // at the paper's rate they end in dense flows whose p barely moves while
+  // ln(1+e) rises at the imposed rate, so ln p is no axis for them. Along the
+  // paper's extension paths at 3000 spheres ln p scatters by 0.13-0.19 about
+  // its trend; averaged over ±0.005 of ln(1+e) (about 0.03 of strain at
+  // ψ_ε = 100°, 15 rows) that is about 0.08 with the rows' correlation.
+  double ln_p = 0.25;
+  double smoothing_ln_1_plus_e = 0.005;
 };
 
-// A path as samples ascending in ln p, with ln(1+e) and ψ_σ (deg).
+// A path as samples ascending in x, with y and ψ_σ (deg): x = ln p and
+// y = ln(1+e) for compression (JoinPaths), x = ln(1+e) and y = ln p for
+// extension (JoinExtensionPaths).
 struct PathSamples {
-  std::vector<double> x, ln_v, psi;
+  std::vector<double> x, y, psi;
 };
 // Where two paths of one ψ_ε join: the first point of a grid over their
 // common ln p range, taken in the direction the paths move (`rising` for
@@ -90,6 +100,12 @@ struct PathSamples {
 // the common range.
 ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising,
                          const ConvergenceTolerance& tolerance);
+// The same for two extension paths over their common ln(1+e) range (which
+// the imposed dilation makes monotone), in the direction of rising ln(1+e),
+// with ln p and ψ_σ within the tolerances; the overlap's p is the paths' mean
+// at its ends.
+ConvergenceRow JoinExtensionPaths(const PathSamples& a, const PathSamples& b,
+                                  const ConvergenceTolerance& tolerance);
 
 struct StateTableSummary {
   std::string directory;
