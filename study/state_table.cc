@@ -265,26 +265,29 @@ double Smoothed(const std::vector<double>& x, const std::vector<double>& y, doub
 
 namespace {
 
-// Where two paths sampled on one axis join (see JoinPaths): the first grid
-// point, in the direction of travel (`forward`: ascending x), from which y
-// and ψ_σ stay within `y_tolerance` and `psi_tolerance` to the end of the
-// common range; NaN when they do not stay together over a quarter of it.
-// `lo`, `hi`: the common range.
-double JoinedAt(const PathSamples& a, const PathSamples& b, bool forward, double y_tolerance,
+// The mean of the two paths' smoothed `y` at `x`.
+double MeanAt(const PathSamples& a, const PathSamples& b, std::vector<double> PathSamples::*y,
+              double x, double h) {
+  return 0.5 * (Smoothed(a.x, a.*y, x, h) + Smoothed(b.x, b.*y, x, h));
+}
+
+// Where two paths sampled on one ascending axis join (see JoinPaths): the
+// first grid point over the common range [lo, hi] from which y and ψ_σ stay
+// within `y_tolerance` and `psi_tolerance` to its end; NaN when they do not
+// stay together over a quarter of it.
+double JoinedAt(const PathSamples& a, const PathSamples& b, double y_tolerance,
                 double psi_tolerance, double h, int n, double lo, double hi) {
-  std::vector<bool> close(static_cast<size_t>(n));
-  for (int g = 0; g < n; ++g) {
-    const double t = static_cast<double>(g) / (n - 1);
-    const double x = forward ? lo + t * (hi - lo) : hi - t * (hi - lo);
-    close[static_cast<size_t>(g)] =
+  auto grid = [&](int g) { return lo + static_cast<double>(g) / (n - 1) * (hi - lo); };
+  int first = n;
+  while (first > 0) {
+    const double x = grid(first - 1);
+    const bool close =
         std::abs(Smoothed(a.x, a.y, x, h) - Smoothed(b.x, b.y, x, h)) < y_tolerance &&
         std::abs(Smoothed(a.x, a.psi, x, h) - Smoothed(b.x, b.psi, x, h)) < psi_tolerance;
+    if (!close) break;
+    --first;
   }
-  int first = n;
-  while (first > 0 && close[static_cast<size_t>(first - 1)]) --first;
-  if (first > n - std::max(2, n / 4)) return kNaN;
-  const double t = static_cast<double>(first) / (n - 1);
-  return forward ? lo + t * (hi - lo) : hi - t * (hi - lo);
+  return first > n - std::max(2, n / 4) ? kNaN : grid(first);
 }
 
 // The common x range of two paths; false (status no_overlap) when none.
@@ -301,24 +304,21 @@ bool CommonRange(const PathSamples& a, const PathSamples& b, double* lo, double*
 
 }  // namespace
 
-ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising,
+ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b,
                          const ConvergenceTolerance& tolerance) {
   ConvergenceRow row;
   double lo = 0, hi = 0;
   if (!CommonRange(a, b, &lo, &hi, &row)) return row;
-  row.overlap_from_p_kpa = std::exp(rising ? lo : hi);
-  row.overlap_to_p_kpa = std::exp(rising ? hi : lo);
+  row.overlap_from_p_kpa = std::exp(lo);
+  row.overlap_to_p_kpa = std::exp(hi);
   const double h = tolerance.smoothing_lnp;
-  const double x = JoinedAt(a, b, rising, tolerance.ln_1_plus_e, tolerance.psi_sigma_deg, h,
+  const double x = JoinedAt(a, b, tolerance.ln_1_plus_e, tolerance.psi_sigma_deg, h,
                             tolerance.grid_points, lo, hi);
-  if (std::isnan(x)) {
-    row.status = "not_joined";
-    return row;
-  }
-  row.status = "joined";
+  row.status = std::isnan(x) ? "not_joined" : "joined";
+  if (std::isnan(x)) return row;
   row.joined_at_p_kpa = std::exp(x);
-  row.ln_1_plus_e = 0.5 * (Smoothed(a.x, a.y, x, h) + Smoothed(b.x, b.y, x, h));
-  row.psi_sigma_deg = 0.5 * (Smoothed(a.x, a.psi, x, h) + Smoothed(b.x, b.psi, x, h));
+  row.ln_1_plus_e = MeanAt(a, b, &PathSamples::y, x, h);
+  row.psi_sigma_deg = MeanAt(a, b, &PathSamples::psi, x, h);
   return row;
 }
 
@@ -328,21 +328,15 @@ ConvergenceRow JoinExtensionPaths(const PathSamples& a, const PathSamples& b,
   double lo = 0, hi = 0;
   if (!CommonRange(a, b, &lo, &hi, &row)) return row;
   const double h = tolerance.smoothing_ln_1_plus_e;
-  auto mean_p = [&](double x) {
-    return std::exp(0.5 * (Smoothed(a.x, a.y, x, h) + Smoothed(b.x, b.y, x, h)));
-  };
-  row.overlap_from_p_kpa = mean_p(lo);
-  row.overlap_to_p_kpa = mean_p(hi);
-  const double x = JoinedAt(a, b, true, tolerance.ln_p, tolerance.psi_sigma_deg, h,
-                            tolerance.grid_points, lo, hi);
-  if (std::isnan(x)) {
-    row.status = "not_joined";
-    return row;
-  }
-  row.status = "joined";
-  row.joined_at_p_kpa = mean_p(x);
+  row.overlap_from_p_kpa = std::exp(MeanAt(a, b, &PathSamples::y, lo, h));
+  row.overlap_to_p_kpa = std::exp(MeanAt(a, b, &PathSamples::y, hi, h));
+  const double x =
+      JoinedAt(a, b, tolerance.ln_p, tolerance.psi_sigma_deg, h, tolerance.grid_points, lo, hi);
+  row.status = std::isnan(x) ? "not_joined" : "joined";
+  if (std::isnan(x)) return row;
+  row.joined_at_p_kpa = std::exp(MeanAt(a, b, &PathSamples::y, x, h));
   row.ln_1_plus_e = x;
-  row.psi_sigma_deg = 0.5 * (Smoothed(a.x, a.psi, x, h) + Smoothed(b.x, b.psi, x, h));
+  row.psi_sigma_deg = MeanAt(a, b, &PathSamples::psi, x, h);
   return row;
 }
 
@@ -692,7 +686,7 @@ std::vector<ConvergenceRow> JoinGroups(PathGroups* paths, const ConvergenceToler
     });
     for (size_t k = 1; k < group.size(); ++k) {
       ConvergenceRow row =
-          rising ? JoinPaths(group[k - 1].samples, group[k].samples, true, tolerance)
+          rising ? JoinPaths(group[k - 1].samples, group[k].samples, tolerance)
                  : JoinExtensionPaths(group[k - 1].samples, group[k].samples, tolerance);
       row.replicate = replicate;
       row.kind = kind;

@@ -93,12 +93,11 @@ struct ConvergenceTolerance {
 struct PathSamples {
   std::vector<double> x, y, psi;
 };
-// Where two paths of one ψ_ε join: the first point of a grid over their
-// common ln p range, taken in the direction the paths move (`rising` for
-// compression), from which both ln(1+e) and ψ_σ stay within the tolerances
-// to the end; joined only if they stay together over at least a quarter of
-// the common range.
-ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b, bool rising,
+// Where two compression paths of one ψ_ε join: the first point of a grid
+// over their common ln p range, in the direction of rising p, from which both
+// ln(1+e) and ψ_σ stay within the tolerances to the end; joined only if they
+// stay together over at least a quarter of the common range.
+ConvergenceRow JoinPaths(const PathSamples& a, const PathSamples& b,
                          const ConvergenceTolerance& tolerance);
 // The same for two extension paths over their common ln(1+e) range (which
 // the imposed dilation makes monotone), in the direction of rising ln(1+e),

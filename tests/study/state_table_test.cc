@@ -26,7 +26,7 @@ TEST(PathConvergence, PathsThatApproachOneLineJoinWhereTheirGapFallsBelowTheTole
   ConvergenceTolerance tolerance;
   tolerance.psi_sigma_deg = 1.0;
   tolerance.smoothing_lnp = 0.0;  // exact paths: no averaging
-  const ConvergenceRow row = JoinPaths(low, high, true, tolerance);
+  const ConvergenceRow row = JoinPaths(low, high, tolerance);
   ASSERT_EQ(row.status, "joined");
   // The ψ_σ gap 400 (g_low + |g_high|) < 1 deg decides (the ln(1+e) gap is
   // within 0.005 from x = 3 + 0.5 ln 4 = 3.69): |g_high| = 0.02 exp(−(x−3)/0.5)
@@ -41,13 +41,13 @@ TEST(PathConvergence, ParallelPathsThatStayApartDoNotJoin) {
   const PathSamples a = Path(1.0, 0.0, 1.0);
   PathSamples b = Path(2.0, 0.0, 1.0);
   for (double& v : b.y) v += 0.02;  // a parallel line 0.02 above
-  EXPECT_EQ(JoinPaths(a, b, true, {}).status, "not_joined");
+  EXPECT_EQ(JoinPaths(a, b, {}).status, "not_joined");
   const PathSamples c = Path(1.0, 0.0, 1.0);
   PathSamples d;
   d.x = {9.0, 10.0};
   d.y = {0.5, 0.45};
   d.psi = {20.0, 20.0};
-  EXPECT_EQ(JoinPaths(c, d, true, {}).status, "no_overlap");
+  EXPECT_EQ(JoinPaths(c, d, {}).status, "no_overlap");
 }
 
 // Two extension paths of the paper's rate: each falls steeply from its NC
