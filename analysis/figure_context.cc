@@ -83,6 +83,7 @@ std::vector<CaseData> LoadCases(const std::string& directory, int half_rows) {
                                                     std::numeric_limits<double>::quiet_NaN()));
       }
       c.time_step = dem::ReadSummary(file).time_step;
+      c.friction = dem::ReadMaterial(file).friction_angle;
       const TimeSeries series = TimeSeries::Read(file, dem::record::kSeries);
       if (!c.stages.empty()) {
         c.path = ReadPath(series, c.stages.front().first_row, c.stages.back().last_row, half_rows);

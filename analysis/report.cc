@@ -38,6 +38,7 @@ Document ReportDocument(StudyFolder& study, const std::vector<CaseRow>& cases,
     summary.models_calibrated += calibrated ? 1 : 0;
   }
   std::optional<Section> rate = RateSection(study, &absent);
+  Section findings = FindingsSection(study, &absent);
   study.absent.insert(study.absent.end(), absent.begin(), absent.end());
   std::sort(study.absent.begin(), study.absent.end());
 
@@ -53,6 +54,7 @@ Document ReportDocument(StudyFolder& study, const std::vector<CaseRow>& cases,
                       Lookup(study.record, "count", "?"), threads, threads == "1" ? "" : "s")) +
       Code(Lookup(study.record, "program_version", "?")) + Plain("; folder ") +
       Code(study.directory) + Plain(".");
+  document.sections.push_back(std::move(findings));
   document.sections.push_back(OverviewSection(study, cases, summary.figures,
                                               summary.figures_missing, summary.models_calibrated));
   for (Section& section : figures) document.sections.push_back(std::move(section));

@@ -66,6 +66,11 @@ tr.total td{font-weight:600;background:#f6f6f6}
 .status-interrupted,.status-running,.status-stale,.flagged{color:#8a5a00;font-weight:600}
 .status-gas,.status-invalid,.status-no_result,.status-undetermined,.status-failed,
 .status-not_run{color:#b3261e;font-weight:600}
+.verdict-reproduced{background:#e3f4e6;color:#176b2c;font-weight:600}
+.verdict-partly{background:#fdf1dc;color:#8a5a00;font-weight:600}
+.verdict-not_reproduced{background:#fbe3e1;color:#b3261e;font-weight:600}
+.verdict-not_tested{background:#eee;color:#555;font-weight:600}
+td.small{font-size:85%}
 p.note{border-left:4px solid #d39e00;background:#fff8e1;padding:.4em .8em}
 figure{margin:1em 0}
 img{max-width:100%;height:auto;border:1px solid #e0e0e0;background:#fff}

@@ -8,6 +8,7 @@
 #include <map>
 #include <set>
 
+#include "analysis/findings.h"
 #include "analysis/quasi_static_selection.h"
 #include "analysis/rate_files.h"
 #include "analysis/report_tables.h"
@@ -82,6 +83,52 @@ std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string&
 }
 
 }  // namespace
+
+namespace {
+// "not_reproduced" → "not reproduced".
+std::string Words(std::string name) {
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return name;
+}
+}  // namespace
+
+Section FindingsSection(const StudyFolder& study, std::vector<std::string>* absent) {
+  Section section{"findings", "Findings: the paper's claims in this study", 2, {}};
+  if (!study.Exists(kFindingsFile)) {
+    absent->push_back(kFindingsFile);
+    section.blocks.push_back(Note(Plain(std::string(kFindingsFile) +
+                                        " is absent: run `granasym study run` or `study merge` "
+                                        "with this version to write it.")));
+    return section;
+  }
+  const CsvTextTable findings = CsvTextTable::ReadFile(study.Path(kFindingsFile));
+  const size_t source = findings.Column("source"), claim = findings.Column("claim"),
+               verdict = findings.Column("verdict"), numbers = findings.Column("numbers"),
+               rule = findings.Column("rule");
+  std::map<std::string, int> counts;
+  for (const auto& row : findings.rows) ++counts[row[verdict]];
+  std::string tally;
+  for (const char* v : {"reproduced", "partly", "not_reproduced", "not_tested"}) {
+    tally += fmt::format("{}{} {}", tally.empty() ? "" : ", ", counts[v], Words(v));
+  }
+  section.blocks.push_back(Paragraph(
+      Plain(fmt::format("{} claims of the paper, each judged from this study's own states and "
+                        "paths by a stated rule: {}. From ",
+                        findings.rows.size(), tally)) +
+      Link(kFindingsFile, kFindingsFile, true) +
+      Plain("; the rules are in the last column, the numbers are this study's.")));
+  Block table;
+  table.type = Block::Type::kTable;
+  table.header = {"paper", "claim", "verdict", "numbers", "rule"};
+  for (const auto& row : findings.rows) {
+    table.rows.push_back({Cell{Plain(row[source]), ""}, Cell{Plain(row[claim]), "text"},
+                          Cell{Plain(Words(row[verdict])), FindingCss(row[verdict])},
+                          Cell{Plain(row[numbers]), "text small"},
+                          Cell{Plain(row[rule]), "text small"}});
+  }
+  section.blocks.push_back(std::move(table));
+  return section;
+}
 
 Section OverviewSection(const StudyFolder& study, const std::vector<CaseRow>& cases, int figures,
                         int figures_missing, int models) {

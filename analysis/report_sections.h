@@ -13,6 +13,11 @@
 
 namespace granasym::analysis::report {
 
+// The paper's claims judged from the study (DIR/findings.csv,
+// analysis/findings.h): counts by verdict, then one row per claim with the
+// numbers that decide it and, folded, the rule.
+Section FindingsSection(const StudyFolder& study, std::vector<std::string>* absent);
+
 // The study at a glance: programme, scale, cases and states by status,
 // figures and models, and the inputs that are absent.
 Section OverviewSection(const StudyFolder& study, const std::vector<CaseRow>& cases, int figures,

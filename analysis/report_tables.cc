@@ -40,11 +40,17 @@ Cell FieldCell(const std::string& field) {
   return Cell{Plain(field), ""};
 }
 
-std::string StatusCss(const std::string& status) {
-  std::string css = "status-";
-  for (char c : status) css += std::isalnum(static_cast<unsigned char>(c)) || c == '_' ? c : '_';
+namespace {
+// `prefix` and `value` with every character but letters, digits and '_' as '_'.
+std::string CssClass(std::string css, const std::string& value) {
+  for (char c : value) css += std::isalnum(static_cast<unsigned char>(c)) || c == '_' ? c : '_';
   return css;
 }
+}  // namespace
+
+std::string StatusCss(const std::string& status) { return CssClass("status-", status); }
+
+std::string FindingCss(const std::string& verdict) { return CssClass("verdict-", verdict); }
 
 Block TableOf(const CsvTextTable& table) {
   Block block;

@@ -21,6 +21,8 @@ Cell FieldCell(const std::string& field);
 
 // The stylesheet's class of a detector, fit or case status ("status-detected").
 std::string StatusCss(const std::string& status);
+// "verdict-reproduced" etc.: the class of a finding's verdict cell.
+std::string FindingCss(const std::string& verdict);
 
 // The style of a comparison or verdict of the rate study (the stylesheet's
 // status colours: green, amber, red).

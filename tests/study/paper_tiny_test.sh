@@ -17,7 +17,7 @@ first_ms=$(( ($(date +%s%N) - start) / 1000000 ))
 
 grep -q " 0 interrupted" "$work/first.txt" || { echo "FAIL: the first run was interrupted"; exit 1; }
 for file in asymptotic_states.csv asymptotic_states.h5 asymptotic_states_summary.csv \
-            ncl_fit.csv path_convergence.csv; do
+            ncl_fit.csv path_convergence.csv findings.csv; do
   [ -s "$out/$file" ] || { echo "FAIL: $out/$file is missing or empty"; exit 1; }
 done
 "$granasym" study status "$out" > "$work/status.txt"
@@ -33,6 +33,14 @@ echo "case folders: $cases, with detectors: $with_stages, cases in the table: $l
 if tail -n +2 "$out/asymptotic_states.csv" | awk -F, '$2 == "" || $3 == ""' | grep -q .; then
   echo "FAIL: rows without kind or status"; exit 1
 fi
+# The paper's claims, each with a verdict from the four and the numbers behind it.
+claims=$(tail -n +2 "$out/findings.csv" | wc -l)
+[ "$claims" -ge 16 ] || { echo "FAIL: findings.csv has $claims claims, expected 16"; exit 1; }
+verdicts=$(grep -oE ',(reproduced|partly|not_reproduced|not_tested),' "$out/findings.csv" | wc -l)
+[ "$verdicts" -eq "$claims" ] ||
+  { echo "FAIL: findings.csv: $verdicts of $claims claims have a valid verdict"; exit 1; }
+grep -q "findings (findings.csv):" "$work/first.txt" ||
+  { echo "FAIL: the run did not print its findings' verdicts"; exit 1; }
 # Model runs (Fig. 5) finished.
 models=$(find "$out/models" -name done.toml | wc -l)
 [ "$models" -ge 1 ] || { echo "FAIL: no model run finished"; exit 1; }

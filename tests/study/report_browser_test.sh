@@ -83,6 +83,11 @@ if grep -Eq '(src|href)="(https?:)?//' "$dir/index.html"; then
   echo "FAIL: index.html refers to something outside the study folder"; exit 1
 fi
 
+# The report opens with the findings (the paper's claims judged), before the overview.
+first_section=$(grep -o '<h2 id="[^"]*"' "$dir/index.html" | head -1)
+[[ "$first_section" == '<h2 id="findings'* ]] ||
+  { echo "FAIL: the report opens with $first_section, not the findings"; exit 1; }
+
 # The check, injected at the end of a copy of the page (the report itself has
 # no scripts). Lines "check: ..." go into a <pre> once the page has loaded.
 check_script='<script>
