@@ -6,7 +6,7 @@
 # Running it again computes only what is missing or changed.
 #
 #   ./run.sh                       the paper's programme, small scale
-#   ./run.sh PROGRAMME.toml [SCALE] another programme, or another scale (tiny, small, paper)
+#   ./run.sh PROGRAMME.toml [SCALE] another programme, or another scale (tiny, small, medium, paper)
 #   ./run.sh SCENE.toml            one DEM scene (out/SCENE.h5 and out/SCENE.csv)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"

@@ -52,7 +52,7 @@
 
 namespace granasym::study {
 
-enum class Scale { kTiny, kSmall, kPaper };
+enum class Scale { kTiny, kSmall, kMedium, kPaper };
 }  // namespace granasym::study
 
 template <>
@@ -60,6 +60,8 @@ struct granasym::EnumNames<granasym::study::Scale> {
   static constexpr EnumEntry<study::Scale> kEntries[] = {
       {study::Scale::kTiny, "tiny", "the whole programme in well under two minutes (CI)"},
       {study::Scale::kSmall, "small", "a few thousand spheres: the default main job"},
+      {study::Scale::kMedium, "medium",
+       "tens of thousands of spheres: between the main job and the paper (e.g. noise.toml)"},
       {study::Scale::kPaper, "paper", "the paper's 150 000 spheres in a 31 mm cell"},
   };
 };

@@ -31,8 +31,8 @@ if ! [[ "$shards" =~ ^[1-9][0-9]*$ ]]; then
 fi
 scale="${SCALE:-paper}"
 case "$scale" in
-  tiny | small | paper) ;;
-  *) echo "error: SCALE=$scale is not one of tiny, small, paper" >&2; exit 2 ;;
+  tiny | small | medium | paper) ;;
+  *) echo "error: SCALE=$scale is not one of tiny, small, medium, paper" >&2; exit 2 ;;
 esac
 programme="$(realpath -m "${PROGRAMME:-$root/studies/programmes/paper.toml}")"
 [ -f "$programme" ] || { echo "error: no programme file $programme (PROGRAMME)" >&2; exit 2; }
