@@ -13,8 +13,8 @@
 
 #include "analysis/estimate.h"
 #include "analysis/figure_context.h"
-#include "common/text_file.h"
 #include "common/statistics.h"
+#include "common/text_file.h"
 #include "study/state_table.h"
 
 namespace granasym::analysis {
@@ -30,7 +30,8 @@ using study::TableStatus;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kPi = 3.14159265358979323846;
 
-// ---------------------------------------------------------------- the study as the findings read it
+// ---------------------------------------------------------------- the study as the findings read
+// it
 
 // A state of the table with its case.
 struct State {
@@ -302,8 +303,7 @@ Finding CyclesRejoin(const Study& study) {
     if (!ncl.valid() || c.name == study.ctx().study_ncl) continue;
     const int64_t first = c.stages.front().first_row;
     for (size_t k = 1; k < c.stages.size(); ++k) {
-      if (std::abs(c.stage_psi_epsilon[k]) > 1 ||
-          std::abs(c.stage_psi_epsilon[k - 1] - 180) > 1)
+      if (std::abs(c.stage_psi_epsilon[k]) > 1 || std::abs(c.stage_psi_epsilon[k - 1] - 180) > 1)
         continue;
       const auto row = static_cast<size_t>(c.stages[k].last_row - first);
       if (row >= c.path.p.size() || !(c.path.p[row] > 0)) continue;
@@ -339,8 +339,8 @@ Finding CslParallel(const Study& study) {
     if (key.second == study.ctx().study_ncl && line.valid()) ncl_lambda.push_back(line.lambda);
   }
   if (csl.size() < 3 || ncl_lambda.empty())
-    return NotTested(f, fmt::format("{} detected critical states, {} NCL fits", csl.size(),
-                                    ncl_lambda.size()));
+    return NotTested(
+        f, fmt::format("{} detected critical states, {} NCL fits", csl.size(), ncl_lambda.size()));
   const LineFit line = VolumeLine(csl);
   Estimate csl_lambda = SlopeOf(line);
   csl_lambda.mean = -csl_lambda.mean;
@@ -355,9 +355,9 @@ Finding CslParallel(const Study& study) {
                   ? Verdict::kReproduced
               : (ratio >= 0.5 && ratio <= 1.5) ? Verdict::kPartly
                                                : Verdict::kNotReproduced;
-  f.numbers = fmt::format("λ(CSL) = {} through {} states ({}), λ*(NCL) = {}; ratio {}",
-                          WithInterval(csl_lambda), csl.size(), PRange(csl), WithInterval(ncl),
-                          Num(ratio));
+  f.numbers =
+      fmt::format("λ(CSL) = {} through {} states ({}), λ*(NCL) = {}; ratio {}",
+                  WithInterval(csl_lambda), csl.size(), PRange(csl), WithInterval(ncl), Num(ratio));
   return f;
 }
 
@@ -377,8 +377,8 @@ Finding OneCsl(const Study& study) {
     if (kind == "OC") oc.push_back(s);
   }
   if (nc.size() < 2 || oc.empty())
-    return NotTested(f, fmt::format("{} NC and {} OC critical states detected", nc.size(),
-                                    oc.size()));
+    return NotTested(f,
+                     fmt::format("{} NC and {} OC critical states detected", nc.size(), oc.size()));
   const LineFit volume = VolumeLine(nc), psi = PsiLine(nc);
   std::vector<double> dv, dpsi;
   for (const State& s : oc) {
@@ -393,8 +393,7 @@ Finding OneCsl(const Study& study) {
   f.numbers = fmt::format(
       "{} OC states against the lines through {} NC states: ln(1+e) off by {} (RMS), {} "
       "(largest); ψ_σ off by {}° (RMS), {}° (largest)",
-      oc.size(), nc.size(), Num(Rms(dv), 2), Num(worst_v, 2), Num(Rms(dpsi), 2),
-      Num(worst_psi, 2));
+      oc.size(), nc.size(), Num(Rms(dv), 2), Num(worst_v, 2), Num(Rms(dpsi), 2), Num(worst_psi, 2));
   return f;
 }
 
@@ -524,9 +523,9 @@ ByDirection MeansByDirection(const std::vector<State>& states) {
 std::string DirectionTable(const ByDirection& d) {
   std::string text;
   for (size_t k = 0; k < d.psi_epsilon.size(); ++k) {
-    text += fmt::format("{}{}°: {} state(s), ψ_σ {}°, OCR {}", k ? "; " : "", Num(d.psi_epsilon[k]),
-                        d.states.at(d.psi_epsilon[k]), Num(d.psi_sigma[k]),
-                        Num(std::exp(d.ln_ocr[k])));
+    text +=
+        fmt::format("{}{}°: {} state(s), ψ_σ {}°, OCR {}", k ? "; " : "", Num(d.psi_epsilon[k]),
+                    d.states.at(d.psi_epsilon[k]), Num(d.psi_sigma[k]), Num(std::exp(d.ln_ocr[k])));
   }
   return text;
 }
@@ -550,7 +549,8 @@ Finding CompressionConverge(const Study& study) {
   const std::map<double, int> joined = JoinedByPsi(study, TableKind::kCompression);
   std::set<double> directions;
   for (const State& s : study.main()) {
-    if (s.row->kind == TableKind::kCompression) directions.insert(std::round(s.row->psi_epsilon_deg));
+    if (s.row->kind == TableKind::kCompression)
+      directions.insert(std::round(s.row->psi_epsilon_deg));
   }
   if (directions.empty()) return NotTested(f, "no compression paths");
   int directions_joined = 0;
@@ -562,8 +562,9 @@ Finding CompressionConverge(const Study& study) {
   }
   const bool converge = directions_joined == static_cast<int>(directions.size());
   const bool enough = d.psi_epsilon.size() >= 2;
-  const int holds = converge + (enough && Increasing(d.psi_sigma)) + (enough && Increasing(d.ln_ocr));
-  f.verdict = holds == 3 ? Verdict::kReproduced
+  const int holds =
+      converge + (enough && Increasing(d.psi_sigma)) + (enough && Increasing(d.ln_ocr));
+  f.verdict = holds == 3  ? Verdict::kReproduced
               : holds > 0 ? Verdict::kPartly
                           : Verdict::kNotReproduced;
   f.numbers = fmt::format("joined pairs per ψ_ε: {}; stage ends at {}: {}", joins, PRange(ends),
@@ -595,10 +596,11 @@ Finding ExtensionLines(const Study& study) {
   }
   const bool rising = ocr.size() >= 2 && Increasing(ocr);
   f.verdict = detected >= 3 && joined_directions >= 2 && rising ? Verdict::kReproduced
-              : detected >= 2 || joined_directions >= 1       ? Verdict::kPartly
-                                                              : Verdict::kNotReproduced;
+              : detected >= 2 || joined_directions >= 1         ? Verdict::kPartly
+                                                                : Verdict::kNotReproduced;
   std::string joins;
-  for (const auto& [psi, n] : joined) joins += fmt::format("{}{}° {}", joins.empty() ? "" : ", ", Num(psi), n);
+  for (const auto& [psi, n] : joined)
+    joins += fmt::format("{}{}° {}", joins.empty() ? "" : ", ", Num(psi), n);
   f.numbers = fmt::format("detected: {}; joined pairs: {}",
                           d.psi_epsilon.empty() ? "none" : DirectionTable(d),
                           joins.empty() ? "none" : joins);
@@ -616,7 +618,8 @@ Finding ExtensionPsiIndependent(const Study& study) {
   const std::vector<State> states = study.Detected(TableKind::kExtension);
   std::vector<double> levels;
   for (const State& s : states) levels.push_back(s.row->ln_1_plus_e);
-  if (levels.size() < 3) return NotTested(f, fmt::format("{} detected extension states", levels.size()));
+  if (levels.size() < 3)
+    return NotTested(f, fmt::format("{} detected extension states", levels.size()));
   std::sort(levels.begin(), levels.end());
   const double median = levels[levels.size() / 2];
   auto spread = [&](bool upper, int* directions) {
@@ -629,14 +632,15 @@ Finding ExtensionPsiIndependent(const Study& study) {
     for (const auto& [psi, v] : by_psi) means.push_back(Mean(v));
     *directions = static_cast<int>(means.size());
     if (means.size() < 2) return kNaN;
-    return *std::max_element(means.begin(), means.end()) - *std::min_element(means.begin(), means.end());
+    return *std::max_element(means.begin(), means.end()) -
+           *std::min_element(means.begin(), means.end());
   };
   int upper_n = 0, lower_n = 0;
   const double upper = spread(true, &upper_n), lower = spread(false, &lower_n);
   if (upper_n < 2)
-    return NotTested(f, fmt::format("{} ψ_ε with detected states above ln(1+e) = {}", upper_n,
-                                    Num(median, 4)));
-  f.verdict = upper > 3                        ? Verdict::kNotReproduced
+    return NotTested(
+        f, fmt::format("{} ψ_ε with detected states above ln(1+e) = {}", upper_n, Num(median, 4)));
+  f.verdict = upper > 3                               ? Verdict::kNotReproduced
               : std::isfinite(lower) && lower > upper ? Verdict::kReproduced
                                                       : Verdict::kPartly;
   f.numbers = fmt::format(
@@ -842,8 +846,7 @@ Finding DrainedPeakOnExtension(const Study& study) {
       double psi_sigma = kNaN, ln_ocr = kNaN;
       if (!asymptote(pick.psi_epsilon_deg, &psi_sigma, &ln_ocr)) continue;
       const double d_psi = pick.psi_sigma_deg - psi_sigma;
-      const double d_ocr =
-          std::log(ncl.EquivalentPressure(pick.ln_1_plus_e) / pick.p_kpa) - ln_ocr;
+      const double d_ocr = std::log(ncl.EquivalentPressure(pick.ln_1_plus_e) / pick.p_kpa) - ln_ocr;
       ++picks;
       close_psi += std::abs(d_psi) <= 3;
       close += std::abs(d_psi) <= 3 && std::abs(d_ocr) <= 0.5;
@@ -853,8 +856,9 @@ Finding DrainedPeakOnExtension(const Study& study) {
     }
   }
   if (picks == 0)
-    return NotTested(f, "no drained test from an OC state at σ_r ≤ 10 kPa crossing ψ_ε = 95° or "
-                        "100° with a detected extension state of that ψ_ε");
+    return NotTested(f,
+                     "no drained test from an OC state at σ_r ≤ 10 kPa crossing ψ_ε = 95° or "
+                     "100° with a detected extension state of that ψ_ε");
   f.verdict = close == picks  ? Verdict::kReproduced
               : close_psi > 0 ? Verdict::kPartly
                               : Verdict::kNotReproduced;
@@ -914,11 +918,11 @@ Finding FrictionZero(const Study& study) {
 }
 
 Finding TimeStep(const Study& study) {
-  Finding f = Make("time_step_independent", "Sec. 5.2",
-                   "Repeating a test with Δt/5 gives the same result.",
-                   "the critical state of the Δt/5 sample against the same case at the "
-                   "programme's Δt: reproduced if within 1° of ψ_σ, 0.005 of ln(1+e) and 0.1 of "
-                   "ln p; partly if within 2°, 0.01 and 0.2; else not reproduced");
+  Finding f =
+      Make("time_step_independent", "Sec. 5.2", "Repeating a test with Δt/5 gives the same result.",
+           "the critical state of the Δt/5 sample against the same case at the "
+           "programme's Δt: reproduced if within 1° of ψ_σ, 0.005 of ln(1+e) and 0.1 of "
+           "ln p; partly if within 2°, 0.01 and 0.2; else not reproduced");
   if (study.fine_step().empty()) return NotTested(f, "no case with a smaller time step");
   const auto pairs = Pairs(study, study.fine_step(), WithoutPrefix);
   if (pairs.empty()) return NotTested(f, "no detected Δt/5 critical state with a pair");
@@ -959,10 +963,9 @@ Finding RateEffect(const Study& study) {
   f.verdict = falls && median > 1e-2 ? Verdict::kReproduced
               : slope.mean < 0       ? Verdict::kPartly
                                      : Verdict::kNotReproduced;
-  f.numbers = fmt::format(
-      "dψ_σ/d ln p = {}° through {} states ({}); I(d_max) {}–{} (median {})",
-      WithInterval(slope), csl.size(), PRange(csl),
-      Num(inertial.front(), 2), Num(inertial.back(), 2), Num(median, 2));
+  f.numbers = fmt::format("dψ_σ/d ln p = {}° through {} states ({}); I(d_max) {}–{} (median {})",
+                          WithInterval(slope), csl.size(), PRange(csl), Num(inertial.front(), 2),
+                          Num(inertial.back(), 2), Num(median, 2));
   return f;
 }
 
@@ -970,11 +973,21 @@ Finding RateEffect(const Study& study) {
 
 std::vector<Finding> ComputeFindings(const figures::Context& context) {
   const Study study(context);
-  return {NclLinear(study),         CyclesRejoin(study),        CslParallel(study),
-          OneCsl(study),            PeakGrowsWithOcr(study),    DrainedConverge(study),
-          CompressionConverge(study), ExtensionLines(study),    ExtensionPsiIndependent(study),
-          LimitD(study),            AsbsShape(study),           PathsBoundedByAsbs(study),
-          DrainedPeakOnExtension(study), FrictionZero(study),   TimeStep(study),
+  return {NclLinear(study),
+          CyclesRejoin(study),
+          CslParallel(study),
+          OneCsl(study),
+          PeakGrowsWithOcr(study),
+          DrainedConverge(study),
+          CompressionConverge(study),
+          ExtensionLines(study),
+          ExtensionPsiIndependent(study),
+          LimitD(study),
+          AsbsShape(study),
+          PathsBoundedByAsbs(study),
+          DrainedPeakOnExtension(study),
+          FrictionZero(study),
+          TimeStep(study),
           RateEffect(study)};
 }
 
@@ -999,8 +1012,8 @@ std::string FindingsLine(const std::vector<Finding>& findings) {
   std::map<Verdict, int> counts;
   for (const Finding& f : findings) ++counts[f.verdict];
   std::string text = "findings (" + std::string(kFindingsFile) + "):";
-  for (Verdict v : {Verdict::kReproduced, Verdict::kPartly, Verdict::kNotReproduced,
-                    Verdict::kNotTested}) {
+  for (Verdict v :
+       {Verdict::kReproduced, Verdict::kPartly, Verdict::kNotReproduced, Verdict::kNotTested}) {
     text += fmt::format(" {} {}{}", counts[v], ToString(v), v == Verdict::kNotTested ? "" : ",");
   }
   return text + "\n";

@@ -186,7 +186,8 @@ TEST(Findings, ExtensionStatesWithRisingOcrOnJoinedLinesAreNormalExtensionLines)
 }
 
 TEST(Findings, TheCsvNamesEveryFindingWithItsVerdict) {
-  const fs::path dir = fs::temp_directory_path() / ("granasym_findings_" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("granasym_findings_" + std::to_string(getpid()));
   fs::create_directories(dir);
   Context ctx = Study();
   ctx.cases.push_back(NclCase(0.0));
