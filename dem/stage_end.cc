@@ -61,6 +61,13 @@ std::optional<std::string> AsymptoteStop(const AsymptoteDetector::Result& result
       result.window_lnp);
 }
 
+std::string AfterLastHeld(const AsymptoteDetector::Result& end, double p_end_kpa,
+                          double floor_kpa) {
+  return end.below_floor || !(p_end_kpa >= floor_kpa)
+             ? fmt::format("left the valid range p >= {:g} kPa", floor_kpa)
+             : std::string("drifted");
+}
+
 StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t first_row,
                         const AsymptoteDetector& detector, int64_t detector_first_row,
                         const std::string& reason, bool failed) {
@@ -132,10 +139,7 @@ StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t fi
         "; the extension asymptote last held over p {:.4g}-{:.4g} kPa up to stage strain {:.4g}, "
         "then {} (p {:.4g} kPa at the end)",
         result.p_min_kpa, result.p_max_kpa, result.window_end_strain,
-        end_result.below_floor || !(p_end >= stage.asymptote.floor_kpa)
-            ? fmt::format("left the valid range p >= {:g} kPa", stage.asymptote.floor_kpa)
-            : std::string("drifted"),
-        p_end);
+        AfterLastHeld(end_result, p_end, stage.asymptote.floor_kpa), p_end);
   }
   record.asymptote = a;
   record.asymptote_criterion = stage.asymptote.Describe();
