@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <sstream>
 
 #include "common/error.h"
 #include "common/hdf5_file.h"
@@ -13,6 +14,7 @@
 #include "common/statistics.h"
 #include "common/time_series.h"
 #include "dem/run_record_names.h"
+#include "dem/stage_end.h"
 #include "dem/stage_validity.h"
 #include "study/state_table.h"
 
@@ -21,19 +23,34 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The fields of a path that are averaged, with the band kept for some.
+// The fields of a path that are averaged, with the band kept for some;
+// those that count from the path's first row count from the mean path's.
 struct Field {
   std::vector<double> StagePath::*values;
   std::vector<double> MeanPath::*band;  // nullptr: no band
+  bool from_first;
 };
 constexpr Field kFields[] = {
-    {&StagePath::psi_sigma_deg, &MeanPath::psi_sigma_band_deg},
-    {&StagePath::log_p, &MeanPath::log_p_band},
-    {&StagePath::log_volume, &MeanPath::log_volume_band},
-    {&StagePath::eps_a, nullptr},
-    {&StagePath::eps_r, nullptr},
-    {&StagePath::time, nullptr},
+    {&StagePath::psi_sigma_deg, &MeanPath::psi_sigma_band_deg, false},
+    {&StagePath::log_p, &MeanPath::log_p_band, false},
+    {&StagePath::log_volume, &MeanPath::log_volume_band, false},
+    {&StagePath::eps_a, nullptr, true},
+    {&StagePath::eps_r, nullptr, true},
+    {&StagePath::time, nullptr, true},
 };
+
+constexpr char kAsymptoteDetectedReason[] = "asymptotic state detected";  // dem::AsymptoteStop
+
+// The value of `key` in a canonical scene ("key = value" lines); empty when
+// it has none.
+std::string CanonicalValue(const std::string& canonical, const std::string& key) {
+  std::istringstream lines(canonical);
+  const std::string prefix = key + " = ";
+  for (std::string line; std::getline(lines, line);) {
+    if (line.compare(0, prefix.size(), prefix) == 0) return line.substr(prefix.size());
+  }
+  return {};
+}
 
 // Whether two stage groups of a result hold the same attribute (both
 // without it, or with equal values).
@@ -125,9 +142,13 @@ std::string EnsembleMessage(const std::vector<ReplicateStage>& replicates, const
                             const MeanPathDetection& detection, const dem::AsymptoteRecord& a) {
   const dem::AsymptoteDetector::Result& w = detection.result;
   const double range = mean.mean.strain.empty() ? 0.0 : mean.mean.strain.back();
+  const bool at_ends = mean.alignment == PathAlignment::kStageEnds;
   std::string text = fmt::format(
-      "ensemble mean of {} replicates: their common range of {:.3g} of strain at {:.3g}",
-      replicates.size(), range, a.criterion.sample_strain);
+      "ensemble mean of {} replicates, aligned at the stage {}: their common range of {:.3g} of "
+      "strain at {:.3g}",
+      replicates.size(),
+      at_ends ? "ends (the stage stops at its asymptote)" : "starts (a prescribed path)", range,
+      a.criterion.sample_strain);
   if (!(w.window_strain > 0)) return text + "; no full window";
   text += fmt::format(
       "; 95 % band over the window: psi_sigma +-{:.3g} deg, ln(1+e) +-{:.3g}; {} (p {:.4g} kPa, "
@@ -136,9 +157,15 @@ std::string EnsembleMessage(const std::vector<ReplicateStage>& replicates, const
       w.detected() ? "the criterion held" : "the last window", a.mean_stress_kpa, a.psi_sigma_deg,
       w.window_strain, w.window_lnp);
   if (detection.held_before_end) {
+    // As dem::RecordStage says it of a run's path.
+    const double p_end = std::exp(mean.mean.log_p.back());
     text += fmt::format(
-        "; the extension asymptote last held over p {:.4g}-{:.4g} kPa up to stage strain {:.4g}",
-        w.p_min_kpa, w.p_max_kpa, w.window_end_strain);
+        "; the extension asymptote last held over p {:.4g}-{:.4g} kPa up to {}, then {} (p {:.4g} "
+        "kPa at the end)",
+        w.p_min_kpa, w.p_max_kpa,
+        at_ends ? fmt::format("{:.4g} of strain before the stage end", range - w.window_end_strain)
+                : fmt::format("stage strain {:.4g}", w.window_end_strain),
+        dem::AfterLastHeld(detection.end, p_end, a.criterion.floor_kpa), p_end);
   }
   return text;
 }
@@ -190,29 +217,57 @@ int64_t DetectionFirstRow(const Hdf5File& file, const std::vector<dem::StageReco
   return stages[k].first_row;
 }
 
-MeanPath AveragePaths(const std::vector<StagePath>& paths, double step) {
+bool StopsAtAsymptote(const Hdf5File& file, const std::vector<dem::StageRecord>& stages,
+                      size_t index) {
+  namespace r = dem::record;
+  const std::string scene = std::string(r::kProvenance) + "/" + r::kSceneCanonical;
+  if (file.Exists(scene)) {
+    const std::string canonical = file.ReadString(scene);
+    const std::string prefix = fmt::format("stage[{}].", index);
+    const std::string stop = CanonicalValue(canonical, prefix + "stop.asymptote");
+    // The scene's stage `index` is the record's (a run records its scene's stages).
+    if (!stop.empty() &&
+        CanonicalValue(canonical, prefix + "name") == fmt::format("\"{}\"", stages[index].name)) {
+      return stop == "true";
+    }
+  }
+  return stages[index].stop_reason.rfind(kAsymptoteDetectedReason, 0) == 0;
+}
+
+MeanPath AveragePaths(const std::vector<StagePath>& paths, double step, PathAlignment alignment) {
   MeanPath out;
   out.paths = static_cast<int>(paths.size());
-  double end = std::numeric_limits<double>::infinity();
+  out.alignment = alignment;
+  double range = std::numeric_limits<double>::infinity();
   for (const StagePath& path : paths) {
     if (path.strain.empty()) return out;
-    end = std::min(end, path.strain.back());
+    range = std::min(range, path.strain.back());
   }
   if (paths.empty() || !(step > 0)) return out;
-  const size_t points = static_cast<size_t>(std::floor(end / step * (1 + 1e-12))) + 1;
+  const size_t points = static_cast<size_t>(std::floor(range / step * (1 + 1e-12))) + 1;
+  const double span = static_cast<double>(points - 1) * step;
+  // Path j's strain at the mean path's strain s.
+  auto at = [&](size_t j, double s) {
+    return alignment == PathAlignment::kStageEnds ? paths[j].strain.back() - (span - s) : s;
+  };
   std::vector<double> values(paths.size());
-  for (size_t k = 0; k < points; ++k) {
-    const double strain = static_cast<double>(k) * step;
-    out.mean.strain.push_back(strain);
-    for (const Field& field : kFields) {
+  for (const Field& field : kFields) {
+    std::vector<double> first(paths.size(), 0.0);
+    for (size_t j = 0; j < paths.size() && field.from_first; ++j) {
+      first[j] = Smoothed(paths[j].strain, paths[j].*field.values, at(j, 0.0), 0.0);
+    }
+    for (size_t k = 0; k < points; ++k) {
+      const double strain = static_cast<double>(k) * step;
       for (size_t j = 0; j < paths.size(); ++j) {
-        values[j] = Smoothed(paths[j].strain, paths[j].*field.values, strain, 0.0);
+        values[j] =
+            Smoothed(paths[j].strain, paths[j].*field.values, at(j, strain), 0.0) - first[j];
       }
       const Interval interval = MeanInterval95(values);
       (out.mean.*field.values).push_back(interval.mean);
       if (field.band) (out.*field.band).push_back(interval.half_width);
     }
   }
+  for (size_t k = 0; k < points; ++k) out.mean.strain.push_back(static_cast<double>(k) * step);
   return out;
 }
 
@@ -238,9 +293,9 @@ MeanPathDetection DetectOnMeanPath(const MeanPath& path, const dem::AsymptoteCri
     detector.Track();
   }
   MeanPathDetection detection;
-  const dem::AsymptoteDetector::Result end = detector.Evaluate();
-  detection.held_before_end = !end.detected() && detector.last_held().has_value();
-  detection.result = detection.held_before_end ? *detector.last_held() : end;
+  detection.end = detector.Evaluate();
+  detection.held_before_end = !detection.end.detected() && detector.last_held().has_value();
+  detection.result = detection.held_before_end ? *detector.last_held() : detection.end;
   const dem::AsymptoteDetector::Result& w = detection.result;
   std::vector<double> psi_band, volume_band;
   for (size_t k = 0; k < m.strain.size() && w.window_strain > 0; ++k) {
@@ -260,11 +315,16 @@ dem::StageRecord EnsembleStageRecord(const std::vector<ReplicateStage>& replicat
     GRANASYM_CHECK(r.record.asymptote) << "stage " << r.record.name << " has no detector";
   }
   std::vector<StagePath> paths;
-  for (const ReplicateStage& r : replicates) paths.push_back(r.path);
+  bool at_ends = true;
+  for (const ReplicateStage& r : replicates) {
+    paths.push_back(r.path);
+    at_ends = at_ends && r.stops_at_asymptote;
+  }
   const double step = RowSpacing(paths);
   dem::AsymptoteCriterion criterion = replicates.front().record.asymptote->criterion;
   if (step > 0) criterion.sample_strain = step;
-  const MeanPath mean = AveragePaths(paths, step);
+  const MeanPath mean =
+      AveragePaths(paths, step, at_ends ? PathAlignment::kStageEnds : PathAlignment::kStageStarts);
   const MeanPathDetection detection = DetectOnMeanPath(mean, criterion);
 
   dem::AsymptoteRecord a;

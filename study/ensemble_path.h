@@ -11,6 +11,20 @@
 // strain), so strain is the one axis that all replicates share exactly;
 // ln p is not monotone along extension paths at the paper's rate (dense
 // flows whose p barely moves) nor along isochoric paths.
+//
+// Where the replicates are aligned on that axis depends on how the stage
+// ends. A stage that stops when its own detector holds (`stop.asymptote =
+// true`: isochoric ψ_ε = 90°, drained triaxial stages) ends each replicate
+// at its own strain, the end of its first stationary window; aligned at the
+// stage starts, the common range would end at the first replicate's stop,
+// while the others are still in their transient. Such stages are aligned at
+// their ENDS: the axis is the strain remaining to the stage end, the common
+// range is counted back from the end (down to the shortest replicate), and
+// the mean path's last window averages the replicates' stationary states.
+// Every other stage follows a prescribed path (compression to a target p,
+// extension to a strain norm or the floor, the NCL), on which the same
+// strain from the stage start is the same point of the path: those are
+// aligned at their STARTS.
 #pragma once
 
 #include <cstdint>
@@ -46,16 +60,35 @@ StagePath ReadStagePath(const TimeSeries& series, int64_t first_row, int64_t las
 int64_t DetectionFirstRow(const Hdf5File& file, const std::vector<dem::StageRecord>& stages,
                           size_t index);
 
+// Whether stage `index` of a result stops when its own detector holds: its
+// `stop.asymptote` in the canonical scene of the result's provenance; where
+// that is not recorded, whether its stop reason says that the asymptotic
+// state was detected.
+bool StopsAtAsymptote(const Hdf5File& file, const std::vector<dem::StageRecord>& stages,
+                      size_t index);
+
+// Where paths are aligned on the common strain axis (see above).
+enum class PathAlignment {
+  kStageStarts,  // at the same strain from the stage start (prescribed paths)
+  kStageEnds,    // at the same strain before the stage end (stops at the asymptote)
+};
+
 // The mean of paths on a common strain grid, with the half-width of the
 // 95 % interval of the mean over the paths (Student t) at each point.
 struct MeanPath {
   StagePath mean;
   std::vector<double> psi_sigma_band_deg, log_p_band, log_volume_band;
   int paths = 0;
+  PathAlignment alignment = PathAlignment::kStageStarts;
 };
-// The grid runs 0, step, 2 step, ... over the common strain range (up to the
-// shortest path's end); each path is interpolated linearly in strain.
-MeanPath AveragePaths(const std::vector<StagePath>& paths, double step);
+// The mean path's strain runs 0, step, 2 step, ... over the common range,
+// the shortest path's length. At the stage starts, its point at strain s is
+// each path's at s; at the stage ends, each path's at the same strain before
+// its end (the last point: every path's end). Each path is interpolated
+// linearly in strain; ε_a, ε_r and time count from the mean path's first
+// point, as a path's from its first row.
+MeanPath AveragePaths(const std::vector<StagePath>& paths, double step,
+                      PathAlignment alignment = PathAlignment::kStageStarts);
 // The paths' output interval: the median strain between their rows (NaN
 // when none).
 double RowSpacing(const std::vector<StagePath>& paths);
@@ -66,6 +99,7 @@ double RowSpacing(const std::vector<StagePath>& paths);
 // the last that held before it when it does not (dem::RecordStage).
 struct MeanPathDetection {
   dem::AsymptoteDetector::Result result;
+  dem::AsymptoteDetector::Result end;  // the last window (result, unless held_before_end)
   bool held_before_end = false;
   // The mean over the window's points of the bands' half-widths (NaN
   // without a window).
@@ -73,19 +107,25 @@ struct MeanPathDetection {
 };
 MeanPathDetection DetectOnMeanPath(const MeanPath& path, const dem::AsymptoteCriterion& criterion);
 
-// One replicate's record of a detector-carrying stage, and its path.
+// One replicate's record of a detector-carrying stage, its path, and
+// whether the stage stops at its asymptote (StopsAtAsymptote).
 struct ReplicateStage {
   dem::StageRecord record;
   StagePath path;
+  bool stops_at_asymptote = false;
 };
 // The stage record of the replicates' mean path (two replicates or more,
-// each with an asymptote record): the criterion of the stage sampled at
-// the output interval; status from the detector, vetoed as in the DEM run
-// (invalid above 10 % overlap, a gas below the floor or when every
-// replicate was one and the mean did not hold); coordination, inertial
-// numbers the mean and the overlap the largest of the replicates' states;
-// the union of their validity flags; the stop reason "ensemble mean of N
-// replicates: ..." with the bands over the window.
+// each with an asymptote record): aligned at the stage ends where every
+// replicate's stage stops at its asymptote, else at the stage starts; the
+// criterion of the stage sampled at the output interval; status from the
+// detector, vetoed as in the DEM run (dem::RecordStage: invalid above 10 %
+// overlap; an extension state that held above the floor before the end
+// keeps its detection and says where the path left the valid range; else a
+// gas below the floor, or when every replicate was one and the mean did not
+// hold); coordination, inertial numbers the mean and the overlap the
+// largest of the replicates' states; the union of their validity flags; the
+// stop reason "ensemble mean of N replicates: ..." with the alignment and
+// the bands over the window.
 dem::StageRecord EnsembleStageRecord(const std::vector<ReplicateStage>& replicates);
 
 }  // namespace granasym::study

@@ -715,7 +715,8 @@ void AddToEnsemble(const CaseFolder& c, const Hdf5File& file,
     tables->ensembles.push_back(std::move(group));
   }
   ReplicateStage replicate{
-      stage, ReadStagePath(series, DetectionFirstRow(file, stages, index), stage.last_row)};
+      stage, ReadStagePath(series, DetectionFirstRow(file, stages, index), stage.last_row),
+      StopsAtAsymptote(file, stages, index)};
   replicate.record.end_state.reset();
   tables->ensembles[tables->ensemble_of[key]].replicates.push_back(std::move(replicate));
 }

@@ -1,8 +1,10 @@
 // The replicates' ensemble-mean path of a stage (study/ensemble_path.h):
 // the common strain axis, the average with its band over replicates of
-// different lengths, the detector on the mean path (a mean that holds where
-// the replicates drift; an extension path that holds, then falls below the
-// floor), and the chain of stages whose samples the detector carries on.
+// different lengths (aligned at the stage starts or ends), the detector on
+// the mean path (a mean that holds where the replicates drift; replicates
+// that stop at their own detections; an extension path that holds, then
+// falls below the floor), which stages stop at their asymptote, and the
+// chain of stages whose samples the detector carries on.
 #include "study/ensemble_path.h"
 
 #include <gtest/gtest.h>
@@ -112,6 +114,25 @@ TEST(EnsemblePath, ReplicatesOfDifferentLengthsAreAveragedOverTheirCommonRange) 
     EXPECT_NEAR(mean.log_volume_band[k], 0.04303 / std::sqrt(3.0), 1e-5) << s;
   }
   EXPECT_TRUE(AveragePaths({paths[0], StagePath{}}, 0.002).mean.strain.empty());
+
+  // Aligned at the stage ends: the mean's strain s is each path's at 0.4 − s
+  // before its end, so its last point is every path's end; ε_a, ε_r and time
+  // count from its first point.
+  const MeanPath ends = AveragePaths(paths, 0.002, PathAlignment::kStageEnds);
+  EXPECT_EQ(ends.alignment, PathAlignment::kStageEnds);
+  ASSERT_EQ(ends.mean.strain.size(), 201u);
+  EXPECT_NEAR(ends.mean.strain.back(), 0.4, 1e-12);
+  // Path k ends at 0.5, 0.4 and 0.45: at mean strain s, the paths are at
+  // s + 0.1, s and s + 0.05, with offsets −1, 0, 1.
+  for (size_t k = 0; k < ends.mean.strain.size(); k += 50) {
+    const double s = ends.mean.strain[k];
+    EXPECT_NEAR(ends.mean.psi_sigma_deg[k], 10.0 + 5.0 * (s + 0.05), 1e-9) << s;
+    EXPECT_NEAR(ends.mean.log_p[k], 3.0 - (s + 0.05), 1e-9) << s;
+    EXPECT_NEAR(ends.mean.time[k], s / 167.0, 1e-9) << s;
+    EXPECT_NEAR(ends.mean.eps_a[k], AxisymmetricRate::FromAngle(30.0 * kDegree, 1.0).axial * s,
+                1e-9)
+        << s;
+  }
 }
 
 // The record of a replicate's detector-carrying stage.
@@ -130,6 +151,86 @@ dem::StageRecord ReplicateRecord(const dem::AsymptoteCriterion& criterion,
   record.asymptote = a;
   record.validity.flags = {dem::ValidityFlag::kGas};
   return record;
+}
+
+// An isochoric path (ψ_ε = 90°) towards the critical state p = 100 kPa,
+// ψ_σ = 25°, from 200 kPa and 33°, over a transient that ends at strain
+// `transient` (ln(1+e) stays 0.55), stopped where the stage's detector (at
+// the output interval, 0.002) first holds, as a stage with `stop.asymptote`.
+constexpr double kCriticalLogP = 4.605170185988092;  // ln 100
+StagePath StoppedAtItsAsymptote(double transient, const dem::AsymptoteCriterion& criterion) {
+  auto gap = [transient](double s) { return std::pow(std::max(0.0, 1.0 - s / transient), 2); };
+  const StagePath path =
+      MakePath({[gap](double s) { return 25.0 + 8.0 * gap(s); },
+                [gap](double s) { return kCriticalLogP + std::log(2.0) * gap(s); },
+                [](double) { return 0.55; }},
+               2.0, 0.002, 90.0);
+  dem::AsymptoteDetector detector(criterion);
+  StagePath stopped;
+  for (size_t k = 0; k < path.strain.size(); ++k) {
+    for (std::vector<double> StagePath::*field :
+         {&StagePath::strain, &StagePath::psi_sigma_deg, &StagePath::log_p, &StagePath::log_volume,
+          &StagePath::eps_a, &StagePath::eps_r, &StagePath::time}) {
+      (stopped.*field).push_back((path.*field)[k]);
+    }
+    detector.Add({path.strain[k], path.psi_sigma_deg[k] * kDegree, path.log_p[k],
+                  path.log_volume[k], path.eps_a[k], path.eps_r[k], path.time[k]});
+    if (detector.Evaluate().detected()) break;
+  }
+  return stopped;
+}
+
+TEST(EnsemblePath, ReplicatesThatStopAtTheirOwnAsymptoteAreAlignedAtTheirEnds) {
+  dem::AsymptoteCriterion criterion = dem::AsymptoteCriterion::For(dem::PathKind::kIsochoric);
+  criterion.sample_strain = 0.002;
+  std::vector<ReplicateStage> replicates;
+  for (const double transient : {0.2, 0.35, 0.5}) {
+    ReplicateStage r{ReplicateRecord(criterion, dem::AsymptoteStatus::kDetected),
+                     StoppedAtItsAsymptote(transient, criterion), true};
+    r.record.name = "psi90";
+    r.record.asymptote->mechanical_coordination = 4.2;  // no gas
+    r.record.validity.flags.clear();
+    replicates.push_back(r);
+  }
+  // Each replicate stops where its own window held, past its transient:
+  // at different strains, the first before the last has left its transient.
+  const double first_end = replicates[0].path.strain.back();
+  EXPECT_GT(first_end, 0.2);
+  EXPECT_LT(first_end, 0.5);
+  EXPECT_GT(replicates[2].path.strain.back() - first_end, 0.2);
+
+  // Each replicate's own state: its last window, which held.
+  double log_p = 0, psi_sigma_deg = 0;
+  for (const ReplicateStage& r : replicates) {
+    const MeanPathDetection alone = DetectOnMeanPath(AveragePaths({r.path}, 0.002), criterion);
+    EXPECT_EQ(alone.result.status, dem::AsymptoteStatus::kDetected);
+    log_p += std::log(alone.result.mean_stress_kpa) / 3.0;
+    psi_sigma_deg += alone.result.psi_sigma / kDegree / 3.0;
+  }
+
+  const dem::StageRecord record = EnsembleStageRecord(replicates);
+  ASSERT_TRUE(record.asymptote);
+  const dem::AsymptoteRecord& a = *record.asymptote;
+  EXPECT_EQ(a.status, dem::AsymptoteStatus::kDetected) << record.stop_reason;
+  EXPECT_NEAR(a.window_strain, 0.15, 0.003);
+  // The mean's last window averages the replicates' last windows: their
+  // states, within 1.5 % and 0.2° of the stationary one (as close as their
+  // own detectors stop to it).
+  EXPECT_NEAR(std::log(a.mean_stress_kpa), log_p, 1e-9);
+  EXPECT_NEAR(a.psi_sigma_deg, psi_sigma_deg, 1e-9);
+  EXPECT_NEAR(a.mean_stress_kpa, 100.0, 1.5);
+  EXPECT_NEAR(a.psi_sigma_deg, 25.0, 0.2);
+  EXPECT_NEAR(a.void_ratio, std::expm1(0.55), 1e-12);
+  EXPECT_NEAR(a.psi_epsilon_deg, 90.0, 1e-6);
+  EXPECT_NE(record.stop_reason.find("aligned at the stage ends"), std::string::npos)
+      << record.stop_reason;
+  // Over the common range from the starts, the mean ends where two
+  // replicates are still in their transients: p still falls.
+  for (ReplicateStage& r : replicates) r.stops_at_asymptote = false;
+  const dem::StageRecord starts = EnsembleStageRecord(replicates);
+  EXPECT_EQ(starts.asymptote->status, dem::AsymptoteStatus::kDrifting) << starts.stop_reason;
+  EXPECT_GT(starts.asymptote->mean_stress_kpa, 110.0);
+  EXPECT_NE(starts.stop_reason.find("aligned at the stage starts"), std::string::npos);
 }
 
 // An extension path (ψ_ε = 100°) from 50 kPa: ψ_σ stationary at 40° with
@@ -160,7 +261,13 @@ TEST(EnsemblePath, AnExtensionMeanPathKeepsItsLastWindowAboveTheFloor) {
   EXPECT_NEAR(a.mechanical_coordination, 2.2, 1e-12);
   EXPECT_EQ(record.validity.flags, std::vector<dem::ValidityFlag>{dem::ValidityFlag::kGas});
   EXPECT_NE(record.stop_reason.find("ensemble mean of 3 replicates"), std::string::npos);
+  EXPECT_NE(record.stop_reason.find("aligned at the stage starts"), std::string::npos);
+  // As a replicate's record says it (dem::RecordStage).
   EXPECT_NE(record.stop_reason.find("last held over p"), std::string::npos);
+  EXPECT_NE(record.stop_reason.find("then left the valid range p >= 0.5 kPa (p 0.1239 kPa at the "
+                                    "end)"),
+            std::string::npos)
+      << record.stop_reason;
 
   // A path that is below the floor before a window fills: no state, and a
   // gas where every replicate was one.
@@ -226,6 +333,39 @@ TEST(EnsemblePath, TheDetectorsSamplesStartAtTheFirstStageOfTheirPath) {
   stages[1].asymptote_criterion += " (another criterion)";
   EXPECT_EQ(DetectionFirstRow(read, stages, 1), 10);
   fs::remove(path);
+}
+
+// Whether a stage stops at its asymptote: its scene's stop, or without one
+// recorded, its stop reason.
+TEST(EnsemblePath, AStageStopsAtItsAsymptoteWhereItsSceneSaysSo) {
+  namespace r = dem::record;
+  const std::string path = (fs::temp_directory_path() / "granasym_ensemble_stop.h5").string();
+  std::vector<dem::StageRecord> stages(2);
+  stages[0].name = "p20";
+  stages[0].stop_reason = "mean stress reached";
+  stages[1].name = "psi90";
+  stages[1].stop_reason = "strain norm reached";  // the scene decides, not how it ended
+  Hdf5File file = Hdf5File::CreateAtomic(path);
+  file.CreateGroup(r::kProvenance);
+  file.WriteString(std::string(r::kProvenance) + "/" + r::kSceneCanonical,
+                   "stage[0].name = \"p20\"\nstage[0].stop.asymptote = false\n"
+                   "stage[0].stop.mean_stress_kpa = 20\nstage[1].name = \"psi90\"\n"
+                   "stage[1].stop.asymptote = true\nstage[1].stop.strain_norm = 0.8\n");
+  file.Commit();
+  const Hdf5File read = Hdf5File::OpenRead(path);
+  EXPECT_FALSE(StopsAtAsymptote(read, stages, 0));
+  EXPECT_TRUE(StopsAtAsymptote(read, stages, 1));
+  // Without the scene: the stage that stopped at its detection.
+  const std::string bare = (fs::temp_directory_path() / "granasym_ensemble_bare.h5").string();
+  Hdf5File without = Hdf5File::CreateAtomic(bare);
+  without.CreateGroup(r::kStages);
+  without.Commit();
+  stages[1].stop_reason = "asymptotic state detected (isochoric: p 136.7 kPa, ...)";
+  const Hdf5File read_bare = Hdf5File::OpenRead(bare);
+  EXPECT_FALSE(StopsAtAsymptote(read_bare, stages, 0));
+  EXPECT_TRUE(StopsAtAsymptote(read_bare, stages, 1));
+  fs::remove(path);
+  fs::remove(bare);
 }
 
 }  // namespace
