@@ -220,7 +220,7 @@ Context ReadContext(const std::string& directory, const FigureDataOptions& optio
   ctx.data = directory + "/figures/data";
   ctx.options = options;
   ctx.cases = LoadCases(directory, options.psi_epsilon_half_rows);
-  ctx.states = study::ReadStateTable(directory);
+  ctx.states = study::WithoutEnsembleRows(study::ReadStateTable(directory));
   ctx.ncl_fits = ReadNclFits(directory);
   ctx.study_ncl = StudyNclName(directory);
   std::vector<std::string> overlaid, absent;

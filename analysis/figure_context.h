@@ -96,7 +96,7 @@ struct Context {
   std::string directory, data;  // DIR, DIR/figures/data
   FigureDataOptions options;
   std::vector<CaseData> cases;
-  std::vector<StateRow> states;
+  std::vector<StateRow> states;  // the state table without its ensemble rows
   std::map<std::pair<int, std::string>, NclLine> ncl_fits;
   std::string study_ncl;
   std::vector<ModelOverlay> models;

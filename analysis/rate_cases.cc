@@ -180,7 +180,7 @@ bool ServesRateStudy(const std::string& figures) {
 
 RateCases ReadRateCases(const std::string& directory, const std::vector<StateRow>& rows) {
   RateCases cases;
-  for (const StateRow& row : rows) {
+  for (const StateRow& row : study::WithoutEnsembleRows(rows)) {
     if (!ServesRateStudy(row.figures)) continue;
     cases.any = true;
     if (row.status == TableStatus::kNoResult || row.stage.empty()) continue;

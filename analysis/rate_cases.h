@@ -24,7 +24,7 @@ struct RateCases {
   std::vector<DrainedState> drained;
 };
 // Reads the case folders of the rows of the state table that serve the rate
-// study (a row without a result or stage is left out).
+// study (a row without a result or stage, and an ensemble row, is left out).
 RateCases ReadRateCases(const std::string& directory, const std::vector<StateRow>& rows);
 
 // Reads the rate cases of the study folder against the rows of its state

@@ -36,6 +36,13 @@ void CheckStem(const std::string& stem, const CsvTextTable& table, int line) {
   }
 }
 
+// Whether a row of the state table is an ensemble row (source column; older
+// tables have none).
+bool IsEnsembleRow(const CsvTextTable& states, const std::vector<std::string>& row) {
+  const int source = states.Find("source");
+  return source >= 0 && row[source] == "ensemble";
+}
+
 // The states behind a figure: the rows of the state table whose `figures`
 // column names it ("10", "Sec. 5.2"; the rate study's figures draw its own tables).
 std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string& entry) {
@@ -44,8 +51,8 @@ std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string&
   const int figures = states.Find("figures");
   if (figures < 0) return std::nullopt;
   const std::vector<std::string> wanted = {
-      "replicate", "case", "stage",         "kind",     "status", "psi_epsilon_deg",
-      "p_kpa",     "e",    "psi_sigma_deg", "q_over_p", "ocr",    "flags"};
+      "replicate", "source", "case",          "stage",    "kind", "status", "psi_epsilon_deg",
+      "p_kpa",     "e",      "psi_sigma_deg", "q_over_p", "ocr",  "flags"};
   std::vector<int> columns;
   Block table;
   table.type = Block::Type::kTable;
@@ -155,9 +162,17 @@ Section OverviewSection(const StudyFolder& study, const std::vector<CaseRow>& ca
     const CsvTextTable& states = *study.states;
     std::map<std::string, int> by_state;
     const int status = states.Find("status");
-    for (const auto& row : states.rows) ++by_state[status >= 0 ? row[status] : "?"];
-    std::string text = fmt::format("{} rows", states.rows.size());
+    int ensemble = 0;
+    for (const auto& row : states.rows) {
+      if (IsEnsembleRow(states, row)) {
+        ++ensemble;
+        continue;
+      }
+      ++by_state[status >= 0 ? row[status] : "?"];
+    }
+    std::string text = fmt::format("{} rows", states.rows.size() - ensemble);
     for (const auto& [name, count] : by_state) text += fmt::format(", {} {}", count, name);
+    if (ensemble > 0) text += fmt::format("; and {} ensemble-mean rows", ensemble);
     add("asymptotic states", Plain(text));
   }
   add("figures",
@@ -365,16 +380,18 @@ Section StatesSection(const StudyFolder& study) {
   states.Column("replicate");
   section.blocks.push_back(Paragraph(
       Plain(fmt::format("{} rows: one per detector-carrying stage of every case, and one per case "
-                        "without a result, from ",
+                        "without a result; with several replicates, one per stage for the "
+                        "replicates' ensemble-mean path through the same detector (source "
+                        "ensemble, case mean/<case>, counted apart below); from ",
                         states.rows.size())) +
       Link("asymptotic_states.csv", "asymptotic_states.csv", true) + Plain(" (full precision; ") +
       Code("asymptotic_states.h5") +
       Plain(" with units). OCR and p_e* refer to the NCL named in ncl_reference.")));
-  // Counts by kind and status.
+  // Counts by kind and status, the ensemble rows apart.
   std::map<std::string, std::map<std::string, int>> counts;
   std::set<std::string> statuses;
   for (const auto& row : states.rows) {
-    ++counts[row[kind]][row[status]];
+    ++counts[row[kind] + (IsEnsembleRow(states, row) ? " (ensemble mean)" : "")][row[status]];
     statuses.insert(row[status]);
   }
   Block count_table;

@@ -44,7 +44,7 @@ std::vector<std::string> SplitFlags(const std::string& flags) {
 
 struct Row {
   int replicate = 1;
-  std::string kind, status, case_name, stage, flags, ncl_reference;
+  std::string kind, status, case_name, stage, flags, ncl_reference, source;
   double psi_epsilon_deg = 0, p_kpa = 0, e = 0, psi_sigma_deg = 0, ocr = 0;
 };
 
@@ -80,6 +80,10 @@ std::vector<Row> ReadRows(const std::string& path) {
   const std::vector<std::string> reference =
       has_reference ? file.ReadStrings(column(names::kColumnNclReference))
                     : std::vector<std::string>();
+  // Tables written before the source column hold no ensemble rows.
+  const bool has_source = file.Exists(column(names::kColumnSource));
+  const std::vector<std::string> source =
+      has_source ? file.ReadStrings(column(names::kColumnSource)) : std::vector<std::string>();
   const size_t n = replicate.size();
   for (size_t size : {kind.size(), status.size(), case_name.size(), stage.size(), flags.size(),
                       psi_e.size(), p.size(), e.size(), psi_s.size()}) {
@@ -103,6 +107,7 @@ std::vector<Row> ReadRows(const std::string& path) {
     r.psi_sigma_deg = psi_s[k];
     r.ocr = k < ocr.size() ? ocr[k] : std::nan("");
     r.ncl_reference = k < reference.size() ? reference[k] : "";
+    r.source = k < source.size() ? source[k] : "";
   }
   return rows;
 }
@@ -189,7 +194,11 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
   std::map<std::pair<std::string, std::string>, std::vector<const Row*>> groups;
   std::vector<std::pair<std::string, std::string>> order;
   std::map<std::string, int> present;  // "kind status" → rows, for the message
+  // The ensemble rows (the replicates' mean paths) are no replicate of their
+  // state: the replicates' own rows are averaged here.
+  const std::string ensemble = ToString(study::TableSource::kEnsemble);
   for (const Row& row : rows) {
+    if (row.source == ensemble) continue;
     ++present[row.kind + " " + row.status];
     if (!Contains(options.kinds, row.kind) || !Contains(options.statuses, row.status)) continue;
     if (!(row.psi_epsilon_deg >= options.psi_epsilon_min_deg &&

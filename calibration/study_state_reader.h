@@ -1,7 +1,9 @@
 // Asymptotic states from a study's state table, DIR/asymptotic_states.h5
 // (study/state_table_names.h; written by `granasym study run`): the rows that
 // pass the selections below, grouped by (case_name, stage) over replicates.
-// Rows of stage "joined" (path convergence, paper Sec. 4.3) are states too.
+// Rows of stage "joined" (path convergence, paper Sec. 4.3) are states too;
+// the ensemble rows (source `ensemble`: the replicates' mean paths) are left
+// out, since the replicates' own rows are averaged here.
 //
 // Selections (each state enters once):
 //   kinds: ncl, csl, compression, extension, triaxial (default all); a

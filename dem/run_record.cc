@@ -12,6 +12,7 @@
 #include "common/config.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
+#include "common/state_measures.h"
 #include "dem/run_record_names.h"
 
 namespace granasym::dem {
@@ -483,6 +484,28 @@ std::vector<double> ReadHistogramRows(const Hdf5File& file) {
 }
 
 std::string StageGroup(size_t index) { return fmt::format("{}/{:03d}", record::kStages, index); }
+
+void AsymptoteRecord::SetWindow(const AsymptoteDetector::Result& result) {
+  window_strain = result.window_strain;
+  window_lnp = result.window_lnp;
+  if (result.window_strain > 0) {
+    mean_stress_kpa = result.mean_stress_kpa;
+    void_ratio = result.void_ratio;
+    psi_sigma_deg = result.psi_sigma / kDegree;
+    psi_epsilon_deg = result.psi_epsilon / kDegree;
+    q_over_p = result.q_over_p;
+    p_min_kpa = result.p_min_kpa;
+    p_max_kpa = result.p_max_kpa;
+  }
+  psi_change_deg = result.psi_change_deg;
+  lnp_change = result.lnp_change;
+  lnp_half_difference = result.lnp_half_difference;
+  slope_change = result.slope_change;
+  psi_epsilon_change_deg = result.psi_epsilon_change_deg;
+  lnv_change = result.lnv_change;
+  dlnp_dstrain = result.slope_lnp;
+  dln1pe_dlnp = result.slope_lnv_lnp;
+}
 
 void WriteStageRecord(Hdf5File& file, const std::string& group, const StageRecord& stage,
                       const StageSpec* spec, int threads) {

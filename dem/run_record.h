@@ -106,6 +106,11 @@ struct AsymptoteRecord {
   // Extension: the state is the last window that held, before the stage's
   // end (the path went on: below the floor, or drifting).
   bool before_end = false;
+
+  // The window of a detector's result, its state (means over the window,
+  // when there is one: window_strain > 0) and the criterion's measures; the
+  // kind, status, criterion and the rows' measures are the caller's.
+  void SetWindow(const AsymptoteDetector::Result& result);
 };
 
 // One finished stage.

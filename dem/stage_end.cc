@@ -61,6 +61,13 @@ std::optional<std::string> AsymptoteStop(const AsymptoteDetector::Result& result
       result.window_lnp);
 }
 
+std::string AfterLastHeld(const AsymptoteDetector::Result& end, double p_end_kpa,
+                          double floor_kpa) {
+  return end.below_floor || !(p_end_kpa >= floor_kpa)
+             ? fmt::format("left the valid range p >= {:g} kPa", floor_kpa)
+             : std::string("drifted");
+}
+
 StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t first_row,
                         const AsymptoteDetector& detector, int64_t detector_first_row,
                         const std::string& reason, bool failed) {
@@ -96,17 +103,8 @@ StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t fi
   AsymptoteRecord a;
   a.path_kind = stage.asymptote.kind;
   a.criterion = stage.asymptote;
-  a.window_strain = result.window_strain;
-  a.window_lnp = result.window_lnp;
-  if (window) {
-    a.mean_stress_kpa = result.mean_stress_kpa;
-    a.void_ratio = result.void_ratio;
-    a.psi_sigma_deg = result.psi_sigma / kDegree;
-    a.psi_epsilon_deg = result.psi_epsilon / kDegree;
-    a.q_over_p = result.q_over_p;
-    a.p_min_kpa = result.p_min_kpa;
-    a.p_max_kpa = result.p_max_kpa;
-  } else if (has_rows) {
+  a.SetWindow(result);
+  if (!window && has_rows) {
     a.mean_stress_kpa = series.Last(record::kColumnMeanStress);
     a.void_ratio = series.Last(record::kColumnVoidRatio);
     a.psi_sigma_deg = series.Last(record::kColumnPsiSigma);
@@ -119,14 +117,6 @@ StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t fi
   a.inertial_number_dmin = state.inertial_number_dmin;
   a.inertial_number_dmax = state.inertial_number_dmax;
   a.max_relative_overlap = state.max_relative_overlap;
-  a.psi_change_deg = result.psi_change_deg;
-  a.lnp_change = result.lnp_change;
-  a.lnp_half_difference = result.lnp_half_difference;
-  a.slope_change = result.slope_change;
-  a.psi_epsilon_change_deg = result.psi_epsilon_change_deg;
-  a.lnv_change = result.lnv_change;
-  a.dlnp_dstrain = result.slope_lnp;
-  a.dln1pe_dlnp = result.slope_lnv_lnp;
   const ValidityLimits& limits = kValidityLimits;
   if (failed || !has_rows || state.max_relative_overlap > limits.overlap_unreliable) {
     a.status = AsymptoteStatus::kInvalid;
@@ -149,10 +139,7 @@ StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t fi
         "; the extension asymptote last held over p {:.4g}-{:.4g} kPa up to stage strain {:.4g}, "
         "then {} (p {:.4g} kPa at the end)",
         result.p_min_kpa, result.p_max_kpa, result.window_end_strain,
-        end_result.below_floor || !(p_end >= stage.asymptote.floor_kpa)
-            ? fmt::format("left the valid range p >= {:g} kPa", stage.asymptote.floor_kpa)
-            : std::string("drifted"),
-        p_end);
+        AfterLastHeld(end_result, p_end, stage.asymptote.floor_kpa), p_end);
   }
   record.asymptote = a;
   record.asymptote_criterion = stage.asymptote.Describe();

@@ -24,6 +24,12 @@ std::optional<std::string> AsymptoteStop(const AsymptoteDetector::Result& result
                                          const TimeSeries& series, int64_t detector_first_row,
                                          int64_t stage_first_row);
 
+// How an extension path went on after the last window that held above its
+// floor (SPEC §8.4), for the stop reason of a state kept from before the end:
+// "left the valid range p >= F kPa" where its last window `end` reaches below
+// `floor_kpa` or its last row is below it (p `p_end_kpa`), else "drifted".
+std::string AfterLastHeld(const AsymptoteDetector::Result& end, double p_end_kpa, double floor_kpa);
+
 // The record of `stage`, whose rows start at `first_row`, ending for
 // `reason` (`failed`: the run fails in it): its validity and, with detection,
 // its asymptote over the detector's window (its samples start at row

@@ -21,6 +21,7 @@
 #include "dem/run_record_names.h"
 #include "dem/stage_validity.h"
 #include "study/case_record.h"
+#include "study/ensemble_path.h"
 #include "study/state_table_names.h"
 #include "study/study_folder.h"
 
@@ -133,9 +134,10 @@ StateRow CaseFields(const CaseRecord& record) {
   return row;
 }
 
-StateRow RowFrom(const CaseFolder& c, const dem::StageRecord& stage) {
+// The row of a stage record (a replicate's, or an ensemble's mean path's),
+// on a row with the case's fields set.
+StateRow RowFrom(StateRow row, const dem::StageRecord& stage) {
   const dem::AsymptoteRecord& a = *stage.asymptote;
-  StateRow row = CaseFields(c.record);
   row.stage = stage.name;
   row.kind = KindOf(a.path_kind, a.psi_epsilon_deg);
   row.status = StatusOf(a.status);
@@ -243,8 +245,8 @@ PathSamples ExtensionPath(const TimeSeries& series, int64_t first, int64_t last,
   return path;
 }
 
-// y at `at`: the mean of the samples within ±h in x (the fluctuations of a
-// small sample smoothed), or linear interpolation where none is that close.
+}  // namespace
+
 double Smoothed(const std::vector<double>& x, const std::vector<double>& y, double at, double h) {
   const auto lo = std::lower_bound(x.begin(), x.end(), at - h);
   const auto hi = std::upper_bound(x.begin(), x.end(), at + h);
@@ -260,8 +262,6 @@ double Smoothed(const std::vector<double>& x, const std::vector<double>& y, doub
   const double t = (at - x[k - 1]) / (x[k] - x[k - 1]);
   return y[k - 1] + t * (y[k] - y[k - 1]);
 }
-
-}  // namespace
 
 namespace {
 
@@ -344,14 +344,16 @@ namespace {
 
 // The table's columns in the order of its CSV file: one entry per column
 // drives the CSV, the HDF5 file and the reader.
-using Member = std::variant<int StateRow::*, double StateRow::*, std::string StateRow::*,
-                            TableKind StateRow::*, TableStatus StateRow::*>;
+using Member =
+    std::variant<int StateRow::*, double StateRow::*, std::string StateRow::*,
+                 TableKind StateRow::*, TableStatus StateRow::*, TableSource StateRow::*>;
 struct Column {
   const char* name;
   Member member;
-  const char* units = "";              // of a number column
-  bool since_extension_floor = false;  // absent from older tables: read as NaN or 0
+  const char* units = "";  // of a number column
+  bool optional = false;   // absent from older tables: SetAbsent
 };
+constexpr bool kOptional = true;
 const Column kColumns[] = {
     {table::kColumnReplicate, &StateRow::replicate},
     {table::kColumnKind, &StateRow::kind},
@@ -378,9 +380,10 @@ const Column kColumns[] = {
     {table::kColumnSlopeChange, &StateRow::slope_change, "1"},
     {table::kColumnLnpChange, &StateRow::lnp_change, "1"},
     {table::kColumnSlope, &StateRow::dln1pe_dlnp, "1"},
-    {table::kColumnWindowPMin, &StateRow::window_p_min_kpa, "kPa", true},
-    {table::kColumnWindowPMax, &StateRow::window_p_max_kpa, "kPa", true},
-    {table::kColumnHeldBeforeEnd, &StateRow::held_before_end, "", true},
+    {table::kColumnWindowPMin, &StateRow::window_p_min_kpa, "kPa", kOptional},
+    {table::kColumnWindowPMax, &StateRow::window_p_max_kpa, "kPa", kOptional},
+    {table::kColumnHeldBeforeEnd, &StateRow::held_before_end, "", kOptional},
+    {table::kColumnSource, &StateRow::source, "", kOptional},
     {table::kColumnNclReference, &StateRow::ncl_reference},
     {table::kColumnRun, &StateRow::run},
     {table::kColumnFigures, &StateRow::figures},
@@ -469,6 +472,16 @@ void ReadColumn(const Hdf5File& file, const std::string& origin, const Column& c
       column.member);
 }
 
+// A column that a table written before it lacks: NaN for a number, and the
+// source a row of those tables has (a path-convergence row or a replicate's).
+void SetAbsent(const Column& column, StateRow* row) {
+  if (auto m = std::get_if<double StateRow::*>(&column.member)) row->*(*m) = kNaN;
+  if (std::holds_alternative<TableSource StateRow::*>(column.member)) {
+    row->source =
+        row->stage == table::kStageJoined ? TableSource::kJoined : TableSource::kReplicate;
+  }
+}
+
 void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
                const std::vector<NclFit>& fits) {
   std::string csv;
@@ -487,7 +500,8 @@ void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
   file.CreateGroup(table::kStatesGroup);
   file.SetAttribute(table::kStatesGroup, "description",
                     "asymptotic states of every case: one row per detector-carrying stage, and "
-                    "one per case without a result");
+                    "one per case without a result; with several replicates, one per stage for "
+                    "their ensemble-mean path (source ensemble)");
   for (const Column& column : kColumns) WriteColumn(file, rows, column);
   file.CreateGroup("/ncl_fit");
   std::vector<double> n, lambda, pmin, pmax;
@@ -512,14 +526,27 @@ void WriteRows(const std::string& directory, const std::vector<StateRow>& rows,
   file.Commit();
 }
 
+// The ensemble row's state in a line of the summary (empty fields without one).
+std::string EnsembleFields(const StateRow* ensemble) {
+  if (!ensemble) return ",,,";
+  return "," + std::string(ToString(ensemble->status)) + "," + CsvNumber(ensemble->psi_sigma_deg) +
+         "," + CsvNumber(ensemble->ln_1_plus_e);
+}
+
 // Mean and 95 % interval over replicates of each (case name, stage), from
-// the detected states.
+// the detected states of the replicates' rows (and the path-convergence
+// rows, a group of their own), with the state of the ensemble row beside.
 void WriteSummary(const std::string& directory, const std::vector<StateRow>& rows) {
   std::map<std::pair<std::string, std::string>, std::vector<const StateRow*>> groups;
+  std::map<std::pair<std::string, std::string>, const StateRow*> ensembles;
   std::vector<std::pair<std::string, std::string>> order;
   for (const StateRow& row : rows) {
     if (row.status == TableStatus::kNoResult) continue;
     const auto key = std::make_pair(row.case_name, row.stage);
+    if (row.source == TableSource::kEnsemble) {
+      ensembles[key] = &row;
+      continue;
+    }
     if (!groups.count(key)) order.push_back(key);
     groups[key].push_back(&row);
   }
@@ -532,7 +559,8 @@ void WriteSummary(const std::string& directory, const std::vector<StateRow>& row
       {table::kColumnPsiEpsilon, &StateRow::psi_epsilon_deg}};
   std::string csv = "case_name,stage,kind,replicates,detected";
   for (const auto& [name, member] : summarised) csv += fmt::format(",{0}_mean,{0}_ci95", name);
-  csv += "\n";
+  csv += fmt::format(",ensemble_{},ensemble_{},ensemble_{}\n", table::kColumnStatus,
+                     table::kColumnPsiSigma, table::kColumnLnVolume);
   for (const auto& key : order) {
     const std::vector<const StateRow*>& members = groups[key];
     std::vector<const StateRow*> detected;
@@ -549,7 +577,8 @@ void WriteSummary(const std::string& directory, const std::vector<StateRow>& row
       const Interval interval = MeanInterval95(values);
       csv += "," + CsvNumber(interval.mean) + "," + CsvNumber(interval.half_width);
     }
-    csv += "\n";
+    const auto ensemble = ensembles.find(key);
+    csv += EnsembleFields(ensemble == ensembles.end() ? nullptr : ensemble->second) + "\n";
   }
   WriteTextFileAtomically(directory + "/asymptotic_states_summary.csv", csv);
 }
@@ -561,6 +590,7 @@ StateRow JoinedRow(const ConvergenceRow& joined, const ConvergenceTolerance& tol
   row.case_id = "r" + std::to_string(joined.replicate) + "/" + row.case_name;
   row.replicate = joined.replicate;
   row.stage = table::kStageJoined;
+  row.source = TableSource::kJoined;
   row.kind = joined.kind;
   row.status = TableStatus::kDetected;
   row.message.clear();
@@ -634,43 +664,104 @@ struct ConvergencePath {
 // Paths by (replicate, kind, ψ_ε).
 using PathGroups = std::map<std::tuple<int, TableKind, double>, std::vector<ConvergencePath>>;
 
-// The rows of every case (a row per detector-carrying stage, one per case
-// without a result), its compression and extension paths, and each case's
-// parent.
-void ReadCases(const std::string& directory, std::vector<StateRow>* rows, PathGroups* paths,
-               std::map<std::pair<int, std::string>, std::string>* parent_of) {
-  for (const CaseFolder& c : ListCases(directory)) {
-    (*parent_of)[{c.record.replicate, c.record.name}] = c.record.parent_name();
-    if (!c.finished) {
-      rows->push_back(MissingRow(c));
-      continue;
-    }
-    const Hdf5File file = Hdf5File::OpenRead(c.record.result_path());
-    const std::vector<dem::StageRecord> stages = dem::ReadStageRecords(file);
-    std::optional<TimeSeries> series;
-    bool any = false;
-    for (const dem::StageRecord& stage : stages) {
-      if (!stage.asymptote) continue;
-      any = true;
-      StateRow row = RowFrom(c, stage);
-      if (c.termination != "completed" && row.message.empty()) row.message = c.message;
-      rows->push_back(row);
-      if (row.kind == TableKind::kCompression || row.kind == TableKind::kExtension) {
-        if (!series) series = TimeSeries::Read(file, dem::record::kSeries);
-        const bool rising = row.kind == TableKind::kCompression;
-        ConvergencePath path{c.record.name, 0,
-                             rising ? CompressionPath(*series, stage.first_row, stage.last_row)
-                                    : ExtensionPath(*series, stage.first_row, stage.last_row,
-                                                    stage.asymptote->criterion.floor_kpa)};
-        if (path.samples.x.size() >= 2) {
-          path.start_p = std::exp(rising ? path.samples.x.front() : path.samples.y.front());
-          const double psi = std::round(row.psi_epsilon_deg * 1e6) / 1e6;
-          (*paths)[{c.record.replicate, row.kind, psi}].push_back(std::move(path));
-        }
-      }
-    }
-    if (!any && c.termination != "completed") rows->push_back(MissingRow(c));
+// The replicates of one (case name, stage) for its ensemble-mean path: the
+// row's case fields and each replicate's stage.
+struct EnsembleGroup {
+  StateRow fields;
+  std::vector<ReplicateStage> replicates;
+};
+
+// What the case folders give the tables: the rows of every case (a row per
+// detector-carrying stage, one per case without a result), its compression
+// and extension paths, each case's parent (also under replicate 0, for the
+// ensemble rows) and the replicates of each stage.
+struct CaseTables {
+  std::vector<StateRow> rows;
+  PathGroups paths;
+  std::map<std::pair<int, std::string>, std::string> parent_of;  // (replicate, case) → parent
+  std::vector<EnsembleGroup> ensembles;                          // in the order first seen
+  std::map<std::pair<std::string, std::string>, size_t> ensemble_of;  // (case, stage) → index
+};
+
+// A compression or extension stage's path for the convergence check.
+void AddConvergencePath(const CaseFolder& c, const dem::StageRecord& stage, const StateRow& row,
+                        const TimeSeries& series, PathGroups* paths) {
+  if (row.kind != TableKind::kCompression && row.kind != TableKind::kExtension) return;
+  const bool rising = row.kind == TableKind::kCompression;
+  ConvergencePath path{c.record.name, 0,
+                       rising ? CompressionPath(series, stage.first_row, stage.last_row)
+                              : ExtensionPath(series, stage.first_row, stage.last_row,
+                                              stage.asymptote->criterion.floor_kpa)};
+  if (path.samples.x.size() < 2) return;
+  path.start_p = std::exp(rising ? path.samples.x.front() : path.samples.y.front());
+  const double psi = std::round(row.psi_epsilon_deg * 1e6) / 1e6;
+  (*paths)[{c.record.replicate, row.kind, psi}].push_back(std::move(path));
+}
+
+// Stage `index` of a replicate's result, with the path its detector sampled,
+// into the group of its case name and stage.
+void AddToEnsemble(const CaseFolder& c, const Hdf5File& file,
+                   const std::vector<dem::StageRecord>& stages, size_t index,
+                   const TimeSeries& series, CaseTables* tables) {
+  const dem::StageRecord& stage = stages[index];
+  const auto key = std::make_pair(c.record.name, stage.name);
+  if (!tables->ensemble_of.count(key)) {
+    EnsembleGroup group;
+    group.fields = CaseFields(c.record);
+    group.fields.replicate = 0;
+    group.fields.case_id = table::kEnsembleCasePrefix + c.record.name;
+    group.fields.source = TableSource::kEnsemble;
+    tables->ensemble_of[key] = tables->ensembles.size();
+    tables->ensembles.push_back(std::move(group));
   }
+  ReplicateStage replicate{
+      stage, ReadStagePath(series, DetectionFirstRow(file, stages, index), stage.last_row),
+      StopsAtAsymptote(file, stages, index)};
+  replicate.record.end_state.reset();
+  tables->ensembles[tables->ensemble_of[key]].replicates.push_back(std::move(replicate));
+}
+
+// The rows, paths and replicate stages of a finished case.
+void ReadResult(const CaseFolder& c, CaseTables* tables) {
+  const Hdf5File file = Hdf5File::OpenRead(c.record.result_path());
+  const std::vector<dem::StageRecord> stages = dem::ReadStageRecords(file);
+  std::optional<TimeSeries> series;
+  bool any = false;
+  for (size_t k = 0; k < stages.size(); ++k) {
+    const dem::StageRecord& stage = stages[k];
+    if (!stage.asymptote) continue;
+    any = true;
+    StateRow row = RowFrom(CaseFields(c.record), stage);
+    if (c.termination != "completed" && row.message.empty()) row.message = c.message;
+    tables->rows.push_back(row);
+    if (!series) series = TimeSeries::Read(file, dem::record::kSeries);
+    AddConvergencePath(c, stage, row, *series, &tables->paths);
+    AddToEnsemble(c, file, stages, k, *series, tables);
+  }
+  if (!any && c.termination != "completed") tables->rows.push_back(MissingRow(c));
+}
+
+void ReadCases(const std::string& directory, CaseTables* tables) {
+  for (const CaseFolder& c : ListCases(directory)) {
+    tables->parent_of[{c.record.replicate, c.record.name}] = c.record.parent_name();
+    tables->parent_of[{0, c.record.name}] = c.record.parent_name();
+    if (c.finished) {
+      ReadResult(c, tables);
+    } else {
+      tables->rows.push_back(MissingRow(c));
+    }
+  }
+}
+
+// The rows of the replicates' ensemble-mean paths (issue 34 §3): one per
+// (case name, stage) with two replicates or more.
+std::vector<StateRow> EnsembleRows(const std::vector<EnsembleGroup>& groups) {
+  std::vector<StateRow> rows;
+  for (const EnsembleGroup& group : groups) {
+    if (group.replicates.size() < 2) continue;
+    rows.push_back(RowFrom(group.fields, EnsembleStageRecord(group.replicates)));
+  }
+  return rows;
 }
 
 // Paper Sec. 4.3: paths of one ψ_ε from successive starting states; a joined
@@ -820,16 +911,22 @@ StateTableSummary WriteStateTable(const std::string& directory,
   const std::string ncl_case = StudyNclCase(directory).value_or("");
   StateTableSummary summary;
   summary.directory = directory;
-  std::vector<StateRow> rows;
-  PathGroups paths;
-  std::map<std::pair<int, std::string>, std::string> parent_of;  // (replicate, case) → parent
-  ReadCases(directory, &rows, &paths, &parent_of);
-  const std::vector<ConvergenceRow> convergence = JoinGroups(&paths, tolerance, &rows, &summary);
+  CaseTables tables;
+  ReadCases(directory, &tables);
+  std::vector<StateRow>& rows = tables.rows;
+  const std::vector<StateRow> ensemble = EnsembleRows(tables.ensembles);
+  tables.ensembles.clear();
+  rows.insert(rows.end(), ensemble.begin(), ensemble.end());
+  const std::vector<ConvergenceRow> convergence =
+      JoinGroups(&tables.paths, tolerance, &rows, &summary);
   const auto fit_of = FitNcls(rows, ncl_case, &summary.ncl);
-  ReferToNcls(summary.ncl, fit_of, parent_of, ncl_case, &rows);
+  ReferToNcls(summary.ncl, fit_of, tables.parent_of, ncl_case, &rows);
   WriteNclFits(directory, summary.ncl);
   WriteConvergence(directory, convergence, tolerance);
-  for (const StateRow& row : rows) ++summary.counts[ToString(row.kind)][ToString(row.status)];
+  for (const StateRow& row : rows) {
+    auto& counts = row.source == TableSource::kEnsemble ? summary.ensemble_counts : summary.counts;
+    ++counts[ToString(row.kind)][ToString(row.status)];
+  }
   WriteRows(directory, rows, summary.ncl);
   WriteSummary(directory, rows);
   return summary;
@@ -842,11 +939,8 @@ std::vector<StateRow> ReadStateTable(const std::string& directory) {
       file.ReadInts(std::string(table::kStatesGroup) + "/" + table::kColumnReplicate);
   std::vector<StateRow> rows(replicates.size());
   for (const Column& column : kColumns) {
-    if (column.since_extension_floor &&
-        !file.Exists(std::string(table::kStatesGroup) + "/" + column.name)) {
-      if (auto m = std::get_if<double StateRow::*>(&column.member)) {
-        for (StateRow& row : rows) row.** m = kNaN;
-      }
+    if (column.optional && !file.Exists(std::string(table::kStatesGroup) + "/" + column.name)) {
+      for (StateRow& row : rows) SetAbsent(column, &row);
       continue;
     }
     ReadColumn(file, origin, column, &rows);
@@ -854,21 +948,48 @@ std::vector<StateRow> ReadStateTable(const std::string& directory) {
   return rows;
 }
 
-std::string StateTableSummary::Text() const {
-  std::string text = "asymptotic states (" + directory + "/asymptotic_states.csv):\n";
+std::vector<StateRow> WithoutEnsembleRows(std::vector<StateRow> rows) {
+  rows.erase(
+      std::remove_if(rows.begin(), rows.end(),
+                     [](const StateRow& row) { return row.source == TableSource::kEnsemble; }),
+      rows.end());
+  return rows;
+}
+
+namespace {
+
+// One line per kind: the rows by status.
+std::string CountLines(const std::map<std::string, std::map<std::string, int>>& counts,
+                       const std::string& indent) {
+  std::string text;
   for (const auto& [kind, statuses] : counts) {
-    text += fmt::format("  {:<12}", kind);
+    text += fmt::format("{}{:<12}", indent, kind);
     for (const auto& [status, count] : statuses) text += fmt::format(" {} {}", count, status);
     text += "\n";
   }
+  return text;
+}
+
+}  // namespace
+
+std::string StateTableSummary::Text() const {
+  std::string text = "asymptotic states (" + directory + "/asymptotic_states.csv):\n";
+  text += CountLines(counts, "  ");
+  if (!ensemble_counts.empty()) {
+    text += "  ensemble means (the replicates' mean paths through the detector):\n";
+    text += CountLines(ensemble_counts, "    ");
+  }
   for (const NclFit& fit : ncl) {
-    text += fit.valid() ? fmt::format(
-                              "  NCL r{} {}: N = {:.4f}, lambda* = {:.4f} through {} states "
-                              "({} detected, {} drifting), {:.4g}-{:.4g} kPa\n",
-                              fit.replicate, fit.case_name, fit.n, fit.lambda, fit.points,
-                              fit.detected, fit.drifting, fit.p_min_kpa, fit.p_max_kpa)
-                        : fmt::format("  NCL r{} {}: not determined ({} usable states)\n",
-                                      fit.replicate, fit.case_name, fit.points);
+    const std::string name =
+        (fit.replicate == 0 ? std::string("mean") : "r" + std::to_string(fit.replicate)) + " " +
+        fit.case_name;
+    text += fit.valid()
+                ? fmt::format(
+                      "  NCL {}: N = {:.4f}, lambda* = {:.4f} through {} states "
+                      "({} detected, {} drifting), {:.4g}-{:.4g} kPa\n",
+                      name, fit.n, fit.lambda, fit.points, fit.detected, fit.drifting,
+                      fit.p_min_kpa, fit.p_max_kpa)
+                : fmt::format("  NCL {}: not determined ({} usable states)\n", name, fit.points);
   }
   text += fmt::format("  path convergence: {} pairs joined, {} not\n", joined, not_joined);
   return text;

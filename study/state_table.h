@@ -1,11 +1,15 @@
 // The table of asymptotic states across all cases of a study folder:
 // DIR/asymptotic_states.csv and .h5 (one row per detector-carrying stage of
 // every case, and one per case without a result, so that nothing is silently
-// missing), DIR/asymptotic_states_summary.csv (mean and 95 % confidence
-// interval over replicates), DIR/ncl_fit.csv (the study's own NCLs that OCR
-// and p_e* refer to: a state uses the NCL of its nearest ancestor case that
-// has one, else the study's `ncl`), and DIR/path_convergence.csv (the paper's Sec. 4.3
-// evidence: where paths of one ψ_ε from different starting states join).
+// missing; one per detector-carrying stage with two replicates or more for
+// their ensemble-mean path, source `ensemble`, study/ensemble_path.h),
+// DIR/asymptotic_states_summary.csv (mean and 95 % confidence interval over
+// the replicates' rows, beside the ensemble row's state), DIR/ncl_fit.csv
+// (the study's own NCLs that OCR and p_e* refer to: a state uses the NCL of
+// its nearest ancestor case that has one, else the study's `ncl`; replicate
+// 0 is the NCL through the ensemble rows), and DIR/path_convergence.csv (the
+// paper's Sec. 4.3 evidence: where paths of one ψ_ε from different starting
+// states join, per replicate).
 // The analyses of the table (the rate study, figures, calibration, report)
 // are the analysis library's (analysis/).
 #pragma once
@@ -21,7 +25,8 @@ namespace granasym::study {
 // One asymptotic state (or the reason there is none).
 struct StateRow {
   std::string case_id, case_name, run, stage, figures;
-  int replicate = 1;
+  int replicate = 1;  // 0 for an ensemble row
+  TableSource source = TableSource::kReplicate;
   TableKind kind = TableKind::kNone;
   TableStatus status = TableStatus::kNoResult;
   std::string detector;
@@ -45,7 +50,8 @@ struct StateRow {
 // case with ψ_ε = 0° stages (the study's NCL, or one of a sample with another
 // material or time step), fitted through its stage-end states that are not a gas
 // and have overlaps below 10 % (detected or drifting: on a ψ_ε = 0° path the
-// detector's tests are at the noise level of a small sample).
+// detector's tests are at the noise level of a small sample). Replicate 0:
+// the NCL through the ensemble rows, which they refer to.
 struct NclFit {
   int replicate = 1;
   std::string case_name;
@@ -108,7 +114,8 @@ ConvergenceRow JoinExtensionPaths(const PathSamples& a, const PathSamples& b,
 
 struct StateTableSummary {
   std::string directory;
-  std::map<std::string, std::map<std::string, int>> counts;  // kind → status → rows
+  std::map<std::string, std::map<std::string, int>> counts;           // kind → status → rows
+  std::map<std::string, std::map<std::string, int>> ensemble_counts;  // of the ensemble rows
   std::vector<NclFit> ncl;
   int joined = 0, not_joined = 0;
   std::string Text() const;
@@ -120,6 +127,11 @@ struct Interval {
   double mean, half_width;
 };
 Interval MeanInterval95(const std::vector<double>& values);
+
+// y at `at` of samples ascending in x: the mean of the samples within ±h
+// (the fluctuations of a small sample smoothed), or linear interpolation
+// where none is that close (h = 0: interpolation).
+double Smoothed(const std::vector<double>& x, const std::vector<double>& y, double at, double h);
 
 // A field of the study's CSV files (quoted when it holds a comma, a quote or a
 // line break; line breaks become spaces) and a number (10 significant
@@ -133,5 +145,8 @@ StateTableSummary WriteStateTable(const std::string& directory,
 
 // Reads the rows back from DIR/asymptotic_states.h5.
 std::vector<StateRow> ReadStateTable(const std::string& directory);
+// The rows without the ensemble rows: what an analysis that aggregates over
+// replicates reads (an ensemble row is no replicate of its state).
+std::vector<StateRow> WithoutEnsembleRows(std::vector<StateRow> rows);
 
 }  // namespace granasym::study

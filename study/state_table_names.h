@@ -15,6 +15,10 @@ enum class TableKind { kNcl, kCsl, kCompression, kExtension, kTriaxial, kNone };
 // What the detector said of a state (dem::AsymptoteStatus), or that its
 // case has no result.
 enum class TableStatus { kDetected, kDrifting, kNotReached, kGas, kInvalid, kNoResult };
+// Where a row comes from: one replicate's stage (or case without a result),
+// the replicates' ensemble-mean path of a stage run through its detector
+// (study/ensemble_path.h), or where two paths of one replicate join.
+enum class TableSource { kReplicate, kEnsemble, kJoined };
 
 }  // namespace granasym::study
 
@@ -44,12 +48,25 @@ struct granasym::EnumNames<granasym::study::TableStatus> {
   };
 };
 
+template <>
+struct granasym::EnumNames<granasym::study::TableSource> {
+  using S = study::TableSource;
+  static constexpr EnumEntry<S> kEntries[] = {
+      {S::kReplicate, "replicate", "one replicate's stage, or a case without a result"},
+      {S::kEnsemble, "ensemble",
+       "the replicates' ensemble-mean path of a stage, run through the stage's detector"},
+      {S::kJoined, "joined",
+       "where two paths of one psi_epsilon from different starting states join (path "
+       "convergence)"},
+  };
+};
+
 namespace granasym::study::table {
 
 constexpr char kFileName[] = "asymptotic_states.h5";
 constexpr char kStatesGroup[] = "/states";
 
-// Integer column.
+// Integer column: the replicate K of r<K>; 0 for an ensemble row.
 constexpr char kColumnReplicate[] = "replicate";
 // Number columns (units in the datasets' `units` attribute).
 constexpr char kColumnPsiEpsilon[] = "psi_epsilon_deg";  // deg
@@ -79,7 +96,7 @@ constexpr char kColumnHeldBeforeEnd[] = "held_before_end";
 constexpr char kColumnKind[] = "kind";  // ncl, csl, compression, extension, triaxial
 constexpr char kColumnStatus[] =
     "status";                           // detected, drifting, not_reached, gas, invalid, no_result
-constexpr char kColumnCase[] = "case";  // r<K>/<case name>
+constexpr char kColumnCase[] = "case";  // r<K>/<case name>, mean/<case name> (ensemble)
 constexpr char kColumnCaseName[] = "case_name";
 constexpr char kColumnStage[] = "stage";  // the stage's name, or "joined" (path convergence)
 constexpr char kColumnRun[] = "run";
@@ -88,9 +105,14 @@ constexpr char kColumnFlags[] = "flags";  // validity flags, ';'-separated
 constexpr char kColumnDetector[] = "detector";
 constexpr char kColumnMessage[] = "message";
 constexpr char kColumnNclReference[] = "ncl_reference";
+// replicate, ensemble or joined (TableSource); tables written before it have
+// none: their rows are replicates', or joined where the stage is "joined".
+constexpr char kColumnSource[] = "source";
 
 // The stage column's value for a path-convergence state.
 constexpr char kStageJoined[] = "joined";
+// The case column's prefix of an ensemble row (its replicate column is 0).
+constexpr char kEnsembleCasePrefix[] = "mean/";
 constexpr char kFlagSeparator = ';';
 
 }  // namespace granasym::study::table

@@ -172,6 +172,21 @@ TEST(StudyReport, EveryStateRowAppearsInBothFiles) {
             std::string::npos);
 }
 
+// The ensemble rows (the replicates' mean paths) are listed with their
+// source and counted apart from the replicates' rows.
+TEST(StudyReport, EnsembleRowsAreListedWithTheirSourceAndCountedApart) {
+  const fs::path dir = FullStudy("ensemble");
+  Write(dir / "asymptotic_states.csv",
+        "replicate,kind,status,case,case_name,stage,psi_epsilon_deg,p_kpa,source,figures\n"
+        "1,csl,drifting,r1/nc100_psi90,nc100_psi90,psi90,90,20.5,replicate,16\n"
+        "2,csl,drifting,r2/nc100_psi90,nc100_psi90,psi90,90,21.5,replicate,16\n"
+        "0,csl,detected,mean/nc100_psi90,nc100_psi90,psi90,90,21,ensemble,16\n");
+  const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);
+  EXPECT_NE(html.find("<td>ensemble</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td>csl (ensemble mean)</td>"), std::string::npos);
+  EXPECT_NE(html.find("2 rows, 2 drifting; and 1 ensemble-mean rows"), std::string::npos);
+}
+
 TEST(StudyReport, NoTextOfTheInputsIsTakenAsMarkup) {
   const fs::path dir = FullStudy("escaping");
   const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);

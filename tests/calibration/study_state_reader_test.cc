@@ -31,6 +31,7 @@ namespace fs = std::filesystem;
 struct TableRow {
   int replicate = 1;
   std::string kind, status = "detected", case_name, stage, flags, ncl_reference = "ncl";
+  std::string source;  // written when a row has one
   double psi_epsilon_deg = 0, p_kpa = 100, e = 0.7, psi_sigma_deg = 0, ocr = 1;
 };
 
@@ -40,7 +41,8 @@ void WriteTable(const std::string& directory, const std::vector<TableRow>& rows)
   const std::string g = names::kStatesGroup;
   file.CreateGroup(g);
   std::vector<int64_t> replicate;
-  std::vector<std::string> kind, status, case_name, stage, flags, reference;
+  std::vector<std::string> kind, status, case_name, stage, flags, reference, source;
+  bool has_source = false;
   std::vector<double> psi_e, p, e, ln_v, psi_s, ocr;
   for (const TableRow& r : rows) {
     replicate.push_back(r.replicate);
@@ -50,6 +52,8 @@ void WriteTable(const std::string& directory, const std::vector<TableRow>& rows)
     stage.push_back(r.stage);
     flags.push_back(r.flags);
     reference.push_back(r.ncl_reference);
+    source.push_back(r.source);
+    has_source = has_source || !r.source.empty();
     psi_e.push_back(r.psi_epsilon_deg);
     p.push_back(r.p_kpa);
     e.push_back(r.e);
@@ -70,6 +74,7 @@ void WriteTable(const std::string& directory, const std::vector<TableRow>& rows)
   file.WriteDoubles(g + "/" + names::kColumnLnVolume, ln_v, "1");
   file.WriteDoubles(g + "/" + names::kColumnPsiSigma, psi_s, "deg");
   file.WriteDoubles(g + "/" + names::kColumnOcr, ocr, "1");
+  if (has_source) file.WriteStrings(g + "/" + names::kColumnSource, source);
   file.Commit();
 }
 
@@ -114,6 +119,37 @@ std::vector<TableRow> SmallTable() {
   other.ncl_reference = "ncl_phi0";
   rows.push_back(other);
   return rows;
+}
+
+// An ensemble row (the replicates' mean path, replicate 0) is no replicate:
+// the state is the mean of the replicates' own rows, whatever it says.
+TEST(StudyStateReader, EnsembleRowsAreNotCountedAsReplicates) {
+  const std::string dir = (fs::temp_directory_path() / "granasym_study_reader_ensemble").string();
+  std::vector<TableRow> rows = SmallTable();
+  for (TableRow& row : rows) row.source = row.stage == names::kStageJoined ? "joined" : "replicate";
+  TableRow ensemble = rows[0];
+  ensemble.replicate = 0;
+  ensemble.source = "ensemble";
+  ensemble.p_kpa = 500;
+  ensemble.psi_sigma_deg = 40;
+  rows.push_back(ensemble);
+  WriteTable(dir, rows);
+  const StateDataset d = ReadStatesStudy(dir, "study", StudyReadOptions());
+  ASSERT_EQ(d.points.size(), 3u);
+  EXPECT_EQ(d.points[0].replicates, 3);
+  EXPECT_NEAR(d.points[0].mean_stress, 100.0, 1e-9);
+  EXPECT_NEAR(d.points[0].psi_sigma, 24.0 * kDegree, 1e-12);
+  // Selecting only the ensemble's state finds nothing.
+  StudyReadOptions only;
+  only.cases = {"nc100_psi90"};
+  rows.erase(rows.begin(), rows.begin() + 3);
+  WriteTable(dir, rows);
+  try {
+    ReadStatesStudy(dir, "study", only);
+    FAIL() << "an ensemble row was read as a state";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("no state passes"), std::string::npos) << error.what();
+  }
 }
 
 TEST(StudyStateReader, DefaultOptionsAreValid) {

@@ -57,8 +57,12 @@ grep -v '^#' "$out/rate_drained_states.csv" | tail -n +2 | grep -q '^1,nc100_dra
   fail "rate_drained_states.csv: no row for r1/nc100_drained_ea42.3908"
 # Every rate case of the state table is in rate_states.csv or
 # rate_drained_states.csv, with its start and rate.
-in_table=$(grep -c ',rate,' "$out/asymptotic_states.csv" || true)
+# Its ensemble rows (source ensemble: the mean path of the two replicates,
+# one per case and stage) are no replicate and stay out of the rate study.
+in_table=$(grep ',rate,' "$out/asymptotic_states.csv" | grep -vc ',ensemble,' || true)
 [ "$in_table" -eq 18 ] || fail "the state table has $in_table rate rows, not 18"
+ensemble=$(grep ',rate,' "$out/asymptotic_states.csv" | grep -c ',ensemble,' || true)
+[ "$ensemble" -eq 9 ] || fail "the state table has $ensemble ensemble rate rows, not 9"
 if grep -v '^#' "$out/rate_states.csv" | tail -n +2 | awk -F, '$8 != 100' | grep -q .; then
   fail "a rate state does not start from NC 100 kPa"
 fi

@@ -211,11 +211,17 @@ TEST(StudyRunner, ReplicatesHaveTheirOwnSamplesAndTheirStatesAreSummarised) {
   EXPECT_NE(ReadTextFile(dir + "/samples/r1/packing.txt"),
             ReadTextFile(dir + "/samples/r2/packing.txt"));
   const StateTableSummary summary = WriteStateTable(dir);
-  EXPECT_EQ(summary.ncl.size(), 2u);
+  // One NCL per replicate, and the NCL through the ensemble rows (replicate 0).
+  EXPECT_EQ(summary.ncl.size(), 3u);
   const std::vector<StateRow> rows = ReadStateTable(dir);
-  int psi90 = 0;
-  for (const StateRow& row : rows) psi90 += row.case_name == "nc50_psi90";
-  EXPECT_EQ(psi90, 2);  // one row per replicate
+  int psi90 = 0, ensemble = 0;
+  for (const StateRow& row : rows) {
+    if (row.case_name != "nc50_psi90") continue;
+    psi90 += row.source == TableSource::kReplicate;
+    ensemble += row.source == TableSource::kEnsemble && row.case_id == "mean/nc50_psi90";
+  }
+  EXPECT_EQ(psi90, 2);     // one row per replicate
+  EXPECT_EQ(ensemble, 1);  // and one for their mean path
   // The summary: one line per case and stage, over both replicates.
   const std::string table = ReadTextFile(dir + "/asymptotic_states_summary.csv");
   EXPECT_EQ(table.rfind("case_name,stage,kind,replicates,detected,p_kpa_mean,p_kpa_ci95", 0), 0u)
