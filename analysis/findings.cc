@@ -336,7 +336,9 @@ Finding CslParallel(const Study& study) {
   const std::vector<State> csl = study.Detected(TableKind::kCsl);
   std::vector<double> ncl_lambda;
   for (const auto& [key, line] : study.ctx().ncl_fits) {
-    if (key.second == study.ctx().study_ncl && line.valid()) ncl_lambda.push_back(line.lambda);
+    // Per replicate: replicate 0 is the NCL through the ensemble rows.
+    if (key.first >= 1 && key.second == study.ctx().study_ncl && line.valid())
+      ncl_lambda.push_back(line.lambda);
   }
   if (csl.size() < 3 || ncl_lambda.empty())
     return NotTested(

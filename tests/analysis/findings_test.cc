@@ -120,8 +120,12 @@ TEST(Findings, AStraightNclIsLinearAndACurvedOneIsNot) {
 TEST(Findings, AParallelCslIsReproducedAndAFlatOneIsNot) {
   Context parallel = Study();
   AddCriticalStates(&parallel, kLambda, -2.5);
+  // The NCL through the ensemble rows (replicate 0) is not a replicate's.
+  parallel.ncl_fits[{0, "ncl"}] = NclLine{kN, 0.01};
   const std::vector<Finding> a = ComputeFindings(parallel);
   EXPECT_EQ(Find(a, "csl_parallel_ncl").verdict, Verdict::kReproduced)
+      << Find(a, "csl_parallel_ncl").numbers;
+  EXPECT_NE(Find(a, "csl_parallel_ncl").numbers.find("λ*(NCL) = 0.026;"), std::string::npos)
       << Find(a, "csl_parallel_ncl").numbers;
   // ψ_σ falls by 2.5° per unit ln p at I(d_max) = 0.05: the paper's rate effect.
   EXPECT_EQ(Find(a, "csl_psi_falls_with_p").verdict, Verdict::kReproduced);

@@ -136,9 +136,9 @@ TEST(StudyReport, EveryFigureOfTheIndexAppearsWithItsImageOrAMissingNote) {
   // The states behind figure 16: the two rows that name it, not the third.
   EXPECT_NE(html.find("2 rows of the state table behind figure 16"), std::string::npos);
   EXPECT_NE(html.find("1 row of the state table behind figure 8"), std::string::npos);
-  EXPECT_EQ(summary.absent, (std::vector<std::string>{"calibration/hypoplastic_sand/",
-                                                      "calibration/modified_cam_clay/",
-                                                      "figures/fig08_overlap.png"}));
+  EXPECT_EQ(summary.absent, (std::vector<std::string>{
+                                "calibration/hypoplastic_sand/", "calibration/modified_cam_clay/",
+                                "figures/fig08_overlap.png", "findings.csv"}));
 }
 
 TEST(StudyReport, EveryStateRowAppearsInBothFiles) {
@@ -260,7 +260,9 @@ TEST(StudyReport, AbsentInputsAreStatedInTheirPlace) {
         << file;
   }
   EXPECT_NE(html.find("No case folders"), std::string::npos);
-  EXPECT_EQ(summary.absent.size(), 8u);
+  // The four tables, three models, the figure index and the findings.
+  EXPECT_EQ(summary.absent.size(), 9u);
+  EXPECT_NE(html.find("findings.csv is absent"), std::string::npos);
   EXPECT_NE(summary.Text().find("absent: asymptotic_states.csv"), std::string::npos);
   // Every section is in the contents, with the anchor its heading has.
   for (const char* anchor :
