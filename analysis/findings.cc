@@ -13,6 +13,7 @@
 
 #include "analysis/estimate.h"
 #include "analysis/figure_context.h"
+#include "common/state_measures.h"
 #include "common/statistics.h"
 #include "common/text_file.h"
 #include "study/state_table.h"
@@ -28,7 +29,6 @@ using study::TableKind;
 using study::TableStatus;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kPi = 3.14159265358979323846;
 
 // ---------------------------------------------------------------- the study as the findings read
 // it
@@ -47,17 +47,24 @@ struct Start {
 
 class Study {
  public:
-  explicit Study(const Context& ctx) : ctx_(ctx) {
-    for (const CaseData& c : ctx.cases) cases_[{c.replicate, c.name}] = &c;
-    const double main_dt = MainTimeStep();
+  explicit Study(const Context& ctx) : ctx_(ctx), main_time_step_(MainTimeStep(ctx)) {
+    for (const CaseData& c : ctx.cases) {
+      cases_[{c.replicate, c.name}] = &c;
+      if (!c.finished || c.path.empty() || SampleOf(c) != Sample::kMain) continue;
+      for (double s : c.stage_radial_stress) {
+        if (std::isfinite(s)) {
+          drained_.emplace_back(&c, s);
+          break;
+        }
+      }
+    }
     for (const StateRow& row : ctx.states) {
       if (row.replicate < 1 || row.stage == study::table::kStageJoined) continue;
       const CaseData* data = Case(row.replicate, row.case_name);
-      // The sample a state belongs to, from its own result: frictionless,
-      // a smaller time step, or the study's own.
-      if (data && data->friction == 0) {
+      const Sample sample = data ? SampleOf(*data) : Sample::kMain;
+      if (sample == Sample::kFrictionless) {
         frictionless_.push_back({&row, data});
-      } else if (data && main_dt > 0 && data->time_step < 0.75 * main_dt) {
+      } else if (sample == Sample::kFineStep) {
         fine_step_.push_back({&row, data});
       } else if (row.ncl_reference == ctx.study_ncl ||
                  (row.kind == TableKind::kNcl && row.case_name == ctx.study_ncl)) {
@@ -108,37 +115,35 @@ class Study {
   std::vector<const CaseData*> PathsAt(double psi_epsilon_deg) const {
     std::vector<const CaseData*> out;
     for (const CaseData& c : ctx_.cases) {
-      if (!c.finished || c.path.empty() || !MainSample(c)) continue;
+      if (!c.finished || c.path.empty() || SampleOf(c) != Sample::kMain) continue;
       if (std::abs(c.NominalPsiEpsilon() - psi_epsilon_deg) < 1e-6) out.push_back(&c);
     }
     return out;
   }
   // The main material's drained (constant σ_r) cases with their σ_r.
-  std::vector<std::pair<const CaseData*, double>> Drained() const {
-    std::vector<std::pair<const CaseData*, double>> out;
-    for (const CaseData& c : ctx_.cases) {
-      if (!c.finished || c.path.empty() || !MainSample(c)) continue;
-      for (double s : c.stage_radial_stress) {
-        if (std::isfinite(s)) {
-          out.emplace_back(&c, s);
-          break;
-        }
-      }
+  const std::vector<std::pair<const CaseData*, double>>& Drained() const { return drained_; }
+  std::optional<double> RadialStress(const CaseData* c) const {
+    for (const auto& [drained, sigma] : drained_) {
+      if (drained == c) return sigma;
     }
-    return out;
+    return std::nullopt;
   }
 
  private:
-  // Neither frictionless nor with a smaller time step than the study's NCL.
-  bool MainSample(const CaseData& c) const {
-    return c.friction != 0 && !(c.time_step < 0.75 * MainTimeStep());
+  // The sample a case belongs to, from its own result: frictionless, a time
+  // step below the study's, or the study's own.
+  enum class Sample { kMain, kFrictionless, kFineStep };
+  Sample SampleOf(const CaseData& c) const {
+    if (c.friction == 0) return Sample::kFrictionless;
+    if (c.time_step < 0.75 * main_time_step_) return Sample::kFineStep;
+    return Sample::kMain;
   }
   // The time step of the study's NCL, else the most common among the cases.
-  double MainTimeStep() const {
+  static double MainTimeStep(const Context& ctx) {
     std::map<double, int> count;
-    for (const CaseData& c : ctx_.cases) {
+    for (const CaseData& c : ctx.cases) {
       if (!c.finished || !(c.time_step > 0)) continue;
-      if (c.name == ctx_.study_ncl) return c.time_step;
+      if (c.name == ctx.study_ncl) return c.time_step;
       ++count[c.time_step];
     }
     double common = 0;
@@ -150,8 +155,10 @@ class Study {
   }
 
   const Context& ctx_;
+  const double main_time_step_;
   std::map<std::pair<int, std::string>, const CaseData*> cases_;
   std::vector<State> main_, frictionless_, fine_step_;
+  std::vector<std::pair<const CaseData*, double>> drained_;
 };
 
 // ---------------------------------------------------------------- small helpers
@@ -182,9 +189,9 @@ double MaxAbs(const std::vector<double>& r) {
   for (double v : r) m = std::max(m, std::abs(v));
   return m;
 }
-// σ_r/p of a triaxial stress state: tan ψ_σ = (√2/3) q/p and σ_r = p − q/3.
+// σ_r/p of a triaxial stress direction: σ_r = p − q/3.
 double RadialOverMean(double psi_sigma_deg) {
-  return 1.0 - std::tan(psi_sigma_deg * kPi / 180) / std::sqrt(2.0);
+  return 1.0 - StressRatio(psi_sigma_deg * kDegree) / 3.0;
 }
 // "20–1000 kPa": the range of p of states.
 std::string PRange(const std::vector<State>& states) {
@@ -257,8 +264,7 @@ Finding NclLinear(const Study& study) {
     if (x.size() < 8 || x.back() - x.front() < 1) continue;
     const LineFit line = FitLine(x, y);
     std::vector<double> residual;
-    for (size_t k = 0; k < x.size(); ++k)
-      residual.push_back(y[k] - line.intercept - line.slope * x[k]);
+    for (size_t k = 0; k < x.size(); ++k) residual.push_back(y[k] - line.At(x[k]));
     const double middle = 0.5 * (x.front() + x.back());
     std::vector<double> xl, yl, xh, yh;
     for (size_t k = 0; k < x.size(); ++k) {
@@ -385,8 +391,8 @@ Finding OneCsl(const Study& study) {
   std::vector<double> dv, dpsi;
   for (const State& s : oc) {
     const double x = std::log(s.row->p_kpa);
-    dv.push_back(s.row->ln_1_plus_e - volume.intercept - volume.slope * x);
-    dpsi.push_back(s.row->psi_sigma_deg - psi.intercept - psi.slope * x);
+    dv.push_back(s.row->ln_1_plus_e - volume.At(x));
+    dpsi.push_back(s.row->psi_sigma_deg - psi.At(x));
   }
   const double worst_v = MaxAbs(dv), worst_psi = MaxAbs(dpsi);
   f.verdict = worst_v <= 0.01 && worst_psi <= 2   ? Verdict::kReproduced
@@ -449,12 +455,10 @@ Finding DrainedConverge(const Study& study) {
   std::map<std::pair<int, double>, std::map<std::string, const StateRow*>> by_sigma;
   std::vector<const StateRow*> drained;
   for (const State& s : study.Detected(TableKind::kTriaxial)) {
-    if (!s.data) continue;
-    for (const auto& [c, sigma] : study.Drained()) {
-      if (c != s.data) continue;
-      by_sigma[{c->replicate, sigma}][study.StartOf(*c).kind] = s.row;
-      drained.push_back(s.row);
-    }
+    const std::optional<double> sigma = study.RadialStress(s.data);
+    if (!sigma) continue;
+    by_sigma[{s.data->replicate, *sigma}][study.StartOf(*s.data).kind] = s.row;
+    drained.push_back(s.row);
   }
   const std::vector<State> csl = study.Detected(TableKind::kCsl);
   if (drained.empty() || csl.size() < 2)
@@ -474,8 +478,8 @@ Finding DrainedConverge(const Study& study) {
   std::vector<double> dv, dpsi;
   for (const StateRow* row : drained) {
     const double x = std::log(row->p_kpa);
-    dv.push_back(row->ln_1_plus_e - volume.intercept - volume.slope * x);
-    dpsi.push_back(row->psi_sigma_deg - psi.intercept - psi.slope * x);
+    dv.push_back(row->ln_1_plus_e - volume.At(x));
+    dpsi.push_back(row->psi_sigma_deg - psi.At(x));
   }
   const bool one = !pair_dv.empty() && MaxAbs(pair_dv) <= 0.01 && MaxAbs(pair_dpsi) <= 2;
   const bool close = MaxAbs(dv) <= 0.02 && MaxAbs(dpsi) <= 3;
@@ -868,26 +872,25 @@ Finding DrainedPeakOnExtension(const Study& study) {
   return f;
 }
 
-// Pairs of states of two samples by the case name without its tag.
-template <typename Tag>
+// "phi0_nc100_psi90" → "nc100_psi90".
+std::string WithoutPrefix(const std::string& name) {
+  const size_t underscore = name.find('_');
+  return underscore == std::string::npos ? name : name.substr(underscore + 1);
+}
+// The detected critical states of another sample paired with the study's own
+// of the same replicate and case name without the other sample's tag.
 std::vector<std::pair<const StateRow*, const StateRow*>> Pairs(const Study& study,
-                                                               const std::vector<State>& other,
-                                                               Tag tag_of) {
+                                                               const std::vector<State>& other) {
   std::vector<std::pair<const StateRow*, const StateRow*>> pairs;
   for (const State& o : other) {
     if (o.row->kind != TableKind::kCsl || o.row->status != TableStatus::kDetected) continue;
-    const std::string name = tag_of(o.row->case_name);
+    const std::string name = WithoutPrefix(o.row->case_name);
     for (const State& m : study.Detected(TableKind::kCsl)) {
       if (m.row->replicate == o.row->replicate && m.row->case_name == name)
         pairs.emplace_back(m.row, o.row);
     }
   }
   return pairs;
-}
-// "phi0_nc100_psi90" → "nc100_psi90".
-std::string WithoutPrefix(const std::string& name) {
-  const size_t underscore = name.find('_');
-  return underscore == std::string::npos ? name : name.substr(underscore + 1);
 }
 
 Finding FrictionZero(const Study& study) {
@@ -903,7 +906,7 @@ Finding FrictionZero(const Study& study) {
     const CaseData* c = study.Case(key.first, key.second);
     ncl = ncl || (c && c->friction == 0 && line.valid());
   }
-  const auto pairs = Pairs(study, study.frictionless(), WithoutPrefix);
+  const auto pairs = Pairs(study, study.frictionless());
   if (pairs.empty()) return NotTested(f, "no detected φ = 0 critical state with a φ = 0.5 pair");
   int lower = 0;
   std::string text;
@@ -926,7 +929,7 @@ Finding TimeStep(const Study& study) {
            "programme's Δt: reproduced if within 1° of ψ_σ, 0.005 of ln(1+e) and 0.1 of "
            "ln p; partly if within 2°, 0.01 and 0.2; else not reproduced");
   if (study.fine_step().empty()) return NotTested(f, "no case with a smaller time step");
-  const auto pairs = Pairs(study, study.fine_step(), WithoutPrefix);
+  const auto pairs = Pairs(study, study.fine_step());
   if (pairs.empty()) return NotTested(f, "no detected Δt/5 critical state with a pair");
   double psi = 0, v = 0, lnp = 0;
   std::string text;

@@ -40,6 +40,8 @@ double CriticalStatePsiSigma(double phi_c) {
   return std::atan(std::sqrt(2.0) / 3.0 * CriticalStateRatio(phi_c));
 }
 
+double StressRatio(double psi_sigma) { return 3.0 / std::sqrt(2.0) * std::tan(psi_sigma); }
+
 double EquivalentPressure(double void_ratio, double n_intercept, double lambda_star,
                           double reference_pressure) {
   return reference_pressure * std::exp((n_intercept - std::log1p(void_ratio)) / lambda_star);

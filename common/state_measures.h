@@ -45,6 +45,10 @@ struct AxisymmetricRate {
 double CriticalStateRatio(double critical_friction_angle);  // M
 double CriticalStatePsiSigma(double critical_friction_angle);
 
+// The stress ratio q/p of a triaxial stress direction ψ_σ (radians):
+// tan ψ_σ = (√2/3) q/p (SPEC §2).
+double StressRatio(double psi_sigma);
+
 // Hvorslev equivalent pressure on the NCL ln(1+e) = N − λ* ln(p/p_r) (SPEC §3).
 double EquivalentPressure(double void_ratio, double n_intercept, double lambda_star,
                           double reference_pressure = 1.0);

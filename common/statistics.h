@@ -28,6 +28,7 @@ struct LineFit {
   double intercept_error = std::numeric_limits<double>::quiet_NaN();
   int points = 0;
   bool valid() const { return slope == slope; }
+  double At(double x) const { return intercept + slope * x; }
 };
 LineFit FitLine(const std::vector<double>& x, const std::vector<double>& y);
 

@@ -109,7 +109,7 @@ StageRecord RecordStage(const Stage& stage, const TimeSeries& series, int64_t fi
     a.void_ratio = series.Last(record::kColumnVoidRatio);
     a.psi_sigma_deg = series.Last(record::kColumnPsiSigma);
     a.psi_epsilon_deg = series.Last(record::kColumnPsiEpsilon);
-    a.q_over_p = 3.0 / std::sqrt(2.0) * std::tan(a.psi_sigma_deg * kDegree);
+    a.q_over_p = StressRatio(a.psi_sigma_deg * kDegree);
   }
   a.before_end = held_before;
   a.coordination = state.coordination;

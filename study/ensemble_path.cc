@@ -91,7 +91,7 @@ void SetEndState(const StagePath& path, const std::vector<ReplicateStage>& repli
   a->mean_stress_kpa = any ? std::exp(path.log_p.back()) : kNaN;
   a->void_ratio = any ? std::expm1(path.log_volume.back()) : kNaN;
   a->psi_sigma_deg = any ? path.psi_sigma_deg.back() : kNaN;
-  a->q_over_p = 3.0 / std::sqrt(2.0) * std::tan(a->psi_sigma_deg * kDegree);
+  a->q_over_p = StressRatio(a->psi_sigma_deg * kDegree);
   std::vector<double> psi_epsilon;
   for (const ReplicateStage& r : replicates) {
     psi_epsilon.push_back(r.record.asymptote->psi_epsilon_deg);
