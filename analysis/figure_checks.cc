@@ -14,28 +14,34 @@
 namespace granasym::analysis::figures {
 namespace {
 
-// The counterpart of a variant case: "phi0_nc100_psi90" → "nc100_psi90",
-// "ncl_phi0" → "ncl".
-std::string Counterpart(const std::string& name, const std::string& tag) {
-  if (name.rfind(tag + "_", 0) == 0) return name.substr(tag.size() + 1);
-  const std::string suffix = "_" + tag;
-  if (name.size() > suffix.size() &&
-      name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) {
-    return name.substr(0, name.size() - suffix.size());
+// The study's own case that a variant case (another sample) repeats: the
+// study's NCL for a variant's isotropic compression from the sample, else
+// the replicate-1 case of the study's sample with the same ψ_ε (or σ_r) from
+// the same start.
+const CaseData* Counterpart(const Context& ctx, const CaseData& variant) {
+  const bool is_ncl = std::abs(variant.NominalPsiEpsilon()) < 0.5;
+  if (is_ncl) return ctx.Case(1, ctx.study_ncl);
+  const std::string direction = DirectionLabel(variant);
+  const std::string start = StartLabel(ctx.cases, variant);
+  for (const CaseData& c : ctx.cases) {
+    if (c.replicate == 1 && c.finished && c.sample == Sample::kMain && !c.path.empty() &&
+        DirectionLabel(c) == direction && StartLabel(ctx.cases, c) == start) {
+      return &c;
+    }
   }
-  return "";
+  return nullptr;
 }
 
-// Variant cases (tag) against their counterparts: NCLs in ln(1+e)–p and the
-// 90° paths in a second panel.
-FigureSpec Variants(const Context& ctx, FigureSpec spec, const std::string& tag,
+// The cases of another sample (serving the figure) against their
+// counterparts of the study's sample: NCLs in ln(1+e)–p and the 90° paths
+// in a second panel.
+FigureSpec Variants(const Context& ctx, FigureSpec spec, Sample sample,
                     const std::function<std::string(const CaseData&)>& label) {
   BlockFile ncl({"p_kpa", "ln_1_plus_e"});
   BlockFile paths({"p_kpa", "q_kpa", "psi_sigma_deg", "eps_s"});
   std::vector<const CaseData*> pairs;
-  for (const CaseData* c : ctx.Serving(spec.figure)) {
-    const std::string other = Counterpart(c->name, tag);
-    const CaseData* reference = FindCase(ctx.cases, 1, other);
+  for (const CaseData* c : ctx.Serving(spec.figure, sample)) {
+    const CaseData* reference = Counterpart(ctx, *c);
     if (reference && reference->finished && !reference->path.empty()) pairs.push_back(reference);
     pairs.push_back(c);
   }
@@ -50,7 +56,7 @@ FigureSpec Variants(const Context& ctx, FigureSpec spec, const std::string& tag,
     }
   }
   if (ncl.blocks() == 0 && paths.blocks() == 0) {
-    return NotDrawn(spec, "no finished case serves " + spec.figure);
+    return NotDrawn(spec, "no finished case of that sample serves " + spec.figure);
   }
   if (ncl.blocks() == 0 || paths.blocks() == 0) {
     return NotDrawn(spec, ncl.blocks() == 0 ? "no NCL to compare" : "no ψ_ε = 90° path to compare");
@@ -117,12 +123,12 @@ FigureSpec Fig20(const Context& ctx) {
   FigureSpec spec =
       Spec("fig20_friction", "20", "Contact friction φ = 0 against φ = 0.5 rad",
            "(a) The isotropic NCL in ln(1+e) against p and (b) the stress paths q against "
-           "p of the ψ_ε = 90° tests from NC states, for frictionless contacts (cases "
-           "serving Fig. 20) and the paper's φ = 0.5 rad (the same cases without the "
-           "phi0 tag), replicate 1.",
+           "p of the ψ_ε = 90° tests from NC states, for the cases of another contact "
+           "friction (read from their results; those serving Fig. 20) against the study's "
+           "own cases of the same direction and start, replicate 1.",
            "friction.gp");
-  return Variants(ctx, spec, "phi0", [](const CaseData& c) {
-    return c.name.find("phi0") != std::string::npos ? "φ = 0" : "φ = 0.5 rad";
+  return Variants(ctx, spec, Sample::kOtherFriction, [](const CaseData& c) {
+    return "φ = " + (c.friction == 0 ? std::string("0") : Short(c.friction) + " rad");
   });
 }
 
@@ -131,10 +137,11 @@ FigureSpec Sec52(const Context& ctx) {
       Spec("sec52_time_step", "Sec. 5.2", "Time-step independence: Δt against Δt/5",
            "(a) The isotropic NCL in ln(1+e) against p and (b) ψ_σ against the shear "
            "strain ε_s of the ψ_ε = 90° path from NC 100 kPa, with the programme's time "
-           "step and with a fifth of it (cases serving Sec. 5.2 against the same cases "
-           "without the dt5 tag), replicate 1.",
+           "step and with a smaller one (the cases whose results have a time step below "
+           "¾ of the study's, serving Sec. 5.2, against the study's own cases of the same "
+           "direction and start), replicate 1.",
            "time_step.gp");
-  return Variants(ctx, spec, "dt5",
+  return Variants(ctx, spec, Sample::kFineStep,
                   [](const CaseData& c) { return fmt::format("Δt = {:.3g} s", c.time_step); });
 }
 

@@ -118,6 +118,43 @@ std::string StudyNclName(const std::string& directory) {
 
 }  // namespace
 
+void ClassifySamples(Context* ctx) {
+  std::map<std::pair<double, double>, int> count;
+  bool found = false;
+  for (const CaseData& c : ctx->cases) {
+    if (!c.finished || !(c.time_step > 0)) continue;
+    if (c.name == ctx->study_ncl) {
+      ctx->main_friction = c.friction;
+      ctx->main_time_step = c.time_step;
+      found = true;
+      break;
+    }
+    ++count[{c.friction, c.time_step}];
+  }
+  if (!found) {
+    int most = 0;
+    for (const auto& [key, n] : count) {
+      if (n > most) {
+        std::tie(ctx->main_friction, ctx->main_time_step) = key;
+        most = n;
+      }
+    }
+  }
+  for (CaseData& c : ctx->cases) {
+    if (!c.finished) continue;
+    const bool same_friction = !(std::isfinite(c.friction) && std::isfinite(ctx->main_friction)) ||
+                               std::abs(c.friction - ctx->main_friction) < 1e-9;
+    c.sample = !same_friction                             ? Sample::kOtherFriction
+               : c.time_step < 0.75 * ctx->main_time_step ? Sample::kFineStep
+                                                          : Sample::kMain;
+  }
+  for (size_t k = 0; k < ctx->cases.size(); ++k) {
+    ctx->by_name[{ctx->cases[k].replicate, ctx->cases[k].name}] = k;
+  }
+}
+
+namespace {}  // namespace
+
 void BlockFile::Add(const std::string& title, const std::vector<std::vector<double>>& rows) {
   std::string block;
   for (size_t k = 0; k < columns_.size(); ++k) block += columns_[k] + "\t";
@@ -217,14 +254,16 @@ std::string ModelTitle(const std::string& name) {
 Context ReadContext(const std::string& directory, const FigureDataOptions& options) {
   Context ctx;
   ctx.directory = directory;
-  ctx.data = directory + "/figures/data";
+  ctx.data = (options.out.empty() ? directory : options.out) + "/figures/data";
   ctx.options = options;
   ctx.cases = LoadCases(directory, options.psi_epsilon_half_rows);
   ctx.states = study::WithoutEnsembleRows(study::ReadStateTable(directory));
   ctx.ncl_fits = ReadNclFits(directory);
   ctx.study_ncl = StudyNclName(directory);
+  ClassifySamples(&ctx);
   std::vector<std::string> overlaid, absent;
-  for (const std::string& name : options.models) {
+  for (const std::string& name : study::kFigureModels) {
+    if (!options.settings.Overlays(name)) continue;
     const std::string folder = directory + "/calibration/" + name + "/plot_data";
     if (fs::exists(folder + "/model_curve.csv") && fs::exists(folder + "/model_lines.dat")) {
       ctx.models.push_back(ReadModelOverlay(folder, name));
@@ -245,6 +284,45 @@ Context ReadContext(const std::string& directory, const FigureDataOptions& optio
     ctx.models_note += "; not calibrated in this study, so not shown: " + join(absent);
   ctx.models_note += ".";
   return ctx;
+}
+
+std::vector<const StateRow*> Context::Select(const StateSelection& selection) const {
+  std::vector<const StateRow*> out;
+  for (const StateRow& row : states) {
+    if (!UsableState(row) || SampleOf(row) != selection.sample) continue;
+    if (row.status == TableStatus::kDrifting && !selection.drifting) continue;
+    if (!selection.kinds.empty() && std::find(selection.kinds.begin(), selection.kinds.end(),
+                                              row.kind) == selection.kinds.end()) {
+      continue;
+    }
+    if (!selection.cases.empty() && !selection.cases.count(row.case_name)) continue;
+    if (!options.settings.IncludesCase(row.case_name)) continue;
+    out.push_back(&row);
+  }
+  return out;
+}
+
+std::string StateSelection::Describe(const Context& ctx) const {
+  std::string sample_text = sample == Sample::kMain ? "the study's own sample"
+                            : sample == Sample::kOtherFriction
+                                ? "the sample of other contact friction"
+                                : "the sample of the finer time step";
+  if (sample == Sample::kMain && std::isfinite(ctx.main_friction)) {
+    sample_text +=
+        fmt::format(" (φ = {} rad, Δt = {:.3g} s)", Short(ctx.main_friction), ctx.main_time_step);
+  }
+  std::string kinds_text;
+  for (TableKind kind : kinds) {
+    kinds_text += (kinds_text.empty() ? "" : ", ") + std::string(ToString(kind));
+  }
+  return "States shown: " + sample_text + (kinds_text.empty() ? "" : "; kinds " + kinds_text) +
+         (drifting ? "; detected (filled) and still drifting at the stage end (open)"
+                   : "; detected only") +
+         "; gas, invalid and unfinished stages left out" +
+         (ctx.options.settings.cases.empty() && ctx.options.settings.exclude_cases.empty()
+              ? ""
+              : "; only the cases the figure settings include") +
+         ".";
 }
 
 FigureSpec Spec(const std::string& stem, const std::string& figure, const std::string& title,

@@ -10,6 +10,7 @@
 #include <initializer_list>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -58,6 +59,11 @@ struct Path {
   bool empty() const { return p.empty(); }
 };
 
+// The sample a case belongs to, from its own result: the study's own (the
+// contact friction and time step of the study's NCL case), another contact
+// friction (Fig. 20's φ = 0), or a time step below ¾ of the study's (Sec. 5.2).
+enum class Sample { kMain, kOtherFriction, kFineStep };
+
 struct CaseData {
   std::string name, directory, parent_name, parent_stage;
   int replicate = 1;
@@ -68,7 +74,8 @@ struct CaseData {
   std::vector<double> stage_psi_epsilon;  // nominal ψ_ε per stage (NaN: not a strain path)
   std::vector<double> stage_radial_stress;
   double time_step = 0;
-  double friction = std::numeric_limits<double>::quiet_NaN();
+  double friction = std::numeric_limits<double>::quiet_NaN();  // rad
+  Sample sample = Sample::kMain;
   Path path;  // the case's own rows
   bool Serves(const std::string& figure) const { return figures.Contains(figure); }
   double NominalPsiEpsilon() const {
@@ -92,8 +99,23 @@ bool UsableState(const StateRow& row);
 // "hypoplastic clay (Mašín 2005)" for "hypoplastic_clay".
 std::string ModelTitle(const std::string& name);
 
+struct Context;
+
+// Which states a figure shows: one sample, some kinds, detected states and
+// (optionally) drifting ones, of the cases the user's settings include; and,
+// when `cases` is non-empty, only the states of those case names.
+struct StateSelection {
+  Sample sample = Sample::kMain;
+  std::vector<TableKind> kinds;  // empty: every kind
+  bool drifting = true;          // drifting states too (drawn open)
+  std::set<std::string> cases;   // empty: every case of the sample
+  // "states of the study's sample (φ = 0.5 rad, Δt = 2.1e-06 s); kinds csl;
+  // detected and drifting; gas, invalid and unfinished stages left out".
+  std::string Describe(const Context& ctx) const;
+};
+
 struct Context {
-  std::string directory, data;  // DIR, DIR/figures/data
+  std::string directory, data;  // DIR, OUT/figures/data
   FigureDataOptions options;
   std::vector<CaseData> cases;
   std::vector<StateRow> states;  // the state table without its ensemble rows
@@ -101,21 +123,47 @@ struct Context {
   std::string study_ncl;
   std::vector<ModelOverlay> models;
   std::string models_note;  // which models are overlaid, which absent
+  // The study's own sample: the friction (rad) and time step of its NCL case.
+  double main_friction = std::numeric_limits<double>::quiet_NaN();
+  double main_time_step = 0;
+  std::map<std::pair<int, std::string>, size_t> by_name;  // (replicate, name) → cases[k]
 
   std::string File(const std::string& name) const { return data + "/" + name; }
-  // Replicate 1's finished cases that serve `figure`.
-  std::vector<const CaseData*> Serving(const std::string& figure) const {
+  const CaseData* Case(int replicate, const std::string& name) const {
+    const auto it = by_name.find({replicate, name});
+    return it == by_name.end() ? nullptr : &cases[it->second];
+  }
+  // The sample of a state's case (the study's own when its case is unknown).
+  Sample SampleOf(const StateRow& row) const {
+    const CaseData* c = Case(row.replicate, row.case_name);
+    return c ? c->sample : Sample::kMain;
+  }
+  // Replicate 1's finished cases of `sample` that serve `figure` and that
+  // the user's settings include.
+  std::vector<const CaseData*> Serving(const std::string& figure,
+                                       Sample sample = Sample::kMain) const {
     std::vector<const CaseData*> out;
     for (const CaseData& c : cases) {
-      if (c.replicate == 1 && c.finished && !c.path.empty() && c.Serves(figure)) out.push_back(&c);
+      if (c.replicate == 1 && c.finished && !c.path.empty() && c.Serves(figure) &&
+          c.sample == sample && options.settings.IncludesCase(c.name)) {
+        out.push_back(&c);
+      }
     }
     return out;
   }
+  // The usable states (UsableState) that `selection` takes.
+  std::vector<const StateRow*> Select(const StateSelection& selection) const;
   NclLine StudyNcl(int replicate) const {
     const auto it = ncl_fits.find({replicate, study_ncl});
     return it == ncl_fits.end() ? NclLine{} : it->second;
   }
 };
+
+// The friction and time step of the study's sample (those of its NCL case,
+// else the most common among the finished cases), each case's sample
+// against them, and `by_name`. ReadContext calls it; a Context built by hand
+// calls it after its cases are in.
+void ClassifySamples(Context* ctx);
 
 // The study folder `directory` as the figures read it: its cases (with
 // replicate 1's paths), its state table and NCL fits, the study's NCL case

@@ -112,13 +112,13 @@ std::vector<FigureSpec> Fig05Calibrated(const Context& ctx) {
 }  // namespace figures
 
 bool FigureDataOptions::IsValid(std::string* why) const {
-  for (double level : asbs_levels) {
+  for (double level : settings.levels) {
     if (!(std::isfinite(level) && level > 0)) {
-      *why = fmt::format("asbs_levels: {} is not a finite positive ln(1+e)", level);
+      *why = fmt::format("levels: {} is not a finite positive ln(1+e)", level);
       return false;
     }
   }
-  if (!(fig18_level > 0)) {
+  if (settings.fig18_level && !(*settings.fig18_level > 0)) {
     *why = "fig18_level: must be a positive ln(1+e)";
     return false;
   }
@@ -294,7 +294,13 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
                      " does not exist: run `granasym study run` (or `study merge`) "
                      "on the study folder first");
   }
-  const std::string data = directory + "/figures/data";
+  const std::string out = options.out.empty() ? directory : options.out;
+  if (fs::exists(out + "/study.toml") && !fs::equivalent(out, directory)) {
+    throw InputError("--out " + out +
+                     " is another study's folder: its figures would be replaced; give a new "
+                     "folder or the study itself");
+  }
+  const std::string data = out + "/figures/data";
   fs::create_directories(data);
   for (const auto& entry : fs::directory_iterator(data)) {
     if (entry.path().extension() == ".tsv") fs::remove(entry.path());
@@ -368,7 +374,7 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
   return specs;
 }
 
-void WriteFigureIndex(const std::string& directory, const std::vector<FigureSpec>& figures) {
+void WriteFigureIndex(const std::string& out, const std::vector<FigureSpec>& figures) {
   auto clean = [](std::string s) {
     for (char& c : s) {
       if (c == '\t' || c == '\n' || c == '\r') c = ' ';
@@ -380,8 +386,54 @@ void WriteFigureIndex(const std::string& directory, const std::vector<FigureSpec
     text += clean(f.stem) + "\t" + clean(f.figure) + "\t" + clean(f.title) + "\t" +
             clean(f.caption) + "\n";
   }
-  fs::create_directories(directory + "/figures");
-  WriteTextFileAtomically(directory + "/figures/index.tsv", text);
+  fs::create_directories(out + "/figures");
+  WriteTextFileAtomically(out + "/figures/index.tsv", text);
+}
+
+std::vector<std::pair<std::string, std::string>> WriteFigureScripts(
+    const std::string& out, const std::string& plots, const std::vector<FigureSpec>& figures) {
+  const fs::path folder = fs::absolute(fs::path(out) / "figures").lexically_normal();
+  const fs::path scripts = folder / "scripts";
+  fs::create_directories(scripts);
+  for (const std::string& path : {folder.string(), fs::absolute(plots).string()}) {
+    if (path.find('\'') != std::string::npos) {
+      throw InputError("'" + path + "': a folder name with a quote cannot be passed to gnuplot");
+    }
+  }
+  // The scripts the figures load, and those they load in turn (common.gp).
+  std::set<std::string> copied;
+  auto copy = [&](const std::string& name) {
+    if (!copied.insert(name).second) return;
+    const fs::path source = fs::path(plots) / name;
+    if (!fs::exists(source)) {
+      throw InputError("the figure script " + source.string() +
+                       " does not exist (GRANASYM_PLOTS_DIR names the folder of the scripts)");
+    }
+    WriteTextFileAtomically((scripts / name).string(), ReadTextFile(source.string()));
+  };
+  std::vector<std::pair<std::string, std::string>> wrappers;
+  for (const FigureSpec& f : figures) {
+    if (!f.not_drawn.empty()) continue;
+    copy("common.gp");
+    copy(f.script);
+    std::string text = fmt::format(
+        "# {}: {} (granasym study figures).\n"
+        "# Redraw: gnuplot {}.plt (PNG); gnuplot -e \"term='pdf'\" {}.plt (or 'svg').\n"
+        "# The script and its shared settings are the copies in scripts/: edit them to "
+        "restyle.\n"
+        "if (!exists(\"term\")) term = 'png'\n"
+        "data = '{}'\nout = '{}'\nscripts = '{}'\n",
+        f.figure.find_first_not_of("0123456789") == std::string::npos ? "Fig. " + f.figure
+                                                                      : f.figure,
+        f.title, f.stem, f.stem, (folder / "data").string(), (folder / f.stem).string(),
+        scripts.string());
+    for (const auto& [name, value] : f.variables) text += name + " = " + value + "\n";
+    text += "load scripts.'/" + f.script + "'\n";
+    const std::string path = (folder / (f.stem + ".plt")).string();
+    WriteTextFileAtomically(path, text);
+    wrappers.emplace_back(f.stem, path);
+  }
+  return wrappers;
 }
 
 }  // namespace granasym::analysis

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "study/figure_settings.h"
 #include "study/state_table.h"
 
 namespace granasym::analysis {
@@ -40,19 +41,16 @@ struct FigureSpec {
 };
 
 struct FigureDataOptions {
-  // ln(1+e) levels of the constant-e ASBS cross-sections (Fig. 17); empty:
-  // three levels at 20, 50 and 80 % of the range of the states' ln(1+e).
-  std::vector<double> asbs_levels;
-  // The level of Fig. 18 (the paper's 0.58), moved to the nearest level the
-  // study's states reach.
-  double fig18_level = 0.58;
+  // What the user chose (study.toml's [figures], overridden by the flags of
+  // `study figures`): ASBS levels, Fig. 18's level, cases, figures, models.
+  study::FigureSettings settings;
+  // Where figures/ is written; empty: the study folder itself.
+  std::string out;
   // A state is projected to a level along its asymptotic line by at most
   // this much in ln p (farther states say little about that level).
   double max_projection_lnp = 1.0;
   // Half-width (rows) of the strain increments that give a path's ψ_ε.
   int psi_epsilon_half_rows = 2;
-  // The calibrated models overlaid, DIR/calibration/<model>/plot_data/.
-  std::vector<std::string> models = {"hypoplastic_clay", "modified_cam_clay", "hypoplastic_sand"};
   bool IsValid(std::string* why) const;
 };
 
@@ -124,17 +122,28 @@ ModelOverlay ReadModelOverlay(const std::string& folder, const std::string& name
 void ModelSectionAt(const ModelOverlay& model, double level, const NclLine& study_ncl,
                     std::vector<double>* p_over_pe, std::vector<double>* q_over_pe);
 
-// Writes DIR/figures/data/ and returns the figures (with the reason for
-// each that has no data): the paper's figures that the study's cases declare
-// in their `figures` keys (Fig. 5 when it has model runs, the calibrated
-// models' Fig. 5 when `study calibrate` ran them), and the rate study's
-// three figures when it has rate cases (analysis/rate_study.h). Throws
-// InputError when DIR is not a study folder with a state table.
+// Writes OUT/figures/data/ (OUT: options.out, else the study folder DIR)
+// and returns the figures (with the reason for each that has no data): the
+// paper's figures that the study's cases declare in their `figures` keys
+// (Fig. 5 when it has model runs, the calibrated models' Fig. 5 when `study
+// calibrate` ran them), and the rate study's three figures when it has rate
+// cases (analysis/rate_study.h); all of them, whatever options.settings.only
+// says (that chooses what is drawn). Throws InputError when DIR is not a study folder with a
+// state table, or when OUT lies inside another study's folder.
 std::vector<FigureSpec> WriteFigureData(const std::string& directory,
                                         const FigureDataOptions& options = {});
 
-// DIR/figures/index.tsv: stem, figure, title, caption (a figure not drawn
+// OUT/figures/index.tsv: stem, figure, title, caption (a figure not drawn
 // has its reason in the caption); tabs and line breaks in fields become spaces.
-void WriteFigureIndex(const std::string& directory, const std::vector<FigureSpec>& figures);
+void WriteFigureIndex(const std::string& out, const std::vector<FigureSpec>& figures);
+
+// OUT/figures/<stem>.plt for every figure with data: the figure's gnuplot
+// variables (absolute paths of its data and output) and the `load` of its
+// script, copied with the shared ones from `plots` (plots/study/) into
+// OUT/figures/scripts/. `gnuplot OUT/figures/<stem>.plt` redraws the PNG;
+// `gnuplot -e "term='pdf'" …` (or 'svg') the other formats. Returns the
+// wrappers' paths by stem.
+std::vector<std::pair<std::string, std::string>> WriteFigureScripts(
+    const std::string& out, const std::string& plots, const std::vector<FigureSpec>& figures);
 
 }  // namespace granasym::analysis

@@ -126,7 +126,7 @@ FigureSpec Fig17(const Context& ctx) {
            "asbs_sections.gp");
   const NclLine ncl = ctx.StudyNcl(1);
   if (!ncl.valid()) return NotDrawn(spec, "the study's NCL could not be fitted");
-  std::vector<double> levels = ctx.options.asbs_levels;
+  std::vector<double> levels = ctx.options.settings.levels;
   if (levels.empty()) levels = SectionLevels(StateLevels(ctx), 3);
   if (levels.empty()) return NotDrawn(spec, "the state table has no usable asymptotic states");
   const Sections sections = Project(ctx, levels);
@@ -166,16 +166,17 @@ FigureSpec Fig18(const Context& ctx) {
   if (ln_v.empty()) return NotDrawn(spec, "the state table has no usable asymptotic states");
   const double lo = *std::min_element(ln_v.begin(), ln_v.end());
   const double hi = *std::max_element(ln_v.begin(), ln_v.end());
-  const double level = std::clamp(ctx.options.fig18_level, lo, hi);
+  const double wanted = ctx.options.settings.fig18_level.value_or(0.58);
+  const double level = std::clamp(wanted, lo, hi);
   spec.caption = fmt::format(
       "The cross-section of the ASBS at ln(1+e) = {:.3f}{} in (a) logarithmic and (b) linear "
       "p/p_e*, with the NC and OC ψ_ε = 90° paths of replicate 1 (cases serving Fig. 18) whose "
       "mean ln(1+e) is nearest to the level, each row normalised by p_e* at its own void ratio. ",
       level,
-      level == ctx.options.fig18_level
+      level == wanted
           ? " (the paper's level)"
-          : fmt::format(" (the paper's {:g} lies outside the states' range {:.3f}–{:.3f})",
-                        ctx.options.fig18_level, lo, hi));
+          : fmt::format(" (the paper's {:g} lies outside the states' range {:.3f}–{:.3f})", wanted,
+                        lo, hi));
   spec.caption += ProjectionMethod(ctx.options);
   const Sections sections = Project(ctx, {level});
   BlockFile dem_file({"p_over_pe", "q_over_pe", "psi_epsilon_deg", "point_type"});

@@ -23,6 +23,7 @@ namespace {
 
 using figures::CaseData;
 using figures::Context;
+using figures::Sample;
 
 using study::StateRow;
 using study::TableKind;
@@ -47,10 +48,10 @@ struct Start {
 
 class Study {
  public:
-  explicit Study(const Context& ctx) : ctx_(ctx), main_time_step_(MainTimeStep(ctx)) {
+  explicit Study(const Context& ctx) : ctx_(ctx) {
     for (const CaseData& c : ctx.cases) {
       cases_[{c.replicate, c.name}] = &c;
-      if (!c.finished || c.path.empty() || SampleOf(c) != Sample::kMain) continue;
+      if (!c.finished || c.path.empty() || c.sample != Sample::kMain) continue;
       for (double s : c.stage_radial_stress) {
         if (std::isfinite(s)) {
           drained_.emplace_back(&c, s);
@@ -61,8 +62,8 @@ class Study {
     for (const StateRow& row : ctx.states) {
       if (row.replicate < 1 || row.stage == study::table::kStageJoined) continue;
       const CaseData* data = Case(row.replicate, row.case_name);
-      const Sample sample = data ? SampleOf(*data) : Sample::kMain;
-      if (sample == Sample::kFrictionless) {
+      const Sample sample = data ? data->sample : Sample::kMain;
+      if (sample == Sample::kOtherFriction) {
         frictionless_.push_back({&row, data});
       } else if (sample == Sample::kFineStep) {
         fine_step_.push_back({&row, data});
@@ -115,7 +116,7 @@ class Study {
   std::vector<const CaseData*> PathsAt(double psi_epsilon_deg) const {
     std::vector<const CaseData*> out;
     for (const CaseData& c : ctx_.cases) {
-      if (!c.finished || c.path.empty() || SampleOf(c) != Sample::kMain) continue;
+      if (!c.finished || c.path.empty() || c.sample != Sample::kMain) continue;
       if (std::abs(c.NominalPsiEpsilon() - psi_epsilon_deg) < 1e-6) out.push_back(&c);
     }
     return out;
@@ -130,32 +131,7 @@ class Study {
   }
 
  private:
-  // The sample a case belongs to, from its own result: frictionless, a time
-  // step below the study's, or the study's own.
-  enum class Sample { kMain, kFrictionless, kFineStep };
-  Sample SampleOf(const CaseData& c) const {
-    if (c.friction == 0) return Sample::kFrictionless;
-    if (c.time_step < 0.75 * main_time_step_) return Sample::kFineStep;
-    return Sample::kMain;
-  }
-  // The time step of the study's NCL, else the most common among the cases.
-  static double MainTimeStep(const Context& ctx) {
-    std::map<double, int> count;
-    for (const CaseData& c : ctx.cases) {
-      if (!c.finished || !(c.time_step > 0)) continue;
-      if (c.name == ctx.study_ncl) return c.time_step;
-      ++count[c.time_step];
-    }
-    double common = 0;
-    int most = 0;
-    for (const auto& [step, n] : count) {
-      if (n > most) std::tie(common, most) = std::make_pair(step, n);
-    }
-    return common;
-  }
-
   const Context& ctx_;
-  const double main_time_step_;
   std::map<std::pair<int, std::string>, const CaseData*> cases_;
   std::vector<State> main_, frictionless_, fine_step_;
   std::vector<std::pair<const CaseData*, double>> drained_;

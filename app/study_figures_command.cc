@@ -1,149 +1,82 @@
-// `granasym study figures DIR [--only STEM]...`: writes the figure data
-// (analysis/figure_data.h) under DIR/figures/data/, draws every figure with
-// the gnuplot scripts of plots/study/ into DIR/figures/<stem>.png and .pdf,
-// and writes DIR/figures/index.tsv (a figure that could not be drawn has
-// the reason in its caption). gnuplot is found on PATH; the scripts next to
-// the sources (GRANASYM_PLOTS_DIR at build time), or where the environment
-// variable GRANASYM_PLOTS_DIR points.
+// `granasym study figures DIR [--out OUT] [--only STEM]... [--level X]...`:
+// writes the figure data (analysis/figure_data.h) under OUT/figures/data/
+// (OUT is DIR unless --out names another folder), draws every figure with
+// the gnuplot scripts of plots/study/ (copied to OUT/figures/scripts/, run
+// through OUT/figures/<stem>.plt) into OUT/figures/<stem>.png, .pdf and
+// .svg, and writes OUT/figures/index.tsv (a figure that could not be drawn
+// has the reason in its caption). What is drawn comes from study.toml's
+// [figures] table (the programme's), each flag overriding its key
+// (study/figure_settings.h).
 #include "app/study_figures_command.h"
-
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "analysis/figure_data.h"
+#include "app/figure_drawing.h"
 #include "common/error.h"
 #include "common/stopwatch.h"
-
-extern char** environ;
 
 namespace granasym {
 namespace {
 namespace fs = std::filesystem;
 
-std::string FindOnPath(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  std::string dirs = path ? path : "";
-  size_t start = 0;
-  while (start <= dirs.size()) {
-    const size_t end = std::min(dirs.find(':', start), dirs.size());
-    const std::string dir = dirs.substr(start, end - start);
-    if (!dir.empty()) {
-      const std::string candidate = dir + "/" + program;
-      if (access(candidate.c_str(), X_OK) == 0) return candidate;
-    }
-    start = end + 1;
-  }
-  return "";
-}
-
-std::string PlotsDirectory() {
-  if (const char* dir = std::getenv("GRANASYM_PLOTS_DIR")) return dir;
-  return GRANASYM_PLOTS_DIR;
-}
-
-// Runs argv, returns its exit status and its stdout and stderr together.
-int RunCapturing(const std::vector<std::string>& argv, std::string* output) {
-  int pipe_fds[2];
-  if (pipe(pipe_fds) != 0) throw RuntimeError("pipe() failed for " + argv[0]);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDERR_FILENO);
-  posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, argv[0].c_str(), &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  close(pipe_fds[1]);
-  if (spawned != 0) {
-    close(pipe_fds[0]);
-    throw RuntimeError("cannot start " + argv[0]);
-  }
-  char buffer[4096];
-  ssize_t n = 0;
-  while ((n = read(pipe_fds[0], buffer, sizeof buffer)) > 0) output->append(buffer, n);
-  close(pipe_fds[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
-}
-
-// Draws one figure in both formats; returns "" or why it failed.
-std::string Draw(const std::string& gnuplot, const std::string& scripts,
-                 const std::string& directory, const analysis::FigureSpec& figure) {
-  const std::string script = scripts + "/" + figure.script;
-  if (!fs::exists(script)) return "the script " + script + " does not exist";
-  for (const char* term : {"png", "pdf"}) {
-    const std::string file = directory + "/figures/" + figure.stem + "." + term;
-    fs::remove(file);
-    std::string assignments = "data='" + directory + "/figures/data'; out='" + directory +
-                              "/figures/" + figure.stem + "'; term='" + term + "'; scripts='" +
-                              scripts + "'";
-    for (const auto& [name, value] : figure.variables) assignments += "; " + name + "=" + value;
-    std::string output;
-    const int status = RunCapturing({gnuplot, "-e", assignments, script}, &output);
-    while (!output.empty() && (output.back() == '\n' || output.back() == ' ')) output.pop_back();
-    if (status != 0) return "gnuplot failed (exit " + std::to_string(status) + "): " + output;
-    if (!output.empty()) return "gnuplot printed: " + output;
-    if (!fs::exists(file) || fs::file_size(file) == 0) return "gnuplot wrote no " + file;
-  }
-  return "";
-}
-
 struct FiguresFlags {
-  std::string directory;
-  std::vector<std::string> only;
+  std::string directory, out;
+  study::FigureSettings settings;  // the flags' settings (unset: study.toml's)
+  std::vector<double> fig18_level;
+  std::vector<std::string> models;
   bool data_only = false;
 };
 
-void RunFigures(const FiguresFlags& flags) {
+void RunFigures(FiguresFlags flags) {
   const Stopwatch clock;
-  for (const std::string& path : {flags.directory, PlotsDirectory()}) {
-    if (path.find('\'') != std::string::npos) {
-      throw InputError("'" + path + "': a folder name with a quote cannot be passed to gnuplot");
+  analysis::FigureDataOptions options;
+  options.settings = study::FigureSettings::FromFile(flags.directory + "/study.toml");
+  if (!flags.fig18_level.empty()) flags.settings.fig18_level = flags.fig18_level.front();
+  if (!flags.models.empty()) {
+    if (flags.models == std::vector<std::string>{"none"}) flags.models.clear();
+    for (const std::string& model : flags.models) {
+      if (std::find(study::kFigureModels.begin(), study::kFigureModels.end(), model) ==
+          study::kFigureModels.end()) {
+        throw InputError("--model " + model +
+                         ": not a calibrated model (hypoplastic_clay, modified_cam_clay, "
+                         "hypoplastic_sand, or none)");
+      }
+    }
+    flags.settings.models = flags.models;
+  }
+  options.settings.Override(flags.settings);
+  options.out = flags.out.empty() ? flags.directory : flags.out;
+  std::vector<analysis::FigureSpec> figures = analysis::WriteFigureData(flags.directory, options);
+  // A name in `only` that is no figure of this study is a mistake, not an empty drawing.
+  for (const std::string& name : options.settings.only) {
+    if (std::none_of(figures.begin(), figures.end(), [&](const analysis::FigureSpec& f) {
+          return f.stem == name || f.figure == name;
+        })) {
+      std::string valid;
+      for (const analysis::FigureSpec& f : figures) valid += (valid.empty() ? "" : ", ") + f.stem;
+      throw InputError("--only " + name + ": no figure of this study has that stem or number (" +
+                       valid + ")");
     }
   }
-  std::vector<analysis::FigureSpec> figures = analysis::WriteFigureData(flags.directory);
-  const std::string gnuplot = flags.data_only ? "" : FindOnPath("gnuplot");
-  int drawn = 0, failed = 0;
-  for (analysis::FigureSpec& figure : figures) {
-    if (!flags.only.empty() &&
-        std::find(flags.only.begin(), flags.only.end(), figure.stem) == flags.only.end()) {
-      continue;
-    }
-    if (!figure.not_drawn.empty()) {
-      std::printf("  %-28s not drawn: %s\n", figure.stem.c_str(), figure.not_drawn.c_str());
-      continue;
-    }
-    if (flags.data_only) continue;
-    std::string why = gnuplot.empty() ? "gnuplot is not on PATH (Debian: apt-get install "
-                                        "gnuplot-nox)"
-                                      : Draw(gnuplot, PlotsDirectory(), flags.directory, figure);
-    if (why.empty()) {
-      ++drawn;
-      std::printf("  %-28s %s/figures/%s.png, .pdf\n", figure.stem.c_str(), flags.directory.c_str(),
-                  figure.stem.c_str());
-    } else {
-      ++failed;
-      figure.not_drawn = why;
-      figure.caption += " Not drawn: " + why;
-      std::printf("  %-28s FAILED: %s\n", figure.stem.c_str(), why.c_str());
+  std::vector<analysis::FigureSpec> drawn_now;
+  for (const analysis::FigureSpec& f : figures) {
+    if (options.settings.IncludesFigure(f.stem, f.figure)) drawn_now.push_back(f);
+  }
+  const int failed = DrawFigures(options.out, &drawn_now, flags.data_only);
+  for (analysis::FigureSpec& f : figures) {
+    for (const analysis::FigureSpec& d : drawn_now) {
+      if (d.stem == f.stem) f = d;
     }
   }
-  analysis::WriteFigureIndex(flags.directory, figures);
-  std::printf("%d figures drawn, %d failed, in %.1f s; index: %s/figures/index.tsv\n", drawn,
-              failed, clock.Seconds(), flags.directory.c_str());
+  analysis::WriteFigureIndex(options.out, figures);
+  std::printf("%zu figures drawn, %d failed, in %.1f s; index: %s/figures/index.tsv\n",
+              flags.data_only ? 0 : drawn_now.size() - failed, failed, clock.Seconds(),
+              options.out.c_str());
   if (failed > 0) throw CLI::RuntimeError(4);
 }
 
@@ -158,7 +91,30 @@ void RegisterStudyFiguresCommand(CLI::App* study) {
   figures->add_option("dir", flags.directory, "study folder")
       ->required()
       ->check(CLI::ExistingDirectory);
-  figures->add_option("--only", flags.only, "draw only these stems (e.g. fig16_asymptotic_states)");
+  figures->add_option("--out", flags.out,
+                      "draw into OUT/figures/ instead of DIR/figures/ (the study is only read)");
+  figures->add_option("--only", flags.settings.only,
+                      "draw only these figures: stems (fig16_asymptotic_states) or paper "
+                      "numbers (16)");
+  figures
+      ->add_option("--level", flags.settings.levels,
+                   "ln(1+e) of an ASBS cross-section of Fig. 17 (repeat for several; "
+                   "default: chosen from the states)")
+      ->check(CLI::Range(0.0, 1.5));
+  figures
+      ->add_option("--fig18-level", flags.fig18_level,
+                   "ln(1+e) of Fig. 18's cross-section (default: the level of the OC "
+                   "ψ_ε = 90° path)")
+      ->expected(1)
+      ->check(CLI::Range(0.0, 1.5));
+  figures->add_option("--case", flags.settings.cases,
+                      "draw only cases whose name matches (shell pattern, e.g. 'nc*'; repeat)");
+  figures->add_option("--exclude-case", flags.settings.exclude_cases,
+                      "leave out cases whose name matches (shell pattern; repeat)");
+  figures->add_option("--model", flags.models,
+                      "overlay only these calibrated models (repeat; 'none' for none)");
+  figures->add_flag("--replicates", flags.settings.replicates,
+                    "draw every replicate's path under the ensemble mean");
   figures->add_flag("--data-only", flags.data_only, "write the data and the index, draw nothing");
   figures->callback([] { RunFigures(flags); });
 }

@@ -191,6 +191,9 @@ std::string StudyRecordText(const Plan& plan) {
       << "count = " << plan.programme.At(plan.scale).count << "\n"
       << "ncl = " << TomlQuoted(plan.programme.ncl_case) << "\n"
       << "program_version = " << TomlQuoted(plan.program_version) << "\n";
+  // The programme's [figures] table, read by `study figures`.
+  const std::string figures = plan.programme.figures.ToToml();
+  if (!figures.empty()) out << "\n" << figures;
   return out.str();
 }
 

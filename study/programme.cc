@@ -10,6 +10,7 @@
 #include <sstream>
 #include <toml.hpp>
 
+#include "common/config.h"
 #include "common/error.h"
 
 namespace granasym::study {
@@ -644,11 +645,15 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
     throw InputError(origin + ": TOML syntax error: " + error.what());
   }
   const Table& top = root.as_table();
-  CheckKeys(origin, "", top, {"study", "scale", "sample", "scene", "run", "model_run"});
+  CheckKeys(origin, "", top, {"study", "scale", "sample", "scene", "run", "model_run", "figures"});
   Programme programme;
   programme.origin = origin;
   programme.scale = scale;
   ParseStudy(origin, top, &programme);
+  if (FindKey(top, "figures")) {
+    const ConfigTable file = ConfigTable::ParseString(text, origin);
+    programme.figures = FigureSettings::FromConfig(file.GetTable("figures"));
+  }
   const ScaleExpansion expansion = ParseScales(origin, top, scale, &programme);
   CheckRestrictions(origin, top, expansion);
   ParseSample(origin, top, base_directory, &programme.sample);

@@ -28,6 +28,8 @@
 //   ...                     # repeats one stage for every value
 //   [[model_run]]           # a constitutive-model element test (Fig. 5): name, vary,
 //   [model_run.model] ...   # figures, and the tables of `granasym model run`
+//   [figures]               # optional: ASBS levels, cases, models of the figures
+//                           # (study/figure_settings.h; kept in study.toml)
 //
 // A string that is exactly "{var}" becomes the variable's value with its
 // type (a number stays a number); "{var}" inside a longer string is replaced
@@ -49,6 +51,7 @@
 
 #include "common/enum_names.h"
 #include "study/case_record.h"
+#include "study/figure_settings.h"
 
 namespace granasym::study {
 
@@ -122,6 +125,7 @@ struct Programme {
   SampleSpec sample;
   std::vector<CaseSpec> cases;  // parents before children, at `scale`
   std::vector<ModelCaseSpec> model_cases;
+  FigureSettings figures;  // [figures]: what `study figures` draws (no case depends on it)
 
   // The programme expanded at `scale` (InputError when it has no such scale).
   static Programme Load(const std::string& path, Scale scale);

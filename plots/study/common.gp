@@ -1,9 +1,10 @@
 # Settings shared by the study figures (plots/study/*.gp). Each script sets
 # `width` and `height` (inches) and loads this file. Variables given by
-# `granasym study figures` (or by hand with gnuplot -e):
+# `granasym study figures` in each figure's wrapper DIR/figures/<stem>.plt
+# (redraw with `gnuplot DIR/figures/<stem>.plt`):
 #   data    folder of the data files (DIR/figures/data)
 #   out     output path without extension (DIR/figures/<stem>)
-#   term    'png' or 'pdf'
+#   term    'png', 'pdf' or 'svg' (the SVG with hover labels on the states)
 #   scripts this folder (for `load`)
 # Data files: tab-separated blocks, two blank lines apart (gnuplot `index`);
 # each block's header names the columns, its last field is the legend title.
@@ -12,7 +13,11 @@ if (!exists("width")) width = 10.0
 if (!exists("height")) height = 4.0
 if (term eq "pdf") {
   set terminal pdfcairo enhanced color size width,height font "Sans,8" linewidth 1.5
-} else {
+}
+if (term eq "svg") {
+  set terminal svg enhanced size int(width*96),int(height*96) font "Sans,9" linewidth 1.2 mouse standalone
+}
+if (term eq "png") {
   set terminal pngcairo enhanced size int(width*110),int(height*110) font "Sans,9" linewidth 1.5
 }
 set output out.".".term

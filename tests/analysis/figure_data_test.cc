@@ -38,9 +38,9 @@ TEST(FigureDataOptions, DefaultOptionsAreValid) {
   std::string why;
   EXPECT_TRUE(FigureDataOptions().IsValid(&why)) << why;
   FigureDataOptions bad;
-  bad.asbs_levels = {0.6, -1.0};
+  bad.settings.levels = {0.6, -1.0};
   EXPECT_FALSE(bad.IsValid(&why));
-  EXPECT_NE(why.find("asbs_levels"), std::string::npos);
+  EXPECT_NE(why.find("levels"), std::string::npos);
 }
 
 TEST(ProjectToLevel, ACompressionStateMovesAlongItsOwnAsymptoticLine) {

@@ -77,6 +77,12 @@ StateRow Row(const std::string& name, TableKind kind, double psi_epsilon, double
   return row;
 }
 
+// `ctx` with its cases' samples classified (as ReadContext does).
+Context Classified(Context ctx) {
+  ClassifySamples(&ctx);
+  return ctx;
+}
+
 Context Study() {
   Context ctx;
   ctx.study_ncl = "ncl";
@@ -146,7 +152,7 @@ TEST(Findings, FrictionlessAndSmallerTimeStepStatesStayOutOfTheStudysOwnMaterial
   ctx.cases.push_back(Case("dt5_nc100_psi90", 1, 0.5, 2.4e-8));
   ctx.states.push_back(Row("dt5_nc100_psi90", TableKind::kCsl, 90, 100.5,
                            kN - std::log(3.0) * kLambda - kLambda * std::log(100.5), 26.1));
-  const std::vector<Finding> findings = ComputeFindings(ctx);
+  const std::vector<Finding> findings = ComputeFindings(Classified(ctx));
   const Finding& csl = Find(findings, "csl_parallel_ncl");
   EXPECT_EQ(csl.verdict, Verdict::kReproduced) << csl.numbers;
   EXPECT_NE(csl.numbers.find("through 5 states"), std::string::npos) << csl.numbers;
@@ -173,7 +179,7 @@ TEST(Findings, ExtensionStatesWithRisingOcrOnJoinedLinesAreNormalExtensionLines)
     joined.stage = study::table::kStageJoined;
     ctx.states.push_back(joined);
   }
-  const std::vector<Finding> findings = ComputeFindings(ctx);
+  const std::vector<Finding> findings = ComputeFindings(Classified(ctx));
   const Finding& lines = Find(findings, "normal_extension_lines");
   EXPECT_EQ(lines.verdict, Verdict::kReproduced) << lines.numbers;
   // No path beyond 110°: whether d is reached is not tested.
@@ -182,10 +188,10 @@ TEST(Findings, ExtensionStatesWithRisingOcrOnJoinedLinesAreNormalExtensionLines)
   StateRow gas = Row("nc1000_psi120", TableKind::kExtension, 120, 0.1, 0.7, 50);
   gas.status = TableStatus::kGas;
   ctx.states.push_back(gas);
-  EXPECT_EQ(Find(ComputeFindings(ctx), "limit_d").verdict, Verdict::kReproduced);
+  EXPECT_EQ(Find(ComputeFindings(Classified(ctx)), "limit_d").verdict, Verdict::kReproduced);
   // A state at σ_r ≈ 0 (ψ_σ = 54°): the limit d found, unlike the paper.
   ctx.states.push_back(Row("nc1000_psi110", TableKind::kExtension, 110, 1, 0.66, 54.5));
-  const Finding& d = Find(ComputeFindings(ctx), "limit_d");
+  const Finding& d = Find(ComputeFindings(Classified(ctx)), "limit_d");
   EXPECT_EQ(d.verdict, Verdict::kNotReproduced) << d.numbers;
 }
 
@@ -195,7 +201,7 @@ TEST(Findings, TheCsvNamesEveryFindingWithItsVerdict) {
   fs::create_directories(dir);
   Context ctx = Study();
   ctx.cases.push_back(NclCase(0.0));
-  const std::vector<Finding> findings = ComputeFindings(ctx);
+  const std::vector<Finding> findings = ComputeFindings(Classified(ctx));
   WriteFindings(dir.string(), findings);
   const CsvTextTable table = CsvTextTable::ReadFile((dir / kFindingsFile).string());
   ASSERT_EQ(table.rows.size(), findings.size());
