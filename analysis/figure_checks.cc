@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <set>
 
 #include "analysis/figure_families.h"
@@ -45,16 +46,40 @@ FigureSpec Variants(const Context& ctx, FigureSpec spec, Sample sample,
     if (reference && reference->finished && !reference->path.empty()) pairs.push_back(reference);
     pairs.push_back(c);
   }
+  // Colour 1: the study's sample, 2: the other; one dash type per start.
+  std::vector<std::string> starts;
+  std::string ncl_colours, path_colours, path_dashes, sample_titles;
+  std::string reference_title, variant_title;
   for (const CaseData* c : pairs) {
     const bool is_ncl = std::abs(c->NominalPsiEpsilon()) < 0.5;
-    const std::string title =
-        label(*c) + (is_ncl ? "" : ", " + DirectionLabel(*c) + ", " + StartLabel(ctx.cases, *c));
+    const int colour = c->sample == Sample::kMain ? 1 : 2;
+    (colour == 1 ? reference_title : variant_title) = label(*c);
     if (is_ncl) {
-      ncl.Add(title, Rows({&c->path.p, &c->path.ln_v}));
+      const int before = ncl.blocks();
+      ncl.Add(label(*c), Rows({&c->path.p, &c->path.ln_v}));
+      if (ncl.blocks() > before) ncl_colours += fmt::format("{} ", colour);
     } else {
-      paths.Add(title, Rows({&c->path.p, &c->path.q, &c->path.psi_sigma, &c->path.eps_s}));
+      const std::string start = DirectionLabel(*c) + ", " + StartLabel(ctx.cases, *c);
+      auto it = std::find(starts.begin(), starts.end(), start);
+      if (it == starts.end()) it = starts.insert(starts.end(), start);
+      const int before = paths.blocks();
+      paths.Add(label(*c) + ", " + start,
+                Rows({&c->path.p, &c->path.q, &c->path.psi_sigma, &c->path.eps_s}));
+      if (paths.blocks() > before) {
+        path_colours += fmt::format("{} ", colour);
+        path_dashes += fmt::format("{} ", static_cast<int>(it - starts.begin()) + 1);
+      }
     }
   }
+  std::string start_titles;
+  for (const std::string& start : starts) {
+    start_titles += (start_titles.empty() ? "\"" : " \"") + start + "\"";
+  }
+  Set(&spec, "ncl_colours", ncl_colours);
+  Set(&spec, "path_colours", path_colours);
+  Set(&spec, "path_dashes", path_dashes);
+  Set(&spec, "sample_titles", "\"" + reference_title + "\" \"" + variant_title + "\"");
+  Set(&spec, "start_titles", start_titles);
   if (ncl.blocks() == 0 && paths.blocks() == 0) {
     return NotDrawn(spec, "no finished case of that sample serves " + spec.figure);
   }
@@ -152,27 +177,41 @@ FigureSpec Fig21(const Context& ctx) {
                          "Critical-state stress ratio against the inertial number",
                          "The stress ratio M = q/p of the detected isochoric (ψ_ε = 90°) and "
                          "drained triaxial asymptotic states, all replicates, against their "
-                         "inertial number for the smallest and the largest diameter: the study's "
+                         "inertial number: each state at the geometric mean of I for the "
+                         "smallest and the largest diameter, its bar from one to the other; the "
+                         "study's "
                          "counterpart of the paper's Fig. 21 (da Cruz et al.'s μ*(I), which "
                          "grows with I beyond about 10^{-2}).",
                          "friction_inertial.gp");
-  BlockFile file({"inertial_number", "q_over_p"});
-  std::vector<std::vector<double>> dmin, dmax;
-  for (const StateRow& row : ctx.states) {
-    if ((row.kind != TableKind::kCsl && row.kind != TableKind::kTriaxial) ||
-        row.status != TableStatus::kDetected) {
+  // Each state once: at the geometric mean of its two inertial numbers, with
+  // a bar from I(d_min) to I(d_max).
+  StateSelection critical;
+  critical.kinds = {TableKind::kCsl, TableKind::kTriaxial};
+  critical.drifting = false;
+  BlockFile file({"inertial_number", "i_dmin", "i_dmax", "q_over_p", "label"});
+  std::map<TableKind, std::pair<std::vector<std::vector<double>>, std::vector<std::string>>> rows;
+  for (const StateRow* row : ctx.Select(critical)) {
+    if (!(row->q_over_p > 0) || !(row->inertial_number_dmin > 0) ||
+        !(row->inertial_number_dmax > 0)) {
       continue;
     }
-    if (!(row.q_over_p > 0)) continue;
-    if (row.inertial_number_dmin > 0) dmin.push_back({row.inertial_number_dmin, row.q_over_p});
-    if (row.inertial_number_dmax > 0) dmax.push_back({row.inertial_number_dmax, row.q_over_p});
+    rows[row->kind].first.push_back(
+        {std::sqrt(row->inertial_number_dmin * row->inertial_number_dmax),
+         row->inertial_number_dmin, row->inertial_number_dmax, row->q_over_p});
+    rows[row->kind].second.push_back(StateLabel(*row));
   }
-  if (dmin.empty() && dmax.empty()) {
+  for (const auto& [kind, block] : rows) {
+    file.AddLabelled(kind == TableKind::kCsl ? "isochoric (ψ_ε = 90°) critical states"
+                                             : "drained triaxial critical states",
+                     block.first, block.second);
+  }
+  if (file.blocks() == 0) {
     return NotDrawn(spec, "no detected isochoric or triaxial asymptotic state");
   }
-  file.Add("I(d_{min})", dmin);
-  file.Add("I(d_{max})", dmax);
+  spec.caption += " " + critical.Describe(ctx);
   file.Write(ctx.File("fig21_friction_inertial.tsv"));
+  Set(&spec, "n_blocks", file.blocks());
+  Set(&spec, "block_titles", file.titles());
   return spec;
 }
 
@@ -188,11 +227,15 @@ FigureSpec Fig22(const Context& ctx) {
   for (const char* f : {"21", "22"}) {
     for (const CaseData* c : ctx.Serving(f)) cases.insert(c);
   }
+  double lowest = 1e-3;  // the stricter reference line stays inside the axis
   for (const CaseData* c : cases) {
     auto positive = [&](const std::vector<double>& i) {
       std::vector<std::vector<double>> rows;
       for (size_t k = 0; k < c->path.p.size(); ++k) {
-        if (c->path.p[k] > 0 && i[k] > 0) rows.push_back({c->path.p[k], i[k]});
+        if (c->path.p[k] > 0 && i[k] > 0) {
+          rows.push_back({c->path.p[k], i[k]});
+          lowest = std::min(lowest, i[k]);
+        }
       }
       return rows;
     };
@@ -202,6 +245,7 @@ FigureSpec Fig22(const Context& ctx) {
   if (file.blocks() == 0) return NotDrawn(spec, "no finished case serves Figs. 21-22");
   file.Write(ctx.File("fig22_inertial.tsv"));
   Set(&spec, "n_curves", file.blocks());
+  spec.variables.emplace_back("i_lo", fmt::format("{:.3g}", lowest / 2));
   return spec;
 }
 

@@ -9,6 +9,7 @@
 #include "common/text_file.h"
 #include "common/time_series.h"
 #include "dem/run_record_names.h"
+#include "study/ensemble_path.h"
 #include "study/study_folder.h"
 
 namespace granasym::analysis::figures {
@@ -53,8 +54,12 @@ Path ReadPath(const TimeSeries& series, int64_t first, int64_t last, int half_ro
   const std::vector<double> eps_a = slice(dem::record::kColumnAxialStrain),
                             eps_r = slice(dem::record::kColumnRadialStrain);
   path.eps_s.resize(eps_a.size());
+  path.eps_a.resize(eps_a.size());
+  path.eps_r.resize(eps_a.size());
   for (size_t k = 0; k < eps_a.size(); ++k) {
-    path.eps_s[k] = 2.0 * ((eps_a[k] - eps_a[0]) - (eps_r[k] - eps_r[0])) / 3.0;
+    path.eps_a[k] = eps_a[k] - eps_a[0];
+    path.eps_r[k] = eps_r[k] - eps_r[0];
+    path.eps_s[k] = 2.0 * (path.eps_a[k] - path.eps_r[k]) / 3.0;
   }
   path.psi_epsilon = PathPsiEpsilon(eps_a, eps_r, half_rows);
   return path;
@@ -83,6 +88,9 @@ std::vector<CaseData> LoadCases(const std::string& directory, int half_rows) {
                                                     std::numeric_limits<double>::quiet_NaN()));
       }
       c.time_step = dem::ReadSummary(file).time_step;
+      if (!c.stages.empty()) {
+        c.stops_at_asymptote = study::StopsAtAsymptote(file, c.stages, c.stages.size() - 1);
+      }
       c.friction = dem::ReadMaterial(file).friction_angle;
       const TimeSeries series = TimeSeries::Read(file, dem::record::kSeries);
       if (!c.stages.empty()) {
@@ -180,6 +188,28 @@ void BlockFile::Add(const std::string& title, const std::vector<std::vector<doub
   titles_ += (titles_.empty() ? "\"" : " \"") + Clean(title) + "\"";
 }
 
+void BlockFile::AddLabelled(const std::string& title, const std::vector<std::vector<double>>& rows,
+                            const std::vector<std::string>& labels) {
+  std::string block;
+  for (size_t k = 0; k < columns_.size(); ++k) block += columns_[k] + "\t";
+  block += Clean(title) + "\n";
+  int kept = 0;
+  for (size_t r = 0; r < rows.size() && r < labels.size(); ++r) {
+    bool finite = true;
+    for (double v : rows[r]) finite = finite && std::isfinite(v);
+    if (!finite || rows[r].empty()) continue;
+    for (size_t k = 0; k < rows[r].size(); ++k) {
+      block += fmt::format("{}{:.8g}", k ? "\t" : "", rows[r][k]);
+    }
+    block += "\t" + Clean(labels[r]) + "\n";
+    ++kept;
+  }
+  if (kept == 0) return;
+  text_ += (blocks_ ? "\n\n" : "") + block;
+  ++blocks_;
+  titles_ += (titles_.empty() ? "\"" : " \"") + Clean(title) + "\"";
+}
+
 void BlockFile::Write(const std::string& path) const { WriteTextFileAtomically(path, text_); }
 
 std::vector<std::vector<double>> Rows(std::initializer_list<const std::vector<double>*> columns) {
@@ -209,23 +239,37 @@ const CaseData* FindCase(const std::vector<CaseData>& cases, int replicate,
   return nullptr;
 }
 
-std::string StartLabel(const std::vector<CaseData>& cases, const CaseData& c) {
+Start StartOf(const std::vector<CaseData>& cases, const CaseData& c) {
+  Start start;
   const CaseData* parent = FindCase(cases, c.replicate, c.parent_name);
-  if (!parent || !parent->finished)
-    return "from " + (c.parent_name.empty() ? "the sample" : c.parent_name);
+  if (!parent || !parent->finished || parent->stages.empty()) return start;
   size_t k = parent->stages.size() - 1;
   for (size_t j = 0; j < parent->stages.size(); ++j) {
     if (parent->stages[j].name == c.parent_stage) k = j;
   }
-  // Two significant digits: the stop condition overshoots its target slightly.
-  double p = parent->stages[k].validity.final_mean_stress_kpa;
-  if (p > 0) {
-    const double unit = std::pow(10.0, std::floor(std::log10(p)) - 1);
-    p = std::round(p / unit) * unit;
-  }
+  start.p_kpa = parent->stages[k].validity.final_mean_stress_kpa;
   const double psi = parent->stage_psi_epsilon[k];
-  const std::string kind = std::abs(psi - 180) < 1 ? "OC" : std::abs(psi) < 1 ? "NC" : "";
-  return fmt::format("{}{}{} kPa", kind, kind.empty() ? "" : " ", Short(p));
+  start.kind = std::abs(psi - 180) < 1 ? "OC" : std::abs(psi) < 1 ? "NC" : "";
+  return start;
+}
+
+double Rounded(double v) {
+  if (!(std::abs(v) > 0) || !std::isfinite(v)) return v;
+  for (int digits : {1, 2}) {
+    const double unit = std::pow(10.0, std::floor(std::log10(std::abs(v))) - (digits - 1));
+    const double r = std::round(v / unit) * unit;
+    if (digits == 2 || std::abs(r / v - 1) <= 0.05) return r;
+  }
+  return v;
+}
+
+std::string StartLabel(const std::vector<CaseData>& cases, const CaseData& c) {
+  const Start start = StartOf(cases, c);
+  if (!std::isfinite(start.p_kpa)) {
+    return "from " + (c.parent_name.empty() ? "the sample" : c.parent_name);
+  }
+  return fmt::format("{}{}{} kPa", start.kind, start.kind.empty() ? "" : " ",
+                     Short(Rounded(start.p_kpa)));
 }
 
 std::string DirectionLabel(const CaseData& c) {
@@ -240,6 +284,62 @@ std::string DirectionLabel(const CaseData& c) {
 bool UsableState(const StateRow& row) {
   return (row.status == TableStatus::kDetected || row.status == TableStatus::kDrifting) &&
          row.p_kpa > 0 && std::isfinite(row.ln_1_plus_e);
+}
+
+std::string StateLabel(const StateRow& row) {
+  std::string text = fmt::format(
+      "{} (replicate {}), stage {}\\n{}, {}\\np = {:.4g} kPa, e = {:.4f}\\nψ_ε = {:.1f}°, "
+      "ψ_σ = {:.2f}°, q/p = {:.3f}",
+      row.case_name, row.replicate, row.stage, ToString(row.kind), ToString(row.status), row.p_kpa,
+      row.e, row.psi_epsilon_deg, row.psi_sigma_deg, row.q_over_p);
+  if (row.inertial_number_dmax > 0) {
+    text += fmt::format("\\nI(d_max) = {:.2g}", row.inertial_number_dmax);
+  }
+  if (!row.flags.empty()) text += "\\nflags: " + row.flags;
+  return text;
+}
+
+MeanCasePath MeanPathOf(const std::vector<CaseData>& cases, const std::string& name) {
+  std::vector<study::StagePath> paths;
+  bool at_ends = true;
+  for (const CaseData& c : cases) {
+    if (c.name != name || !c.finished || c.path.p.size() < 2) continue;
+    study::StagePath path;
+    double strain = 0;
+    for (size_t k = 0; k < c.path.p.size(); ++k) {
+      if (k > 0) {
+        const double da = c.path.eps_a[k] - c.path.eps_a[k - 1],
+                     dr = c.path.eps_r[k] - c.path.eps_r[k - 1];
+        strain += std::sqrt(da * da + 2 * dr * dr);
+      }
+      path.strain.push_back(strain);
+      path.psi_sigma_deg.push_back(c.path.psi_sigma[k]);
+      path.log_p.push_back(c.path.p[k] > 0 ? std::log(c.path.p[k])
+                                           : std::numeric_limits<double>::quiet_NaN());
+      path.log_volume.push_back(c.path.ln_v[k]);
+      path.eps_a.push_back(c.path.eps_a[k]);
+      path.eps_r.push_back(c.path.eps_r[k]);
+      path.time.push_back(0);
+    }
+    at_ends = at_ends && c.stops_at_asymptote;
+    paths.push_back(std::move(path));
+  }
+  MeanCasePath out;
+  if (paths.size() < 2) return out;
+  const double step = study::RowSpacing(paths);
+  if (!(step > 0)) return out;
+  const study::MeanPath mean = study::AveragePaths(
+      paths, step, at_ends ? study::PathAlignment::kStageEnds : study::PathAlignment::kStageStarts);
+  out.paths = mean.paths;
+  for (size_t k = 0; k < mean.mean.strain.size(); ++k) {
+    out.p.push_back(std::exp(mean.mean.log_p[k]));
+    out.ln_v.push_back(mean.mean.log_volume[k]);
+    out.psi_sigma.push_back(mean.mean.psi_sigma_deg[k]);
+    out.psi_sigma_band.push_back(mean.psi_sigma_band_deg[k]);
+    out.ln_v_band.push_back(mean.log_volume_band[k]);
+    out.ln_p_band.push_back(mean.log_p_band[k]);
+  }
+  return out;
 }
 
 std::string ModelTitle(const std::string& name) {

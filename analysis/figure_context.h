@@ -34,6 +34,11 @@ class BlockFile {
   // Adds a block; rows with a non-finite value are dropped; an empty block
   // is not written (gnuplot warns about blocks without points).
   void Add(const std::string& title, const std::vector<std::vector<double>>& rows);
+  // A block whose rows end with a text column (the columns' last name): the
+  // hover label of each point (`with labels hypertext` in the SVG). Rows with
+  // a non-finite value are dropped with their label.
+  void AddLabelled(const std::string& title, const std::vector<std::vector<double>>& rows,
+                   const std::vector<std::string>& labels);
   int blocks() const { return blocks_; }
   // The blocks' titles as gnuplot words ("a b" "c"), for legend entries of
   // blocks drawn with `pt variable` (whose own key sample is a dot).
@@ -56,6 +61,7 @@ std::string Short(double v);
 
 struct Path {
   std::vector<double> p, ln_v, psi_sigma, psi_epsilon, eps_s, q, i_dmin, i_dmax;
+  std::vector<double> eps_a, eps_r;  // logarithmic strains from the path's first row
   bool empty() const { return p.empty(); }
 };
 
@@ -76,7 +82,8 @@ struct CaseData {
   double time_step = 0;
   double friction = std::numeric_limits<double>::quiet_NaN();  // rad
   Sample sample = Sample::kMain;
-  Path path;  // the case's own rows
+  bool stops_at_asymptote = false;  // its last stage stops when its detector holds
+  Path path;                        // the case's own rows
   bool Serves(const std::string& figure) const { return figures.Contains(figure); }
   double NominalPsiEpsilon() const {
     for (double v : stage_psi_epsilon) {
@@ -88,13 +95,37 @@ struct CaseData {
 
 const CaseData* FindCase(const std::vector<CaseData>& cases, int replicate,
                          const std::string& name);
-// "NC 100 kPa", "OC 20 kPa" (unloaded from the NCL), from the parent stage.
+// Where a case starts: NC (its parent stage is isotropic compression), OC
+// (unloading), or neither, and the parent stage's final p.
+struct Start {
+  std::string kind;  // "NC", "OC" or ""
+  double p_kpa = std::numeric_limits<double>::quiet_NaN();
+};
+Start StartOf(const std::vector<CaseData>& cases, const CaseData& c);
+// "NC 100 kPa", "OC 20 kPa" (unloaded from the NCL), from the parent stage;
+// p rounded to a round value within 5 % (1001 → 1000, 0.99 → 1).
 std::string StartLabel(const std::vector<CaseData>& cases, const CaseData& c);
+// A value rounded for a legend: to one significant digit when that is within
+// 5 %, else to two.
+double Rounded(double v);
 // "σ_r = 100 kPa" for a drained triaxial case, else "ψ_ε = 90°".
 std::string DirectionLabel(const CaseData& c);
 
 // A detected or drifting state with a positive p and a finite ln(1+e).
 bool UsableState(const StateRow& row);
+// The hover text of a state: case, replicate, stage, kind, status, p, e,
+// ψ_ε, ψ_σ, q/p, I and flags, lines separated by the two characters \n.
+std::string StateLabel(const StateRow& row);
+
+// The mean of the replicates' paths of the case `name` (replicates with a
+// finished path, aligned as the state table's ensemble rows are: at the
+// ends for a case whose last stage stops at its asymptote, else at the
+// starts), with the 95 % band; `paths` 0 when fewer than two replicates.
+struct MeanCasePath {
+  std::vector<double> p, ln_v, psi_sigma, psi_sigma_band, ln_v_band, ln_p_band;
+  int paths = 0;
+};
+MeanCasePath MeanPathOf(const std::vector<CaseData>& cases, const std::string& name);
 
 // "hypoplastic clay (Mašín 2005)" for "hypoplastic_clay".
 std::string ModelTitle(const std::string& name);

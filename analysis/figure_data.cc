@@ -312,31 +312,45 @@ std::vector<FigureSpec> WriteFigureData(const std::string& directory,
   for (FigureSpec& spec : figures::Fig05Calibrated(ctx)) specs.push_back(std::move(spec));
   specs.push_back(figures::Fig08(ctx));
   specs.push_back(figures::Fig09(ctx));
-  specs.push_back(
-      figures::PathFamily(ctx, "10", "fig10_csl_nc", "Isochoric paths from NC states",
-                          "ψ_ε = 90° paths from normally consolidated states: the critical "
-                          "state line.",
-                          {}));
   specs.push_back(figures::PathFamily(
-      ctx, "11", "fig11_csl_oc", "Isochoric paths from OC states",
-      "ψ_ε = 90° paths from overconsolidated states (loaded to 1000 kPa, "
-      "unloaded along ψ_ε = 180°): the asymptotic state does not depend "
-      "on the start.",
-      {{TableKind::kCsl, "NC ψ_ε = 90° asymptotes (Fig. 10), all replicates"}}));
+      ctx, {"10",
+            "fig10_csl_nc",
+            "Isochoric paths from NC states",
+            "ψ_ε = 90° paths from normally consolidated states: the critical state line.",
+            {},
+            true}));
+  specs.push_back(figures::PathFamily(
+      ctx, {"11",
+            "fig11_csl_oc",
+            "Isochoric paths from OC states",
+            "ψ_ε = 90° paths from overconsolidated states (loaded to 1000 kPa, unloaded along "
+            "ψ_ε = 180°): the asymptotic state does not depend on the start.",
+            {{TableKind::kCsl, "NC ψ_ε = 90° asymptotes (Fig. 10), all replicates"}},
+            true}));
   specs.push_back(figures::Fig12(ctx));
   specs.push_back(figures::PathFamily(
-      ctx, "13", "fig13_triaxial", "Drained triaxial paths",
-      "Constant-σ_r paths from NC and OC states.",
-      {{TableKind::kCsl, "ψ_ε = 90° asymptotes (Figs. 10-11), all replicates"}}));
+      ctx, {"13",
+            "fig13_triaxial",
+            "Drained triaxial paths",
+            "Constant-σ_r paths from NC and OC states.",
+            {{TableKind::kCsl, "ψ_ε = 90° asymptotes (Figs. 10-11), all replicates"}},
+            true}));
   specs.push_back(
-      figures::PathFamily(ctx, "14", "fig14_compression", "Compression asymptotic states",
-                          "Proportional compression paths, 0° < ψ_ε < 90°, from NC states.", {}));
-  specs.push_back(
-      figures::PathFamily(ctx, "15", "fig15_extension", "Extension asymptotic states",
-                          "Proportional extension paths, ψ_ε > 90°, from NC states: the "
-                          "normal extension lines (a path that ends as a gas has no "
-                          "asymptotic state).",
-                          {}));
+      figures::PathFamily(ctx, {"14",
+                                "fig14_compression",
+                                "Compression asymptotic states",
+                                "Proportional compression paths, 0° < ψ_ε < 90°, from NC states.",
+                                {},
+                                false}));
+  specs.push_back(figures::PathFamily(
+      ctx, {"15",
+            "fig15_extension",
+            "Extension asymptotic states",
+            "Proportional extension paths, ψ_ε > 90°, from NC states: the normal extension "
+            "lines, proportional paths towards the origin (a path that ends as a gas has no "
+            "asymptotic state).",
+            {},
+            true}));
   specs.push_back(figures::Fig16(ctx));
   specs.push_back(figures::Fig17(ctx));
   specs.push_back(figures::Fig18(ctx));

@@ -23,9 +23,13 @@ std::vector<FigureSpec> Fig05Calibrated(const Context& ctx);
 // triaxial, compression and extension paths with their asymptotic states
 // (Figs. 10, 11, 13–15), and the drained paths against shear strain (Fig. 12).
 FigureSpec Fig09(const Context& ctx);
-FigureSpec PathFamily(const Context& ctx, const std::string& figure, const std::string& stem,
-                      const std::string& title, const std::string& what,
-                      const std::vector<std::pair<TableKind, std::string>>& reference_kinds);
+struct FamilySpec {
+  std::string figure, stem, title, what;
+  // States of other cases drawn for reference (grey squares), by kind.
+  std::vector<std::pair<TableKind, std::string>> reference_kinds;
+  bool draw_csl = false;  // the CSL fit in panel (b), besides the NCL
+};
+FigureSpec PathFamily(const Context& ctx, const FamilySpec& family);
 FigureSpec Fig12(const Context& ctx);
 
 // figure_states.cc: the asymptotic states together (Fig. 16), the ASBS's

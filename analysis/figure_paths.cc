@@ -6,6 +6,7 @@
 #include <set>
 
 #include "analysis/figure_families.h"
+#include "common/statistics.h"
 
 namespace granasym::analysis::figures {
 namespace {
@@ -18,6 +19,49 @@ void AddLine(BlockFile* file, const std::string& title, const NclLine& line, dou
     rows.push_back({std::exp(ln_p), line.n - line.lambda * ln_p});
   }
   file->Add(title, rows);
+}
+
+}  // namespace
+
+namespace {
+
+// The floor of the valid range of p (SPEC §8.3): rows below it are a gas's
+// tail, drawn faint and never setting an axis.
+constexpr double kFloorKpa = 0.5;
+
+// An axis range with a margin: logarithmic (for p) or linear.
+struct AxisRange {
+  double lo = 1e300, hi = -1e300;
+  void Add(double v) {
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  bool valid() const { return lo <= hi; }
+  std::pair<double, double> Linear(double margin = 0.05) const {
+    const double span = std::max(hi - lo, 1e-3 * std::max(1.0, std::abs(hi)));
+    return {lo - margin * span, hi + margin * span};
+  }
+  std::pair<double, double> Logarithmic(double margin = 0.08) const {
+    const double a = std::log10(lo), b = std::log10(hi);
+    const double span = std::max(b - a, 0.2);
+    return {std::pow(10.0, a - margin * span), std::pow(10.0, b + margin * span)};
+  }
+};
+
+void SetNumber(FigureSpec* spec, const std::string& name, double value) {
+  spec->variables.emplace_back(name, fmt::format("{:.6g}", value));
+}
+
+// The CSL ln(1+e) = Γ − λ ln p through the study's detected critical states.
+LineFit CslFit(const Context& ctx) {
+  std::vector<double> x, y;
+  StateSelection csl;
+  csl.kinds = {TableKind::kCsl};
+  csl.drifting = false;
+  for (const StateRow* row : ctx.Select(csl)) {
+    x.push_back(std::log(row->p_kpa));
+    y.push_back(row->ln_1_plus_e);
+  }
+  return x.size() >= 3 ? FitLine(x, y) : LineFit{};
 }
 
 }  // namespace
@@ -40,6 +84,7 @@ FigureSpec Fig09(const Context& ctx) {
   const long monotonic =
       std::count_if(cases.begin(), cases.end(), [&](const CaseData* c) { return !cycles_of(c); });
   double p_min = 1e300, p_max = 0;
+  AxisRange cycle_p, cycle_v;  // panel (b): the cycles' own range
   for (const CaseData* c : cases) {
     std::vector<std::vector<double>> rows;
     for (size_t k = 0; k < c->path.p.size(); ++k) {
@@ -47,6 +92,7 @@ FigureSpec Fig09(const Context& ctx) {
       rows.push_back({c->path.p[k], c->path.ln_v[k]});
       p_min = std::min(p_min, c->path.p[k]);
       p_max = std::max(p_max, c->path.p[k]);
+      if (cycles_of(c)) cycle_p.Add(c->path.p[k]), cycle_v.Add(c->path.ln_v[k]);
     }
     file.Add(cycles_of(c)    ? "unload (ψ_ε = 180°)/reload (0°) cycles"
              : monotonic > 1 ? "monotonic, ψ_ε = 0° (" + c->name + ")"
@@ -63,75 +109,283 @@ FigureSpec Fig09(const Context& ctx) {
   file.Write(ctx.File("fig09_paths.tsv"));
   Set(&spec, "n_paths", paths);
   Set(&spec, "has_fit", file.blocks() - paths);
+  Set(&spec, "has_cycles", cycle_p.valid() ? 1 : 0);
+  if (cycle_p.valid()) {
+    const auto [lo, hi] = cycle_p.Logarithmic(0.05);
+    const auto [v_lo, v_hi] = cycle_v.Linear(0.08);
+    SetNumber(&spec, "cycle_p_lo", lo);
+    SetNumber(&spec, "cycle_p_hi", hi);
+    SetNumber(&spec, "cycle_v_lo", v_lo);
+    SetNumber(&spec, "cycle_v_hi", v_hi);
+    spec.caption += " (b) The cycles' range enlarged.";
+  }
   return spec;
 }
 
 // A figure of path families (Figs. 10, 11, 13-15): ψ_σ–p, ln(1+e)–p,
-// ψ_σ–ln(1+e), with the cases' asymptotic states of all replicates marked.
-FigureSpec PathFamily(const Context& ctx, const std::string& figure, const std::string& stem,
-                      const std::string& title, const std::string& what,
-                      const std::vector<std::pair<TableKind, std::string>>& reference_kinds) {
+// ψ_σ–ln(1+e). Each case is drawn as the mean of its replicates with the
+// 95 % band (one replicate: its own path), one colour per direction (per
+// start when all share one direction) and one dash per start; its
+// asymptotic states (all replicates) are marked with hover labels.
+FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
+  const std::string& figure = family.figure;
+  const std::string& stem = family.stem;
+  StateSelection own;
   FigureSpec spec =
-      Spec(stem, figure, title,
-           what + " Paths of replicate 1 (cases whose `figures` include " + figure +
-               "): (a) ψ_σ against p, (b) ln(1+e) against p, (c) ψ_σ against ln(1+e). "
-               "Marks: the detector's asymptotic states of these cases, all replicates "
-               "(filled: detected; open: still drifting at the stage end; gases and "
-               "invalid stages omitted).",
+      Spec(stem, figure, family.title,
+           family.what +
+               " Paths: the mean of the replicates of each case (cases whose "
+               "`figures` include " +
+               figure +
+               ") with its 95 % band, aligned on the accumulated strain as the ensemble rows "
+               "of the state table; rows below p = 0.5 kPa (a gas's tail) are drawn faint "
+               "and do not set the axes. (a) ψ_σ against p, (b) ln(1+e) against p, (c) ψ_σ "
+               "against ln(1+e). Marks: the detector's asymptotic states of these cases, "
+               "every replicate. ",
            "paths.gp");
-  BlockFile paths({"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "eps_s", "psi_epsilon_deg", "q_kpa"});
   std::vector<const CaseData*> cases = ctx.Serving(figure);
-  std::stable_sort(cases.begin(), cases.end(), [](const CaseData* a, const CaseData* b) {
-    const double pa = a->NominalPsiEpsilon(), pb = b->NominalPsiEpsilon();
-    return std::isfinite(pa) && std::isfinite(pb) && pa != pb ? pa < pb : false;
-  });
-  std::set<std::string> names;
-  // Colour by direction (or σ_r), dash type by start.
-  std::vector<std::string> directions, starts;
-  std::string colours, dashes;
-  auto index_of = [](std::vector<std::string>* list, const std::string& item) {
-    auto it = std::find(list->begin(), list->end(), item);
-    if (it == list->end()) it = list->insert(list->end(), item);
-    return static_cast<int>(it - list->begin()) + 1;
+  auto direction_of = [](const CaseData* c) {
+    for (size_t k = 0; k < c->stages.size(); ++k) {
+      if (std::isfinite(c->stage_radial_stress[k])) return c->stage_radial_stress[k];
+    }
+    return c->NominalPsiEpsilon();
   };
+  auto start_key = [&](const CaseData* c) {
+    const Start s = StartOf(ctx.cases, c ? *c : CaseData{});
+    return std::make_pair(s.kind == "OC" ? 1 : 0, Rounded(s.p_kpa));
+  };
+  std::stable_sort(cases.begin(), cases.end(), [&](const CaseData* a, const CaseData* b) {
+    const double da = direction_of(a), db = direction_of(b);
+    if (da != db) return da < db;
+    return start_key(a) < start_key(b);
+  });
+  // Colour groups and dash groups, in numeric order.
+  std::vector<std::string> directions, starts;
+  for (const CaseData* c : cases) {
+    const std::string d = DirectionLabel(*c), s = StartLabel(ctx.cases, *c);
+    if (std::find(directions.begin(), directions.end(), d) == directions.end()) {
+      directions.push_back(d);
+    }
+  }
+  std::vector<const CaseData*> by_start = cases;
+  std::stable_sort(by_start.begin(), by_start.end(), [&](const CaseData* a, const CaseData* b) {
+    return start_key(a) < start_key(b);
+  });
+  for (const CaseData* c : by_start) {
+    const std::string s = StartLabel(ctx.cases, *c);
+    if (std::find(starts.begin(), starts.end(), s) == starts.end()) starts.push_back(s);
+  }
+  const bool colour_by_start = directions.size() == 1;
+  // Dash by the start's kind (NC, OC) alone when that and the direction tell
+  // every path apart (drained tests from NC and OC states at each σ_r).
+  std::set<std::pair<std::string, std::string>> direction_kind;
+  std::vector<std::string> kinds;
+  for (const CaseData* c : cases) {
+    const std::string kind = StartOf(ctx.cases, *c).kind;
+    direction_kind.insert({DirectionLabel(*c), kind});
+    if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) kinds.push_back(kind);
+  }
+  const bool dash_by_kind =
+      !colour_by_start && direction_kind.size() == cases.size() &&
+      std::none_of(kinds.begin(), kinds.end(), [](const std::string& k) { return k.empty(); });
+  if (dash_by_kind) {
+    std::sort(kinds.begin(), kinds.end(), [](const std::string& a, const std::string& b) {
+      return (a == "NC" ? 0 : 1) < (b == "NC" ? 0 : 1);
+    });
+  }
+  auto dash_group = [&](const CaseData& c) {
+    return dash_by_kind ? StartOf(ctx.cases, c).kind + " states" : StartLabel(ctx.cases, c);
+  };
+  std::vector<std::string> dash_groups;
+  if (dash_by_kind) {
+    for (const std::string& k : kinds) dash_groups.push_back(k + " states");
+  } else {
+    dash_groups = starts;
+  }
+  auto index_in = [](const std::vector<std::string>& list, const std::string& item) {
+    return static_cast<int>(std::find(list.begin(), list.end(), item) - list.begin()) + 1;
+  };
+  BlockFile paths({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
+  // Each mean path's 95 % band as a closed outline: the upper edge forward,
+  // the lower edge back.
+  BlockFile bands({"p_kpa", "psi_sigma_edge", "ln_1_plus_e_edge"});
+  std::string band_colours;
+  BlockFile tails({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
+  BlockFile replicates({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
+  AxisRange p_range, lnv_range, psi_range;
+  std::string colours, dashes, replicate_colours, tail_colours;
+  std::set<std::string> names;
+  int mean_paths = 0, single_paths = 0;
   for (const CaseData* c : cases) {
     names.insert(c->name);
-    colours += fmt::format("{} ", index_of(&directions, DirectionLabel(*c)));
-    dashes += fmt::format("{} ", index_of(&starts, StartLabel(ctx.cases, *c)));
-    paths.Add(DirectionLabel(*c) + ", " + StartLabel(ctx.cases, *c),
-              Rows({&c->path.p, &c->path.ln_v, &c->path.psi_sigma, &c->path.eps_s,
-                    &c->path.psi_epsilon, &c->path.q}));
-  }
-  if (paths.blocks() == 0) return NotDrawn(spec, "no finished case serves Fig. " + figure);
-  BlockFile marks({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
-  std::vector<std::vector<double>> detected, drifting;
-  for (const StateRow& row : ctx.states) {
-    if (!names.count(row.case_name) || !UsableState(row)) continue;
-    (row.status == TableStatus::kDetected ? detected : drifting)
-        .push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg});
-  }
-  marks.Add("asymptotic states (detected)", detected);
-  marks.Add("still drifting at the stage end", drifting);
-  for (const auto& [kind, label] : reference_kinds) {
-    std::vector<std::vector<double>> rows;
-    for (const StateRow& row : ctx.states) {
-      if (row.kind == kind && row.status == TableStatus::kDetected) {
-        rows.push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg});
+    const std::string d = DirectionLabel(*c), s = StartLabel(ctx.cases, *c);
+    const int colour = colour_by_start ? index_in(starts, s) : index_in(directions, d);
+    const int dash = colour_by_start ? 1 : index_in(dash_groups, dash_group(*c));
+    const MeanCasePath mean = MeanPathOf(ctx.cases, c->name);
+    std::vector<double> p = c->path.p, ln_v = c->path.ln_v, psi = c->path.psi_sigma;
+    std::vector<double> psi_band(p.size(), 0.0), lnv_band(p.size(), 0.0);
+    if (mean.paths >= 2) {
+      p = mean.p, ln_v = mean.ln_v, psi = mean.psi_sigma;
+      psi_band = mean.psi_sigma_band, lnv_band = mean.ln_v_band;
+      ++mean_paths;
+    } else {
+      ++single_paths;
+    }
+    std::vector<std::vector<double>> valid, tail, upper, lower;
+    for (size_t k = 0; k < p.size(); ++k) {
+      const double bp = std::isfinite(psi_band[k]) ? psi_band[k] : 0.0;
+      const double bv = std::isfinite(lnv_band[k]) ? lnv_band[k] : 0.0;
+      if (p[k] >= kFloorKpa) {
+        valid.push_back({p[k], ln_v[k], psi[k]});
+        upper.push_back({p[k], psi[k] + bp, ln_v[k] + bv});
+        lower.push_back({p[k], psi[k] - bp, ln_v[k] - bv});
+        p_range.Add(p[k]);
+        lnv_range.Add(ln_v[k]);
+        psi_range.Add(psi[k]);
+      } else if (p[k] > 0) {
+        tail.push_back({p[k], ln_v[k], psi[k]});
+      }
+      // A tail is drawn from the last valid row on, so that it joins the path.
+      if (p[k] < kFloorKpa && k > 0 && p[k - 1] >= kFloorKpa) {
+        tail.insert(tail.end() - (p[k] > 0 ? 1 : 0), {p[k - 1], ln_v[k - 1], psi[k - 1]});
       }
     }
-    marks.Add(label, rows);
-    if (!rows.empty()) spec.caption += " Grey marks: " + label + ".";
+    const int before = paths.blocks();
+    paths.Add(d + ", " + s, valid);
+    if (paths.blocks() == before) continue;
+    colours += fmt::format("{} ", colour);
+    dashes += fmt::format("{} ", dash);
+    if (mean.paths >= 2) {
+      upper.insert(upper.end(), lower.rbegin(), lower.rend());
+      const int bands_before = bands.blocks();
+      bands.Add(d + ", " + s, upper);
+      if (bands.blocks() > bands_before) band_colours += fmt::format("{} ", colour);
+    }
+    const int tails_before = tails.blocks();
+    tails.Add(d + ", " + s, tail);
+    if (tails.blocks() > tails_before) tail_colours += fmt::format("{} ", colour);
+    if (ctx.options.settings.replicates) {
+      for (const CaseData& r : ctx.cases) {
+        if (r.name != c->name || !r.finished || r.path.empty()) continue;
+        std::vector<std::vector<double>> rows;
+        for (size_t k = 0; k < r.path.p.size(); ++k) {
+          if (r.path.p[k] >= kFloorKpa) {
+            rows.push_back({r.path.p[k], r.path.ln_v[k], r.path.psi_sigma[k]});
+          }
+        }
+        const int b = replicates.blocks();
+        replicates.Add(fmt::format("{} replicate {}", c->name, r.replicate), rows);
+        if (replicates.blocks() > b) replicate_colours += fmt::format("{} ", colour);
+      }
+    }
+  }
+  if (paths.blocks() == 0) return NotDrawn(spec, "no finished case serves Fig. " + figure);
+  // The states: detected filled, drifting open, with hover labels; then the
+  // reference states (grey squares) of other figures.
+  own.cases = names;
+  BlockFile marks({"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "label"});
+  std::vector<std::vector<double>> detected, drifting;
+  std::vector<std::string> detected_labels, drifting_labels;
+  for (const StateRow* row : ctx.Select(own)) {
+    const bool is_detected = row->status == TableStatus::kDetected;
+    (is_detected ? detected : drifting)
+        .push_back({row->p_kpa, row->ln_1_plus_e, row->psi_sigma_deg});
+    (is_detected ? detected_labels : drifting_labels).push_back(StateLabel(*row));
+    p_range.Add(row->p_kpa);
+    lnv_range.Add(row->ln_1_plus_e);
+    psi_range.Add(row->psi_sigma_deg);
+  }
+  marks.AddLabelled("asymptotic states (detected)", detected, detected_labels);
+  marks.AddLabelled("still drifting at the stage end", drifting, drifting_labels);
+  const int own_marks = marks.blocks();
+  for (const auto& [kind, label] : family.reference_kinds) {
+    StateSelection reference;
+    reference.kinds = {kind};
+    reference.drifting = false;
+    std::vector<std::vector<double>> rows;
+    std::vector<std::string> labels;
+    for (const StateRow* row : ctx.Select(reference)) {
+      if (names.count(row->case_name)) continue;
+      rows.push_back({row->p_kpa, row->ln_1_plus_e, row->psi_sigma_deg});
+      labels.push_back(StateLabel(*row));
+    }
+    const int before = marks.blocks();
+    marks.AddLabelled(label, rows, labels);
+    if (marks.blocks() > before) spec.caption += "Grey squares: " + label + ". ";
+  }
+  spec.caption += own.Describe(ctx);
+  // The fitted lines of panel (b): the study's NCL and, where the paper
+  // draws it, the CSL through the detected critical states.
+  BlockFile lines({"p_kpa", "ln_1_plus_e"});
+  if (p_range.valid()) {
+    const auto [p_lo, p_hi] = p_range.Logarithmic();
+    auto add_line = [&](const std::string& title, double n, double lambda) {
+      std::vector<std::vector<double>> rows;
+      for (int k = 0; k <= 40; ++k) {
+        const double ln_p = std::log(p_lo) + (std::log(p_hi) - std::log(p_lo)) * k / 40;
+        rows.push_back({std::exp(ln_p), n - lambda * ln_p});
+      }
+      lines.Add(title, rows);
+    };
+    const NclLine ncl = ctx.StudyNcl(1);
+    if (ncl.valid()) {
+      add_line(fmt::format("NCL (replicate 1): N = {:.3f}, λ* = {:.4f}", ncl.n, ncl.lambda), ncl.n,
+               ncl.lambda);
+    }
+    const LineFit csl = family.draw_csl ? CslFit(ctx) : LineFit{};
+    if (csl.valid()) {
+      add_line(fmt::format("CSL (detected ψ_ε = 90° states): Γ = {:.3f}, λ = {:.4f}", csl.intercept,
+                           -csl.slope),
+               csl.intercept, -csl.slope);
+    }
   }
   paths.Write(ctx.File(stem + "_paths.tsv"));
+  tails.Write(ctx.File(stem + "_tails.tsv"));
+  bands.Write(ctx.File(stem + "_bands.tsv"));
   marks.Write(ctx.File(stem + "_states.tsv"));
+  lines.Write(ctx.File(stem + "_lines.tsv"));
+  if (replicates.blocks() > 0) replicates.Write(ctx.File(stem + "_replicates.tsv"));
+  if (mean_paths > 0 && single_paths > 0) {
+    spec.caption += fmt::format(" {} of the {} cases have one replicate: their own path.",
+                                single_paths, mean_paths + single_paths);
+  }
   Set(&spec, "stem", stem);
   Set(&spec, "n_paths", paths.blocks());
   Set(&spec, "path_colours", colours);
   Set(&spec, "path_dashes", dashes);
+  std::string colour_titles, dash_titles;
+  for (const std::string& t : colour_by_start ? starts : directions) {
+    colour_titles += (colour_titles.empty() ? "\"" : " \"") + t + "\"";
+  }
+  if (!colour_by_start && dash_groups.size() > 1) {
+    for (const std::string& t : dash_groups) {
+      dash_titles += (dash_titles.empty() ? "\"" : " \"") + t + "\"";
+    }
+  }
+  Set(&spec, "colour_titles", colour_titles);
+  Set(&spec, "dash_titles", dash_titles);
+  Set(&spec, "colour_heading", colour_by_start ? directions.front() + ", from" : "direction");
   Set(&spec, "n_marks", marks.blocks());
-  // Open marks are the second block only when there are detected ones.
+  Set(&spec, "mark_titles", marks.titles());
   Set(&spec, "first_open", detected.empty() ? 0 : 1);
-  Set(&spec, "n_own_marks", (detected.empty() ? 0 : 1) + (drifting.empty() ? 0 : 1));
+  Set(&spec, "n_own_marks", own_marks);
+  Set(&spec, "n_lines", lines.blocks());
+  Set(&spec, "line_titles", lines.titles());
+  Set(&spec, "n_replicates", replicates.blocks());
+  Set(&spec, "replicate_colours", replicate_colours);
+  Set(&spec, "n_bands", bands.blocks());
+  Set(&spec, "band_colours", band_colours);
+  Set(&spec, "n_tails", tails.blocks());
+  Set(&spec, "tail_colours", tail_colours);
+  const auto [p_lo, p_hi] = p_range.Logarithmic();
+  const auto [v_lo, v_hi] = lnv_range.Linear();
+  const auto [s_lo, s_hi] = psi_range.Linear();
+  SetNumber(&spec, "p_lo", p_lo);
+  SetNumber(&spec, "p_hi", p_hi);
+  SetNumber(&spec, "lnv_lo", v_lo);
+  SetNumber(&spec, "lnv_hi", v_hi);
+  SetNumber(&spec, "psi_lo", s_lo);
+  SetNumber(&spec, "psi_hi", s_hi);
   return spec;
 }
 

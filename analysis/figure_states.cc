@@ -19,24 +19,45 @@ bool ConstantDirectionKind(TableKind kind) {
          kind == TableKind::kExtension;
 }
 
+// Every usable state of the study's own sample (detected and drifting).
+StateSelection MainStates() { return StateSelection{}; }
+
+// One colour (gnuplot linetype) per nominal ψ_ε of the study's states, in
+// ascending order: Figs. 16 and 19 colour a direction alike.
+std::map<double, int> DirectionColours(const Context& ctx) {
+  std::map<double, int> colours;
+  for (const StateRow* row : ctx.Select(MainStates())) {
+    if (ConstantDirectionKind(row->kind)) colours[NominalOf(*row)] = 0;
+  }
+  int k = 0;
+  for (auto& [psi, colour] : colours) colour = k++ % 10 + 1;
+  return colours;
+}
+
 // The states projected to each level, and which levels.
 struct Sections {
   std::vector<double> levels;
   std::vector<std::vector<std::vector<double>>> rows;  // per level: p/pe, q/pe, ψ_ε, point type
+  std::vector<std::vector<std::string>> labels;        // per level: hover labels
 };
 
 Sections Project(const Context& ctx, std::vector<double> levels) {
   Sections s;
   s.levels = levels;
   s.rows.resize(levels.size());
-  for (const StateRow& row : ctx.states) {
-    if (!ConstantDirectionKind(row.kind) || !UsableState(row)) continue;
+  s.labels.resize(levels.size());
+  for (const StateRow* state : ctx.Select(MainStates())) {
+    const StateRow& row = *state;
+    if (!ConstantDirectionKind(row.kind)) continue;
     const NclLine ncl = ctx.StudyNcl(row.replicate);
     for (size_t l = 0; l < levels.size(); ++l) {
       SectionPoint point;
       if (ProjectToLevel(row, levels[l], ncl, ctx.options.max_projection_lnp, &point)) {
         s.rows[l].push_back({point.p_over_pe, point.q_over_pe, point.psi_epsilon_deg,
                              row.status == TableStatus::kDetected ? 7.0 : 6.0});
+        s.labels[l].push_back(StateLabel(row) + fmt::format("\\nmoved to ln(1+e) = {:.3f} by "
+                                                            "{:+.2f} in ln p",
+                                                            levels[l], point.lnp_shift));
       }
     }
   }
@@ -45,8 +66,8 @@ Sections Project(const Context& ctx, std::vector<double> levels) {
 
 std::vector<double> StateLevels(const Context& ctx) {
   std::vector<double> ln_v;
-  for (const StateRow& row : ctx.states) {
-    if (ConstantDirectionKind(row.kind) && UsableState(row)) ln_v.push_back(row.ln_1_plus_e);
+  for (const StateRow* row : ctx.Select(MainStates())) {
+    if (ConstantDirectionKind(row->kind)) ln_v.push_back(row->ln_1_plus_e);
   }
   return ln_v;
 }
@@ -66,38 +87,66 @@ std::string ProjectionMethod(const FigureDataOptions& options) {
 FigureSpec Fig16(const Context& ctx) {
   FigureSpec spec =
       Spec("fig16_asymptotic_states", "16", "Asymptotic states: summary",
-           "The asymptotic states of all constant-ψ_ε paths, all replicates (filled: "
-           "detected; open: still drifting at the stage end; gases and invalid stages "
-           "omitted), with the joined parts of paths of one ψ_ε from different starts "
-           "(path_convergence.csv): (a) ψ_σ against p, (b) ln(1+e) against p, (c) ψ_σ "
-           "against ln(1+e), (d) ψ_σ against ψ_ε. Lines: the calibrated models' "
-           "asymptotic lines in (b) and their ψ_σ(ψ_ε) in (d).",
+           "The asymptotic states of all constant-ψ_ε paths, every replicate (filled: "
+           "detected; open: still drifting at the stage end), one colour per ψ_ε (as in "
+           "Fig. 19): (a) ψ_σ against p, (b) ln(1+e) against p with the study's NCL and CSL "
+           "and each calibrated model's NCL and CSL, (c) ψ_σ against ln(1+e), (d) ψ_σ "
+           "against ψ_ε with the models' ψ_σ(ψ_ε). ",
            "asymptotic_states.gp");
+  const std::map<double, int> colours = DirectionColours(ctx);
   std::map<double, std::vector<std::vector<double>>> by_direction;
-  for (const StateRow& row : ctx.states) {
-    if (!ConstantDirectionKind(row.kind) || !UsableState(row)) continue;
-    by_direction[NominalOf(row)].push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg,
-                                            row.psi_epsilon_deg,
-                                            row.status == TableStatus::kDetected ? 7.0 : 6.0});
+  std::map<double, std::vector<std::string>> labels;
+  double p_lo = 1e300, p_hi = 0, v_lo = 1e300, v_hi = -1e300;
+  for (const StateRow* row : ctx.Select(MainStates())) {
+    if (!ConstantDirectionKind(row->kind)) continue;
+    by_direction[NominalOf(*row)].push_back({row->p_kpa, row->ln_1_plus_e, row->psi_sigma_deg,
+                                             row->psi_epsilon_deg,
+                                             row->status == TableStatus::kDetected ? 7.0 : 6.0});
+    labels[NominalOf(*row)].push_back(StateLabel(*row));
+    p_lo = std::min(p_lo, row->p_kpa), p_hi = std::max(p_hi, row->p_kpa);
+    v_lo = std::min(v_lo, row->ln_1_plus_e), v_hi = std::max(v_hi, row->ln_1_plus_e);
   }
-  BlockFile states({"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "psi_epsilon_deg", "point_type"});
-  for (const auto& [psi, rows] : by_direction)
-    states.Add(fmt::format("ψ_ε = {}°", Short(psi)), rows);
+  BlockFile states(
+      {"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "psi_epsilon_deg", "point_type", "label"});
+  std::string state_colours;
+  for (const auto& [psi, rows] : by_direction) {
+    states.AddLabelled(fmt::format("ψ_ε = {}°", Short(psi)), rows, labels[psi]);
+    state_colours += fmt::format("{} ", colours.at(psi));
+  }
   if (states.blocks() == 0)
     return NotDrawn(spec, "the state table has no usable asymptotic states");
   states.Write(ctx.File("fig16_states.tsv"));
-  BlockFile lines({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
-  BlockFile curves({"psi_epsilon_deg", "psi_sigma_deg"});
-  for (const ModelOverlay& model : ctx.models) {
+  // Panel (b): the NCL (ψ_ε = 0°) and CSL (90°) of the study and of each model.
+  BlockFile lines({"p_kpa", "ln_1_plus_e"});
+  std::vector<std::string> line_styles;
+  auto add = [&](const std::string& title, double n, double lambda, const std::string& style) {
     std::vector<std::vector<double>> rows;
-    for (const ModelOverlay::Line& line : model.lines) {
-      for (size_t k = 0; k < line.ln_p.size(); ++k) {
-        rows.push_back({std::exp(line.ln_p[k]), line.ln_1_plus_e[k], line.psi_sigma_deg});
-      }
-      rows.push_back({});
+    for (int k = 0; k <= 40; ++k) {
+      const double ln_p = std::log(p_lo) + (std::log(p_hi) - std::log(p_lo)) * k / 40;
+      rows.push_back({std::exp(ln_p), n - lambda * ln_p});
     }
-    lines.Add(model.title, rows);
-    // The paper's ψ_ε ≥ 0 (the curve spans the whole circle).
+    const int before = lines.blocks();
+    lines.Add(title, rows);
+    if (lines.blocks() > before) line_styles.push_back(style);
+  };
+  const NclLine ncl = ctx.StudyNcl(1);
+  if (ncl.valid()) add("DEM: NCL (replicate 1)", ncl.n, ncl.lambda, "0");
+  BlockFile curves({"psi_epsilon_deg", "psi_sigma_deg"});
+  int m = 0;
+  for (const ModelOverlay& model : ctx.models) {
+    ++m;
+    bool ncl_drawn = false, csl_drawn = false;
+    for (const ModelOverlay::Line& line : model.lines) {
+      const bool is_ncl = std::abs(line.psi_epsilon_deg) < 0.5 && !ncl_drawn;
+      const bool is_csl = std::abs(line.psi_epsilon_deg - 90) < 0.5 && !csl_drawn;
+      if ((!is_ncl && !is_csl) || line.ln_p.size() < 2) continue;
+      (is_ncl ? ncl_drawn : csl_drawn) = true;
+      // The model's line through its first and last points (straight in ln p).
+      const double lambda = -(line.ln_1_plus_e.back() - line.ln_1_plus_e.front()) /
+                            (line.ln_p.back() - line.ln_p.front());
+      const double n = line.ln_1_plus_e.front() + lambda * line.ln_p.front();
+      add(fmt::format("{}: {}", model.title, is_ncl ? "NCL" : "CSL"), n, lambda, std::to_string(m));
+    }
     std::vector<std::vector<double>> curve;
     for (size_t k = 0; k < model.psi_epsilon_deg.size() && k < model.psi_sigma_deg.size(); ++k) {
       if (model.psi_epsilon_deg[k] >= 0) {
@@ -108,39 +157,63 @@ FigureSpec Fig16(const Context& ctx) {
   }
   lines.Write(ctx.File("fig16_model_lines.tsv"));
   curves.Write(ctx.File("fig16_model_curves.tsv"));
-  spec.caption += " " + ctx.models_note;
+  spec.caption += MainStates().Describe(ctx) + " " + ctx.models_note;
+  std::string styles;
+  for (const std::string& st : line_styles) styles += st + " ";
   Set(&spec, "n_states", states.blocks());
   Set(&spec, "state_titles", states.titles());
-  Set(&spec, "n_models", std::min(lines.blocks(), curves.blocks()));
+  Set(&spec, "state_colours", state_colours);
+  Set(&spec, "n_lines", lines.blocks());
+  Set(&spec, "line_titles", lines.titles());
+  Set(&spec, "line_models", styles);
+  Set(&spec, "n_models", curves.blocks());
+  Set(&spec, "model_titles", curves.titles());
+  const double lp = std::log10(p_lo), hp = std::log10(p_hi), span = std::max(hp - lp, 0.2);
+  const double vspan = std::max(v_hi - v_lo, 0.01);
+  spec.variables.emplace_back("p_lo", fmt::format("{:.6g}", std::pow(10.0, lp - 0.08 * span)));
+  spec.variables.emplace_back("p_hi", fmt::format("{:.6g}", std::pow(10.0, hp + 0.08 * span)));
+  spec.variables.emplace_back("lnv_lo", fmt::format("{:.6g}", v_lo - 0.06 * vspan));
+  spec.variables.emplace_back("lnv_hi", fmt::format("{:.6g}", v_hi + 0.06 * vspan));
   return spec;
 }
 
 FigureSpec Fig17(const Context& ctx) {
   FigureSpec spec =
       Spec("fig17_asbs_sections", "17", "Constant-e cross-sections of the ASBS",
-           "q/p_e* against p/p_e* at constant ln(1+e) (each level its own colour; labels: "
-           "ψ_ε in degrees). " +
-               ProjectionMethod(ctx.options) +
-               " Lines: each calibrated model's cross-section at the same ln(1+e), "
-               "normalised by the same p_e* (dash type per model).",
+           "q/p_e* against p/p_e* at constant ln(1+e), one colour per level (labels: ψ_ε in "
+           "degrees); one panel per calibrated model, whose cross-sections at the same "
+           "levels (normalised by the same p_e*) are the lines. The levels are at 20, 50 "
+           "and 80 % of the states' range of ln(1+e) unless chosen (`study figures "
+           "--level`, or `levels` in the programme's [figures]). " +
+               ProjectionMethod(ctx.options),
            "asbs_sections.gp");
   const NclLine ncl = ctx.StudyNcl(1);
   if (!ncl.valid()) return NotDrawn(spec, "the study's NCL could not be fitted");
   std::vector<double> levels = ctx.options.settings.levels;
   if (levels.empty()) levels = SectionLevels(StateLevels(ctx), 3);
   if (levels.empty()) return NotDrawn(spec, "the state table has no usable asymptotic states");
+  std::sort(levels.begin(), levels.end());
   const Sections sections = Project(ctx, levels);
-  BlockFile dem_file({"p_over_pe", "q_over_pe", "psi_epsilon_deg", "point_type"});
+  BlockFile dem_file({"p_over_pe", "q_over_pe", "psi_epsilon_deg", "point_type", "label"});
   std::vector<double> drawn;
+  double x_hi = 0, y_lo = 0, y_hi = 0;
   for (size_t l = 0; l < levels.size(); ++l) {
     const int before = dem_file.blocks();
-    dem_file.Add(fmt::format("ln(1+e) = {:.3f}", levels[l]), sections.rows[l]);
+    dem_file.AddLabelled(fmt::format("ln(1+e) = {:.3f}", levels[l]), sections.rows[l],
+                         sections.labels[l]);
     if (dem_file.blocks() > before) drawn.push_back(levels[l]);
+    for (const std::vector<double>& r : sections.rows[l]) {
+      x_hi = std::max(x_hi, r[0]);
+      y_lo = std::min(y_lo, r[1]);
+      y_hi = std::max(y_hi, r[1]);
+    }
   }
   if (dem_file.blocks() == 0) {
     return NotDrawn(spec, "no asymptotic state lies within the projection distance of a level");
   }
   dem_file.Write(ctx.File("fig17_dem.tsv"));
+  // Each model's sections, model-major; also the data of every model's
+  // section at each level (the export: DIR/figures/data/fig17_models.tsv).
   BlockFile model_file({"p_over_pe", "q_over_pe"});
   for (const ModelOverlay& model : ctx.models) {
     for (double level : drawn) {
@@ -150,10 +223,19 @@ FigureSpec Fig17(const Context& ctx) {
     }
   }
   model_file.Write(ctx.File("fig17_models.tsv"));
+  std::string model_titles;
+  for (const ModelOverlay& model : ctx.models) {
+    model_titles += (model_titles.empty() ? "\"" : " \"") + model.title + "\"";
+  }
   spec.caption += " " + ctx.models_note;
   Set(&spec, "n_levels", static_cast<int>(drawn.size()));
   Set(&spec, "level_titles", dem_file.titles());
-  Set(&spec, "n_models", model_file.blocks() / static_cast<int>(drawn.size()));
+  Set(&spec, "n_models", static_cast<int>(ctx.models.size()));
+  Set(&spec, "model_titles", model_titles);
+  // The axes from the DEM's states (a model's section may reach far beyond).
+  spec.variables.emplace_back("x_hi", fmt::format("{:.6g}", std::max(1.1, 1.15 * x_hi)));
+  spec.variables.emplace_back("y_lo", fmt::format("{:.6g}", 1.15 * y_lo - 0.05));
+  spec.variables.emplace_back("y_hi", fmt::format("{:.6g}", 1.15 * y_hi + 0.05));
   return spec;
 }
 
@@ -164,48 +246,74 @@ FigureSpec Fig18(const Context& ctx) {
   if (!ncl.valid()) return NotDrawn(spec, "the study's NCL could not be fitted");
   std::vector<double> ln_v = StateLevels(ctx);
   if (ln_v.empty()) return NotDrawn(spec, "the state table has no usable asymptotic states");
-  const double lo = *std::min_element(ln_v.begin(), ln_v.end());
-  const double hi = *std::max_element(ln_v.begin(), ln_v.end());
-  const double wanted = ctx.options.settings.fig18_level.value_or(0.58);
-  const double level = std::clamp(wanted, lo, hi);
+  // The NC and OC 90° paths of replicate 1 serving Fig. 18; the level is the
+  // chosen one, else the OC path's (isochoric: its ln(1+e) stays), the one
+  // whose level holds the most states within the projection distance.
+  std::vector<const CaseData*> nc, oc;
+  for (const CaseData* c : ctx.Serving("18")) {
+    if (std::abs(c->NominalPsiEpsilon() - 90) > 0.5) continue;
+    const std::string kind = StartOf(ctx.cases, *c).kind;
+    if (kind == "NC") nc.push_back(c);
+    if (kind == "OC") oc.push_back(c);
+  }
+  double level = 0;
+  std::string why_level;
+  const CaseData* oc_path = nullptr;
+  if (ctx.options.settings.fig18_level) {
+    level = *ctx.options.settings.fig18_level;
+    why_level = "the level chosen in the figure settings";
+  } else if (!oc.empty()) {
+    int most = -1;
+    for (const CaseData* c : oc) {
+      const double at = Mean(c->path.ln_v);
+      const int count = static_cast<int>(Project(ctx, {at}).rows[0].size());
+      if (count > most) most = count, level = at, oc_path = c;
+    }
+    why_level = "the level of the OC path " + StartLabel(ctx.cases, *oc_path) +
+                " (the one whose level the most states reach)";
+  } else {
+    level = SectionLevels(ln_v, 1).front();
+    why_level = "the middle of the states' range (no OC ψ_ε = 90° path serves Fig. 18)";
+  }
   spec.caption = fmt::format(
-      "The cross-section of the ASBS at ln(1+e) = {:.3f}{} in (a) logarithmic and (b) linear "
-      "p/p_e*, with the NC and OC ψ_ε = 90° paths of replicate 1 (cases serving Fig. 18) whose "
-      "mean ln(1+e) is nearest to the level, each row normalised by p_e* at its own void ratio. ",
-      level,
-      level == wanted
-          ? " (the paper's level)"
-          : fmt::format(" (the paper's {:g} lies outside the states' range {:.3f}–{:.3f})", wanted,
-                        lo, hi));
+      "The cross-section of the ASBS at ln(1+e) = {:.3f}, {}, in (a) logarithmic and (b) "
+      "linear p/p_e*, with the NC and OC ψ_ε = 90° paths of replicate 1 nearest to the "
+      "level, each row normalised by p_e* at its own void ratio (the paper's level 0.58 is "
+      "that of its own sample; choose one with `study figures --fig18-level`). ",
+      level, why_level);
   spec.caption += ProjectionMethod(ctx.options);
   const Sections sections = Project(ctx, {level});
-  BlockFile dem_file({"p_over_pe", "q_over_pe", "psi_epsilon_deg", "point_type"});
-  dem_file.Add(fmt::format("asymptotic states at ln(1+e) = {:.3f}", level), sections.rows[0]);
+  BlockFile dem_file({"p_over_pe", "q_over_pe", "psi_epsilon_deg", "point_type", "label"});
+  dem_file.AddLabelled(fmt::format("asymptotic states at ln(1+e) = {:.3f}", level),
+                       sections.rows[0], sections.labels[0]);
   if (dem_file.blocks() == 0) {
     return NotDrawn(spec, "no asymptotic state lies within the projection distance of the level");
   }
   dem_file.Write(ctx.File("fig18_dem.tsv"));
-  // The NC and OC 90° paths nearest to the level.
-  const CaseData* best[2] = {nullptr, nullptr};
-  double distance[2] = {1e300, 1e300};
-  for (const CaseData* c : ctx.Serving("18")) {
-    if (std::abs(c->NominalPsiEpsilon() - 90) > 0.5) continue;
-    const std::string start = StartLabel(ctx.cases, *c);
-    const int k = start.rfind("NC", 0) == 0 ? 0 : start.rfind("OC", 0) == 0 ? 1 : -1;
-    if (k < 0) continue;
-    const double d = std::abs(Mean(c->path.ln_v) - level);
-    if (d < distance[k]) distance[k] = d, best[k] = c;
+  double x_lo = 1e300, x_hi = 0, y_lo = 0, y_hi = 0;
+  for (const std::vector<double>& r : sections.rows[0]) {
+    x_lo = std::min(x_lo, r[0]), x_hi = std::max(x_hi, r[0]);
+    y_lo = std::min(y_lo, r[1]), y_hi = std::max(y_hi, r[1]);
   }
   BlockFile path_file({"p_over_pe", "q_over_pe"});
-  for (const CaseData* c : best) {
-    if (!c) continue;
-    std::vector<std::vector<double>> rows;
-    for (size_t k = 0; k < c->path.p.size(); ++k) {
-      const double pe = ncl.EquivalentPressure(c->path.ln_v[k]);
-      rows.push_back({c->path.p[k] / pe, c->path.q[k] / pe});
+  for (const std::vector<const CaseData*>* family : {&nc, &oc}) {
+    const CaseData* best = nullptr;
+    double distance = 1e300;
+    for (const CaseData* c : *family) {
+      const double d = std::abs(Mean(c->path.ln_v) - level);
+      if (d < distance) distance = d, best = c;
     }
-    path_file.Add(fmt::format("ψ_ε = 90°, {} (mean ln(1+e) = {:.3f})", StartLabel(ctx.cases, *c),
-                              Mean(c->path.ln_v)),
+    if (!best) continue;
+    std::vector<std::vector<double>> rows;
+    for (size_t k = 0; k < best->path.p.size(); ++k) {
+      if (!(best->path.p[k] >= 0.5)) continue;
+      const double pe = ncl.EquivalentPressure(best->path.ln_v[k]);
+      rows.push_back({best->path.p[k] / pe, best->path.q[k] / pe});
+      x_lo = std::min(x_lo, rows.back()[0]), x_hi = std::max(x_hi, rows.back()[0]);
+      y_hi = std::max(y_hi, rows.back()[1]);
+    }
+    path_file.Add(fmt::format("ψ_ε = 90°, {} (ln(1+e) = {:.3f})", StartLabel(ctx.cases, *best),
+                              Mean(best->path.ln_v)),
                   rows);
   }
   path_file.Write(ctx.File("fig18_paths.tsv"));
@@ -219,6 +327,11 @@ FigureSpec Fig18(const Context& ctx) {
   spec.caption += " " + ctx.models_note;
   Set(&spec, "n_paths", path_file.blocks());
   Set(&spec, "n_models", model_file.blocks());
+  // The axes from the DEM's states and paths, not from a model's curve.
+  spec.variables.emplace_back("x_lo", fmt::format("{:.6g}", x_lo / 2));
+  spec.variables.emplace_back("x_hi", fmt::format("{:.6g}", std::max(1.1, 1.15 * x_hi)));
+  spec.variables.emplace_back("y_lo", fmt::format("{:.6g}", 1.15 * y_lo - 0.05));
+  spec.variables.emplace_back("y_hi", fmt::format("{:.6g}", 1.15 * y_hi + 0.05));
   return spec;
 }
 
@@ -233,17 +346,19 @@ FigureSpec Fig19(const Context& ctx) {
                   ctx.options.psi_epsilon_half_rows),
       "triaxial_picks.gp");
   std::map<double, std::vector<std::vector<double>>> by_direction;
-  for (const StateRow& row : ctx.states) {
-    if (row.kind == TableKind::kNcl || !ConstantDirectionKind(row.kind) || !UsableState(row)) {
-      continue;
-    }
+  for (const StateRow* state : ctx.Select(MainStates())) {
+    const StateRow& row = *state;
+    if (row.kind == TableKind::kNcl || !ConstantDirectionKind(row.kind)) continue;
     by_direction[NominalOf(row)].push_back({row.p_kpa, row.ln_1_plus_e, row.psi_sigma_deg, 7.0});
   }
   std::vector<double> targets;
   for (const auto& [psi, rows] : by_direction) targets.push_back(psi);
   int picked = 0;
   for (const CaseData& c : ctx.cases) {
-    if (!c.finished || !c.Serves("19") || c.path.empty()) continue;
+    if (!c.finished || !c.Serves("19") || c.path.empty() || c.sample != Sample::kMain ||
+        !ctx.options.settings.IncludesCase(c.name)) {
+      continue;
+    }
     for (const StretchingPick& pick : PickStretchingDirections(
              c.path.psi_epsilon, c.path.p, c.path.ln_v, c.path.psi_sigma, targets)) {
       by_direction[pick.psi_epsilon_deg].push_back(
@@ -252,12 +367,23 @@ FigureSpec Fig19(const Context& ctx) {
     }
   }
   BlockFile file({"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "point_type"});
-  for (const auto& [psi, rows] : by_direction) file.Add(fmt::format("ψ_ε = {}°", Short(psi)), rows);
+  const std::map<double, int> colours = DirectionColours(ctx);
+  std::string direction_colours;
+  for (const auto& [psi, rows] : by_direction) {
+    const int before = file.blocks();
+    file.Add(fmt::format("ψ_ε = {}°", Short(psi)), rows);
+    const auto colour = colours.find(psi);
+    if (file.blocks() > before) {
+      direction_colours += fmt::format("{} ", colour == colours.end() ? 8 : colour->second);
+    }
+  }
   if (targets.empty()) return NotDrawn(spec, "the state table has no usable asymptotic states");
   if (picked == 0) return NotDrawn(spec, "no triaxial path reaches the ψ_ε of a constant-ψ_ε path");
   file.Write(ctx.File("fig19_states.tsv"));
   Set(&spec, "n_directions", file.blocks());
   Set(&spec, "direction_titles", file.titles());
+  Set(&spec, "direction_colours", direction_colours);
+  spec.caption += " " + MainStates().Describe(ctx);
   return spec;
 }
 

@@ -97,9 +97,9 @@ int DrawFigures(const std::string& out, std::vector<analysis::FigureSpec>* figur
       std::printf("  %-28s not drawn: %s\n", figure.stem.c_str(), figure.not_drawn.c_str());
       continue;
     }
-    const auto wrapper =
-        std::find_if(wrappers.begin(), wrappers.end(),
-                     [&](const auto& entry) { return entry.first == figure.stem; });
+    const auto wrapper = std::find_if(wrappers.begin(), wrappers.end(), [&](const auto& entry) {
+      return entry.first == figure.stem;
+    });
     if (data_only || wrapper == wrappers.end()) continue;
     const std::string stem = out + "/figures/" + figure.stem;
     const std::string why = gnuplot.empty() ? "gnuplot is not on PATH (Debian: apt-get install "

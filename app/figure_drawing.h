@@ -21,7 +21,6 @@ std::string PlotsDirectory();
 // with data (all of them, or those whose stem is in `only`); a figure that
 // fails gets the reason in `not_drawn` and its caption. Prints one line per
 // figure; returns the number that failed. `data_only`: wrappers, no drawing.
-int DrawFigures(const std::string& out, std::vector<analysis::FigureSpec>* figures,
-                bool data_only);
+int DrawFigures(const std::string& out, std::vector<analysis::FigureSpec>* figures, bool data_only);
 
 }  // namespace granasym

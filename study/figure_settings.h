@@ -28,11 +28,11 @@ namespace granasym::study {
 extern const std::vector<std::string> kFigureModels;
 
 struct FigureSettings {
-  std::vector<double> levels;        // empty: chosen from the data
+  std::vector<double> levels;         // empty: chosen from the data
   std::optional<double> fig18_level;  // absent: the level of the OC ψ_ε = 90° path
   std::vector<std::string> cases;     // empty: every case
   std::vector<std::string> exclude_cases;
-  std::vector<std::string> only;  // empty: every figure
+  std::vector<std::string> only;                   // empty: every figure
   std::optional<std::vector<std::string>> models;  // absent: every calibrated model
   bool replicates = false;
 

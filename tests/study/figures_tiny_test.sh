@@ -4,7 +4,13 @@
 # 1. `granasym study figures` on a copy of the study: every figure drawn as a
 #    non-empty PNG and PDF, gnuplot silent (the command fails on any gnuplot
 #    output), index.tsv with one row per figure.
-# 2. A hypoplastic clay calibrated (`granasym calibrate`) on the study's
+#    Each has its SVG, in which every state of Fig. 16 carries one hover
+#    label, and no frictionless (phi0) state reaches a figure of the study's
+#    own sample; each figure's wrapper DIR/figures/<stem>.plt redraws it from
+#    any folder.
+# 2. `study figures --out` draws elsewhere and changes nothing in the study;
+#    an unknown `--only` is refused.
+# 3. A hypoplastic clay calibrated (`granasym calibrate`) on the study's
 #    states in DIR/calibration/hypoplastic_clay/plot_data: the figures that
 #    overlay models are drawn with it and say so in their captions.
 set -euo pipefail
@@ -22,7 +28,7 @@ stems="fig05_model_paths fig08_overlaps fig09_ncl fig10_csl_nc fig11_csl_oc
 
 check_figures() {
   for stem in $stems; do
-    for ext in png pdf; do
+    for ext in png pdf svg plt; do
       [ -s "$out/figures/$stem.$ext" ] || { echo "FAIL: $out/figures/$stem.$ext missing or empty"; exit 1; }
     done
   done
@@ -41,6 +47,40 @@ echo "study figures: $(( ($(date +%s%N) - start) / 1000000 )) ms"
 check_figures
 grep -q "No calibrated model is overlaid" "$out/figures/index.tsv" ||
   { echo "FAIL: captions do not say that no model is overlaid"; exit 1; }
+
+# Hover labels: every state row of Fig. 16's data is one distinct hypertext
+# of its SVG (drawn in each of its four panels).
+states=$(grep -c "(replicate " "$out/figures/data/fig16_states.tsv")
+labels=$(grep -o "showHypertext(evt,'[^']*'" "$out/figures/fig16_asymptotic_states.svg" | sort -u | wc -l)
+[ "$states" -gt 0 ] && [ "$labels" -eq "$states" ] ||
+  { echo "FAIL: fig16 has $states states but $labels distinct hover labels"; exit 1; }
+# The frictionless sample only in Fig. 20 (the table does hold its states).
+grep -q "phi0" "$out/asymptotic_states.csv" || { echo "FAIL: the tiny study has no phi0 states"; exit 1; }
+for file in fig16_states fig17_dem fig19_states fig21_friction_inertial fig10_csl_nc_states \
+            fig11_csl_oc_states fig13_triaxial_states; do
+  [ -f "$out/figures/data/$file.tsv" ] || continue
+  if grep -q "phi0" "$out/figures/data/$file.tsv"; then
+    echo "FAIL: a frictionless state in $file.tsv"; exit 1
+  fi
+done
+# A wrapper redraws its figure from another folder.
+rm "$out/figures/fig10_csl_nc.png"
+(cd / && gnuplot "$out/figures/fig10_csl_nc.plt")
+[ -s "$out/figures/fig10_csl_nc.png" ] || { echo "FAIL: the wrapper did not redraw fig10"; exit 1; }
+
+# --out: drawn elsewhere, the study untouched (names, sizes and times of every file).
+listing() { (cd "$1" && find . -type f -printf '%p %s %T@\n' | sort); }
+before=$(listing "$out")
+"$granasym" study figures "$out" --out "$work/elsewhere" --level 0.55 > "$work/figures_out.txt"
+[ "$(listing "$out")" = "$before" ] || { echo "FAIL: study figures --out wrote into the study"; exit 1; }
+[ -s "$work/elsewhere/figures/fig16_asymptotic_states.png" ] ||
+  { echo "FAIL: nothing drawn into --out"; exit 1; }
+grep -q "ln(1+e) = 0.550" "$work/elsewhere/figures/data/fig17_dem.tsv" ||
+  { echo "FAIL: --level did not set Fig. 17's level"; exit 1; }
+if "$granasym" study figures "$out" --out "$work/elsewhere" --only fig99_nothing > "$work/only.txt" 2>&1; then
+  echo "FAIL: --only fig99_nothing was accepted"; exit 1
+fi
+grep -q "fig99_nothing" "$work/only.txt" || { echo "FAIL: the refusal does not name the figure"; exit 1; }
 
 # A calibration on the states (detected or drifting, constant psi_epsilon).
 {
