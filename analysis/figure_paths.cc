@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "analysis/figure_families.h"
@@ -138,12 +139,33 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
                "`figures` include " +
                figure +
                ") with its 95 % band, aligned on the accumulated strain as the ensemble rows "
-               "of the state table; rows below p = 0.5 kPa (a gas's tail) are drawn faint "
+               "of the state table (a path that stops at its asymptote is aligned at its end, "
+               "so its mean starts where the shortest replicate's does; `study figures "
+               "--replicates` draws every replicate); rows below p = 0.5 kPa (a gas's tail) are "
+               "drawn faint "
                "and do not set the axes. (a) ψ_σ against p, (b) ln(1+e) against p, (c) ψ_σ "
                "against ln(1+e). Marks: the detector's asymptotic states of these cases, "
                "every replicate. ",
            "paths.gp");
   std::vector<const CaseData*> cases = ctx.Serving(figure);
+  // An unloading case (ψ_ε = 180°) that serves the figure leads to its OC
+  // starts: drawn in grey, not a family of its own.
+  BlockFile unloading({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
+  cases.erase(
+      std::remove_if(cases.begin(), cases.end(),
+                     [&](const CaseData* c) {
+                       if (std::abs(c->NominalPsiEpsilon() - 180) > 0.5) return false;
+                       std::vector<std::vector<double>> rows;
+                       for (size_t k = 0; k < c->path.p.size(); ++k) {
+                         if (c->path.p[k] >= kFloorKpa) {
+                           rows.push_back({c->path.p[k], c->path.ln_v[k], c->path.psi_sigma[k]});
+                         }
+                       }
+                       unloading.Add("unloading (ψ_ε = 180°) to the OC starts", rows);
+                       return true;
+                     }),
+      cases.end());
+  bool all_isochoric = true;
   auto direction_of = [](const CaseData* c) {
     for (size_t k = 0; k < c->stages.size(); ++k) {
       if (std::isfinite(c->stage_radial_stress[k])) return c->stage_radial_stress[k];
@@ -217,6 +239,7 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
   std::set<std::string> names;
   int mean_paths = 0, single_paths = 0;
   for (const CaseData* c : cases) {
+    all_isochoric = all_isochoric && std::abs(c->NominalPsiEpsilon() - 90) < 0.5;
     names.insert(c->name);
     const std::string d = DirectionLabel(*c), s = StartLabel(ctx.cases, *c);
     const int colour = colour_by_start ? index_in(starts, s) : index_in(directions, d);
@@ -342,6 +365,7 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
   paths.Write(ctx.File(stem + "_paths.tsv"));
   tails.Write(ctx.File(stem + "_tails.tsv"));
   bands.Write(ctx.File(stem + "_bands.tsv"));
+  unloading.Write(ctx.File(stem + "_unloading.tsv"));
   marks.Write(ctx.File(stem + "_states.tsv"));
   lines.Write(ctx.File(stem + "_lines.tsv"));
   if (replicates.blocks() > 0) replicates.Write(ctx.File(stem + "_replicates.tsv"));
@@ -374,6 +398,11 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
   Set(&spec, "n_replicates", replicates.blocks());
   Set(&spec, "replicate_colours", replicate_colours);
   Set(&spec, "n_bands", bands.blocks());
+  // An isochoric path keeps its void ratio: its band in (b) would only be
+  // the replicates' spread of e drawn across the whole range of p.
+  Set(&spec, "bands_in_b", all_isochoric ? 0 : 1);
+  Set(&spec, "n_unloading", unloading.blocks());
+  if (unloading.blocks() > 0) spec.caption += "Grey lines: the unloading to the OC starts. ";
   Set(&spec, "band_colours", band_colours);
   Set(&spec, "n_tails", tails.blocks());
   Set(&spec, "tail_colours", tail_colours);
@@ -398,10 +427,34 @@ FigureSpec Fig12(const Context& ctx) {
            "ε_s = 2(ε_a − ε_r)/3.",
            "triaxial_strain.gp");
   BlockFile paths({"eps_s", "psi_sigma_deg", "psi_epsilon_deg"});
-  for (const CaseData* c : ctx.Serving("12")) {
+  // In numeric order of σ_r, then NC before OC: one colour per σ_r, solid
+  // from NC and dashed from OC states.
+  std::vector<const CaseData*> cases = ctx.Serving("12");
+  auto radial = [](const CaseData* c) {
+    for (size_t k = 0; k < c->stages.size(); ++k) {
+      if (std::isfinite(c->stage_radial_stress[k])) return c->stage_radial_stress[k];
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  auto is_oc = [&](const CaseData* c) { return StartOf(ctx.cases, *c).kind == "OC"; };
+  std::stable_sort(cases.begin(), cases.end(), [&](const CaseData* a, const CaseData* b) {
+    return radial(a) != radial(b) ? radial(a) < radial(b) : is_oc(a) < is_oc(b);
+  });
+  std::vector<double> radials;
+  std::string colours, dashes;
+  for (const CaseData* c : cases) {
+    const int before = paths.blocks();
     paths.Add(DirectionLabel(*c) + ", " + StartLabel(ctx.cases, *c),
               Rows({&c->path.eps_s, &c->path.psi_sigma, &c->path.psi_epsilon}));
+    if (paths.blocks() == before) continue;
+    if (std::find(radials.begin(), radials.end(), radial(c)) == radials.end()) {
+      radials.push_back(radial(c));
+    }
+    colours += fmt::format("{} ", radials.size());
+    dashes += is_oc(c) ? "2 " : "1 ";
   }
+  Set(&spec, "path_colours", colours);
+  Set(&spec, "path_dashes", dashes);
   if (paths.blocks() == 0) return NotDrawn(spec, "no finished case serves Fig. 12");
   paths.Write(ctx.File("fig12_paths.tsv"));
   Set(&spec, "n_paths", paths.blocks());

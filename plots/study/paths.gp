@@ -3,12 +3,14 @@
 #   _paths      one block per case: the replicates' mean path (p >= 0.5 kPa)
 #   _bands      the mean paths' 95 % bands as closed outlines (band_colours)
 #   _tails      the rows below 0.5 kPa (a gas's tail), drawn faint
+#   _unloading  the unloading paths to the OC starts (grey; n_unloading)
 #   _replicates every replicate's path (when the figure settings ask for them)
 #   _states     asymptotic states: detected, drifting, then reference states,
 #               with a hover label (last column) for the SVG
 #   _lines      the NCL fit and (where the paper draws it) the CSL fit
 # Variables: stem, n_paths, path_colours, path_dashes (per path), colour_titles,
-# dash_titles, colour_heading (the legend), n_bands, band_colours, n_marks, n_own_marks, first_open,
+# dash_titles, colour_heading (the legend), n_bands, band_colours, bands_in_b,
+# n_unloading, n_marks, n_own_marks, first_open,
 # n_lines, line_titles, n_tails, tail_colours, n_replicates, replicate_colours and the axis
 # ranges p_lo, p_hi, lnv_lo, lnv_hi, psi_lo, psi_hi (from the valid data).
 width = 10.0; height = 7.5
@@ -29,7 +31,12 @@ band_colour(i) = int(word(band_colours, i+1))
 bands = data."/".stem."_bands.tsv"
 B(y) = sprintf('for [i=0:n_bands-1] bands index i using "p_kpa":"%s" with filledcurves closed lt band_colour(i),', y)
 bands_a = n_bands > 0 ? B("psi_sigma_edge") : ''
-bands_b = n_bands > 0 ? B("ln_1_plus_e_edge") : ''
+bands_b = n_bands > 0 && bands_in_b ? B("ln_1_plus_e_edge") : ''
+unloading = data."/".stem."_unloading.tsv"
+U(x, y) = sprintf('for [i=0:n_unloading-1] unloading index i using "%s":"%s" with lines lc rgb "#999999" lw 1,', x, y)
+unload_a = n_unloading > 0 ? U("p_kpa", "psi_sigma_deg") : ''
+unload_b = n_unloading > 0 ? U("p_kpa", "ln_1_plus_e") : ''
+unload_c = n_unloading > 0 ? U("ln_1_plus_e", "psi_sigma_deg") : ''
 
 replicate_colour(i) = int(word(replicate_colours, i+1))
 line_dt(i) = i == 0 ? 2 : 4
@@ -57,13 +64,13 @@ set xlabel label_p
 set ylabel label_psi_sigma
 set yrange [psi_lo:psi_hi]
 set title "(a)"
-plot @bands_a @tails_a @reps_a \
+plot @unload_a @bands_a @tails_a @reps_a \
      for [i=0:n_paths-1] paths index i using "p_kpa":"psi_sigma_deg" with lines lt colour(i) dt dash(i) lw 1.3, \
      @marks_a NaN notitle
 set ylabel label_lnv
 set yrange [lnv_lo:lnv_hi]
 set title "(b)"
-plot @bands_b @tails_b @reps_b @fits_b \
+plot @unload_b @bands_b @tails_b @reps_b @fits_b \
      for [i=0:n_paths-1] paths index i using "p_kpa":"ln_1_plus_e" with lines lt colour(i) dt dash(i) lw 1.3, \
      @marks_b NaN notitle
 unset logscale x
@@ -73,7 +80,7 @@ set xlabel label_lnv
 set ylabel label_psi_sigma
 set yrange [psi_lo:psi_hi]
 set title "(c)"
-plot @tails_c @reps_c \
+plot @unload_c @tails_c @reps_c \
      for [i=0:n_paths-1] paths index i using "ln_1_plus_e":"psi_sigma_deg" with lines lt colour(i) dt dash(i) lw 1.3, \
      @marks_c NaN notitle
 # The legend: colours (directions, or starts when all paths share one
@@ -88,5 +95,6 @@ plot 2 with lines lc rgb "white" notitle, keyentry with lines lt -2 lc rgb "whit
      for [j=1:(n_dashes > 0 ? 1 : 0)] keyentry with lines lt -2 lc rgb "white" title "{/:Bold from}", \
      for [j=1:n_dashes] keyentry with lines lc rgb "#333333" dt j lw 1.3 title word(dash_titles, j), \
      for [b=1:n_marks] keyentry with points pt mark_pt(b-1) ps mark_ps(b-1) lc rgb mark_lc(b-1) title word(mark_titles, b), \
+     for [i=1:n_unloading] keyentry with lines lc rgb "#999999" title "unloading (ψ_ε = 180°) to the OC starts", \
      for [i=1:n_lines] keyentry with lines lc rgb "#333333" dt line_dt(i-1) title word(line_titles, i)
 unset multiplot

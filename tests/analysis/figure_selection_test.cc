@@ -245,8 +245,8 @@ TEST(FigureSettings, TheProgrammesTableIsReadAndChecked) {
   const std::string base =
       "[study]\nname = \"s\"\n[scale.tiny]\ncount = 100\n[[run]]\nname = \"ncl\"\n"
       "from = \"sample\"\n[[run.stage]]\ntype = \"strain_path\"\npsi_epsilon_deg = 0\n";
-  const study::Programme programme = study::Programme::Parse(
-      base + "[figures]\nlevels = [0.55]\n", "p.toml", ".", study::Scale::kTiny);
+  const study::Programme programme = study::Programme::Parse(base + "[figures]\nlevels = [0.55]\n",
+                                                             "p.toml", ".", study::Scale::kTiny);
   EXPECT_EQ(programme.figures.levels, (std::vector<double>{0.55}));
   EXPECT_THROW(study::Programme::Parse(base + "[figures]\nlevelz = [0.55]\n", "p.toml", ".",
                                        study::Scale::kTiny),
