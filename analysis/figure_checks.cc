@@ -124,7 +124,8 @@ FigureSpec Fig08(const Context& ctx) {
       const double centre = edges[b] > 0 ? std::sqrt(edges[b] * edges[b + 1]) : edges[b + 1] / 2;
       rows.push_back({centre, counts[row * bins + b] / total, counts[row * bins + b]});
     }
-    histograms.Add(fmt::format("p = {} kPa", Short(stage.validity.final_mean_stress_kpa)), rows);
+    histograms.Add(fmt::format("p = {} kPa", Short(Rounded(stage.validity.final_mean_stress_kpa))),
+                   rows);
   }
   if (histograms.blocks() == 0) return NotDrawn(spec, "the NCL histograms are empty");
   histograms.Write(ctx.File("fig08_histograms.tsv"));

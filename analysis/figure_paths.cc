@@ -154,7 +154,7 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
   cases.erase(
       std::remove_if(cases.begin(), cases.end(),
                      [&](const CaseData* c) {
-                       if (std::abs(c->NominalPsiEpsilon() - 180) > 0.5) return false;
+                       if (!(std::abs(c->NominalPsiEpsilon() - 180) <= 0.5)) return false;
                        std::vector<std::vector<double>> rows;
                        for (size_t k = 0; k < c->path.p.size(); ++k) {
                          if (c->path.p[k] >= kFloorKpa) {
