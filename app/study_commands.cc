@@ -11,6 +11,7 @@
 #include "app/enum_option.h"
 #include "app/progress.h"
 #include "app/signals.h"
+#include "app/study_compare_command.h"
 #include "app/study_figures_command.h"
 #include "app/study_report_command.h"
 #include "app/thread_count.h"
@@ -185,6 +186,7 @@ void RegisterStudyCommands(CLI::App& app) {
 #endif
   RegisterStudyFiguresCommand(study);
   RegisterStudyReportCommand(study);
+  RegisterStudyCompareCommand(study);
 }
 
 }  // namespace granasym
