@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "common/error.h"
+#include "common/results_version.h"
 #include "program_version.h"  // generated at build time (common/write_program_version.cmake)
 
 namespace granasym {
@@ -55,6 +56,38 @@ constexpr bool kLittleEndianHost = __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__;
 }  // namespace
 
 std::string ProgramVersion() { return GRANASYM_PROGRAM_VERSION; }
+
+std::string ResultsKey() {
+  std::string isa;
+#if defined(__x86_64__)
+  isa = "x86_64";
+#elif defined(__aarch64__)
+  isa = "aarch64";
+#else
+  isa = "other";
+#endif
+#ifdef __AVX__
+  isa += " avx";
+#endif
+#ifdef __AVX2__
+  isa += " avx2";
+#endif
+#ifdef __FMA__
+  isa += " fma";
+#endif
+#ifdef __AVX512F__
+  isa += " avx512f";
+#endif
+#if defined(__clang__)
+  const std::string compiler = "Clang " __clang_version__;
+#elif defined(__GNUC__)
+  const std::string compiler = "GNU " __VERSION__;
+#else
+  const std::string compiler = "unknown compiler";
+#endif
+  return "results v" + std::to_string(kResultsVersion) + "; " + compiler + "; " +
+         GRANASYM_BUILD_TYPE + "; " + isa;
+}
 
 std::string HostCpuModel() {
   std::ifstream cpuinfo("/proc/cpuinfo");

@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/provenance.h"
+#include "common/results_version.h"
 #include "common/text_file.h"
 #include "dem/grain_size_distribution.h"
 #include "dem/scene.h"
@@ -40,7 +41,8 @@ double EstimateSteps(const dem::Stage& stage, double time_step, double density) 
 
 }  // namespace
 
-Plan Plan::Make(const Programme& programme, int threads, const std::string& directory) {
+Plan Plan::Make(const Programme& programme, int threads, const std::string& directory,
+                const std::string& results_key) {
   const Scale scale = programme.scale;
   Plan plan;
   plan.programme = programme;
@@ -48,6 +50,7 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
   plan.threads = threads;
   plan.directory = directory;
   plan.program_version = ProgramVersion();
+  plan.results_key = results_key;
   const ScaleSpec& spec = programme.At(scale);
   const std::string gsd_text =
       programme.sample.gsd_path.empty() ? "default" : ReadTextFile(programme.sample.gsd_path);
@@ -64,7 +67,7 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
       throw InputError(programme.origin + ": the sample at scale " + ToString(scale) + ": " + why);
     }
     Sha256 hash;
-    AddField(hash, "kind", "granasym-study-sample-v1");
+    AddField(hash, "kind", "granasym-study-sample-v2");
     AddField(hash, "count", std::to_string(sample.options.count));
     std::ostringstream cell;
     cell.precision(17);
@@ -73,7 +76,7 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
     AddField(hash, "seed", std::to_string(sample.options.seed));
     AddField(hash, "max_attempts", std::to_string(sample.options.max_attempts));
     AddField(hash, "gsd", gsd_text);
-    AddField(hash, "version", plan.program_version);
+    AddField(hash, "results", plan.results_key);
     sample.key = hash.HexDigest();
     sample.directory = directory + "/samples/r" + std::to_string(r);
     plan.samples.push_back(sample);
@@ -111,13 +114,15 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
                          case_spec.run + "'): " + error.what());
       }
       Sha256 hash;
-      AddField(hash, "kind", "granasym-study-case-v1");
-      AddField(hash, "scene", scene.Canonical());
+      const std::string canonical = scene.Canonical();
+      AddField(hash, "kind", "granasym-study-case-v2");
+      AddField(hash, "scene", canonical);
       AddField(hash, "parent", parent_key);
       AddField(hash, "parent_stage", case_spec.parent_stage);
-      AddField(hash, "version", plan.program_version);
+      AddField(hash, "results", plan.results_key);
       AddField(hash, "threads", std::to_string(threads));
       c.key = hash.HexDigest();
+      c.inputs = {Sha256Hex(canonical), parent_key, plan.results_key, threads};
       const double time_step = scene.time_step_s.value_or(1.2e-7);
       for (const dem::Stage& stage : scene.stages) {
         c.estimated_steps += EstimateSteps(stage, time_step, scene.material.density);
@@ -134,9 +139,9 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
     m.spec = model;
     m.directory = directory + "/" + m.id;
     Sha256 hash;
-    AddField(hash, "kind", "granasym-study-model-v1");
+    AddField(hash, "kind", "granasym-study-model-v2");
     AddField(hash, "test", model.text);
-    AddField(hash, "version", plan.program_version);
+    AddField(hash, "results", plan.results_key);
     m.key = hash.HexDigest();
     plan.model_cases.push_back(std::move(m));
   }

@@ -18,8 +18,10 @@
 #include <string>
 #include <vector>
 
+#include "common/results_version.h"
 #include "dem/packing.h"
 #include "study/programme.h"
+#include "study/study_folder.h"
 
 namespace granasym::study {
 
@@ -40,7 +42,8 @@ struct PlannedCase {
   std::vector<int> children;
   std::string directory;   // DIR/cases/r<K>/<name>
   std::string scene_text;  // the complete scene, [sample] included
-  std::string key;         // SHA-256 of the canonical scene, the parent's key, version, threads
+  std::string key;         // SHA-256 of the canonical scene, the parent's key, results key, threads
+  KeyInputs inputs;        // what the key is made of (recorded in done.toml)
   int64_t particles = 0;
   double estimated_steps = 0;  // from the stop conditions, for the ETA
   std::string result_path() const { return directory + "/result.h5"; }
@@ -53,7 +56,7 @@ struct PlannedModelCase {
   std::string id;  // "models/<name>"
   ModelCaseSpec spec;
   std::string directory;
-  std::string key;  // SHA-256 of the test's TOML and the program version
+  std::string key;  // SHA-256 of the test's TOML and the results key
 };
 
 struct Plan {
@@ -61,7 +64,8 @@ struct Plan {
   Scale scale = Scale::kTiny;
   int threads = 1;
   std::string directory;
-  std::string program_version;
+  std::string program_version;         // provenance only: no key depends on it
+  std::string results_key;             // common/results_version.h: every key depends on it
   std::vector<PlannedSample> samples;  // one per replicate
   std::vector<PlannedCase> cases;      // parents before children
   std::vector<PlannedModelCase> model_cases;
@@ -69,7 +73,10 @@ struct Plan {
   // Plans the programme at the scale it was expanded at (Programme::scale);
   // every case's scene is parsed here, so that bad input fails before
   // anything runs (the message names the programme and the case).
-  static Plan Make(const Programme& programme, int threads, const std::string& directory);
+  // The keys depend on `results_key` (common/results_version.h, this
+  // build's by default), never on the program version.
+  static Plan Make(const Programme& programme, int threads, const std::string& directory,
+                   const std::string& results_key = ResultsKey());
   // The cases of shard `index` (1-based) of `count`: the leaves are dealt
   // out by estimated cost (longest first to the least loaded shard), and
   // every shard includes the ancestors of its leaves (computed once, by

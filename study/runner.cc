@@ -132,8 +132,13 @@ CaseOutcome RunModelCase(const PlannedModelCase& m,
   outcome.message = result.summary.Report();
   const bool success = result.summary.success();
   outcome.status = success ? CaseStatus::kComputed : CaseStatus::kFailed;
-  WriteDone(m.directory, {m.key, success ? dem::Termination::kCompleted : dem::Termination::kFailed,
-                          outcome.message, 0, 0, outcome.wall_seconds});
+  WriteDone(m.directory, {m.key,
+                          {},
+                          success ? dem::Termination::kCompleted : dem::Termination::kFailed,
+                          outcome.message,
+                          0,
+                          0,
+                          outcome.wall_seconds});
   if (log) log(m.id + ": " + ToString(outcome.status) + " (" + outcome.message + ")");
 #else
   throw InputError(m.id +
@@ -353,7 +358,11 @@ CaseOutcome Scheduler::Execute(int k) {
     outcome.message = "not started: the study was interrupted while waiting for the case's lock";
     return outcome;
   }
-  if (const std::optional<DoneRecord> done = ReadDone(c.directory);
+  const std::optional<DoneRecord> previous = ReadDone(c.directory);
+  if (previous && previous->key != c.key && options_.log) {
+    options_.log(c.id + ": computed again: " + previous->inputs.Difference(c.inputs));
+  }
+  if (const std::optional<DoneRecord>& done = previous;
       done && done->key == c.key && fs::exists(c.result_path())) {
     const std::string mismatch = ResultMismatch(c.result_path(), *done);
     if (mismatch.empty()) {
@@ -432,7 +441,7 @@ CaseOutcome Scheduler::Execute(int k) {
     outcome.status = CaseStatus::kInterrupted;
     return outcome;
   }
-  WriteDone(c.directory, {c.key, summary.termination, summary.message, summary.steps,
+  WriteDone(c.directory, {c.key, c.inputs, summary.termination, summary.message, summary.steps,
                           summary.particles, outcome.wall_seconds});
   fs::remove(running_path);
   outcome.status = summary.termination == dem::Termination::kCompleted ? CaseStatus::kComputed

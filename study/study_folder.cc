@@ -16,6 +16,7 @@
 #include "common/config.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
+#include "common/results_version.h"
 #include "common/text_file.h"
 #include "study/case_record.h"
 
@@ -71,6 +72,10 @@ std::optional<DoneRecord> ReadDone(const std::string& directory) {
   done.steps = table.GetInt("steps", 0, Range::NonNegative());
   done.particles = table.GetInt("particles", 0, Range::NonNegative());
   done.wall_seconds = table.GetDouble("wall_seconds", 0.0, Range::NonNegative());
+  done.inputs.scene_sha256 = table.GetString("scene_sha256", "");
+  done.inputs.parent_key = table.GetString("parent_key", "");
+  done.inputs.results = table.GetString("results", "");
+  done.inputs.threads = static_cast<int>(table.GetInt("threads", 0, Range::NonNegative()));
   return done;
 }
 
@@ -87,14 +92,40 @@ std::string ResultMismatch(const std::string& result_path, const DoneRecord& don
   }
 }
 
+std::string KeyInputs::Difference(const KeyInputs& now) const {
+  if (empty()) return "it was computed by an older version that did not record its key's inputs";
+  std::vector<std::string> changes;
+  if (results != now.results) {
+    changes.push_back("the results key changed (" + results + " → " + now.results + ")");
+  }
+  if (scene_sha256 != now.scene_sha256) changes.push_back("its scene changed");
+  if (parent_key != now.parent_key) {
+    changes.push_back("its parent (or sample) has another key");
+  }
+  if (threads != now.threads) {
+    changes.push_back(fmt::format("the thread count changed ({} → {})", threads, now.threads));
+  }
+  std::string text;
+  for (size_t k = 0; k < changes.size(); ++k) text += (k ? "; " : "") + changes[k];
+  return text;
+}
+
 void WriteDone(const std::string& directory, const DoneRecord& done) {
+  std::string inputs;
+  if (!done.inputs.empty()) {
+    inputs = fmt::format(
+        "# the inputs of the key\nscene_sha256 = {}\nparent_key = {}\nresults = {}\n"
+        "threads = {}\n",
+        TomlQuoted(done.inputs.scene_sha256), TomlQuoted(done.inputs.parent_key),
+        TomlQuoted(done.inputs.results), done.inputs.threads);
+  }
   WriteTextFileAtomically(
       directory + "/done.toml",
       fmt::format("# written when the case ended; its key names the inputs it was computed for\n"
                   "key = {}\ntermination = {}\nmessage = {}\nsteps = {}\nparticles = {}\n"
-                  "wall_seconds = {:.3f}\n",
+                  "wall_seconds = {:.3f}\n{}",
                   TomlQuoted(done.key), TomlQuoted(ToString(done.termination)),
-                  TomlQuoted(done.message), done.steps, done.particles, done.wall_seconds));
+                  TomlQuoted(done.message), done.steps, done.particles, done.wall_seconds, inputs));
 }
 
 std::optional<std::string> StudyNclCase(const std::string& directory) {
@@ -163,11 +194,15 @@ std::string DescribeStudy(const std::string& directory) {
   const std::map<std::string, int64_t> own_steps = OwnSteps(directory);
   double particle_steps = 0, wall_seconds = 0;
   int64_t case_steps = 0;
+  // Cases whose results key is not this build's: `study run` computes them again.
+  const std::string results_key = ResultsKey();
+  std::map<std::string, int> other_results;
   for (const fs::path& folder : folders) {
     const std::string id = CaseId(folder);
     std::string status;
     if (const std::optional<DoneRecord> done = ReadDone(folder.string())) {
       status = ToString(done->termination);
+      if (done->inputs.results != results_key) ++other_results[done->inputs.results];
       const int64_t own = own_steps.at(id);  // every case with a done.toml
       case_steps += own;
       particle_steps += static_cast<double>(own) * static_cast<double>(done->particles);
@@ -190,6 +225,16 @@ std::string DescribeStudy(const std::string& directory) {
       "time ({:.3g} particle-steps/s per case)",
       case_steps, particle_steps, wall_seconds,
       wall_seconds > 0 ? particle_steps / wall_seconds : 0.0);
+  for (const auto& [key, count] : other_results) {
+    summary += fmt::format(
+        "\n{} finished cases were computed {}; this build's results key is '{}': `study run` "
+        "computes them again (a commit that changes no result keeps the key: "
+        "common/results_version.h)",
+        count,
+        key.empty() ? "by an older version, whose keys held the program version"
+                    : "with the results key '" + key + "'",
+        results_key);
+  }
   return text + summary + "\n";
 }
 

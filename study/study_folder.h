@@ -32,8 +32,21 @@ class FileLock {
 };
 
 // What DIR/.../done.toml records of a finished case.
+// What a case's key is made of (study/plan.h): the SHA-256 of its canonical
+// scene, its parent's key (the sample's for a case from the sample), the
+// results key of the build (common/results_version.h) and the thread count.
+// done.toml records them, so that a case computed again can say why.
+struct KeyInputs {
+  std::string scene_sha256, parent_key, results;
+  int threads = 0;
+  bool empty() const { return results.empty(); }
+  // "" when `now` is the same; else what changed, in words.
+  std::string Difference(const KeyInputs& now) const;
+};
+
 struct DoneRecord {
   std::string key;
+  KeyInputs inputs;  // empty in a done.toml of an older version
   dem::Termination termination = dem::Termination::kNotRun;
   std::string message;
   int64_t steps = 0;  // engine steps at the end, the parent's included

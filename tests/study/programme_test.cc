@@ -242,6 +242,33 @@ TEST(Programme, ScaleRestrictionsThatTakeNoEffectAreErrors) {
             std::string::npos);
 }
 
+// The cache survives a commit that changes no result (the program version
+// is no part of a key) but not one that does (a new results key).
+TEST(Plan, KeysDependOnTheResultsKeyNotOnTheProgramVersion) {
+  const Programme p = Parse(kProgramme);
+  const Plan a = Plan::Make(p, 1, "out", "results v1; GNU 12.2.0; Release; x86_64");
+  const Plan same = Plan::Make(p, 1, "out", "results v1; GNU 12.2.0; Release; x86_64");
+  const Plan next = Plan::Make(p, 1, "out", "results v2; GNU 12.2.0; Release; x86_64");
+  ASSERT_FALSE(a.cases.empty());
+  for (size_t k = 0; k < a.cases.size(); ++k) {
+    EXPECT_EQ(a.cases[k].key, same.cases[k].key);
+    EXPECT_NE(a.cases[k].key, next.cases[k].key);
+    EXPECT_EQ(a.cases[k].inputs.results, "results v1; GNU 12.2.0; Release; x86_64");
+    EXPECT_EQ(a.cases[k].inputs.scene_sha256.size(), 64u);
+  }
+  for (size_t k = 0; k < a.samples.size(); ++k) EXPECT_NE(a.samples[k].key, next.samples[k].key);
+  EXPECT_EQ(Plan::Make(p, 1, "out").cases[0].inputs.results, ResultsKey());
+  EXPECT_NE(ResultsKey().find("results v" + std::to_string(kResultsVersion) + ";"),
+            std::string::npos);
+  // Why a case is computed again, in words.
+  EXPECT_NE(a.cases[1].inputs.Difference(next.cases[1].inputs).find("the results key changed"),
+            std::string::npos);
+  EXPECT_NE(a.cases[1].inputs.Difference(next.cases[1].inputs).find("its parent"),
+            std::string::npos);
+  EXPECT_EQ(a.cases[1].inputs.Difference(same.cases[1].inputs), "");
+  EXPECT_NE(KeyInputs{}.Difference(a.cases[1].inputs).find("older version"), std::string::npos);
+}
+
 TEST(Plan, KeysChainThroughParentsAndThreads) {
   const Programme p = Parse(kProgramme);
   const Plan one = Plan::Make(p, 1, "out");
