@@ -9,6 +9,7 @@
 
 #include "analysis/quasi_static_selection.h"
 #include "analysis/rate_files.h"
+#include "analysis/report_images.h"
 #include "common/error.h"
 #include "common/text_file.h"
 #include "tests/analysis/rate_states_fixture.h"
@@ -97,6 +98,116 @@ fs::path FullStudy(const std::string& name) {
   Write(clay / "summary.txt", "Ceres: CONVERGENCE after 12 iterations <ok>\n");
   Write(clay / "model.toml", "[model]\nkind = \"hypoplastic_clay\"\n");
   return dir;
+}
+
+// What gnuplot 5.4's `set terminal svg mouse standalone` writes for a plot
+// with two hypertext labels (`with labels hypertext`), shortened: its script,
+// event handlers, ids in both quotes, references to them, and a label text
+// with markup, an apostrophe and gnuplot's JavaScript escapes.
+const char kGnuplotSvg[] = R"svg(<?xml version="1.0" encoding="utf-8"  standalone="no"?>
+<!DOCTYPE svg PUBLIC "-//W3C//DTD SVG 1.1//EN" "http://www.w3.org/Graphics/SVG/1.1/DTD/svg11.dtd">
+<svg  onload="if (typeof(gnuplot_svg)!='undefined') gnuplot_svg.Init(evt)"
+ width="600" height="400"
+ viewBox="0 0 600 400"
+ xmlns="http://www.w3.org/2000/svg"
+ xmlns:xlink="http://www.w3.org/1999/xlink"
+>
+
+<title>Gnuplot</title>
+<desc>Produced by GNUPLOT 5.4 patchlevel 4 </desc>
+
+<script type="text/javascript" > <![CDATA[
+var x = document.querySelectorAll('svg'); if (x.length < 2) { '<g id="not-an-element">'; }
+]]>
+</script>
+
+<!-- Tie mousing to entire bounding box of the plot -->
+<rect x="0" y="0" width="600" height="400" fill="#ffffff" stroke="black" stroke-width="1"
+onclick="gnuplot_svg.toggleCoordBox(evt)"  onmousemove="gnuplot_svg.moveCoordBox(evt)"/>
+<g id="gnuplot_canvas" onclick="gnuplot_svg.toggleCoordBox(evt)" onmousemove="gnuplot_svg.moveCoordBox(evt)">
+<defs>
+	<circle id='gpPt5' stroke-width='0.222' stroke='currentColor' cx='0' cy='0' r='1'/>
+	<use xlink:href='#gpPt5' id='gpPt6' fill='currentColor' stroke='none'/>
+	<filter id='textbox' filterUnits='objectBoundingBox' x='0' y='0' height='1' width='1'>
+	  <feFlood flood-color='white' flood-opacity='1' result='bgnd'/>
+	</filter>
+</defs>
+	<g id="gnuplot_plot_1" ><title>states</title>
+	<g id="gnuplot_plot_1_keyentry" visibility="visible" onclick="gnuplot_svg.toggleVisibility(evt,'gnuplot_plot_1')">
+	</g>
+	<g onmousemove="gnuplot_svg.showHypertext(evt,'case nc100_psi90\nreplicate 2\nkind csl &amp; &lt;b> it\'s')" onmouseout="gnuplot_svg.hideHypertext()"><title> </title>
+	<use xlink:href='#gpPt6' transform='translate(54.53,260.67) scale(4.50)' color='rgb(  0,   0,   0)'/></g>
+	<g onmousemove="gnuplot_svg.showHypertext(evt,'case ncl\nreplicate 1')" onmouseout="gnuplot_svg.hideHypertext()">
+	<use xlink:href='#gpPt6' transform='translate(574.82,157.34) scale(4.50)'/></g>
+	<text filter="url(#textbox)"><tspan font-family="Arial" >p &lt; 1</tspan></text>
+	</g>
+<script type="text/javascript"><![CDATA[
+gnuplot_svg.plot_term_xmax = 600;
+]]>
+</script>
+</g>
+  <text id="hypertext" class="hypertext" pointer-events="none" visibility="hidden"> </text>
+  <image x='10' y='694' width='16' height='16' xlink:href='data:image/png;base64,iVBORw0KGgo'
+    onclick='gnuplot_svg.toggleGrid();'/>
+</svg>
+)svg";
+
+TEST(StudyReportImages, GnuplotSvgInlineHasTooltipsPrefixedIdsAndNoScript) {
+  const report::InlineSvg svg =
+      report::MakeInlineSvg(kGnuplotSvg, "fig16-", "Figure 16: ψ_σ & p", "fig16.svg");
+  const std::string& m = svg.markup;
+  EXPECT_EQ(svg.tooltips, 2);
+  // The hover texts, unescaped and then escaped for HTML, in the groups' titles.
+  EXPECT_NE(m.find("<g class=\"hover\"><title>case nc100_psi90\nreplicate 2\nkind csl &amp; "
+                   "&lt;b&gt; it&#39;s</title>"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("<g class=\"hover\"><title>case ncl\nreplicate 1</title>"), std::string::npos);
+  EXPECT_EQ(Count(m, "<title> </title>"), 0);
+  // No script, no handler, no declaration; the curve's own title stays.
+  for (const char* gone :
+       {"<script", "gnuplot_svg", "onload", "onclick", "onmouse", "<?xml", "<!DOCTYPE", "<!--",
+        "Gnuplot</title>", "not-an-element", "hypertext", "<image"}) {
+    EXPECT_EQ(m.find(gone), std::string::npos) << gone;
+  }
+  EXPECT_NE(m.find("<title>states</title>"), std::string::npos);
+  // Every id and every reference to one carries the figure's prefix.
+  for (const char* prefixed :
+       {"id=\"fig16-gnuplot_canvas\"", "id=\"fig16-gpPt5\"", "xlink:href=\"#fig16-gpPt5\"",
+        "id=\"fig16-gpPt6\"", "xlink:href=\"#fig16-gpPt6\"", "filter=\"url(#fig16-textbox)\"",
+        "id=\"fig16-gnuplot_plot_1_keyentry\""}) {
+    EXPECT_NE(m.find(prefixed), std::string::npos) << prefixed;
+  }
+  EXPECT_EQ(Count(m, " id=\""), Count(m, " id=\"fig16-"));
+  EXPECT_EQ(Count(m, "href=\"#"), Count(m, "href=\"#fig16-"));
+  // The root is the element, labelled; the text keeps its entities.
+  EXPECT_EQ(m.rfind("<svg ", 0), 0u) << m.substr(0, 80);
+  EXPECT_NE(m.find("aria-label=\"Figure 16: ψ_σ &amp; p\""), std::string::npos);
+  EXPECT_NE(m.find("viewBox=\"0 0 600 400\""), std::string::npos);
+  EXPECT_NE(m.find("p &lt; 1"), std::string::npos);
+  EXPECT_EQ(m.substr(m.size() - 6), "</svg>");
+}
+
+TEST(StudyReportImages, AnSvgThatIsNotOneIsAnErrorNamingTheFile) {
+  for (const std::string& bad :
+       {std::string("\x89PNG\r\n\x1a\n binary"), std::string("<svg width=\"1\"><g></svg>"),
+        std::string("<svg><g id=\"a></g></svg>"), std::string("<?xml version=\"1.0\"?>\n")}) {
+    try {
+      report::MakeInlineSvg(bad, "p-", "label", "figures/x.svg");
+      FAIL() << "accepted: " << bad;
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find("figures/x.svg: line "), std::string::npos)
+          << error.what();
+    }
+  }
+}
+
+TEST(StudyReportImages, DataUriIsBase64WithPadding) {
+  EXPECT_EQ(report::DataUri("image/png", "Man"), "data:image/png;base64,TWFu");
+  EXPECT_EQ(report::DataUri("image/png", "Ma"), "data:image/png;base64,TWE=");
+  EXPECT_EQ(report::DataUri("image/png", "M"), "data:image/png;base64,TQ==");
+  EXPECT_EQ(report::DataUri("image/png", std::string("\xff\xfe\x00", 3)),
+            "data:image/png;base64,//4A");
 }
 
 TEST(StudyReport, HtmlEscapingReplacesEveryMarkupCharacter) {
