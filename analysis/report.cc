@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <map>
 #include <optional>
 
@@ -18,27 +19,26 @@ const char* const kReportModels[3] = {"hypoplastic_clay", "modified_cam_clay", "
 namespace report {
 namespace {
 
-// The report of `study` as a document, its sections in reading order; counts
-// what it found in `summary` and adds the absent inputs to `study`.
+// The folder as the header names it: absolute, so that "." says which.
+std::string FolderName(const std::string& directory) {
+  std::string name = std::filesystem::absolute(directory).lexically_normal().string();
+  while (name.size() > 1 && name.back() == '/') name.pop_back();
+  return name;
+}
+
+// The report of `study` as a document, its sections in reading order: the
+// answers (findings, fitted parameters), the figures, then the tables;
+// counts what it found in `summary` and adds the absent inputs to `study`.
 Document ReportDocument(StudyFolder& study, const std::vector<CaseRow>& cases,
                         ReportSummary* summary_out) {
   ReportSummary& summary = *summary_out;
   std::vector<std::string> absent;
+  Section findings = FindingsSection(study, &absent);
+  std::vector<Section> calibration =
+      CalibrationSections(study, &summary.models_calibrated, &absent);
   std::vector<Section> figures =
       FigureSections(study, &summary.figures, &summary.figures_missing, &absent);
-  std::vector<Section> models;
-  Section calibration{"calibration", "Calibration", 2, {}};
-  calibration.blocks.push_back(Paragraph(
-      Plain("The models fitted to the study's asymptotic states: values, standard errors, 95 % "
-            "intervals and the status of each parameter (fitted, fixed, at_bound, undetermined), "
-            "with the fit's warnings and summary.")));
-  for (const char* model : kReportModels) {
-    bool calibrated = false;
-    models.push_back(ModelSection(study, model, &calibrated, &absent));
-    summary.models_calibrated += calibrated ? 1 : 0;
-  }
   std::optional<Section> rate = RateSection(study, &absent);
-  Section findings = FindingsSection(study, &absent);
   study.absent.insert(study.absent.end(), absent.begin(), absent.end());
   std::sort(study.absent.begin(), study.absent.end());
 
@@ -53,13 +53,13 @@ Document ReportDocument(StudyFolder& study, const std::vector<CaseRow>& cases,
                       Lookup(study.record, "scale", "?"), replicates, replicates == "1" ? "" : "s",
                       Lookup(study.record, "count", "?"), threads, threads == "1" ? "" : "s")) +
       Code(Lookup(study.record, "program_version", "?")) + Plain("; folder ") +
-      Code(study.directory) + Plain(".");
+      Code(FolderName(study.directory)) + Plain(".");
   document.sections.push_back(std::move(findings));
+  for (Section& section : calibration) document.sections.push_back(std::move(section));
+  for (Section& section : figures) document.sections.push_back(std::move(section));
+  if (rate) document.sections.push_back(std::move(*rate));
   document.sections.push_back(OverviewSection(study, cases, summary.figures,
                                               summary.figures_missing, summary.models_calibrated));
-  for (Section& section : figures) document.sections.push_back(std::move(section));
-  document.sections.push_back(std::move(calibration));
-  for (Section& section : models) document.sections.push_back(std::move(section));
   document.sections.push_back(StatesSection(study));
   document.sections.push_back(ReplicateSection(study));
   document.sections.push_back(CsvSection(
@@ -73,7 +73,6 @@ Document ReportDocument(StudyFolder& study, const std::vector<CaseRow>& cases,
       Plain("Paths of one ψ_ε from different starting stresses (paper Sec. 4.3): whether and at "
             "which p they join."),
       study.directory));
-  if (rate) document.sections.push_back(std::move(*rate));
   document.sections.push_back(RunTimesSection(study, cases));
   document.sections.push_back(ProvenanceSection(study));
   std::map<std::string, int> anchors;
@@ -105,7 +104,7 @@ ReportSummary WriteReport(const std::string& directory) {
 
 std::string ReportSummary::Text() const {
   std::string text = fmt::format(
-      "report: {} (and {})\n  {} figures ({} without their PNG), {} of 3 models calibrated, "
+      "report: {} (and {})\n  {} figures ({} not drawn), {} of 3 models calibrated, "
       "{} asymptotic states, {} cases\n",
       html_path, markdown_path, figures, figures_missing, models_calibrated, states, cases);
   if (!absent.empty()) {

@@ -64,7 +64,7 @@ tr.total td{font-weight:600;background:#f6f6f6}
 .status-detected,.status-fitted,.status-fixed,.status-completed,.status-joined{color:#176b2c}
 .status-drifting,.status-not_reached,.status-at_bound,.status-not_joined,.status-no_overlap,
 .status-interrupted,.status-running,.status-stale,.flagged{color:#8a5a00;font-weight:600}
-.status-gas,.status-invalid,.status-no_result,.status-undetermined,.status-failed,
+.status-gas,.status-invalid,.status-no_result,.status-undetermined,.status-failed,.status-inadmissible,
 .status-not_run{color:#b3261e;font-weight:600}
 .verdict-reproduced{background:#e3f4e6;color:#176b2c;font-weight:600}
 .verdict-partly{background:#fdf1dc;color:#8a5a00;font-weight:600}
@@ -73,7 +73,8 @@ tr.total td{font-weight:600;background:#f6f6f6}
 td.small{font-size:85%}
 p.note{border-left:4px solid #d39e00;background:#fff8e1;padding:.4em .8em}
 figure{margin:1em 0}
-img{max-width:100%;height:auto;border:1px solid #e0e0e0;background:#fff}
+figure img,figure svg{display:block;max-width:100%;height:auto;border:1px solid #e0e0e0;
+ background:#fff}
 pre{overflow-x:auto;background:#f5f5f5;padding:.6em;font-size:13px;max-width:100%}
 code{font-size:90%;overflow-wrap:anywhere}
 details{margin:.5em 0}
@@ -116,9 +117,14 @@ void HtmlBlock(const Block& block, std::string* html) {
       break;
     }
     case Block::Type::kFigure:
-      *html += "<figure><a href=\"" + HtmlEscaped(UrlPath(block.image)) + "\"><img src=\"" +
-               HtmlEscaped(UrlPath(block.image)) + "\" alt=\"" +
-               HtmlEscaped(PlainText(block.text)) + "\"></a></figure>\n";
+      *html += "<figure>";
+      if (!block.svg_markup.empty()) {
+        *html += block.svg_markup;
+      } else {
+        *html += "<img src=\"" + HtmlEscaped(block.data_uri) + "\" alt=\"" +
+                 HtmlEscaped(PlainText(block.text)) + "\">";
+      }
+      *html += "</figure>\n";
       break;
     case Block::Type::kDetails:
       *html += "<details><summary>" + HtmlInline(block.text) + "</summary>\n";

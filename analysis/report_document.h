@@ -39,10 +39,13 @@ struct Block {
   std::vector<std::string> header;      // table
   std::vector<std::vector<Cell>> rows;  // table
   std::vector<std::string> row_css;     // table: classes of each row (may be empty)
-  std::string image;                    // figure: relative path of the PNG
-  std::string preformatted;             // details: shown as a code block
-  std::vector<Block> children;          // details: blocks inside
-  std::vector<Inline> items;            // list
+  std::string image;                    // figure: relative path of the PNG (report.md links it)
+  // figure, in index.html: the SVG inline (report_images.h made it safe to
+  // place as it is), else the PNG as a data URI; the page links no image.
+  std::string svg_markup, data_uri;
+  std::string preformatted;     // details: shown as a code block
+  std::vector<Block> children;  // details: blocks inside
+  std::vector<Inline> items;    // list
 };
 
 Block Paragraph(Inline text);
@@ -70,7 +73,8 @@ std::string Slug(const std::string& title);
 // percent-encoded.
 std::string UrlPath(const std::string& path);
 
-// index.html: one self-contained page with its stylesheet and contents.
+// index.html: one self-contained page with its stylesheet, contents and
+// figures (inline SVG, or PNG data URIs); no scripts.
 std::string RenderHtml(const Document& document);
 // report.md: CommonMark with pipe tables, as forges render it.
 std::string RenderMarkdown(const Document& document);

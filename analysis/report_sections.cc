@@ -11,6 +11,7 @@
 #include "analysis/findings.h"
 #include "analysis/quasi_static_selection.h"
 #include "analysis/rate_files.h"
+#include "analysis/report_images.h"
 #include "analysis/report_tables.h"
 #include "common/config.h"
 #include "common/error.h"
@@ -43,13 +44,70 @@ bool IsEnsembleRow(const CsvTextTable& states, const std::vector<std::string>& r
   return source >= 0 && row[source] == "ensemble";
 }
 
-// The states behind a figure: the rows of the state table whose `figures`
-// column names it ("10", "Sec. 5.2"; the rate study's figures draw its own tables).
-std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string& entry) {
-  if (!study.states || entry.empty() || entry.rfind(FigureSet::kRate, 0) == 0) return std::nullopt;
+// What an entry of figures/index.tsv names: a figure of the paper ("16"), a
+// section ("Sec. 5.2", also written "5.2"), or neither (the rate study's
+// figures, which draw its own tables). Numbers are compared whole: figure 5
+// is not Sec. 5.2.
+struct FigureEntry {
+  int figure = 0;       // 1-22, or 0
+  std::string section;  // "5.2", or ""
+  std::string Name() const {
+    return figure > 0 ? fmt::format("figure {}", figure) : "Sec. " + section;
+  }
+  bool NamedBy(const FigureSet& set) const {
+    return figure > 0 ? set.HasFigure(figure) : !section.empty() && set.HasSection(section);
+  }
+};
+
+FigureEntry ParseFigureEntry(std::string text) {
+  FigureEntry entry;
+  const std::string prefix = "Sec.";
+  if (text.compare(0, prefix.size(), prefix) == 0) {
+    text = text.substr(prefix.size());
+    text.erase(0, std::min(text.size(), text.find_first_not_of(' ')));
+    entry.section = text;
+    return entry;
+  }
+  const bool digits = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+    return std::isdigit(static_cast<unsigned char>(c)) || c == '.';
+  });
+  if (!digits) return entry;
+  if (text.find('.') != std::string::npos) {
+    entry.section = text;
+  } else if (text.size() <= 3) {
+    entry.figure = std::stoi(text);
+  }
+  return entry;
+}
+
+// Figures that draw the states of every case by kind, not those of the
+// cases that serve them: figure 21 draws the detected critical states
+// (isochoric, csl) and drained triaxial states of all replicates against
+// their inertial number. The φ = 0 and Δt/5 variants (the cases serving
+// Fig. 20 or Sec. 5.2) are other samples, drawn in their own figures.
+struct DrawnByKind {
+  int figure;
+  std::vector<std::string> kinds;
+  const char* what;
+};
+const DrawnByKind kDrawnByKind[] = {
+    {21, {"csl", "triaxial"}, "detected critical (csl) and drained triaxial states"},
+};
+
+// The states behind a figure: the rows it draws (kDrawnByKind), else the
+// rows of the cases that serve it (the `figures` column names it).
+std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string& text) {
+  const FigureEntry entry = ParseFigureEntry(text);
+  if (!study.states || (entry.figure == 0 && entry.section.empty())) return std::nullopt;
   const CsvTextTable& states = *study.states;
   const int figures = states.Find("figures");
   if (figures < 0) return std::nullopt;
+  const DrawnByKind* by_kind = nullptr;
+  for (const DrawnByKind& d : kDrawnByKind) {
+    if (d.figure == entry.figure) by_kind = &d;
+  }
+  const int kind = states.Find("kind"), status = states.Find("status");
+  if (by_kind && (kind < 0 || status < 0)) return std::nullopt;
   const std::vector<std::string> wanted = {
       "replicate", "source", "case",          "stage",    "kind", "status", "psi_epsilon_deg",
       "p_kpa",     "e",      "psi_sigma_deg", "q_over_p", "ocr",  "flags"};
@@ -62,9 +120,16 @@ std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string&
     columns.push_back(c);
     table.header.push_back(name);
   }
+  const std::string origin = study.Path("asymptotic_states.csv");
   for (const auto& fields : states.rows) {
-    if (!FigureSet::Parse(fields[figures], study.Path("asymptotic_states.csv"), "figures")
-             .Contains(entry)) {
+    const FigureSet serves = FigureSet::Parse(fields[figures], origin, "figures");
+    if (by_kind) {
+      const bool drawn = std::find(by_kind->kinds.begin(), by_kind->kinds.end(), fields[kind]) !=
+                             by_kind->kinds.end() &&
+                         fields[status] == "detected" && !IsEnsembleRow(states, fields) &&
+                         !serves.HasFigure(20) && !serves.HasSection("5.2");
+      if (!drawn) continue;
+    } else if (!entry.NamedBy(serves)) {
       continue;
     }
     std::vector<Cell> row;
@@ -76,15 +141,27 @@ std::optional<Block> StatesOfFigure(const StudyFolder& study, const std::string&
     }
     table.rows.push_back(std::move(row));
   }
-  if (table.rows.empty()) {
-    const std::string what = entry.rfind("Sec.", 0) == 0 ? entry : "figure " + entry;
-    return Paragraph(Plain("No row of the state table names " + what + "."));
-  }
+  const size_t n = table.rows.size();
   Block details;
   details.type = Block::Type::kDetails;
-  details.text = Plain(fmt::format("{} row{} of the state table behind {}", table.rows.size(),
-                                   table.rows.size() == 1 ? "" : "s",
-                                   entry.rfind("Sec.", 0) == 0 ? entry : "figure " + entry));
+  if (by_kind) {
+    details.text =
+        Plain(fmt::format("The {} {} that {} draws (all replicates; those of Fig. 20 "
+                          "and Sec. 5.2 are other samples)",
+                          n, by_kind->what, entry.Name()));
+  } else if (n > 0) {
+    details.text =
+        Plain(fmt::format("{} row{} of the state table behind {} (the rows of the "
+                          "cases that serve it)",
+                          n, n == 1 ? "" : "s", entry.Name()));
+  } else if (entry.figure == 5) {
+    return Paragraph(Plain("Figure 5 draws the constitutive models' element tests (") +
+                     Code("models/") + Plain("), not states of the DEM."));
+  } else {
+    return Paragraph(Plain("No row of the state table names " + entry.Name() +
+                           ": no case of this study serves it."));
+  }
+  if (n == 0) return Paragraph(Plain(PlainText(details.text) + ": none."));
   details.children.push_back(std::move(table));
   return details;
 }
@@ -176,7 +253,8 @@ Section OverviewSection(const StudyFolder& study, const std::vector<CaseRow>& ca
     add("asymptotic states", Plain(text));
   }
   add("figures",
-      Plain(fmt::format("{} in figures/index.tsv, {} without their PNG", figures, figures_missing)),
+      Plain(fmt::format("{} in figures/index.tsv, {} not drawn (no SVG or PNG)", figures,
+                        figures_missing)),
       figures_missing > 0 ? "flagged" : "");
   add("models calibrated", Plain(fmt::format("{} of 3", models)));
   section.blocks.push_back(std::move(table));
@@ -210,24 +288,39 @@ std::vector<Section> FigureSections(const StudyFolder& study, int* figures, int*
                title = index.Column("title"), caption = index.Column("caption");
   top.blocks.push_back(Paragraph(Plain(fmt::format("{} figures, listed in ", index.rows.size())) +
                                  Link("figures/index.tsv", "figures/index.tsv", true) +
-                                 Plain("; each image links to itself at full size.")));
+                                 Plain("; each is drawn here from its SVG (hover over a state to "
+                                       "see what it is), with links to its PNG, PDF and data.")));
   std::set<std::string> indexed;
   std::vector<Section> figure_sections;
   for (size_t r = 0; r < index.rows.size(); ++r) {
     const std::vector<std::string>& row = index.rows[r];
     CheckStem(row[stem], index, index.line_numbers[r]);
-    indexed.insert(row[stem]);
+    if (!indexed.insert(row[stem]).second) {
+      throw InputError(index.origin + ": line " + std::to_string(index.line_numbers[r]) +
+                       ": stem '" + row[stem] +
+                       "' is listed twice: each figure has its own stem (its files' name)");
+    }
     ++*figures;
     Section section;
     section.level = 3;
-    section.title = "Figure " + row[figure] + ": " + row[title];
-    const std::string png = "figures/" + row[stem] + ".png";
-    const std::string pdf = "figures/" + row[stem] + ".pdf";
-    if (study.Exists(png)) {
+    // "Figure 16: ...", "Sec. 5.2: ...".
+    section.title =
+        (row[figure].rfind("Sec.", 0) == 0 ? "" : "Figure ") + row[figure] + ": " + row[title];
+    const std::string& label = section.title;
+    const std::string png = "figures/" + row[stem] + ".png", svg = "figures/" + row[stem] + ".svg";
+    if (study.Exists(svg) || study.Exists(png)) {
+      // In the page the image itself (the page is one file); in report.md a link.
       Block image;
       image.type = Block::Type::kFigure;
-      image.image = png;
-      image.text = Plain("Figure " + row[figure] + ": " + row[title]);
+      image.image = study.Exists(png) ? png : svg;
+      image.text = Plain(label);
+      if (study.Exists(svg)) {
+        image.svg_markup =
+            MakeInlineSvg(ReadTextFile(study.Path(svg)), row[stem] + "-", label, study.Path(svg))
+                .markup;
+      } else {
+        image.data_uri = DataUri("image/png", ReadTextFile(study.Path(png)));
+      }
       section.blocks.push_back(std::move(image));
     } else {
       ++*missing;
@@ -237,21 +330,30 @@ std::vector<Section> FigureSections(const StudyFolder& study, int* figures, int*
                                     Plain(" to draw it.")));
     }
     if (!row[caption].empty()) section.blocks.push_back(Paragraph(Plain(row[caption])));
-    Inline files = study.Exists(pdf) ? Plain("PDF: ") + Link(pdf, UrlPath(pdf), true)
-                                     : Plain("No PDF (") + Code(pdf) + Plain(" is absent)");
-    // Data files drawn from, by the figure's stem (figures/<stem>.csv, .dat, ...).
-    std::vector<std::string> data;
+    // The figure's files by its stem: the images, then the others (data,
+    // the gnuplot call) in name order.
+    Inline files;
+    std::vector<std::string> others;
     for (const auto& entry : fs::directory_iterator(study.Path("figures"))) {
-      const std::string name = entry.path().filename().string();
       const std::string extension = entry.path().extension().string();
-      if (entry.path().stem().string() == row[stem] && extension != ".png" && extension != ".pdf") {
-        data.push_back("figures/" + name);
+      if (entry.path().stem().string() == row[stem] && extension != ".png" && extension != ".pdf" &&
+          extension != ".svg") {
+        others.push_back("figures/" + entry.path().filename().string());
       }
     }
-    std::sort(data.begin(), data.end());
-    for (const std::string& file : data)
-      files = files + Plain("; data: ") + Link(file, UrlPath(file), true);
-    section.blocks.push_back(Paragraph(files + Plain(".")));
+    std::sort(others.begin(), others.end());
+    for (const char* extension : {"png", "pdf", "svg"}) {
+      const std::string file = "figures/" + row[stem] + "." + extension;
+      if (!study.Exists(file)) continue;
+      std::string kind = extension;
+      std::transform(kind.begin(), kind.end(), kind.begin(), ::toupper);
+      files = files + Plain(files.empty() ? "" : " · ") + Link(kind, UrlPath(file), true);
+    }
+    if (files.empty()) files = Plain("No image files");
+    for (const std::string& file : others) {
+      files = files + Plain(" · ") + Link(file.substr(8), UrlPath(file), true);
+    }
+    section.blocks.push_back(Paragraph(Plain("Files: ") + files + Plain(".")));
     if (std::optional<Block> states = StatesOfFigure(study, row[figure])) {
       section.blocks.push_back(std::move(*states));
     }
@@ -274,97 +376,6 @@ std::vector<Section> FigureSections(const StudyFolder& study, int* figures, int*
   sections.push_back(std::move(top));
   for (Section& section : figure_sections) sections.push_back(std::move(section));
   return sections;
-}
-
-Section ModelSection(const StudyFolder& study, const std::string& model, bool* calibrated,
-                     std::vector<std::string>* absent) {
-  Section section{"calibration-" + Slug(model), "Calibration: " + model, 3, {}};
-  const std::string folder = "calibration/" + model;
-  *calibrated = false;
-  if (!study.Exists(folder)) {
-    absent->push_back(folder + "/");
-    section.blocks.push_back(Note(Plain("Not calibrated: ") + Code(folder + "/") +
-                                  Plain(" is absent (run ") +
-                                  DirectoryHint("calibrate", study.directory) + Plain(").")));
-    return section;
-  }
-  const std::string parameters = folder + "/parameters.csv";
-  if (study.Exists(parameters)) {
-    *calibrated = true;
-    const CsvTextTable table = CsvTextTable::ReadFile(study.Path(parameters));
-    const size_t name = table.Column("parameter"), value = table.Column("value"),
-                 error = table.Column("std_error"), low = table.Column("ci95_low"),
-                 high = table.Column("ci95_high"), status = table.Column("status");
-    Block block;
-    block.type = Block::Type::kTable;
-    block.header = {"parameter", "value", "standard error", "95 % interval", "status"};
-    std::map<std::string, int> by_status;
-    for (const auto& row : table.rows) {
-      const std::optional<double> v = Number(row[value]), s = Number(row[error]),
-                                  lo = Number(row[low]), hi = Number(row[high]);
-      const std::string interval =
-          lo && hi ? fmt::format("[{:.6g}, {:.6g}]", *lo, *hi) : std::string("—");
-      block.rows.push_back({Cell{Code(row[name]), ""},
-                            Cell{Plain(v ? fmt::format("{:.6g}", *v) : row[value]), "num"},
-                            Cell{Plain(s                    ? fmt::format("{:.3g}", *s)
-                                       : row[error].empty() ? "—"
-                                                            : row[error]),
-                                 "num"},
-                            Cell{Plain(interval), "num"},
-                            Cell{Plain(row[status]), StatusCss(row[status])}});
-      ++by_status[row[status]];
-    }
-    std::string counts;
-    for (const auto& [state, count] : by_status) {
-      counts += fmt::format("{}{} {}", counts.empty() ? "" : ", ", count, state);
-    }
-    section.blocks.push_back(
-        Paragraph(Plain(fmt::format("{} parameters ({}), from ", table.rows.size(), counts)) +
-                  Link(parameters, UrlPath(parameters), true) + Plain(".")));
-    section.blocks.push_back(std::move(block));
-  } else {
-    absent->push_back(parameters);
-    section.blocks.push_back(Note(Code(parameters) + Plain(" is absent: no fitted parameters.")));
-  }
-  const std::string warnings = folder + "/warnings.txt";
-  if (study.Exists(warnings)) {
-    Block list;
-    list.type = Block::Type::kList;
-    for (const std::string& line : TextLines(ReadTextFile(study.Path(warnings)))) {
-      if (!line.empty()) list.items.push_back(Plain(line));
-    }
-    if (list.items.empty()) {
-      section.blocks.push_back(Paragraph(Plain("No warnings.")));
-    } else {
-      section.blocks.push_back(Paragraph(Plain(fmt::format("{} warnings:", list.items.size()))));
-      section.blocks.push_back(std::move(list));
-    }
-  } else {
-    absent->push_back(warnings);
-    section.blocks.push_back(Note(Code(warnings) + Plain(" is absent.")));
-  }
-  const std::string summary = folder + "/summary.txt";
-  if (study.Exists(summary)) {
-    Block details;
-    details.type = Block::Type::kDetails;
-    details.text = Plain("Summary of the fit (") + Code(summary) + Plain(")");
-    details.preformatted = ReadTextFile(study.Path(summary));
-    if (details.preformatted.empty()) details.preformatted = "(empty)\n";
-    section.blocks.push_back(std::move(details));
-  } else {
-    absent->push_back(summary);
-    section.blocks.push_back(Note(Code(summary) + Plain(" is absent.")));
-  }
-  const std::string model_toml = folder + "/model.toml";
-  if (study.Exists(model_toml)) {
-    section.blocks.push_back(Paragraph(Plain("The calibrated model, for ") +
-                                       Code("granasym model run") + Plain(": ") +
-                                       Link(model_toml, UrlPath(model_toml), true) + Plain(".")));
-  } else {
-    absent->push_back(model_toml);
-    section.blocks.push_back(Note(Code(model_toml) + Plain(" is absent.")));
-  }
-  return section;
 }
 
 Section StatesSection(const StudyFolder& study) {
@@ -426,17 +437,46 @@ Section StatesSection(const StudyFolder& study) {
     if (found == detectors.end()) found = detectors.insert(detectors.end(), text);
     table.rows[r][detector] = Cell{Plain(fmt::format("D{}", found - detectors.begin() + 1)), ""};
   }
-  section.blocks.push_back(
-      Paragraph(Plain("Each case links to the scene it ran; D<n> names the detector below.")));
-  section.blocks.push_back(std::move(table));
+  // One folded table per kind, rows unwrapped (the box scrolls sideways).
+  const int message = states.Find("message");
+  std::map<std::string, Block> groups;
+  for (size_t r = 0; r < states.rows.size(); ++r) {
+    const std::string group =
+        states.rows[r][kind] + (IsEnsembleRow(states, states.rows[r]) ? " (ensemble mean)" : "");
+    Block& part = groups[group];
+    if (part.header.empty()) {
+      part.type = Block::Type::kTable;
+      part.header = table.header;
+    }
+    if (message >= 0) table.rows[r][message].css = "";
+    part.rows.push_back(std::move(table.rows[r]));
+  }
+  section.blocks.push_back(Paragraph(
+      Plain("The rows by kind, folded (open one to see its rows; the columns are those of the "
+            "CSV). Each case links to the scene it ran; D<n> names the detector below.")));
+  for (auto& [group, part] : groups) {
+    std::string tally;
+    for (const auto& [state, count] : counts[group]) {
+      tally += fmt::format("{}{} {}", tally.empty() ? "" : ", ", count, state);
+    }
+    Block details;
+    details.type = Block::Type::kDetails;
+    details.text = Plain(fmt::format("{}: {} row{} ({})", group, part.rows.size(),
+                                     part.rows.size() == 1 ? "" : "s", tally));
+    details.children.push_back(std::move(part));
+    section.blocks.push_back(std::move(details));
+  }
   if (!detectors.empty()) {
     Block list;
     list.type = Block::Type::kList;
     for (size_t d = 0; d < detectors.size(); ++d) {
       list.items.push_back(Plain(fmt::format("D{}: ", d + 1)) + Plain(detectors[d]));
     }
-    section.blocks.push_back(Paragraph(Plain("Detectors:")));
-    section.blocks.push_back(std::move(list));
+    Block details;
+    details.type = Block::Type::kDetails;
+    details.text = Plain(fmt::format("Detectors D1–D{}", detectors.size()));
+    details.children.push_back(std::move(list));
+    section.blocks.push_back(std::move(details));
   }
   return section;
 }
@@ -452,8 +492,8 @@ Section ReplicateSection(const StudyFolder& study) {
       Plain("Per case and stage: the mean over the replicates' detected states ± the half-width "
             "of its 95 % confidence interval (Student t; none below two states), from ") +
       Link("asymptotic_states_summary.csv", "asymptotic_states_summary.csv", true) + Plain(".")));
-  Block table = MeanIntervalTable(summary);
-  section.blocks.push_back(std::move(table));
+  section.blocks.push_back(
+      Folded(MeanIntervalTable(summary), "the replicate summary (one per case and stage)"));
   return section;
 }
 
@@ -489,59 +529,49 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
     const char* file;
     const char* title;
     const char* description;
-    bool folded;
   };
   const Table tables[] = {
       {kRateIndependenceFile, "Rate independence",
        "Per (E, ψ_ε, p_0): the two smallest I* compared in ln(1+e), ψ_σ and the position of the "
        "CSL (ln(1+e) of the ψ_ε = 90° line at the reference p); rate_independent when all "
        "three agree within the 95 % interval of their difference, rate_dependent when one "
-       "differs, undetermined when an interval is missing (the reason says which).",
-       false},
+       "differs, undetermined when an interval is missing (the reason says which)."},
       {kRateQuasiStaticFile, "Quasi-static limits",
        "Per (E, ψ_ε, p_0) and quantity: the limit a of y = a + b·I(d_max) as I → 0, fitted "
        "through the states of the smallest I*; for ψ_ε = 90° the q_over_p rows are the "
-       "quasi-static critical-state ratio M_0.",
-       false},
+       "quasi-static critical-state ratio M_0."},
       {kRateLinesFile, "Lines at each rate",
        "Per (E, ψ_ε, rate): ln(1+e) = N − λ ln(p / 1 kPa) through the states of every start "
        "(the CSL at 90°, the NEL beyond; at ψ_ε = 0° the NCL as the mean of the paths' own "
-       "lines, whose states all lie at the stress cap) and its position at the reference p.",
-       false},
+       "lines, whose states all lie at the stress cap) and its position at the reference p."},
       {kRateStiffnessFile, "Stiffness scaling",
        "Per other Young's modulus, ψ_ε, p_0 and rate: ψ_σ and the position of the CSL of that "
        "rate against those at the main modulus, with the stiffness numbers κ of both; "
        "stiffness_independent when both agree within the 95 % interval of the difference. "
-       "Stiffness scaling shortens a run (steps per unit strain ∝ √(E/p)/I) where this holds.",
-       false},
+       "Stiffness scaling shortens a run (steps per unit strain ∝ √(E/p)/I) where this holds."},
       {kRateDrainedCriticalFile, "Quasi-static critical state from drained tests",
        "Per E: drained triaxial compression (constant σ_r = p_0, constant axial rate) from the "
        "NC states, extrapolated as I → 0 at each σ_r and then combined: the critical-state "
        "ratio M (mean over σ_r), φ_c = asin(3M/(6+M)), the slope of M against ln p (zero "
        "within its interval: M does not depend on p) and the CSL through the limits. These "
-       "are the study's quasi-static M, φ_c and CSL where the isochoric paths liquefy.",
-       false},
+       "are the study's quasi-static M, φ_c and CSL where the isochoric paths liquefy."},
       {kRateDrainedLimitFile, "Drained critical states as I → 0, per σ_r",
        "Per (E, σ_r): the limits of M, ln(1+e) and ln p of y = a + b·I(d_max) through the "
-       "states of every axial rate, and the two slowest rates compared in M and ln(1+e).",
-       false},
+       "states of every axial rate, and the two slowest rates compared in M and ln(1+e)."},
       {kRateDrainedFile, "Drained critical states per σ_r and rate",
        "Per (E, σ_r, axial rate): the asymptotic state's means over the replicates (q_over_p "
-       "is M).",
-       true},
+       "is M)."},
       {kRateExtensionLimitFile, "How far the extension states go",
        "Per (E, rate, p_0): the sweep of ψ_ε from 90° upwards ends at the limit d, where the "
        "asymptotic σ_r/p is zero within its 95 % interval (ψ_ε(d) is the root of the "
        "least-squares line of σ_r/p against ψ_ε through the last steps, with its interval), or "
        "at the first ψ_ε at which most replicates liquefied (a gas: mechanical coordination "
-       "below 3 or p below 0.5 kPa), or it reaches neither.",
-       false},
+       "below 3 or p below 0.5 kPa), or it reaches neither."},
       {kRateExtensionFile, "Extension sweep, step by step",
        "Per (E, rate, p_0, ψ_ε ≥ 90°): σ_r/p and ψ_σ of the asymptotic states, the replicates "
-       "that liquefied, and the step's status.",
-       true},
+       "that liquefied, and the step's status."},
       {kRateSummaryFile, "Means per start and rate",
-       "Per (E, ψ_ε, p_0, rate): the asymptotic state's means over the replicates.", true},
+       "Per (E, ψ_ε, p_0, rate): the asymptotic state's means over the replicates."},
   };
   for (const Table& t : tables) {
     section.blocks.push_back(
@@ -556,24 +586,25 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
       continue;
     }
     const CsvTextTable table = CsvTextTable::ReadFile(study.Path(t.file));
-    for (const std::string& comment : table.comments) {
-      section.blocks.push_back(Paragraph(Plain(comment)));
-    }
     if (table.rows.empty()) {
+      for (const std::string& comment : table.comments) {
+        section.blocks.push_back(Paragraph(Plain(comment)));
+      }
       section.blocks.push_back(Paragraph(Plain("No rows.")));
       continue;
     }
-    Block block =
-        MeanIntervalTable(table, {"verdict", "ln_1_plus_e_agreement", "psi_sigma_deg_agreement",
-                                  "csl_position_agreement", "m_agreement", "result", "status"});
-    if (!t.folded) {
-      section.blocks.push_back(std::move(block));
-      continue;
-    }
+    // The answers are above: each table folded, with the notes of its fit.
     Block details;
     details.type = Block::Type::kDetails;
-    details.text = Plain(fmt::format("{} rows", table.rows.size()));
-    details.children.push_back(std::move(block));
+    details.text =
+        Plain(fmt::format("{} row{} of ", table.rows.size(), table.rows.size() == 1 ? "" : "s")) +
+        Code(t.file) + Plain(table.comments.empty() ? "" : ", with the notes of its fit");
+    for (const std::string& comment : table.comments) {
+      details.children.push_back(Paragraph(Plain(comment)));
+    }
+    details.children.push_back(
+        MeanIntervalTable(table, {"verdict", "ln_1_plus_e_agreement", "psi_sigma_deg_agreement",
+                                  "csl_position_agreement", "m_agreement", "result", "status"}));
     section.blocks.push_back(std::move(details));
   }
   return section;
@@ -595,7 +626,7 @@ Section CsvSection(const std::optional<CsvTextTable>& table, const std::string& 
   if (table->rows.empty()) {
     section.blocks.push_back(Paragraph(Plain("No rows.")));
   } else {
-    section.blocks.push_back(TableOf(*table));
+    section.blocks.push_back(Folded(TableOf(*table), file));
   }
   return section;
 }
@@ -665,7 +696,7 @@ Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRow>& ca
         "{} finished cases: {} steps of their own, {:.4g} particle-steps, {:.1f} s of case wall "
         "time (cases run in parallel: the study's elapsed time is shorter).",
         done, own_steps, particle_steps, wall_seconds))));
-    section.blocks.push_back(std::move(table));
+    section.blocks.push_back(Folded(std::move(table), "cases (and the total)"));
   }
   // Model runs (element tests of the constitutive models).
   std::vector<fs::path> models;
@@ -700,7 +731,7 @@ Section RunTimesSection(const StudyFolder& study, const std::vector<CaseRow>& ca
     section.blocks.push_back(Paragraph(Plain(
         fmt::format("{} element tests of the constitutive models (deterministic: not replicated):",
                     models.size()))));
-    section.blocks.push_back(std::move(table));
+    section.blocks.push_back(Folded(std::move(table), "model runs"));
   }
   return section;
 }

@@ -29,10 +29,31 @@ Section OverviewSection(const StudyFolder& study, const std::vector<CaseRow>& ca
 std::vector<Section> FigureSections(const StudyFolder& study, int* figures, int* missing,
                                     std::vector<std::string>* absent);
 
-// One calibrated model: its parameters with intervals and statuses, the
-// warnings, the summary and model.toml; `calibrated` when it has parameters.
-Section ModelSection(const StudyFolder& study, const std::string& model, bool* calibrated,
-                     std::vector<std::string>* absent);
+// What became of a model's calibration: DIR/calibration/<model>/fit_status.toml
+// (status and reason, written by the calibration), or, for a folder written
+// before that file existed, derived from what is there: the first fit's
+// termination in summary.txt, the admissibility warnings in warnings.txt
+// and the parameters at a bound in parameters.csv (in that precedence).
+struct FitOutcome {
+  // converged, converged_inadmissible, at_bound, no_convergence or failed.
+  std::string status;
+  std::string reason;    // one sentence
+  bool derived = false;  // no fit_status.toml: derived by the report (the reason says so)
+  // "fitted", "fitted, inadmissible", "fitted, at a bound" or "failed": never
+  // a bare "fitted" for a model that is inadmissible or did not converge.
+  std::string Label() const;
+  std::string Css() const;  // the stylesheet's class of the label
+};
+// nullopt when the model has no parameters.csv (not calibrated); InputError
+// naming the file for a fit_status.toml without a valid status or a reason.
+std::optional<FitOutcome> ReadFitOutcome(const StudyFolder& study, const std::string& model);
+
+// "Fitted parameters": each model's outcome in one table, then one section
+// per model (kReportModels) with its parameters, intervals and statuses
+// (a parameter's "fitted" is green only when its model converged), its
+// warnings and summary folded, and model.toml; counts the calibrated models.
+std::vector<Section> CalibrationSections(const StudyFolder& study, int* calibrated,
+                                         std::vector<std::string>* absent);
 
 // The table of asymptotic states with counts by kind and status.
 Section StatesSection(const StudyFolder& study);

@@ -131,6 +131,15 @@ Block MeanIntervalTable(const CsvTextTable& summary, const std::set<std::string>
   return table;
 }
 
+Block Folded(Block table, const std::string& what) {
+  if (table.rows.size() <= kUnfoldedRows) return table;
+  Block details;
+  details.type = Block::Type::kDetails;
+  details.text = Plain(fmt::format("{} rows of {}", table.rows.size(), what));
+  details.children.push_back(std::move(table));
+  return details;
+}
+
 Inline DirectoryHint(const std::string& command, const std::string& directory) {
   return Code("granasym study " + command + " " + directory);
 }

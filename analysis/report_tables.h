@@ -36,6 +36,11 @@ Block TableOf(const CsvTextTable& table);
 // 2); every other column as it is, `status`-like columns in `marked` styled.
 Block MeanIntervalTable(const CsvTextTable& summary, const std::set<std::string>& marked = {});
 
+// A table of more than kUnfoldedRows rows folded into a <details> whose
+// summary says "N rows of WHAT" (the page stays short); a smaller one as it is.
+constexpr size_t kUnfoldedRows = 12;
+Block Folded(Block table, const std::string& what);
+
 // `granasym study COMMAND DIR`, as code.
 Inline DirectoryHint(const std::string& command, const std::string& directory);
 

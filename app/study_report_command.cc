@@ -10,8 +10,9 @@ namespace granasym {
 void RegisterStudyReportCommand(CLI::App* study) {
   CLI::App* report = study->add_subcommand(
       "report",
-      "write DIR/index.html (one self-contained page: figures, parameters, states, run "
-      "times, provenance) and DIR/report.md");
+      "write DIR/index.html (one self-contained file: the findings and fitted parameters "
+      "first, then the figures inline with hover labels, then the states, run times and "
+      "provenance) and DIR/report.md");
   static std::string directory;
   report->add_option("dir", directory, "study folder")->required()->check(CLI::ExistingDirectory);
   report->callback([] {

@@ -9,6 +9,7 @@
 
 #include "analysis/quasi_static_selection.h"
 #include "analysis/rate_files.h"
+#include "analysis/report_images.h"
 #include "common/error.h"
 #include "common/text_file.h"
 #include "tests/analysis/rate_states_fixture.h"
@@ -99,6 +100,162 @@ fs::path FullStudy(const std::string& name) {
   return dir;
 }
 
+// What gnuplot 5.4's `set terminal svg mouse standalone` writes for a plot
+// with two hypertext labels (`with labels hypertext`), shortened: its script,
+// event handlers, ids in both quotes, references to them, and a label text
+// with markup, an apostrophe and gnuplot's JavaScript escapes.
+const char kGnuplotSvg[] = R"svg(<?xml version="1.0" encoding="utf-8"  standalone="no"?>
+<!DOCTYPE svg PUBLIC "-//W3C//DTD SVG 1.1//EN" "http://www.w3.org/Graphics/SVG/1.1/DTD/svg11.dtd">
+<svg  onload="if (typeof(gnuplot_svg)!='undefined') gnuplot_svg.Init(evt)"
+ width="600" height="400"
+ viewBox="0 0 600 400"
+ xmlns="http://www.w3.org/2000/svg"
+ xmlns:xlink="http://www.w3.org/1999/xlink"
+>
+
+<title>Gnuplot</title>
+<desc>Produced by GNUPLOT 5.4 patchlevel 4 </desc>
+
+<script type="text/javascript" > <![CDATA[
+var x = document.querySelectorAll('svg'); if (x.length < 2) { '<g id="not-an-element">'; }
+]]>
+</script>
+
+<!-- Tie mousing to entire bounding box of the plot -->
+<rect x="0" y="0" width="600" height="400" fill="#ffffff" stroke="black" stroke-width="1"
+onclick="gnuplot_svg.toggleCoordBox(evt)"  onmousemove="gnuplot_svg.moveCoordBox(evt)"/>
+<g id="gnuplot_canvas" onclick="gnuplot_svg.toggleCoordBox(evt)" onmousemove="gnuplot_svg.moveCoordBox(evt)">
+<defs>
+	<circle id='gpPt5' stroke-width='0.222' stroke='currentColor' cx='0' cy='0' r='1'/>
+	<use xlink:href='#gpPt5' id='gpPt6' fill='currentColor' stroke='none'/>
+	<filter id='textbox' filterUnits='objectBoundingBox' x='0' y='0' height='1' width='1'>
+	  <feFlood flood-color='white' flood-opacity='1' result='bgnd'/>
+	</filter>
+</defs>
+	<g id="gnuplot_plot_1" ><title>states</title>
+	<g id="gnuplot_plot_1_keyentry" visibility="visible" onclick="gnuplot_svg.toggleVisibility(evt,'gnuplot_plot_1')">
+	</g>
+	<g onmousemove="gnuplot_svg.showHypertext(evt,'case nc100_psi90\nreplicate 2\nkind csl &amp; &lt;b> it\'s')" onmouseout="gnuplot_svg.hideHypertext()"><title> </title>
+	<use xlink:href='#gpPt6' transform='translate(54.53,260.67) scale(4.50)' color='rgb(  0,   0,   0)'/></g>
+	<g onmousemove="gnuplot_svg.showHypertext(evt,'case ncl\nreplicate 1')" onmouseout="gnuplot_svg.hideHypertext()">
+	<use xlink:href='#gpPt6' transform='translate(574.82,157.34) scale(4.50)'/></g>
+	<text filter="url(#textbox)"><tspan font-family="Arial" >p &lt; 1</tspan></text>
+	</g>
+<script type="text/javascript"><![CDATA[
+gnuplot_svg.plot_term_xmax = 600;
+]]>
+</script>
+</g>
+  <text id="hypertext" class="hypertext" pointer-events="none" visibility="hidden"> </text>
+  <image x='10' y='694' width='16' height='16' xlink:href='data:image/png;base64,iVBORw0KGgo'
+    onclick='gnuplot_svg.toggleGrid();'/>
+</svg>
+)svg";
+
+TEST(StudyReportImages, GnuplotSvgInlineHasTooltipsPrefixedIdsAndNoScript) {
+  const report::InlineSvg svg =
+      report::MakeInlineSvg(kGnuplotSvg, "fig16-", "Figure 16: ψ_σ & p", "fig16.svg");
+  const std::string& m = svg.markup;
+  EXPECT_EQ(svg.tooltips, 2);
+  // The hover texts, unescaped and then escaped for HTML, in the groups' titles.
+  EXPECT_NE(m.find("<g class=\"hover\"><title>case nc100_psi90\nreplicate 2\nkind csl &amp; "
+                   "&lt;b&gt; it&#39;s</title>"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("<g class=\"hover\"><title>case ncl\nreplicate 1</title>"), std::string::npos);
+  EXPECT_EQ(Count(m, "<title> </title>"), 0);
+  // No script, no handler, no declaration; the curve's own title stays.
+  for (const char* gone :
+       {"<script", "gnuplot_svg", "onload", "onclick", "onmouse", "<?xml", "<!DOCTYPE", "<!--",
+        "Gnuplot</title>", "not-an-element", "hypertext", "<image"}) {
+    EXPECT_EQ(m.find(gone), std::string::npos) << gone;
+  }
+  EXPECT_NE(m.find("<title>states</title>"), std::string::npos);
+  // Every id and every reference to one carries the figure's prefix.
+  for (const char* prefixed :
+       {"id=\"fig16-gnuplot_canvas\"", "id=\"fig16-gpPt5\"", "xlink:href=\"#fig16-gpPt5\"",
+        "id=\"fig16-gpPt6\"", "xlink:href=\"#fig16-gpPt6\"", "filter=\"url(#fig16-textbox)\"",
+        "id=\"fig16-gnuplot_plot_1_keyentry\""}) {
+    EXPECT_NE(m.find(prefixed), std::string::npos) << prefixed;
+  }
+  EXPECT_EQ(Count(m, " id=\""), Count(m, " id=\"fig16-"));
+  EXPECT_EQ(Count(m, "href=\"#"), Count(m, "href=\"#fig16-"));
+  // The root is the element, labelled; the text keeps its entities.
+  EXPECT_EQ(m.rfind("<svg ", 0), 0u) << m.substr(0, 80);
+  EXPECT_NE(m.find("aria-label=\"Figure 16: ψ_σ &amp; p\""), std::string::npos);
+  EXPECT_NE(m.find("viewBox=\"0 0 600 400\""), std::string::npos);
+  EXPECT_NE(m.find("p &lt; 1"), std::string::npos);
+  EXPECT_EQ(m.substr(m.size() - 6), "</svg>");
+}
+
+TEST(StudyReportImages, AnSvgThatIsNotOneIsAnErrorNamingTheFile) {
+  for (const std::string& bad :
+       {std::string("\x89PNG\r\n\x1a\n binary"), std::string("<svg width=\"1\"><g></svg>"),
+        std::string("<svg><g id=\"a></g></svg>"), std::string("<?xml version=\"1.0\"?>\n")}) {
+    try {
+      report::MakeInlineSvg(bad, "p-", "label", "figures/x.svg");
+      FAIL() << "accepted: " << bad;
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find("figures/x.svg: line "), std::string::npos)
+          << error.what();
+    }
+  }
+}
+
+TEST(StudyReportImages, DataUriIsBase64WithPadding) {
+  EXPECT_EQ(report::DataUri("image/png", "Man"), "data:image/png;base64,TWFu");
+  EXPECT_EQ(report::DataUri("image/png", "Ma"), "data:image/png;base64,TWE=");
+  EXPECT_EQ(report::DataUri("image/png", "M"), "data:image/png;base64,TQ==");
+  EXPECT_EQ(report::DataUri("image/png", std::string("\xff\xfe\x00", 3)),
+            "data:image/png;base64,//4A");
+}
+
+// The page is one file: each figure inline as SVG (ids apart per figure), or
+// its PNG as a data URI when it has no SVG; the files are linked below it.
+TEST(StudyReport, FiguresAreInlineSvgOrDataUrisAndLinkedBelow) {
+  const fs::path dir = FullStudy("inline_figures");
+  Write(dir / "figures/index.tsv",
+        "stem\tfigure\ttitle\tcaption\n"
+        "fig16_psi\t16\tψ_σ against ψ_ε\tAll paths\n"
+        "fig17_asbs\t17\tSections\tThe same SVG again\n"
+        "fig08_overlap\t8\tOverlaps\tA PNG only\n");
+  Write(dir / "figures/fig16_psi.svg", kGnuplotSvg);
+  Write(dir / "figures/fig17_asbs.svg", kGnuplotSvg);
+  Write(dir / "figures/fig08_overlap.png", "Man");
+  const ReportSummary summary = WriteReport(dir.string());
+  EXPECT_EQ(summary.figures, 3);
+  EXPECT_EQ(summary.figures_missing, 0);
+  const std::string html = ReadTextFile(summary.html_path);
+  const std::string md = ReadTextFile(summary.markdown_path);
+  EXPECT_EQ(Count(html, "<svg "), 2);
+  EXPECT_EQ(Count(html, "<g class=\"hover\"><title>case ncl\nreplicate 1</title>"), 2);
+  EXPECT_NE(html.find("id=\"fig16_psi-gpPt6\""), std::string::npos);
+  EXPECT_NE(html.find("id=\"fig17_asbs-gpPt6\""), std::string::npos);
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_EQ(html.find("onmouse"), std::string::npos);
+  // No image is linked: the PNG without an SVG is in the page.
+  EXPECT_EQ(Count(html, "<img "), 1);
+  EXPECT_NE(html.find("<img src=\"data:image/png;base64,TWFu\""), std::string::npos);
+  EXPECT_EQ(html.find("src=\"figures/"), std::string::npos);
+  // Below each figure its files; report.md links the PNG (else the SVG).
+  EXPECT_NE(html.find("Files: <a href=\"figures/fig16_psi.png\"><code>PNG</code></a> · <a "
+                      "href=\"figures/fig16_psi.pdf\"><code>PDF</code></a> · <a "
+                      "href=\"figures/fig16_psi.svg\"><code>SVG</code></a>"),
+            std::string::npos);
+  EXPECT_NE(md.find("](figures/fig16_psi.png)"), std::string::npos);
+  EXPECT_NE(md.find("](figures/fig17_asbs.svg)"), std::string::npos);
+  EXPECT_NE(md.find("](figures/fig08_overlap.png)"), std::string::npos);
+  // A broken SVG stops the report, naming it.
+  Write(dir / "figures/fig17_asbs.svg", "\x89PNG\r\n");
+  try {
+    WriteReport(dir.string());
+    FAIL() << "a PNG written as .svg was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("fig17_asbs.svg: line "), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(StudyReport, HtmlEscapingReplacesEveryMarkupCharacter) {
   EXPECT_EQ(HtmlEscaped("a<b>&\"c\"'d'"), "a&lt;b&gt;&amp;&quot;c&quot;&#39;d&#39;");
   EXPECT_EQ(HtmlEscaped("plain ψ_σ"), "plain ψ_σ");
@@ -116,6 +273,174 @@ TEST(StudyReport, TheStatesBehindASectionAreTheRowsThatNameIt) {
   EXPECT_EQ(html.find("names figure 5"), std::string::npos);
 }
 
+// Figure numbers are compared whole: a row serving Sec. 5.2 is not behind
+// figure 5 (the models' element tests), nor a row of figure 5 behind Sec. 5.2;
+// "5.2" in the index is the section too.
+TEST(StudyReport, FigureFiveIsNotSectionFivePointTwo) {
+  const fs::path dir = FullStudy("figure_five");
+  Write(dir / "figures/index.tsv",
+        "stem\tfigure\ttitle\tcaption\n"
+        "fig05_model_paths\t5\tModel paths\tThe models' element tests\n"
+        "sec52_time_step\tSec. 5.2\tTime-step independence\tΔt against Δt/5\n"
+        "sec52_old\t5.2\tTime-step independence\tAn older index\n"
+        "fig12_triaxial\t12\tTriaxial\tNo case serves it\n");
+  const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);
+  EXPECT_NE(html.find("Figure 5 draws the constitutive models&#39; element tests"),
+            std::string::npos);
+  EXPECT_EQ(html.find("names figure 5"), std::string::npos);
+  EXPECT_EQ(Count(html, "1 row of the state table behind Sec. 5.2"), 2);
+  EXPECT_NE(
+      html.find("No row of the state table names figure 12: no case of this study serves it."),
+      std::string::npos);
+  EXPECT_NE(html.find("<h3 id=\"sec-52-time-step-independence\">Sec. 5.2: Time-step "
+                      "independence</h3>"),
+            std::string::npos);
+}
+
+// Figure 21 draws the detected critical and drained triaxial states of every
+// case of the study's own sample; its rows are those, not the NCL rows of the
+// cases that serve it.
+TEST(StudyReport, TheRowsBehindFigure21AreTheCriticalStatesItDraws) {
+  const fs::path dir = FullStudy("figure_21");
+  Write(dir / "asymptotic_states.csv",
+        "replicate,kind,status,case,case_name,stage,psi_epsilon_deg,p_kpa,q_over_p,source,figures\n"
+        "1,ncl,detected,r1/ncl,ncl,p100,0,100,0.01,replicate,\"8, 21, 22\"\n"
+        "1,csl,detected,r1/nc100_psi90,nc100_psi90,psi90,90,20.5,1.21,replicate,\"10, 16\"\n"
+        "2,csl,drifting,r2/nc100_psi90,nc100_psi90,psi90,90,21.5,1.22,replicate,\"10, 16\"\n"
+        "1,triaxial,detected,r1/tx100,tx100,shear,,150,1.25,replicate,\"12, 13\"\n"
+        "1,csl,detected,r1/phi0_nc100_psi90,phi0_nc100_psi90,psi90,90,5,0.3,replicate,20\n"
+        "1,csl,detected,r1/dt5_nc100_psi90,dt5_nc100_psi90,psi90,90,20,1.2,replicate,Sec. 5.2\n"
+        "0,csl,detected,mean/nc100_psi90,nc100_psi90,psi90,90,21,1.21,ensemble,\"10, 16\"\n");
+  Write(dir / "figures/index.tsv",
+        "stem\tfigure\ttitle\tcaption\n"
+        "fig21_friction_inertial\t21\tM against I\tCritical states\n"
+        "fig22_inertial\t22\tI against p\tThe NCL path\n");
+  const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);
+  const size_t at = html.find(
+      "The 2 detected critical (csl) and drained triaxial states that "
+      "figure 21 draws");
+  ASSERT_NE(at, std::string::npos) << html;
+  const std::string rows = html.substr(at, html.find("</details>", at) - at);
+  EXPECT_NE(rows.find("<td>r1/nc100_psi90</td>"), std::string::npos) << rows;
+  EXPECT_NE(rows.find("<td>r1/tx100</td>"), std::string::npos);
+  for (const char* not_drawn : {"r1/ncl", "r2/nc100_psi90", "phi0", "dt5", "mean/"}) {
+    EXPECT_EQ(rows.find(not_drawn), std::string::npos) << not_drawn;
+  }
+  // Figure 22 draws the paths of the cases that serve it: the NCL's row.
+  EXPECT_NE(html.find("1 row of the state table behind figure 22 (the rows of the cases that "
+                      "serve it)"),
+            std::string::npos);
+}
+
+// The models' outcomes from fit_status.toml, each with its honest label;
+// never a green "fitted" in a model that is not.
+TEST(StudyReport, EachModelShowsItsOutcomeFromFitStatus) {
+  const fs::path dir = FullStudy("fit_status");
+  const fs::path clay = dir / "calibration/hypoplastic_clay";
+  const struct {
+    const char* status;
+    const char* label;
+    const char* css;
+  } cases[] = {{"converged", "fitted", "status-fitted"},
+               {"converged_inadmissible", "fitted, inadmissible", "status-inadmissible"},
+               {"at_bound", "fitted, at a bound", "status-at_bound"},
+               {"no_convergence", "failed", "status-failed"},
+               {"failed", "failed", "status-failed"}};
+  for (const auto& c : cases) {
+    Write(clay / "fit_status.toml", std::string("status = \"") + c.status +
+                                        "\"\nreason = \"the fit said why <" + c.status + ">\"\n");
+    const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);
+    EXPECT_NE(html.find(std::string("<td class=\"") + c.css + "\">" + c.label +
+                        "</td><td class=\"text\">the fit said why &lt;" + c.status + "&gt;</td>"),
+              std::string::npos)
+        << c.status;
+    EXPECT_NE(html.find(std::string("Outcome: ") + c.label + ". the fit said why"),
+              std::string::npos)
+        << c.status;
+    const size_t model = html.find("<h3 id=\"calibration-hypoplastic_clay\">");
+    const std::string section = html.substr(model, html.find("<h3", model + 1) - model);
+    const bool green = std::string(c.status) == "converged";
+    EXPECT_EQ(section.find("<td class=\"status-fitted\">fitted</td>") != std::string::npos, green)
+        << c.status;
+    EXPECT_EQ(section.find("<td>fitted</td>") != std::string::npos, !green) << c.status;
+  }
+  Write(clay / "fit_status.toml", "status = \"fine\"\nreason = \"?\"\n");
+  try {
+    WriteReport(dir.string());
+    FAIL() << "status 'fine' was accepted";
+  } catch (const InputError& error) {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("fit_status.toml"), std::string::npos) << what;
+    EXPECT_NE(what.find("status"), std::string::npos) << what;
+    EXPECT_NE(what.find("converged_inadmissible"), std::string::npos) << what;
+  }
+  Write(clay / "fit_status.toml", "status = \"converged\"\n");
+  EXPECT_THROW(WriteReport(dir.string()), InputError);
+}
+
+// Without fit_status.toml (an earlier calibration) the outcome is derived
+// from the fit's termination, the admissibility warnings (not the misfit
+// ones) and the parameters at a bound, and says so.
+TEST(StudyReport, AnOutcomeWithoutFitStatusIsDerivedAndSaysSo) {
+  const fs::path dir = FullStudy("derived_status");
+  const fs::path clay = dir / "calibration/hypoplastic_clay";
+  auto outcome = [&](const std::string& summary, const std::string& warnings) {
+    Write(clay / "summary.txt", summary);
+    Write(clay / "warnings.txt", warnings);
+    const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);
+    const size_t at = html.find("<td class=\"status-");
+    return html.substr(at, html.find("</td><td class=\"text\">", at) - at) + " | " +
+           html.substr(html.find("Outcome: "), 300);
+  };
+  const std::string converged =
+      "model: hypoplastic_clay\n\nceres: converged after 34 iterations, 899 evaluations\n";
+  // The fixture's phi_c_deg is at_bound.
+  std::string text = outcome(converged, "structural_misfit: ncl: the model is below\n");
+  EXPECT_NE(text.find("status-at_bound\">fitted, at a bound"), std::string::npos) << text;
+  EXPECT_NE(text.find("Derived by the report (no fit_status.toml"), std::string::npos) << text;
+  EXPECT_NE(text.find("ceres converged, with phi_c_deg at a bound"), std::string::npos) << text;
+  text = outcome(converged,
+                 "ocr_below_one: 7 states above the NCL\nasbs_outside: beyond p/p_e* = 1\n"
+                 "structural_misfit: ncl\n");
+  EXPECT_NE(text.find("status-inadmissible\">fitted, inadmissible"), std::string::npos) << text;
+  EXPECT_NE(text.find("the fitted model is inadmissible (ocr_below_one, asbs_outside in "
+                      "warnings.txt)"),
+            std::string::npos)
+      << text;
+  text = outcome("ceres: no_convergence after 100 iterations\n", "asbs_outside: far\n");
+  EXPECT_NE(text.find("status-failed\">failed"), std::string::npos) << text;
+  EXPECT_NE(text.find("ceres stopped before a convergence criterion was met"), std::string::npos)
+      << text;
+  text = outcome("ceres: failure after 0 iterations\n", "");
+  EXPECT_NE(text.find("status-failed\">failed"), std::string::npos) << text;
+  Write(clay / "parameters.csv",
+        "parameter,value,std_error,ci95_low,ci95_high,status\n"
+        "lambda_star,0.0252,0.0011,0.023,0.0274,fitted\n");
+  text = outcome(converged, "structural_misfit: ncl\n");
+  EXPECT_NE(text.find("status-fitted\">fitted"), std::string::npos) << text;
+  text = outcome("no termination line\n", "");
+  EXPECT_NE(text.find("status-fitted\">fitted"), std::string::npos) << text;
+  EXPECT_NE(text.find("the fitter&#39;s termination is not in summary.txt"), std::string::npos)
+      << text;
+}
+
+// The header names the folder absolutely: "folder ." says nothing.
+TEST(StudyReport, TheHeaderNamesTheFolderAbsolutely) {
+  const fs::path dir = FullStudy("relative");
+  const fs::path before = fs::current_path();
+  fs::current_path(dir);
+  std::string html;
+  try {
+    html = ReadTextFile(WriteReport(".").html_path);
+  } catch (...) {
+    fs::current_path(before);
+    throw;
+  }
+  fs::current_path(before);
+  EXPECT_NE(html.find("; folder <code>" + HtmlEscaped(fs::canonical(dir).string()) + "</code>."),
+            std::string::npos);
+}
+
 TEST(StudyReport, EveryFigureOfTheIndexAppearsWithItsImageOrAMissingNote) {
   const fs::path dir = FullStudy("figures");
   const ReportSummary summary = WriteReport(dir.string());
@@ -126,7 +451,7 @@ TEST(StudyReport, EveryFigureOfTheIndexAppearsWithItsImageOrAMissingNote) {
   EXPECT_NE(html.find("Figure 16: ψ_σ against ψ_ε"), std::string::npos);
   EXPECT_NE(html.find("Figure 8: Overlaps"), std::string::npos);
   EXPECT_EQ(Count(html, "<img "), 1);
-  EXPECT_NE(html.find("<img src=\"figures/fig16_psi.png\""), std::string::npos);
+  EXPECT_NE(html.find("<img src=\"data:image/png;base64,"), std::string::npos);
   EXPECT_NE(html.find("href=\"figures/fig16_psi.pdf\""), std::string::npos);
   EXPECT_NE(html.find("href=\"figures/fig16_psi.csv\""), std::string::npos);
   EXPECT_NE(html.find("<code>figures/fig08_overlap.png</code> is missing"), std::string::npos);
@@ -151,6 +476,13 @@ TEST(StudyReport, EveryStateRowAppearsInBothFiles) {
     EXPECT_NE(html.find(std::string("<td>") + stage + "</td>"), std::string::npos) << stage;
     EXPECT_NE(md.find(std::string("| ") + stage + " |"), std::string::npos) << stage;
   }
+  // Folded by kind, the counts in the summary; messages unwrapped.
+  for (const char* group : {"<details><summary>csl: 1 row (1 drifting)</summary>",
+                            "<details><summary>ncl: 1 row (1 detected)</summary>",
+                            "<details><summary>none: 1 row (1 no_result)</summary>"}) {
+    EXPECT_NE(html.find(group), std::string::npos) << group;
+  }
+  EXPECT_NE(html.find("<td>still drifting: psi_sigma changed"), std::string::npos);
   // The row without a result, by its message; every case links to its scene.
   EXPECT_NE(html.find("<td class=\"status-no_result\">no_result</td>"), std::string::npos);
   EXPECT_NE(html.find("<a href=\"cases/r2/oc/scene.toml\">r2/oc</a>"), std::string::npos);
@@ -187,6 +519,24 @@ TEST(StudyReport, EnsembleRowsAreListedWithTheirSourceAndCountedApart) {
   EXPECT_NE(html.find("2 rows, 2 drifting; and 1 ensemble-mean rows"), std::string::npos);
 }
 
+// The answers first: the findings, the fitted parameters, the figures; then
+// the rate study and the tables.
+TEST(StudyReport, ThePageAnswersFirst) {
+  const fs::path dir = FullStudy("order");
+  Write(dir / "findings.csv",
+        "source,claim,verdict,numbers,rule\nFig. 16,the CSL exists,reproduced,M = 1.2,a rule\n");
+  const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);
+  std::vector<std::string> order;
+  for (size_t at = html.find("<h2 id=\""); at != std::string::npos;
+       at = html.find("<h2 id=\"", at + 1)) {
+    order.push_back(html.substr(at + 8, html.find('"', at + 8) - at - 8));
+  }
+  EXPECT_EQ(order, (std::vector<std::string>{
+                       "findings-the-papers-claims-in-this-study", "fitted-parameters", "figures",
+                       "overview", "asymptotic-states", "replicate-summary", "ncl-fits",
+                       "path-convergence", "run-times-and-keys", "provenance"}));
+}
+
 TEST(StudyReport, NoTextOfTheInputsIsTakenAsMarkup) {
   const fs::path dir = FullStudy("escaping");
   const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);
@@ -216,7 +566,10 @@ TEST(StudyReport, CalibrationShowsIntervalsStatusesWarningsAndSummary) {
   EXPECT_NE(html.find("<td class=\"num\">[0.023, 0.0274]</td>"), std::string::npos);
   EXPECT_NE(html.find("<td class=\"status-at_bound\">at_bound</td>"), std::string::npos);
   EXPECT_NE(html.find("<td class=\"status-undetermined\">undetermined</td>"), std::string::npos);
-  EXPECT_NE(html.find("2 warnings:"), std::string::npos);  // the blank line is not a warning
+  // The blank line is not a warning; the list is folded, counted by code.
+  EXPECT_NE(html.find("<details><summary>2 warnings (2 other), from "
+                      "<code>calibration/hypoplastic_clay/warnings.txt</code></summary>"),
+            std::string::npos);
   EXPECT_NE(html.find("<li>phi_c_deg at its upper bound</li>"), std::string::npos);
   EXPECT_NE(html.find("<details><summary>Summary of the fit"), std::string::npos);
   EXPECT_NE(html.find("href=\"calibration/hypoplastic_clay/model.toml\""), std::string::npos);
@@ -265,9 +618,9 @@ TEST(StudyReport, AbsentInputsAreStatedInTheirPlace) {
   EXPECT_NE(html.find("findings.csv is absent"), std::string::npos);
   EXPECT_NE(summary.Text().find("absent: asymptotic_states.csv"), std::string::npos);
   // Every section is in the contents, with the anchor its heading has.
-  for (const char* anchor :
-       {"overview", "figures", "calibration", "asymptotic-states", "replicate-summary", "ncl-fits",
-        "path-convergence", "run-times-and-keys", "provenance", "calibration-hypoplastic_clay"}) {
+  for (const char* anchor : {"overview", "figures", "fitted-parameters", "asymptotic-states",
+                             "replicate-summary", "ncl-fits", "path-convergence",
+                             "run-times-and-keys", "provenance", "calibration-hypoplastic_clay"}) {
     EXPECT_NE(html.find(std::string("<a href=\"#") + anchor + "\">"), std::string::npos) << anchor;
     EXPECT_NE(html.find(std::string(" id=\"") + anchor + "\">"), std::string::npos) << anchor;
     EXPECT_NE(md.find(std::string("](#") + anchor + ")"), std::string::npos) << anchor;
@@ -290,7 +643,7 @@ TEST(StudyReport, BadInputIsAnErrorNamingTheFile) {
     WriteReport(dir.string());
     FAIL() << "parameters.csv without its columns was accepted";
   } catch (const InputError& error) {
-    EXPECT_NE(std::string(error.what()).find("parameters.csv: missing column 'std_error'"),
+    EXPECT_NE(std::string(error.what()).find("parameters.csv: missing column 'status'"),
               std::string::npos)
         << error.what();
   }

@@ -6,14 +6,24 @@
 # where the study has none (marked as fixtures in their texts), writes the
 # report with `granasym study report` and renders index.html in headless
 # Chromium at a desktop width and at 500 px (about the narrowest window
-# headless Chromium makes). A script injected into a copy of
-# the page records every image that did not load (naturalWidth 0) and every
-# element that reaches past the viewport outside a scrolling container (a
-# layout error); any of them fails the test, naming it. Two broken copies
-# prove that the check fails: one with a truncated PNG, one with the
-# stylesheet's horizontal scrolling of tables switched off.
+# headless Chromium makes). A script injected into a copy of the page
+# records every image that did not load (naturalWidth 0) and every element
+# that reaches past the viewport outside a scrolling container (a layout
+# error); any of them fails the test, naming it. It also measures the page
+# at 1280 px with every <details> closed, as a reader first sees it: at most
+# base_px plus figure_px per figure drawn (below). Before the page was made
+# short (tables folded, rows unwrapped) this test's page measured 16 900 px
+# and the small-scale study's report (15 figures drawn) 61 000 px; after,
+# 7 500 px and 20 000 px. It counts the tooltips of each inline SVG: every
+# state point of a figure (each hypertext label gnuplot wrote into its SVG
+# file) has a <title>. The findings come first, then the fitted parameters,
+# then the figures. Two broken copies prove that the check fails: one with
+# a truncated PNG, one with the stylesheet's horizontal scrolling of tables
+# switched off.
 set -euo pipefail
 granasym="$1" study="$2" work="$3"
+# The bound on the page's height at 1280 px (details closed).
+base_px=9000 figure_px=1000
 
 browser=""
 for candidate in chromium chromium-browser; do
@@ -31,18 +41,40 @@ dir="$work/study"
 mkdir -p "$dir"
 # The records and tables, not the HDF5 results (the report links, never reads them).
 (cd "$study" && find . \( -name '*.toml' -o -name '*.csv' -o -name '*.tsv' -o -name '*.txt' \
-   -o -name '*.png' -o -name '*.pdf' \) -not -path './samples/*' -print0 |
+   -o -name '*.png' -o -name '*.pdf' -o -name '*.svg' \) -not -path './samples/*' -print0 |
    xargs -0 cp --parents -t "$dir")
 
-# Fixtures where the study has no figures or calibration of its own.
+# hover_svg FILE: a wide SVG (gnuplot's svg terminal, as `study figures`
+# draws them) whose five states carry hover labels (hypertext).
+hover_svg() {
+  gnuplot <<EOF
+set terminal svg enhanced size 1800,500 mouse standalone
+set output '$1'
+set title 'test fixture'
+\$states << EOD
+1 0.84 "case nc100_psi90\\nreplicate 1\\nkind csl <b>not bold</b> & it's"
+2 0.91 "case nc100_psi90\\nreplicate 2\\nkind csl"
+3 0.14 "case nc200_psi90\\nreplicate 1\\nkind csl"
+4 -0.76 "case nc500_psi90\\nreplicate 1\\nkind csl"
+5 -0.96 "case nc1000_psi90\\nreplicate 1\\nkind csl"
+EOD
+plot sin(x) title 'sin', \$states using 1:2:3 with labels hypertext point pt 7 title 'states'
+EOF
+}
+
+# Fixtures where the study has no figures (or none with hover labels) or
+# calibration of its own.
 fixtures=()
 if [ ! -f "$dir/figures/index.tsv" ]; then
   fixtures+=(figures)
   mkdir -p "$dir/figures"
-  # A wide image (wider than any viewport: the stylesheet must scale it) and a square one.
+  # A wide image (wider than any viewport: the stylesheet must scale it), as
+  # PNG and as SVG with a hover label on each of its states; a square one as
+  # PNG only (the page carries it as a data URI).
   gnuplot -e "set terminal pngcairo size 1800,500; set output '$dir/figures/fixture_wide.png';
               set title 'test fixture'; plot sin(x)"
   gnuplot -e "set terminal pdfcairo; set output '$dir/figures/fixture_wide.pdf'; plot sin(x)"
+  hover_svg "$dir/figures/fixture_wide.svg"
   gnuplot -e "set terminal pngcairo size 400,400; set output '$dir/figures/fixture_square.png';
               set title 'test fixture'; plot cos(x)"
   {
@@ -51,6 +83,11 @@ if [ ! -f "$dir/figures/index.tsv" ]; then
       "an_unbreakable_token_$(printf 'x%.0s' {1..300})"
     printf 'fixture_square\t8\tTest fixture: a square figure\tA fixture of the browser test.\n'
   } > "$dir/figures/index.tsv"
+elif ! grep -qs 'gnuplot_svg.showHypertext(evt' "$dir"/figures/*.svg; then
+  fixtures+=("figures/fixture_hover.svg")
+  hover_svg "$dir/figures/fixture_hover.svg"
+  printf 'fixture_hover\t16\tTest fixture: states with hover labels\tA fixture of the browser test.\n' \
+    >> "$dir/figures/index.tsv"
 fi
 for model in hypoplastic_clay modified_cam_clay hypoplastic_sand; do
   folder="$dir/calibration/$model"
@@ -92,11 +129,22 @@ first_section=$(grep -o '<h2 id="[^"]*"' "$dir/index.html" | head -1)
 # no scripts). Lines "check: ..." go into a <pre> once the page has loaded.
 check_script='<script>
 window.addEventListener("load", () => {
-  for (const d of document.querySelectorAll("details")) d.open = true;
   const lines = [];
+  // As a reader first sees the page: every <details> closed.
+  lines.push("height " + document.documentElement.scrollHeight);
+  // Each inline SVG: its hover groups and those with a non-blank <title>.
+  const svgs = [...document.querySelectorAll("figure > svg")];
+  svgs.forEach((svg, k) => {
+    const groups = [...svg.querySelectorAll("g.hover")];
+    const titled = groups.filter((g) => g.firstElementChild &&
+        g.firstElementChild.tagName.toLowerCase() === "title" &&
+        g.firstElementChild.textContent.trim() !== "");
+    lines.push("tooltips " + k + " " + groups.length + " " + titled.length);
+  });
+  for (const d of document.querySelectorAll("details")) d.open = true;
   const images = [...document.images];
   for (const img of images) {
-    if (!img.complete || img.naturalWidth === 0) lines.push("broken image: " + img.getAttribute("src"));
+    if (!img.complete || img.naturalWidth === 0) lines.push("broken image: " + img.getAttribute("alt"));
   }
   const width = document.documentElement.clientWidth;
   const clips = (e) => {
@@ -133,7 +181,8 @@ window.addEventListener("load", () => {
     lines.push("layout error: the page scrolls sideways (" +
                document.documentElement.scrollWidth + " px in " + width + " px)");
   }
-  lines.push("done: " + images.length + " images, " + elements + " elements, viewport " + width + " px");
+  lines.push("done: " + svgs.length + " inline SVGs, " + images.length + " images, " + elements +
+             " elements, viewport " + width + " px");
   const out = document.createElement("pre");
   out.id = "granasym-check";
   out.textContent = "\n" + lines.map((l) => "check: " + l).join("\n") + "\n";
@@ -164,8 +213,9 @@ check() {
       failed=1
       continue
     fi
-    echo "$lines" | sed "s/^check: /  at $width px: /"
+    grep -Ev '^check: (height|tooltips) ' <<<"$lines" | sed "s/^check: /  at $width px: /"
     if grep -Eq '^check: (broken image|layout error)' <<<"$lines"; then failed=1; fi
+    [ "$width" -ne 1280 ] || echo "$lines" > "$page.1280.txt"
   done
   return $failed
 }
@@ -174,25 +224,71 @@ echo "the report:"
 if ! check "$dir/index.html"; then
   echo "FAIL: the report has a missing image or a layout error (above)"; exit 1
 fi
-images=$(grep -c '<img ' "$dir/index.html" || true)
+# One file: every figure is in the page (inline SVG, or a PNG as a data URI).
+figures=$(grep -c '^<figure>' "$dir/index.html" || true)
 # Figures without data are listed with the reason ("Not drawn: ...") and no image.
 indexed=$(tail -n +2 "$dir/figures/index.tsv" | grep -vc 'Not drawn: ' || true)
-[ "$images" -eq "$indexed" ] ||
-  { echo "FAIL: $images images in the page, $indexed drawn figures in figures/index.tsv"; exit 1; }
+[ "$figures" -eq "$indexed" ] ||
+  { echo "FAIL: $figures figures in the page, $indexed drawn figures in figures/index.tsv"; exit 1; }
+if grep -Eq '<img [^>]*src="[^d]' "$dir/index.html"; then
+  echo "FAIL: index.html links an image file instead of carrying it"; exit 1
+fi
+if grep -Eq '<script|onmouse|onclick=|onload=' "$dir/index.html"; then
+  echo "FAIL: index.html has a script or an event handler (from an SVG?)"; exit 1
+fi
 grep -q '&lt;b&gt;not bold' "$dir/index.html" || [ ! -f "$dir/figures/fixture_wide.png" ] ||
   { echo "FAIL: the fixture caption's markup was not escaped"; exit 1; }
 
-# The check must fail on a broken image: a copy whose first figure is truncated.
+# The answers first: the findings, then the fitted parameters, then the figures.
+order=$(grep -o '<h2 id="[^"]*"' "$dir/index.html" | head -3 | sed 's/<h2 id="//; s/"$//' | tr '\n' ' ')
+[[ "$order" == findings*' fitted-parameters figures ' ]] ||
+  { echo "FAIL: the page opens with $order, not the findings, fitted parameters, figures"; exit 1; }
+
+# The page's height at 1280 px, details closed.
+height=$(sed -n 's/^check: height //p' "$dir/index.html.1280.txt")
+bound=$((base_px + figure_px * figures))
+echo "page height at 1280 px: $height px ($figures figures; bound $base_px + $figure_px per figure = $bound px)"
+[ -n "$height" ] && [ "$height" -le "$bound" ] ||
+  { echo "FAIL: the page is $height px high at 1280 px, more than $bound px"; exit 1; }
+
+# Every state point of a figure has its tooltip: as many titled hover groups
+# in the page as hypertext labels in the figure's SVG file (in index order).
+k=0 hovered=0
+while IFS=$'\t' read -r stem _; do
+  [ -f "$dir/figures/$stem.svg" ] || continue
+  labels=$(grep -o 'gnuplot_svg.showHypertext(evt' "$dir/figures/$stem.svg" | wc -l)
+  groups="" titled=""
+  read -r groups titled < <(sed -n "s/^check: tooltips $k //p" "$dir/index.html.1280.txt") || true
+  [ "${groups:-x}" = "$labels" ] && [ "${titled:-x}" = "$labels" ] ||
+    { echo "FAIL: $stem.svg has $labels hover labels, the page ${groups:-no} groups, ${titled:-no} titled"; exit 1; }
+  [ "$labels" -eq 0 ] || { hovered=$((hovered + 1)); echo "tooltips: $stem: each of its $labels states has one"; }
+  k=$((k + 1))
+done < <(tail -n +2 "$dir/figures/index.tsv")
+[ "$hovered" -gt 0 ] || { echo "FAIL: no figure has hover labels to check"; exit 1; }
+
+# The check must fail on a broken image: a copy of the study whose first
+# figure with a PNG has no SVG and its PNG truncated (so the page carries
+# the broken PNG).
 broken="$work/broken_image"
 cp -r "$dir" "$broken"
-first_png=$(grep -o 'src="figures/[^"]*\.png"' "$broken/index.html" | head -1 | sed 's/src="//; s/"$//')
-head -c 40 "$dir/$first_png" > "$broken/$first_png"
-echo "a copy with $first_png truncated to 40 bytes:"
+rm -f "$broken"/index.html.*.txt
+IFS=$'\t' read -r stem figure title < <(tail -n +2 "$dir/figures/index.tsv" |
+  while IFS=$'\t' read -r s f t _; do
+    [ -f "$dir/figures/$s.png" ] && { printf '%s\t%s\t%s\n' "$s" "$f" "$t"; break; }
+  done)
+label="Figure $figure: $title"
+[[ "$figure" != Sec.* ]] || label="$figure: $title"
+# As the page's DOM prints it.
+label=$(sed 's/&/\&amp;/g; s/</\&lt;/g; s/>/\&gt;/g' <<<"$label")
+rm -f "$broken/figures/$stem.svg"
+head -c 40 "$dir/figures/$stem.png" > "$broken/figures/$stem.png"
+"$granasym" study report "$broken" > /dev/null
+echo "a copy with figures/$stem.png truncated to 40 bytes:"
 check "$broken/index.html" > "$work/broken_image.txt" &&
   { cat "$work/broken_image.txt"; echo "FAIL: the check did not notice the broken image"; exit 1; }
 grep 'broken image' "$work/broken_image.txt"
-grep -q "broken image: $first_png" "$work/broken_image.txt" ||
-  { echo "FAIL: the check did not name $first_png"; exit 1; }
+grep -qF "broken image: $label" "$work/broken_image.txt" ||
+  { echo "FAIL: the check did not name $label"; exit 1; }
 
 # ... and on a layout error: a copy without the horizontal scrolling of tables.
 wide="$work/no_scrolling"
@@ -207,4 +303,4 @@ echo "  $(grep -c 'layout error' "$work/no_scrolling.txt") layout errors, e.g.:"
 grep -m 3 'layout error: div.scroll' "$work/no_scrolling.txt" ||
   { echo "FAIL: the check did not name a table's container"; exit 1; }
 
-echo "PASS: $images figures and every table render inside the viewport at 1280 and 500 px; a truncated PNG and unscrolled tables are caught"
+echo "PASS: $figures figures (inline SVG or PNG data URIs) and every table render inside the viewport at 1280 and 500 px; the page is $height px high at 1280 px (bound $bound), answers first, every hover label a tooltip; a truncated PNG and unscrolled tables are caught"
