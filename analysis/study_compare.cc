@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <map>
+#include <regex>
 #include <set>
 #include <tuple>
 
@@ -293,6 +295,51 @@ std::string CompareStudy::DescribeSample() const {
   };
   return fmt::format("φ = {} rad, E = {} MPa, Δt = {} s", number(friction_rad, "{:.3g}"),
                      number(youngs_modulus_mpa, "{:.4g}"), number(time_step_s, "{:.3g}"));
+}
+
+void RenameCases(CompareStudy* study, const std::string& rule, const std::string& flag) {
+  const size_t eq = rule.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw InputError(flag + " '" + rule + "': expected REGEX=REPLACEMENT, e.g. " +
+                     "'(nc\\d+_psi\\d+)_I0\\.001_E500=$1'");
+  }
+  std::regex pattern;
+  try {
+    pattern = std::regex(rule.substr(0, eq), std::regex::ECMAScript);
+  } catch (const std::regex_error& error) {
+    throw InputError(flag + " '" + rule + "': the regex is not valid (" + error.what() + ")");
+  }
+  const std::string replacement = rule.substr(eq + 1);
+  std::set<std::string> names;
+  for (const StateRow& row : study->states) names.insert(row.case_name);
+  std::map<std::string, std::string> renamed;  // old → new
+  std::map<std::string, std::string> origin;   // new → old
+  for (const std::string& name : names) {
+    const std::string now = std::regex_match(name, pattern)
+                                ? std::regex_replace(name, pattern, replacement,
+                                                     std::regex_constants::format_first_only)
+                                : name;
+    if (const auto it = origin.find(now); it != origin.end()) {
+      throw InputError(flag + " '" + rule + "' gives '" + it->second + "' and '" + name +
+                       "' one name, '" + now +
+                       "': their replicates would be pooled; make the pattern match one of them");
+    }
+    origin[now] = name;
+    if (now != name) renamed[name] = now;
+  }
+  if (renamed.empty()) {
+    throw InputError(flag + " '" + rule + "' matches no case name of " + study->directory);
+  }
+  for (StateRow& row : study->states) {
+    if (const auto it = renamed.find(row.case_name); it != renamed.end())
+      row.case_name = it->second;
+  }
+  std::map<std::pair<int, std::string>, std::string> samples;
+  for (const auto& [key, sample] : study->samples) {
+    const auto it = renamed.find(key.second);
+    samples[{key.first, it == renamed.end() ? key.second : it->second}] = sample;
+  }
+  study->samples = samples;
 }
 
 CompareStudy ReadCompareStudy(const std::string& directory) {

@@ -123,6 +123,16 @@ struct CompareStudy {
 // with a state table.
 CompareStudy ReadCompareStudy(const std::string& directory);
 
+// Renames the cases of `study` by `rule` "REGEX=REPLACEMENT" (ECMAScript;
+// a case whose whole name the regex matches gets the replacement, with $1…
+// for its groups; others keep their names), so that studies whose names
+// differ can be matched (e.g. the rate study's "nc100_psi90_I0.001_E500"
+// against the paper's "nc100_psi90": `(nc\d+_psi\d+)_I0\.001_E500=$1`).
+// InputError for a malformed rule or regex, a rule that renames nothing, or
+// two cases renamed to one name (or onto a case that keeps its name): their
+// replicates would be pooled. `flag` names the option in messages.
+void RenameCases(CompareStudy* study, const std::string& rule, const std::string& flag);
+
 // What one side has of a matched state.
 struct SideState {
   int replicates = 0;                   // usable rows (detected or drifting, p > 0)

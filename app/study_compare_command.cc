@@ -23,6 +23,7 @@ namespace {
 
 struct CompareFlags {
   std::string a, b, out;
+  std::vector<std::string> rename_a, rename_b;
   bool data_only = false;
 };
 
@@ -31,8 +32,10 @@ void RunCompare(const CompareFlags& flags) {
   const std::string out =
       flags.out.empty() ? analysis::DefaultCompareFolder(flags.a, flags.b) : flags.out;
   analysis::CheckCompareFolder(out, flags.a, flags.b);
-  const analysis::CompareStudy a = analysis::ReadCompareStudy(flags.a);
-  const analysis::CompareStudy b = analysis::ReadCompareStudy(flags.b);
+  analysis::CompareStudy a = analysis::ReadCompareStudy(flags.a);
+  analysis::CompareStudy b = analysis::ReadCompareStudy(flags.b);
+  for (const std::string& rule : flags.rename_a) analysis::RenameCases(&a, rule, "--rename-a");
+  for (const std::string& rule : flags.rename_b) analysis::RenameCases(&b, rule, "--rename-b");
   const analysis::StudyComparison comparison = analysis::CompareStudies(a, b);
   analysis::WriteComparisonTables(out, comparison);
   std::vector<analysis::FigureSpec> figures = analysis::WriteComparisonFigureData(out, comparison);
@@ -60,6 +63,13 @@ void RegisterStudyCompareCommand(CLI::App* study) {
   compare->add_option("--out", flags.out,
                       "output folder (default: compare-<A>-vs-<B> in the current folder); new, "
                       "empty, or an earlier comparison's, never inside A or B");
+  compare->add_option("--rename-a", flags.rename_a,
+                      "rename A's cases before matching: REGEX=REPLACEMENT on the whole case "
+                      "name (ECMAScript, $1 for groups; repeat)");
+  compare->add_option("--rename-b", flags.rename_b,
+                      "rename B's cases before matching, e.g. "
+                      "'(nc\\d+_psi\\d+)_I0\\.001_E500=$1' for the rate study against the "
+                      "paper's names");
   compare->add_flag("--data-only", flags.data_only,
                     "write the tables, the summary and the figures' data, draw nothing");
   compare->callback([] { RunCompare(flags); });

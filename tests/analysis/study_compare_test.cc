@@ -391,3 +391,35 @@ TEST_F(CompareFolderTest, TheFilesHoldOneRowPerMatchAndAHoverLabelPerState) {
 
 }  // namespace
 }  // namespace granasym::analysis
+
+namespace granasym::analysis {
+namespace {
+
+// The rate study's names against the paper's: renamed, then matched; a rule
+// that pools two cases, renames nothing or is malformed is refused.
+TEST(RenameCases, TheRateStudysNamesMatchThePapersAfterARename) {
+  CompareStudy a = Study("paper", 2), b = Study("rate", 2);
+  for (int r = 1; r <= 2; ++r) {
+    a.states.push_back(Row("nc100_psi90", "psi90", TableKind::kCsl, r, 25 + r, 0.57, 30));
+    b.states.push_back(
+        Row("nc100_psi90_I0.001_E500", "psi90", TableKind::kCsl, r, 20 + r, 0.6, 30));
+    b.states.push_back(
+        Row("nc100_psi90_I0.003_E500", "psi90", TableKind::kCsl, r, 22 + r, 0.6, 30));
+  }
+  EXPECT_EQ(CompareStudies(a, b).matches.size(), 0u);
+  CompareStudy renamed = b;
+  RenameCases(&renamed, R"((nc\d+_psi\d+)_I0\.001_E500=$1)", "--rename-b");
+  const StudyComparison c = CompareStudies(a, renamed);
+  const StateMatch* match = FindMatch(c, "nc100_psi90");
+  ASSERT_NE(match, nullptr);
+  EXPECT_EQ(match->b.replicates, 2);
+  EXPECT_NEAR(match->b.mean[0].mean, 21.5, 1e-12);  // the I* = 1e-3 rows, not the 3e-3 ones
+  for (const char* bad :
+       {R"((nc\d+_psi\d+)_I0\.00\d_E500=$1)", "nothing_matches=x", "no-equals", "(unclosed=x"}) {
+    CompareStudy copy = b;
+    EXPECT_THROW(RenameCases(&copy, bad, "--rename-b"), InputError) << bad;
+  }
+}
+
+}  // namespace
+}  // namespace granasym::analysis
