@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <toml.hpp>
@@ -456,7 +458,15 @@ void ResolveParent(const std::string& origin, const std::string& case_where,
   if (from == "sample") return;
   const size_t at = from.find('@');
   spec->parent = from.substr(0, at);
-  if (at != std::string::npos) spec->parent_stage = from.substr(at + 1);
+  if (at != std::string::npos) {
+    spec->parent_stage = from.substr(at + 1);
+    // "RUN@" would fork from the final state as if no stage were named.
+    if (spec->parent_stage.empty()) {
+      Fail(origin, case_where + ".from",
+           "= '" + from + "' names no stage after '@': give \"" + spec->parent + "@STAGE\" or \"" +
+               spec->parent + "\" (its final state)");
+    }
+  }
   const CaseSpec* parent = programme.Find(spec->parent);
   const Scale scale = programme.scale;
   if (!parent) {
@@ -506,6 +516,17 @@ Array ExpandStages(const std::string& origin, const std::string& where, const Ar
         }
       }
       spec->stage_names.push_back(stage_name);
+      // A strain-path stage's ψ_ε (the default type), for the NCL check.
+      const auto type = table.find("type");
+      const auto psi = table.find("psi_epsilon_deg");
+      const bool strain_path = type == table.end() || (type->second.is_string() &&
+                                                       type->second.as_string() == "strain_path");
+      spec->stage_psi_epsilon.push_back(
+          strain_path && psi != table.end() &&
+                  (psi->second.is_floating() || psi->second.is_integer())
+              ? (psi->second.is_floating() ? psi->second.as_floating()
+                                           : static_cast<double>(psi->second.as_integer()))
+              : std::numeric_limits<double>::quiet_NaN());
       stage_tables.push_back(expanded);
     }
   }
@@ -667,6 +688,18 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
     Fail(origin, "study.ncl",
          "= '" + programme.ncl_case + "' names no case of the programme at scale " +
              ToString(scale));
+  }
+  if (const CaseSpec* ncl =
+          programme.ncl_case.empty() ? nullptr : programme.Find(programme.ncl_case)) {
+    const bool isotropic = std::any_of(ncl->stage_psi_epsilon.begin(), ncl->stage_psi_epsilon.end(),
+                                       [](double psi) { return std::abs(psi) < 1e-9; });
+    if (!isotropic) {
+      Fail(origin, "study.ncl",
+           "= '" + programme.ncl_case +
+               "' has no isotropic compression stage (a strain_path stage with "
+               "psi_epsilon_deg = 0): the NCL, against which OCR and p_e* are measured, comes "
+               "from such stages");
+    }
   }
   return programme;
 }

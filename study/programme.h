@@ -102,6 +102,7 @@ struct CaseSpec {
   std::string parent_stage;  // a stage of the parent; empty: its final state
   std::string scene_body;    // the scene's TOML without its [sample] table
   std::vector<std::string> stage_names;
+  std::vector<double> stage_psi_epsilon;         // a strain-path stage's ψ_ε (°), else NaN
   std::string run;                               // the name template of the [[run]] it came from
   FigureSet figures;                             // what it serves (checked: study/case_record.h)
   std::map<std::string, std::string> variables;  // `vary` values, as text

@@ -248,9 +248,29 @@ int MergeStudies(const std::vector<std::string>& inputs, const std::string& outp
     const std::string text = ReadTextFile(input + "/study.toml");
     if (record.empty()) record = text;
     if (text != record) {
-      throw InputError(input + "/study.toml differs from " + inputs.front() +
-                       "/study.toml: only shards of one study (programme, scale, threads, "
-                       "version) can be merged");
+      // Name the first key that differs, with both values.
+      std::string what = "the files differ";
+      const ConfigTable first = ConfigTable::ParseString(record, inputs.front() + "/study.toml");
+      const ConfigTable other = ConfigTable::ParseString(text, input + "/study.toml");
+      auto value = [](const ConfigTable& table, const std::string& key) -> std::string {
+        if (!table.Has(key)) return "";
+        if (key == "threads" || key == "replicates" || key == "count") {
+          return std::to_string(table.GetInt(key, 0, Range::Any()));
+        }
+        return table.GetString(key, "");
+      };
+      for (const char* key : {"programme", "programme_file", "scale", "threads", "replicates",
+                              "count", "ncl", "program_version"}) {
+        const std::string a = value(first, key), b = value(other, key);
+        if (a != b) {
+          what = fmt::format("{} is '{}' there and '{}' here", key, a, b);
+          break;
+        }
+      }
+      throw InputError(input + "/study.toml differs from " + inputs.front() + "/study.toml (" +
+                       what +
+                       "): only shards of one study (programme, scale, threads, version) can be "
+                       "merged");
     }
   }
   const bool in_place = inputs.size() == 1 && fs::exists(output) &&

@@ -104,6 +104,16 @@ TEST(Programme, BadInputNamesTheKey) {
   EXPECT_NE(message(Replace(kProgramme, "from = \"ncl@p{p}\"", "from = \"nope@p{p}\""))
                 .find("names no earlier case"),
             std::string::npos);
+  // "RUN@" with no stage would fork from the final state silently.
+  EXPECT_NE(message(Replace(kProgramme, "from = \"ncl@p{p}\"", "from = \"ncl@\""))
+                .find("names no stage after '@'"),
+            std::string::npos);
+  // The study's NCL must have an isotropic compression stage.
+  EXPECT_NE(message(Replace(kProgramme, "ncl = \"ncl\"", "ncl = \"tx\"")).find("study.ncl"),
+            std::string::npos);
+  EXPECT_NE(message(Replace(kProgramme, "psi_epsilon_deg = 0.0", "psi_epsilon_deg = 10.0"))
+                .find("no isotropic compression stage"),
+            std::string::npos);
   EXPECT_NE(message(Replace(kProgramme, "from = \"ncl@p{p}\"", "from = \"ncl@q{p}\""))
                 .find("has no stage 'q10'"),
             std::string::npos);
