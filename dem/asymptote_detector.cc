@@ -102,15 +102,21 @@ std::string AsymptoteCriterion::Describe() const {
       return fmt::format(
           "compression: over the last {:g} of |delta ln p| (at most {:g} of accumulated "
           "strain){}: fitted change of psi_sigma < {:g} deg, and the slopes d ln(1+e)/d ln p of "
-          "the two half-windows differ by < {:g} of their mean",
-          window_lnp, window_strain, samples, psi_tolerance_deg, slope_tolerance);
+          "the two half-windows differ by < {:g} of their mean{}",
+          window_lnp, window_strain, samples, psi_tolerance_deg, slope_tolerance,
+          transient_strain > 0
+              ? fmt::format("; no window before {:g} of accumulated strain", transient_strain)
+              : "");
     case PathKind::kExtension:
       return fmt::format(
           "extension: over the last {:g} of |delta ln p| (at most {:g} of accumulated "
           "strain){}: fitted change of psi_sigma < {:g} deg, and the fitted rates of ln p of the "
           "two half-windows differ by < {:g} of ln p over half the window; windows with p >= {:g} "
-          "kPa only, the last that held is kept",
-          window_lnp, window_strain, samples, psi_tolerance_deg, lnp_tolerance, floor_kpa);
+          "kPa only, the last that held is kept{}",
+          window_lnp, window_strain, samples, psi_tolerance_deg, lnp_tolerance, floor_kpa,
+          transient_strain > 0
+              ? fmt::format("; no window before {:g} of accumulated strain", transient_strain)
+              : "");
     case PathKind::kStressControlled:
       return fmt::format(
           "stress_controlled: over the last {:g} of accumulated strain{}: psi_epsilon of the "
@@ -135,9 +141,13 @@ AsymptoteCriterion AsymptoteCriterion::Parse(const ConfigTable& a, PathKind kind
       c.window_lnp = a.GetDouble("window_lnp", c.window_lnp, {0.0, 20.0, false, true});
       c.slope_tolerance =
           a.GetDouble("slope_tolerance", c.slope_tolerance, {0.0, 10.0, false, true});
+      c.transient_strain =
+          a.GetDouble("transient_strain", c.transient_strain, {0.0, 100.0, true, true});
       break;
     case PathKind::kExtension:
       c.window_lnp = a.GetDouble("window_lnp", c.window_lnp, {0.0, 20.0, false, true});
+      c.transient_strain =
+          a.GetDouble("transient_strain", c.transient_strain, {0.0, 100.0, true, true});
       c.lnp_tolerance = a.GetDouble("lnp_tolerance", c.lnp_tolerance, {0.0, 10.0, false, true});
       c.floor_kpa = a.GetDouble("floor_kpa", c.floor_kpa, {0.0, 1e6, false, true});
       break;
@@ -167,11 +177,13 @@ void AsymptoteCriterion::Canonical(CanonicalText& text, const std::string& prefi
     case PathKind::kCompression:
       text.Add(prefix + "window_lnp", window_lnp);
       text.Add(prefix + "slope_tolerance", slope_tolerance);
+      if (transient_strain > 0) text.Add(prefix + "transient_strain", transient_strain);
       break;
     case PathKind::kExtension:
       text.Add(prefix + "window_lnp", window_lnp);
       text.Add(prefix + "lnp_tolerance", lnp_tolerance);
       text.Add(prefix + "floor_kpa", floor_kpa);
+      if (transient_strain > 0) text.Add(prefix + "transient_strain", transient_strain);
       break;
     case PathKind::kStressControlled:
       text.Add(prefix + "psi_epsilon_tolerance_deg", psi_epsilon_tolerance_deg);
@@ -209,6 +221,7 @@ size_t AsymptoteDetector::WindowBegin() const {
     const bool full_lnp =
         by_lnp && std::abs(last.log_p - samples_[k].log_p) >= criterion_.window_lnp;
     if (full_strain || full_lnp) {
+      if (samples_[k].strain < criterion_.transient_strain) return none;
       return samples_.size() - k >= kMinSamples ? k : none;
     }
   }

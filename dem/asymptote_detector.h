@@ -108,6 +108,14 @@ struct AsymptoteCriterion {
   // Extension: the floor of the valid range (kPa); windows reaching below it
   // are not evaluated (SPEC §8.3, the paper's 0.5 kPa).
   double floor_kpa = 0.5;
+  // Compression and extension: no window that starts before this much
+  // accumulated strain of the stage counts (0: any). From a stiff start (a
+  // quasi-static NC state) a proportional strain path first unloads or
+  // loads elastically, where the stress path is proportional too: ψ_σ
+  // stays while ln p falls by the whole window in ln p within 0.02 of strain,
+  // long before the plastic asymptote. Recorded in a scene's canonical text
+  // only when set.
+  double transient_strain = 0.0;
 
   // The defaults of a kind.
   static AsymptoteCriterion For(PathKind kind);

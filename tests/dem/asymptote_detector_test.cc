@@ -330,6 +330,24 @@ TEST(ExtensionDetector, FallingMeanStressParallelToALineIsDetected) {
   EXPECT_NEAR(result.psi_epsilon / kDegree, 120.0, 1e-9);
 }
 
+// An elastic start: a proportional stress path (ψ_σ steady) whose ln p falls
+// by the whole window within 0.05 of strain is detected at once, unless the
+// criterion's transient_strain keeps windows out until the path has strained.
+TEST(ExtensionDetector, NoWindowCountsWithinTheTransientStrain) {
+  AsymptoteCriterion c = Criterion(PathKind::kExtension);
+  AsymptoteDetector plain(c);
+  Feed(plain, ParallelToALine(-20.0, 0.04, 120.0), 0, 100, c.sample_strain);
+  EXPECT_TRUE(plain.Evaluate().detected());
+  c.transient_strain = 0.1;
+  AsymptoteDetector late(c);
+  Feed(late, ParallelToALine(-20.0, 0.04, 120.0), 0, 100, c.sample_strain);  // up to 0.05
+  EXPECT_FALSE(late.ready());
+  EXPECT_FALSE(late.Evaluate().detected());
+  Feed(late, ParallelToALine(-20.0, 0.04, 120.0), 101, 320, c.sample_strain);  // up to 0.16
+  EXPECT_TRUE(late.Evaluate().detected());
+  EXPECT_NE(c.Describe().find("no window before 0.1 of accumulated strain"), std::string::npos);
+}
+
 // A proportional path towards the origin (SPEC §8.4): from p0 = 50 kPa, ln p
 // falls by `rate` per unit strain and ln(1+e) rises along a line of slope
 // −0.05 in ln(1+e)–ln p, while ψ_σ stays at 40° with Gaussian noise of
