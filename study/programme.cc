@@ -238,6 +238,23 @@ std::vector<Variables> Combinations(const std::string& origin, const std::string
                                     const Value* vary, const ScaleExpansion& expansion) {
   std::vector<Variables> combinations{Variables{}};
   if (!vary) return combinations;
+  // The product of the lists' lengths, refused above kMaxCases before any
+  // combination is made (a 10^6-case `vary` would otherwise be expanded,
+  // planned and scheduled for minutes).
+  double product = 1;
+  std::string factors;
+  for (const auto& [name, list] : TableAt(origin, key, *vary)) {
+    if (!list.is_array()) continue;
+    const size_t kept = expansion.Restrict(name, list.as_array()).size();
+    product *= static_cast<double>(kept);
+    factors += (factors.empty() ? "" : " × ") + name + " (" + std::to_string(kept) + ")";
+  }
+  if (product > static_cast<double>(Programme::kMaxCases)) {
+    Fail(origin, key,
+         fmt::format("gives {:.0f} combinations ({}): a programme may have at most {} cases; "
+                     "split it or shorten the lists",
+                     product, factors, Programme::kMaxCases));
+  }
   for (const auto& [name, list] : TableAt(origin, key, *vary)) {
     if (!list.is_array() || list.as_array().empty()) {
       Fail(origin, key + "." + name, "must be a non-empty array of values");
@@ -572,6 +589,11 @@ void ExpandRun(const std::string& origin, const std::string& where, const Table&
                "', which is not a valid case name (letters, digits, '_', '-', '.'; not "
                "'sample')");
     }
+    if (spec.name.size() > Programme::kMaxNameLength) {
+      Fail(origin, where + ".name",
+           fmt::format("gives '{}…' of {} characters: a case name (a folder name) has at most {}",
+                       spec.name.substr(0, 40), spec.name.size(), Programme::kMaxNameLength));
+    }
     if (!names->insert(spec.name).second) {
       Fail(origin, where + ".name", "gives '" + spec.name + "' twice: case names are unique");
     }
@@ -680,6 +702,15 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
   ParseSample(origin, top, base_directory, &programme.sample);
   ExpandRuns(origin, top, expansion, &programme);
   ExpandModelRuns(origin, top, expansion, &programme);
+  const double total = static_cast<double>(programme.cases.size()) *
+                       static_cast<double>(programme.Current().replicates);
+  if (total > static_cast<double>(Programme::kMaxCases)) {
+    Fail(origin, "run",
+         fmt::format("gives {} cases × {} replicates = {:.0f} at scale {}: a programme may have "
+                     "at most {} cases; split it or shorten the lists",
+                     programme.cases.size(), programme.Current().replicates, total, ToString(scale),
+                     Programme::kMaxCases));
+  }
   if (programme.cases.empty()) {
     Fail(origin, "scale." + std::string(ToString(scale)) + ".only",
          "leaves the programme no case at this scale");

@@ -118,6 +118,12 @@ struct ModelCaseSpec {
 };
 
 struct Programme {
+  // A programme's cases are refused above this many (of one `vary`, or in
+  // all, at its scale and with its replicates), before anything is planned.
+  static constexpr size_t kMaxCases = 100000;
+  // A case name is a folder name (with the study folder's path and the
+  // replicate's, it must stay within the file system's limits).
+  static constexpr size_t kMaxNameLength = 120;
   std::string origin;  // the file
   std::string name, description;
   std::string ncl_case;  // may be empty

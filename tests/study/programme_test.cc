@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <map>
 #include <set>
 #include <string>
@@ -277,6 +278,35 @@ TEST(Plan, KeysDependOnTheResultsKeyNotOnTheProgramVersion) {
             std::string::npos);
   EXPECT_EQ(a.cases[1].inputs.Difference(same.cases[1].inputs), "");
   EXPECT_NE(KeyInputs{}.Difference(a.cases[1].inputs).find("older version"), std::string::npos);
+}
+
+// A vary of 10^6 combinations is refused before any is made, naming the
+// count and the lists; so is a case name that cannot be a folder name.
+TEST(Programme, AHugeVaryIsRefusedAtOnceWithItsCount) {
+  std::string list;
+  for (int k = 0; k < 1000; ++k) list += (k ? ", " : "") + std::to_string(k);
+  const std::string huge =
+      Replace(kProgramme, "vary = { p = [10, 50.5], psi = [45, 90] }",
+              "vary = { p = [10, 50.5], psi = [45, 90], a = [" + list + "], b = [" + list + "] }");
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    Parse(huge);
+    ADD_FAILURE() << "a 4e6-case programme was accepted";
+  } catch (const InputError& error) {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("4000000 combinations"), std::string::npos) << what;
+    EXPECT_NE(what.find("a (1000) × b (1000)"), std::string::npos) << what;
+    EXPECT_NE(what.find("at most 100000"), std::string::npos) << what;
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  const std::string long_name =
+      Replace(kProgramme, "name = \"tx\"", "name = \"" + std::string(300, 'x') + "\"");
+  try {
+    Parse(long_name);
+    ADD_FAILURE() << "a 300-character case name was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("300 characters"), std::string::npos) << error.what();
+  }
 }
 
 TEST(Plan, KeysChainThroughParentsAndThreads) {
