@@ -221,7 +221,9 @@ size_t AsymptoteDetector::WindowBegin() const {
     const bool full_lnp =
         by_lnp && std::abs(last.log_p - samples_[k].log_p) >= criterion_.window_lnp;
     if (full_strain || full_lnp) {
-      if (samples_[k].strain < criterion_.transient_strain) return none;
+      if (criterion_.transient_strain > 0 && samples_[k].strain < criterion_.transient_strain) {
+        return none;  // a window of a continued path starts at a negative strain
+      }
       return samples_.size() - k >= kMinSamples ? k : none;
     }
   }

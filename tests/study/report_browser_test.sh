@@ -256,7 +256,7 @@ echo "page height at 1280 px: $height px ($figures figures; bound $base_px + $fi
 k=0 hovered=0
 while IFS=$'\t' read -r stem _; do
   [ -f "$dir/figures/$stem.svg" ] || continue
-  labels=$(grep -o 'gnuplot_svg.showHypertext(evt' "$dir/figures/$stem.svg" | wc -l)
+  labels=$({ grep -o 'gnuplot_svg.showHypertext(evt' "$dir/figures/$stem.svg" || true; } | wc -l)
   groups="" titled=""
   read -r groups titled < <(sed -n "s/^check: tooltips $k //p" "$dir/index.html.1280.txt") || true
   [ "${groups:-x}" = "$labels" ] && [ "${titled:-x}" = "$labels" ] ||
