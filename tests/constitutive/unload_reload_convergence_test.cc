@@ -56,8 +56,8 @@ double PathError(const ElementTestResult& run, const ElementTestResult& referenc
   for (size_t k = 0; k < run.history.size(); ++k) {
     const ElementTestRecord& a = run.history[k];
     const ElementTestRecord& b = reference.history[k];
-    error = std::max(error, (ToVector(a.stress) - ToVector(b.stress)).norm() /
-                                ToVector(b.stress).norm());
+    error = std::max(error,
+                     (ToVector(a.stress) - ToVector(b.stress)).norm() / ToVector(b.stress).norm());
     error = std::max(error, std::abs(a.void_ratio - b.void_ratio) / (1.0 + b.void_ratio));
     for (size_t i = 0; i < b.internal.size() && i < a.internal.size(); ++i) {
       error = std::max(error, std::abs(a.internal[i] - b.internal[i]) / std::abs(b.internal[i]));
