@@ -99,9 +99,9 @@ StateDataset CamClayStates() {
 // lower bound.
 StateDataset CslFarFromTheNcl() {
   const std::vector<double> truth = testing::CamClayTruth();
-  const double psi_c = std::atan(std::sqrt(2.0) / 3.0 * 6 * std::sin(28 * kDegree) /
-                                 (3 - std::sin(28 * kDegree))) /
-                       kDegree;
+  const double psi_c =
+      std::atan(std::sqrt(2.0) / 3.0 * 6 * std::sin(28 * kDegree) / (3 - std::sin(28 * kDegree))) /
+      kDegree;
   StateDataset d;
   d.name = "ncl_csl";
   d.origin = "made";
@@ -176,9 +176,9 @@ CalibrationRun ExpectStatus(const Scenario& s, FitStatus status, const std::stri
 }
 
 TEST(FitStatus, TheModelsOwnStatesConverge) {
-  const CalibrationRun run = ExpectStatus(
-      {"converged", ModelKind::kModifiedCamClay, {CamClayStates()}, ""}, FitStatus::kConverged,
-      "converged after");
+  const CalibrationRun run =
+      ExpectStatus({"converged", ModelKind::kModifiedCamClay, {CamClayStates()}, ""},
+                   FitStatus::kConverged, "converged after");
   // Every fitted parameter with a standard error and an interval (ν, which
   // states in two directions off the axes hardly determine, is fixed).
   std::istringstream csv(ParametersCsv(run, *run.kept_fit()));
@@ -223,13 +223,16 @@ TEST(FitStatus, AnInadmissibleModelsOwnStatesConvergeInadmissible) {
       ExpectStatus({"inadmissible", ModelKind::kHypoplasticClay, {data}, ""},
                    FitStatus::kConvergedInadmissible, "the fitted model is inadmissible: ");
   bool flagged = false;
-  for (const Finding& f : run.findings) flagged = flagged || (f.inadmissible && f.code == "asbs_outside");
+  for (const Finding& f : run.findings)
+    flagged = flagged || (f.inadmissible && f.code == "asbs_outside");
   EXPECT_TRUE(flagged);
   EXPECT_NE(SummaryText(run).find("INADMISSIBLE asbs_outside"), std::string::npos);
 }
 
 TEST(FitStatus, AFitStoppedAfterOneIterationHasNotConverged) {
-  ExpectStatus({"no_convergence", ModelKind::kModifiedCamClay, {CamClayStates()},
+  ExpectStatus({"no_convergence",
+                ModelKind::kModifiedCamClay,
+                {CamClayStates()},
                 "[parameters.phi_c_deg]\nvalue = 45.0\n[fitter]\nmax_iterations = 1\n"
                 "fix_undetermined = false\n"},
                FitStatus::kNoConvergence, "before a convergence criterion was met");
