@@ -20,8 +20,10 @@ if grep -q '^\[study\]' "$input"; then
   scale="${2:-small}"
   out="$root/out/$name-$scale"
   "$granasym" study run "$input" --scale "$scale" --out "$out"
-  # A model that cannot be fitted is reported (the report says what is absent).
-  "$granasym" study calibrate "$out" || echo "run.sh: some models were not calibrated (see above)"
+  # A model whose fit did not converge cleanly exits non-zero (README, "Exit
+  # statuses"); its status is in the report, and the figures and report follow.
+  "$granasym" study calibrate "$out" ||
+    echo "run.sh: not every model converged (see above and $out/calibration/*/fit_status.toml)"
   "$granasym" study figures "$out"
   "$granasym" study report "$out"
 else

@@ -21,6 +21,13 @@ namespace granasym::analysis {
 // slowest axial rate of each σ_r that has usable states: the critical state
 // under stress control, which the isochoric paths from loose NC states do
 // not reach as I* → 0 (they liquefy).
+// The other quasi-static selection (issue 36 §2), for a study without a rate
+// study: the states whose I(d_max) lies below this bound, the upper end of
+// the quasi-static regime of dense granular flows (I < 1e-3: GDR MiDi 2004,
+// da Cruz et al. 2005), a decade below the DEM's rate_affected flag (1e-2,
+// SPEC §8.3). `study calibrate --max-inertial-number` changes it.
+inline constexpr double kQuasiStaticInertialNumber = 1e-3;
+
 struct QuasiStaticSelection {
   double inertial_number = std::numeric_limits<double>::quiet_NaN();
   double youngs_modulus_mpa = std::numeric_limits<double>::quiet_NaN();

@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "calibration/calibration_report.h"
+#include "calibration/fit_status.h"
 #include "calibration/model_parameters.h"
 #include "common/config.h"
 #include "common/error.h"
@@ -20,7 +22,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // What the file says of its data, above the keys.
-std::string Header(const QuasiStaticSelection* quasi_static) {
+std::string Header(const QuasiStaticSelection* quasi_static, double max_inertial_number) {
   std::string text =
       "# Written by `granasym study calibrate`; edit and rerun with\n"
       "#   granasym calibrate calibration.toml\n"
@@ -36,6 +38,13 @@ std::string Header(const QuasiStaticSelection* quasi_static) {
     text +=
         "# The study's detected states whose OCR refers to the study's NCL (other samples, "
         "e.g. phi = 0, stay out).\n";
+    if (std::isfinite(max_inertial_number)) {
+      text += fmt::format(
+          "# A quasi-static selection (`study calibrate --select quasi_static`): only the "
+          "states with I(d_max) below {:g} (max_inertial_number; rows without an inertial "
+          "number are left out).\n",
+          max_inertial_number);
+    }
   }
   return text + "\n";
 }
@@ -43,7 +52,8 @@ std::string Header(const QuasiStaticSelection* quasi_static) {
 }  // namespace
 
 calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directory, ModelKind model,
-                                                      const QuasiStaticSelection* quasi_static) {
+                                                      const QuasiStaticSelection* quasi_static,
+                                                      double max_inertial_number) {
   calibration::CalibrationConfig config;
   const std::string folder =
       (fs::path(directory) / "calibration" / calibration::ToString(model)).string();
@@ -85,6 +95,7 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
     calibration::DatasetConfig d = study_dataset("study");
     const std::string ncl = study::StudyNclCase(directory).value_or("");
     if (!ncl.empty()) d.study.ncl_references = {ncl};
+    d.study.max_inertial_number = max_inertial_number;
     config.datasets = {d};
   }
   // A rate study's quasi-static states lie on nearly flat lines (frictional
@@ -97,6 +108,7 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
   config.hdf5_path = resolve("calibration.h5");
   config.summary_path = resolve("summary.txt");
   config.plot_data_dir = resolve("plot_data");
+  config.status_path = resolve(calibration::kFitStatusFile);
   return config;
 }
 
@@ -149,32 +161,42 @@ int WriteModelPaths(const std::string& folder, const std::string& model_block) {
   return finished;
 }
 
-std::string CalibrateStudyModel(const std::string& directory, ModelKind model,
-                                const QuasiStaticSelection* quasi_static) {
+StudyModelCalibration CalibrateStudyModel(const std::string& directory, ModelKind model,
+                                          const QuasiStaticSelection* quasi_static,
+                                          double max_inertial_number) {
   const calibration::CalibrationConfig config =
-      StudyCalibrationConfig(directory, model, quasi_static);
+      StudyCalibrationConfig(directory, model, quasi_static, max_inertial_number);
   const std::string name = calibration::ToString(model);
   const std::string folder = fs::path(config.origin).parent_path().string();
   fs::create_directories(folder);
-  WriteTextFileAtomically(config.origin,
-                          calibration::CalibrationConfigText(config, Header(quasi_static)));
-  const calibration::CalibrationRun run = calibration::RunCalibration(config);
+  WriteTextFileAtomically(config.origin, calibration::CalibrationConfigText(
+                                             config, Header(quasi_static, max_inertial_number)));
+  // A failed calibration leaves no parameters of an earlier one behind.
+  const auto failed = [&](const std::string& reason) {
+    for (const char* stale : {"parameters.csv", "model.toml"}) fs::remove(folder + "/" + stale);
+    fs::remove_all(config.plot_data_dir);
+    WriteTextFileAtomically(config.status_path,
+                            calibration::FitStatusToml({calibration::FitStatus::kFailed, reason}));
+  };
+  calibration::CalibrationRun run;
+  try {
+    run = calibration::RunCalibration(config);
+  } catch (const std::exception& error) {
+    failed(std::string("the calibration could not be run: ") + error.what());
+    throw;
+  }
   calibration::WriteCalibrationHdf5(run, config.hdf5_path);
   WriteTextFileAtomically(config.summary_path, calibration::SummaryText(run));
   const std::string warnings = calibration::WarningsText(run);
   WriteTextFileAtomically(folder + "/warnings.txt", warnings);
-  // The successful fit of lowest cost (a rate study runs Ceres and NLopt).
-  const calibration::FitResult* best = nullptr;
-  for (const calibration::FitResult& f : run.fits) {
-    if (f.summary.success() && (!best || f.summary.final_cost < best->summary.final_cost))
-      best = &f;
-  }
-  if (!best) {
+  const calibration::FitResult* kept = run.kept_fit();
+  if (!kept || !kept->summary.success()) {
+    failed(run.outcome.reason);
     throw RuntimeError(fmt::format("{}: the fit failed: {} (see {})", name,
-                                   run.fits.empty() ? "no fit" : run.fits.front().summary.Report(),
-                                   config.summary_path));
+                                   kept ? kept->summary.Report() : "no fit", config.summary_path));
   }
-  const calibration::FitResult& fit = *best;
+  WriteTextFileAtomically(config.status_path, calibration::FitStatusToml(run.outcome));
+  const calibration::FitResult& fit = *kept;
   WriteTextFileAtomically(folder + "/parameters.csv", calibration::ParametersCsv(run, fit));
   WriteTextFileAtomically(folder + "/model.toml", calibration::ModelToml(run, fit));
   calibration::WritePlotData(run, fit, config.plot_data_dir);
@@ -192,7 +214,9 @@ std::string CalibrateStudyModel(const std::string& directory, ModelKind model,
   }
   line += fmt::format("; {} warnings; fit {:.2f} s; {} of 6 Fig. 5 paths; {}", count,
                       fit.summary.wall_seconds, paths, folder);
-  return line;
+  line += fmt::format("\n  status: {}: {}", calibration::ToString(run.outcome.status),
+                      run.outcome.reason);
+  return {line, run.outcome};
 }
 
 }  // namespace granasym::analysis

@@ -6,26 +6,36 @@
 //                     to edit and rerun with `granasym calibrate`
 //   calibration.h5, summary.txt, warnings.txt, parameters.csv, model.toml,
 //   plot_data/        the calibration library's outputs (calibration_report.h)
+//   fit_status.toml   the fit's status and its reason (calibration/fit_status.h:
+//                     `status` and `reason`), also when the fit failed (then
+//                     without parameters.csv, model.toml and plot_data/)
 //   paths/psi<ψ>_ocr<k>/  Fig. 5 for the fitted model (WriteModelPaths)
 //
 // The data: a study's detected states whose OCR refers to the study's NCL
-// (other samples, e.g. φ = 0, stay out), or a rate study's quasi-static set
-// (analysis/quasi_static_selection.h): its ψ_ε = 0° states also
-// when drifting, its other states with the drained cases when detected.
+// (other samples, e.g. φ = 0, stay out), or a quasi-static selection (issue 36
+// §2, `study calibrate --select quasi_static`): for a rate study its
+// quasi-static set (analysis/quasi_static_selection.h: its ψ_ε = 0° states also
+// when drifting, its other states with the drained cases when detected), for
+// another study those of its states with I(d_max) below a bound
+// (kQuasiStaticInertialNumber by default).
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include "analysis/quasi_static_selection.h"
 #include "calibration/calibration_config.h"
+#include "calibration/fit_status.h"
 
 namespace granasym::analysis {
 
 // The calibration of `model` to the study in `directory`, as the file
 // DIR/calibration/<model>/calibration.toml would give it; `quasi_static`
-// (null for other studies) selects a rate study's quasi-static cases.
-calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directory, ModelKind model,
-                                                      const QuasiStaticSelection* quasi_static);
+// (null for other studies) selects a rate study's quasi-static cases, and a
+// finite `max_inertial_number` only the states with I(d_max) below it.
+calibration::CalibrationConfig StudyCalibrationConfig(
+    const std::string& directory, ModelKind model, const QuasiStaticSelection* quasi_static,
+    double max_inertial_number = std::numeric_limits<double>::infinity());
 
 // Fig. 5 for a fitted model (its [model] block, calibration::ModelTomlBlock):
 // element tests along the paths A (ψ_ε = 45°), B (90°) and C (120°) from a
@@ -36,10 +46,19 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
 // done.toml and said on standard error; returns the number of finished paths.
 int WriteModelPaths(const std::string& folder, const std::string& model_block);
 
-// Calibrates one model and writes its folder; returns the line to print
-// (the parameters, the number of warnings, the fit's time, the Fig. 5
-// paths). Throws RuntimeError when no fit succeeded.
-std::string CalibrateStudyModel(const std::string& directory, ModelKind model,
-                                const QuasiStaticSelection* quasi_static);
+// What `study calibrate` prints of one model and its status.
+struct StudyModelCalibration {
+  std::string text;  // the parameters, the number of warnings, the fit's time,
+                     // the Fig. 5 paths; then a line with the status and reason
+  calibration::FitOutcome outcome;
+};
+
+// Calibrates one model and writes its folder. Throws RuntimeError when no
+// fit succeeded, and rethrows what stopped the calibration (an InputError
+// for data no state of which passes the selections), in both cases after
+// writing fit_status.toml as failed with the reason.
+StudyModelCalibration CalibrateStudyModel(
+    const std::string& directory, ModelKind model, const QuasiStaticSelection* quasi_static,
+    double max_inertial_number = std::numeric_limits<double>::infinity());
 
 }  // namespace granasym::analysis

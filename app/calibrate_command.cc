@@ -1,6 +1,8 @@
 // `granasym calibrate CONFIG.toml [--out FILE.h5] [--summary FILE.txt]
-// [--plot-data DIR] [--quiet]`: parse, validate, call the calibration library,
-// write the HDF5 record atomically, the readable summary and the plot data.
+// [--plot-data DIR] [--status FILE.toml] [--quiet]`: parse, validate, call
+// the calibration library, write the HDF5 record atomically, the readable
+// summary, the status file and the plot data; exit with the fit's status
+// (calibration/fit_status.h: 0 only when it converged).
 #include "app/calibrate_command.h"
 
 #include <cstdio>
@@ -17,7 +19,7 @@ namespace granasym {
 namespace {
 
 struct CalibrateFlags {
-  std::string config, out, summary, plot_data;
+  std::string config, out, summary, plot_data, status;
   bool quiet = false;
 };
 
@@ -26,6 +28,7 @@ void RunCalibrate(const CalibrateFlags& flags) {
   if (!flags.out.empty()) config.hdf5_path = flags.out;
   if (!flags.summary.empty()) config.summary_path = flags.summary;
   if (!flags.plot_data.empty()) config.plot_data_dir = flags.plot_data;
+  if (!flags.status.empty()) config.status_path = flags.status;
   std::vector<NamedPath> inputs = {{"the calibration file", flags.config}};
   for (const calibration::DatasetConfig& dataset : config.datasets) {
     for (const std::string& path : dataset.paths) {
@@ -33,7 +36,8 @@ void RunCalibrate(const CalibrateFlags& flags) {
     }
   }
   CheckOutputs({{"the HDF5 record (--out / [output] hdf5)", config.hdf5_path},
-                {"the summary (--summary / [output] summary)", config.summary_path}},
+                {"the summary (--summary / [output] summary)", config.summary_path},
+                {"the status file (--status / [output] status)", config.status_path}},
                inputs);
   CheckOutputFolder(
       {"the plot data folder (--plot-data / [output] plot_data)", config.plot_data_dir}, inputs);
@@ -41,14 +45,18 @@ void RunCalibrate(const CalibrateFlags& flags) {
   const std::string summary = calibration::SummaryText(run);
   calibration::WriteCalibrationHdf5(run, config.hdf5_path);
   WriteTextFileAtomically(config.summary_path, summary);
-  bool success = !run.fits.empty();
-  for (const calibration::FitResult& fit : run.fits) success = success && fit.summary.success();
-  if (success) calibration::WritePlotData(run, run.fits.front(), config.plot_data_dir);
+  WriteTextFileAtomically(config.status_path, calibration::FitStatusToml(run.outcome));
+  const calibration::FitResult* kept = run.kept_fit();
+  const bool plotted = kept && kept->summary.success();
+  if (plotted) calibration::WritePlotData(run, *kept, config.plot_data_dir);
   if (!flags.quiet) std::printf("%s\n", summary.c_str());
-  std::printf("record: %s\nsummary: %s\n", config.hdf5_path.c_str(), config.summary_path.c_str());
-  if (success)
+  std::printf("status: %s: %s\nrecord: %s\nsummary: %s\nstatus file: %s\n",
+              calibration::ToString(run.outcome.status), run.outcome.reason.c_str(),
+              config.hdf5_path.c_str(), config.summary_path.c_str(), config.status_path.c_str());
+  if (plotted)
     std::printf("plot data: %s (see plots/calibration_*.gp)\n", config.plot_data_dir.c_str());
-  if (!success) throw CLI::RuntimeError(3);
+  const int exit_status = calibration::ExitStatus(run.outcome.status);
+  if (exit_status != 0) throw CLI::RuntimeError(exit_status);
 }
 
 }  // namespace
@@ -58,7 +66,8 @@ void RegisterCalibrateCommand(CLI::App& app) {
   CLI::App* calibrate = app.add_subcommand(
       "calibrate",
       "fit a constitutive model to asymptotic states (TOML: [model], [parameters.*], "
-      "[[dataset]], [fitter], [output])");
+      "[[dataset]], [fitter], [output]); exits 0 when the fit converged, else with its status "
+      "(3 failed, 5 at_bound, 6 converged_inadmissible, 7 no_convergence)");
   calibrate->add_option("config", flags.config, "calibration file (TOML)")
       ->required()
       ->check(CLI::ExistingFile);
@@ -66,6 +75,8 @@ void RegisterCalibrateCommand(CLI::App& app) {
   calibrate->add_option("--summary", flags.summary, "readable summary (default: CONFIG.txt)");
   calibrate->add_option("--plot-data", flags.plot_data,
                         "folder for the figure data (default: CONFIG_plots)");
+  calibrate->add_option("--status", flags.status,
+                        "the fit's status and reason, TOML (default: CONFIG_status.toml)");
   calibrate->add_flag("--quiet", flags.quiet, "print only the output paths");
   calibrate->callback([] { RunCalibrate(flags); });
 }

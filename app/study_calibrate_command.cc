@@ -1,12 +1,15 @@
-// `granasym study calibrate DIR [--models hypoplastic_clay,modified_cam_clay,hypoplastic_sand]`:
+// `granasym study calibrate DIR [--models hypoplastic_clay,modified_cam_clay,hypoplastic_sand]
+// [--select all|quasi_static] [--inertial-number I*] [--max-inertial-number I]`:
 // calibrates each model to the study's asymptotic states
-// (analysis/study_calibration.h) and prints a line per model.
+// (analysis/study_calibration.h), prints a line per model with its status
+// and exits with the worst status (calibration/fit_status.h).
 #include "app/study_calibrate_command.h"
 
 #include <fmt/format.h>
 
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +17,7 @@
 #include "analysis/quasi_static_selection.h"
 #include "analysis/rate_files.h"
 #include "analysis/study_calibration.h"
+#include "calibration/fit_status.h"
 #include "calibration/model_parameters.h"
 #include "common/error.h"
 
@@ -24,12 +28,16 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
   static std::string directory;
   static std::vector<std::string> models = {"hypoplastic_clay", "modified_cam_clay",
                                             "hypoplastic_sand"};
+  static std::string select;
   static double inertial_number = 0;
+  static double max_inertial_number = 0;
   CLI::App* calibrate = study->add_subcommand(
       "calibrate",
       "fit the constitutive models to the study's asymptotic states; writes "
       "DIR/calibration/<model>/ (calibration.toml, calibration.h5, summary.txt, parameters.csv, "
-      "warnings.txt, model.toml, plot_data/)");
+      "warnings.txt, model.toml, fit_status.toml, plot_data/); exits 0 when every model "
+      "converged, else with the worst model's status (3 failed, 5 at_bound, 6 "
+      "converged_inadmissible, 7 no_convergence)");
   calibrate->add_option("dir", directory, "study folder (with asymptotic_states.h5)")
       ->required()
       ->check(CLI::ExistingDirectory);
@@ -38,10 +46,21 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
                    "comma-separated: hypoplastic_clay, modified_cam_clay, hypoplastic_sand "
                    "(default all three)")
       ->delimiter(',');
+  calibrate
+      ->add_option("--select", select,
+                   "all: every detected state; quasi_static: a rate study's quasi-static set, "
+                   "else the states with I(d_max) below --max-inertial-number (default: "
+                   "quasi_static for a rate study, all otherwise)")
+      ->check(CLI::IsMember({"all", "quasi_static"}));
   calibrate->add_option(
       "--inertial-number", inertial_number,
-      "a rate study (with rate_states.csv): fit the rate cases at this I* only (default: the "
-      "smallest I* with usable psi_epsilon = 90 deg states from two starts)");
+      "a rate study (with rate_states.csv), --select quasi_static: fit the rate cases at this I* "
+      "only (default: the smallest I* with usable psi_epsilon = 90 deg states from two starts)");
+  calibrate->add_option(
+      "--max-inertial-number", max_inertial_number,
+      fmt::format("a study without rate cases, --select quasi_static: fit the states with "
+                  "I(d_max) below this (default {:g})",
+                  analysis::kQuasiStaticInertialNumber));
   calibrate->callback([] {
     std::vector<ModelKind> kinds;
     for (const std::string& m : models) {
@@ -57,9 +76,23 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
                        ": no asymptotic_states.h5 (run `granasym study run` or `granasym study "
                        "merge` first)");
     }
+    const std::optional<analysis::RateStudy> rate = analysis::ReadRateStudy(directory);
+    const bool quasi_static_set = select.empty() ? rate.has_value() : select == "quasi_static";
+    if (inertial_number > 0 && !(rate && quasi_static_set)) {
+      throw InputError("--inertial-number " + fmt::format("{:g}", inertial_number) + ": " +
+                       (rate ? "only with --select quasi_static"
+                             : directory + " is not a rate study (no rate_states.csv)"));
+    }
+    if (max_inertial_number > 0 && !(quasi_static_set && !rate)) {
+      throw InputError("--max-inertial-number " + fmt::format("{:g}", max_inertial_number) + ": " +
+                       (rate ? directory + " is a rate study: its quasi-static set is chosen by "
+                                           "--inertial-number"
+                             : std::string("only with --select quasi_static")));
+    }
     // A rate study: the models are fitted to its quasi-static states only.
     std::optional<analysis::QuasiStaticSelection> quasi_static;
-    if (const std::optional<analysis::RateStudy> rate = analysis::ReadRateStudy(directory)) {
+    double bound = std::numeric_limits<double>::infinity();
+    if (rate && quasi_static_set) {
       quasi_static = analysis::SelectQuasiStatic(
           *rate, inertial_number > 0 ? std::optional<double>(inertial_number) : std::nullopt);
       if (!quasi_static->valid()) {
@@ -72,22 +105,41 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
           "slowest axial rates, E = %g MPa\n",
           quasi_static->cases.size(), quasi_static->inertial_number,
           quasi_static->drained_cases.size(), quasi_static->youngs_modulus_mpa);
-    } else if (inertial_number > 0) {
-      throw InputError("--inertial-number " + fmt::format("{:g}", inertial_number) + ": " +
-                       directory + " is not a rate study (no rate_states.csv)");
+    } else {
+      // The calibrations are no longer those of a rate study's quasi-static set.
+      fs::remove(fs::path(directory) / analysis::kQuasiStaticSelectionFile);
+      if (quasi_static_set) {
+        bound =
+            max_inertial_number > 0 ? max_inertial_number : analysis::kQuasiStaticInertialNumber;
+        std::printf("quasi-static selection: fitting the states with I(d_max) below %g\n", bound);
+      }
     }
     const analysis::QuasiStaticSelection* selection = quasi_static ? &*quasi_static : nullptr;
-    bool failed = false;
+    // The worst status among the models decides the exit status.
+    calibration::FitStatus worst = calibration::FitStatus::kConverged;
+    std::string statuses;
     for (ModelKind kind : kinds) {
+      calibration::FitStatus status = calibration::FitStatus::kFailed;
       try {
-        std::printf("%s\n", analysis::CalibrateStudyModel(directory, kind, selection).c_str());
+        const analysis::StudyModelCalibration done =
+            analysis::CalibrateStudyModel(directory, kind, selection, bound);
+        std::printf("%s\n", done.text.c_str());
+        status = done.outcome.status;
       } catch (const std::exception& error) {
-        std::printf("%s: FAILED: %s\n", calibration::ToString(kind), error.what());
-        failed = true;
+        std::printf("%s: FAILED: %s\n  status: failed\n", calibration::ToString(kind),
+                    error.what());
       }
+      statuses += fmt::format("{}{} {}", statuses.empty() ? "" : ", ", calibration::ToString(kind),
+                              calibration::ToString(status));
+      worst = calibration::Worst(worst, status);
       std::fflush(stdout);
     }
-    if (failed) throw CLI::RuntimeError(3);
+    const int exit_status = calibration::ExitStatus(worst);
+    std::printf("study calibrate: %s; exit status %d (%s)\n", statuses.c_str(), exit_status,
+                worst == calibration::FitStatus::kConverged
+                    ? "every model converged"
+                    : fmt::format("the worst status, {}", calibration::ToString(worst)).c_str());
+    if (exit_status != 0) throw CLI::RuntimeError(exit_status);
   });
 }
 

@@ -5,6 +5,7 @@
 #include <fnmatch.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -138,6 +139,9 @@ void ReadStudySelections(const ConfigTable& t, StudyReadOptions* o) {
   }
   o->triaxial_kind_tolerance_deg = t.GetDouble(
       "triaxial_kind_tolerance_deg", o->triaxial_kind_tolerance_deg, Range::Closed(0, 44));
+  if (t.Has("max_inertial_number")) {
+    o->max_inertial_number = t.GetDouble("max_inertial_number", Range::Open(0, 10));
+  }
 }
 
 // The keys of a DEM dataset besides its files (dem_state_reader.h).
@@ -239,6 +243,7 @@ void ReadOutput(const ConfigTable& root, CalibrationConfig* config) {
   config->hdf5_path = stem.string() + ".h5";
   config->summary_path = stem.string() + ".txt";
   config->plot_data_dir = stem.string() + "_plots";
+  config->status_path = stem.string() + "_status.toml";
   if (root.Has("output")) {
     const ConfigTable o = root.GetTable("output");
     if (o.Has("hdf5")) config->hdf5_path = Resolve(config->origin, o.GetString("hdf5"));
@@ -246,6 +251,7 @@ void ReadOutput(const ConfigTable& root, CalibrationConfig* config) {
     if (o.Has("plot_data")) {
       config->plot_data_dir = Resolve(config->origin, o.GetString("plot_data"));
     }
+    if (o.Has("status")) config->status_path = Resolve(config->origin, o.GetString("status"));
   }
 }
 
@@ -352,6 +358,9 @@ std::string CalibrationConfigText(const CalibrationConfig& config, const std::st
       s += "psi_epsilon_range_deg = " + TomlFloats({o.psi_epsilon_min_deg, o.psi_epsilon_max_deg}) +
            "\n";
       s += "triaxial_kind_tolerance_deg = " + TomlFloat(o.triaxial_kind_tolerance_deg) + "\n";
+      if (std::isfinite(o.max_inertial_number)) {
+        s += "max_inertial_number = " + TomlFloat(o.max_inertial_number) + "\n";
+      }
     } else if (d.is_dem) {
       const DemReadOptions& o = d.dem;
       std::vector<std::string> files;
@@ -384,8 +393,9 @@ std::string CalibrationConfigText(const CalibrationConfig& config, const std::st
       "polish = {}\n",
       TomlQuoted(ToString(config.nlopt.algorithm)), config.nlopt.starts,
       config.nlopt.max_evaluations, config.nlopt.seed, TomlQuoted(ToString(config.nlopt.polish)));
-  s += fmt::format("\n[output]\nhdf5 = {}\nsummary = {}\nplot_data = {}\n", rel(config.hdf5_path),
-                   rel(config.summary_path), rel(config.plot_data_dir));
+  s += fmt::format("\n[output]\nhdf5 = {}\nsummary = {}\nplot_data = {}\nstatus = {}\n",
+                   rel(config.hdf5_path), rel(config.summary_path), rel(config.plot_data_dir),
+                   rel(config.status_path));
   return s;
 }
 

@@ -32,6 +32,8 @@
 //                                 #   cases (default all)
 //   cases = ["nc100_psi90_I0.001_E500"]  # only these case names (default all)
 //   triaxial_kind_tolerance_deg = 2.0  # triaxial states within this of 90 deg: CSL
+//   max_inertial_number = 1e-3    # only rows with I(d_max) below it (default:
+//                                 #   no bound; rows without I are then left out)
 //   # csv datasets:
 //   kind = "auto"                 # auto | ncl | csl | compression | extension | asbs |
 //                                 #   unloading
@@ -65,6 +67,9 @@
 //   hdf5 = "calibration.h5"       # default: the calibration file with .h5
 //   summary = "calibration.txt"   # default: the calibration file with .txt
 //   plot_data = "calibration_plots"  # folder of CSV/DAT files for plots/*.gp
+//   status = "calibration_status.toml"  # the fit's status and reason
+//                                 #   (fit_status.h); default: the calibration
+//                                 #   file with _status.toml
 #pragma once
 
 #include <string>
@@ -135,7 +140,7 @@ struct CalibrationConfig {
   bool fix_undetermined = true;
   CeresFitter::Options ceres;
   NloptFitter::Options nlopt;
-  std::string hdf5_path, summary_path, plot_data_dir;
+  std::string hdf5_path, summary_path, plot_data_dir, status_path;
 };
 
 // Reads and validates the whole file (unknown keys included).

@@ -185,6 +185,49 @@ std::pair<int, std::string> LeastDetermined(const CalibrationProblem& problem,
 
 }  // namespace
 
+RateOfData DescribeRate(const std::vector<StateDataset>& datasets) {
+  RateOfData rate;
+  const double inf = std::numeric_limits<double>::infinity();
+  rate.dmin_low = rate.dmax_low = inf;
+  rate.dmin_high = rate.dmax_high = -inf;
+  for (const StateDataset& d : datasets) {
+    for (const AsymptoticStatePoint& point : d.points) {
+      if (!point.IsFitted()) continue;
+      ++rate.states;
+      rate.rate_affected += point.HasFlag("rate_affected") ? 1 : 0;
+      if (!std::isfinite(point.inertial_number_dmax)) continue;
+      ++rate.with_rate;
+      rate.dmax_low = std::min(rate.dmax_low, point.inertial_number_dmax);
+      rate.dmax_high = std::max(rate.dmax_high, point.inertial_number_dmax);
+      if (std::isfinite(point.inertial_number_dmin)) {
+        rate.dmin_low = std::min(rate.dmin_low, point.inertial_number_dmin);
+        rate.dmin_high = std::max(rate.dmin_high, point.inertial_number_dmin);
+      }
+    }
+  }
+  return rate;
+}
+
+std::string RateOfData::Text() const {
+  std::string text = fmt::format("rate of the data: {} fitted states", states);
+  if (with_rate == 0) return text + ", none with an inertial number (not a DEM study table)";
+  text += fmt::format(", {} with an inertial number: I(d_max) {:.3g} to {:.3g}", with_rate,
+                      dmax_low, dmax_high);
+  if (dmin_low <= dmin_high)
+    text += fmt::format(", I(d_min) {:.3g} to {:.3g}", dmin_low, dmin_high);
+  return text + fmt::format("; {} of {} flagged rate_affected", rate_affected, states);
+}
+
+std::string RateOfData::Warning() const {
+  if (!MostlyRateAffected()) return "";
+  return fmt::format(
+      "{} of the {} fitted states are flagged rate_affected (I(d_max) above the DEM's "
+      "quasi-static limit; here I(d_max) {:.3g} to {:.3g}): the parameters describe the DEM at "
+      "its rate, not its quasi-static behaviour; fit a quasi-static selection (`granasym study "
+      "calibrate --select quasi_static`, README \"Calibration\")",
+      rate_affected, states, dmax_low, dmax_high);
+}
+
 // At most this many parameters are fixed as undetermined.
 constexpr int kMaxUndeterminedRounds = 5;
 
@@ -194,6 +237,7 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   std::vector<StateDataset> datasets;
   for (const DatasetConfig& d : config.datasets) datasets.push_back(ReadDataset(d));
   run.starting_values = EstimateStartingValues(datasets);
+  run.rate = DescribeRate(datasets);
   ModelParameters parameters =
       ChooseParameters(config.model, config.parameters, run.starting_values, datasets);
   std::vector<bool> undetermined(parameters.specs().size(), false);
@@ -242,25 +286,25 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
     run.agreement_in_standard_errors =
         FitAgreementInStandardErrors(run.fits[0], run.fits[1], &run.agreement_not_compared);
   }
+  run.kept = KeptFitIndex(run.fits);
   const std::vector<ParameterSpec>& specs = run.problem->parameters().specs();
   const double tolerance = config.ceres.uncertainty.bound_tolerance;
+  const FitResult* kept = run.kept_fit();
   for (size_t i = 0; i < specs.size(); ++i) {
     ParameterStatus status = ParameterStatus::kFitted;
     if (undetermined[i]) {
       status = ParameterStatus::kUndetermined;
     } else if (!specs[i].free) {
       status = ParameterStatus::kFixed;
-    } else if (!run.fits.empty() && !run.fits.front().values.empty()) {
-      const double v = run.fits.front().values[i];
-      const double band = tolerance * (specs[i].upper - specs[i].lower);
-      if (v - specs[i].lower <= band || specs[i].upper - v <= band)
-        status = ParameterStatus::kAtBound;
+    } else if (kept && !kept->values.empty() && AtBound(specs[i], kept->values[i], tolerance)) {
+      status = ParameterStatus::kAtBound;
     }
     run.status.push_back(status);
   }
-  if (!run.fits.empty() && run.fits.front().summary.success()) {
-    run.findings = CheckAdmissibility(run, run.fits.front(), &run.diagnosis);
+  if (kept && kept->summary.success()) {
+    run.findings = CheckAdmissibility(run, *kept, &run.diagnosis);
   }
+  run.outcome = DecideFitStatus(run);
   return run;
 }
 
@@ -274,7 +318,7 @@ std::string FitText(const CalibrationRun& run, const FitResult& fit) {
       "  residual variance s^2 = {:.4g} ({} degrees of freedom), condition number "
       "{:.3g}\n",
       fit.residual_variance, fit.degrees_of_freedom, fit.condition_number);
-  s += fmt::format("  {:<14} {:>12} {:>12} {:>26}  {}\n", "parameter", "value", "std. error",
+  s += fmt::format("  {:<14} {:>12} {:>14} {:>26}  {}\n", "parameter", "value", "std. error",
                    "95 % interval", "units");
   for (size_t i = 0; i < parameters.specs().size(); ++i) {
     const ParameterSpec& spec = parameters.specs()[i];
@@ -282,14 +326,20 @@ std::string FitText(const CalibrationRun& run, const FitResult& fit) {
     for (size_t j = 0; j < fit.free_indices.size(); ++j) {
       if (fit.free_indices[j] == static_cast<int>(i)) k = static_cast<int>(j);
     }
-    if (k < 0 || fit.standard_errors.empty()) {
-      s += fmt::format("  {:<14} {:>12.6g} {:>12} {:>26}  {}\n", spec.name, fit.values[i],
-                       k < 0 ? "fixed" : "-", "", spec.units);
-    } else {
-      s += fmt::format("  {:<14} {:>12.6g} {:>12.3g}   [{:>10.6g}, {:>10.6g}]  {}\n", spec.name,
+    if (k >= 0 && fit.Reported(static_cast<size_t>(k))) {
+      s += fmt::format("  {:<14} {:>12.6g} {:>14.3g}   [{:>10.6g}, {:>10.6g}]  {}\n", spec.name,
                        fit.values[i], fit.standard_errors[k], fit.lower_95[k], fit.upper_95[k],
                        spec.units);
+      continue;
     }
+    // Fixed, or no standard error that means something: at a bound, or in a
+    // near-null direction of the Jacobian (or no uncertainty computed).
+    const bool at_bound = k >= 0 && static_cast<size_t>(k) < fit.at_bound.size() && fit.at_bound[k];
+    s += fmt::format("  {:<14} {:>12.6g} {:>14} {:>26}  {}\n", spec.name, fit.values[i],
+                     k < 0      ? "fixed"
+                     : at_bound ? "at bound"
+                                : "not determined",
+                     "", spec.units);
   }
   if (fit.correlation.rows() > 1) {
     s += "  correlation matrix (free parameters):\n";
@@ -354,34 +404,128 @@ std::string PointsText(const CalibrationRun& run, const FitResult& fit) {
 
 double FitAgreementInStandardErrors(const FitResult& a, const FitResult& b, std::string* why_not) {
   why_not->clear();
+  std::vector<std::string> not_converged;
   for (const FitResult* fit : {&a, &b}) {
-    if (!fit->summary.success()) {
-      *why_not = fmt::format("{} failed ({}), so there is no fit of it to compare",
-                             fit->summary.fitter, fit->summary.message);
-      return std::numeric_limits<double>::quiet_NaN();
+    if (fit->summary.termination != FitTermination::kConverged) {
+      not_converged.push_back(fmt::format(
+          "{} did not converge ({}{})", fit->summary.fitter, ToString(fit->summary.termination),
+          fit->summary.message.empty() ? "" : ": " + fit->summary.message));
     }
+  }
+  if (!not_converged.empty()) {
+    *why_not = not_converged.front() +
+               (not_converged.size() > 1 ? " and " + not_converged.back() : std::string()) +
+               ", so there is no pair of optima to compare";
+    return std::numeric_limits<double>::quiet_NaN();
   }
   double worst = 0;
   bool compared = false;
   for (size_t k = 0; k < a.free_indices.size() && k < a.standard_errors.size(); ++k) {
     const int i = a.free_indices[k];
-    if (std::isfinite(a.standard_errors[k]) && a.standard_errors[k] > 0) {
+    if (a.Reported(k) && a.standard_errors[k] > 0) {
       worst = std::max(worst, std::abs(a.values[i] - b.values[i]) / a.standard_errors[k]);
       compared = true;
     }
   }
   if (!compared) {
-    *why_not =
-        fmt::format("{} gives no finite standard error of any free parameter", a.summary.fitter);
+    *why_not = fmt::format(
+        "{} reports no standard error of any free parameter (each is undetermined or at a bound)",
+        a.summary.fitter);
     return std::numeric_limits<double>::quiet_NaN();
   }
   return worst;
 }
 
+const FitResult* CalibrationRun::kept_fit() const {
+  return kept >= 0 && kept < static_cast<int>(fits.size()) ? &fits[kept] : nullptr;
+}
+
+int KeptFitIndex(const std::vector<FitResult>& fits) {
+  int kept = -1;
+  // Rank: converged before not converged before failed; then the lower cost.
+  const auto rank = [](const FitResult& fit) {
+    return fit.summary.termination == FitTermination::kConverged ? 0
+           : fit.summary.termination == FitTermination::kFailure ? 2
+                                                                 : 1;
+  };
+  for (size_t k = 0; k < fits.size(); ++k) {
+    if (kept < 0) {
+      kept = static_cast<int>(k);
+      continue;
+    }
+    const FitResult& a = fits[k];
+    const FitResult& b = fits[kept];
+    if (rank(a) < rank(b) ||
+        (rank(a) == rank(b) && rank(a) < 2 && a.summary.final_cost < b.summary.final_cost)) {
+      kept = static_cast<int>(k);
+    }
+  }
+  return kept;
+}
+
+FitOutcome DecideFitStatus(const CalibrationRun& run) {
+  const FitResult* fit = run.kept_fit();
+  if (!fit) return {FitStatus::kFailed, "no fit ran"};
+  const FitSummary& summary = fit->summary;
+  if (summary.termination == FitTermination::kFailure) {
+    return {FitStatus::kFailed,
+            fmt::format("the {} fit failed: {}.", summary.fitter,
+                        summary.message.empty() ? "no reason given" : summary.message)};
+  }
+  if (summary.termination == FitTermination::kNoConvergence) {
+    return {FitStatus::kNoConvergence,
+            fmt::format("the {} fit stopped after {} iterations ({} evaluations) before a "
+                        "convergence criterion was met{}, so its parameters are only where it "
+                        "stopped.",
+                        summary.fitter, summary.iterations, summary.evaluations,
+                        summary.message.empty() ? "" : " (" + summary.message + ")")};
+  }
+  std::vector<const Finding*> inadmissible;
+  for (const Finding& f : run.findings) {
+    if (f.inadmissible) inadmissible.push_back(&f);
+  }
+  if (!inadmissible.empty()) {
+    return {FitStatus::kConvergedInadmissible,
+            fmt::format("the {} fit converged, but the fitted model is inadmissible: {} ({}){}.",
+                        summary.fitter, inadmissible.front()->message, inadmissible.front()->code,
+                        inadmissible.size() > 1
+                            ? fmt::format(", and {} more such warnings", inadmissible.size() - 1)
+                            : "")};
+  }
+  const std::vector<ParameterSpec>& specs = run.problem->parameters().specs();
+  std::vector<std::string> at_bound;
+  for (size_t i = 0; i < specs.size() && i < run.status.size(); ++i) {
+    if (run.status[i] != ParameterStatus::kAtBound) continue;
+    const double v = fit->values[i];
+    const bool lower = std::abs(v - specs[i].lower) <= std::abs(specs[i].upper - v);
+    at_bound.push_back(fmt::format("{} = {:.6g} at its {} bound {:.6g}", specs[i].name, v,
+                                   lower ? "lower" : "upper",
+                                   lower ? specs[i].lower : specs[i].upper));
+  }
+  if (!at_bound.empty()) {
+    std::string list;
+    for (size_t k = 0; k < at_bound.size(); ++k) {
+      list += (k == 0 ? "" : k + 1 == at_bound.size() ? " and " : ", ") + at_bound[k];
+    }
+    return {FitStatus::kAtBound,
+            fmt::format("the {} fit converged with {}: the optimum may lie beyond the bounds, and "
+                        "the standard errors of parameters at a bound are not reported.",
+                        summary.fitter, list)};
+  }
+  return {FitStatus::kConverged,
+          fmt::format("the {} fit converged after {} iterations with every fitted parameter "
+                      "inside its bounds and the fitted model admissible{}.",
+                      summary.fitter, summary.iterations,
+                      run.findings.empty() ? ""
+                                           : fmt::format(" ({} misfit warnings: see the summary)",
+                                                         run.findings.size()))};
+}
+
 std::string SummaryText(const CalibrationRun& run) {
   const CalibrationProblem& problem = *run.problem;
   std::string s =
-      fmt::format("granasym calibration: {}\nmodel: {} (asymptotes: {})\n", run.config.origin,
+      fmt::format("granasym calibration: {}\nstatus: {}\nreason: {}\nmodel: {} (asymptotes: {})\n",
+                  run.config.origin, ToString(run.outcome.status), run.outcome.reason,
                   ToString(problem.parameters().kind()), ToString(run.config.predictor.method));
   s += fmt::format(
       "residuals: {} (psi_sigma in deg / sigma_psi, ln(1+e) / sigma_v, times "
@@ -397,6 +541,8 @@ std::string SummaryText(const CalibrationRun& run) {
     s += "\n";
     for (const std::string& w : d.warnings) s += "    WARNING: " + w + "\n";
   }
+  s += run.rate.Text() + "\n";
+  if (run.rate.MostlyRateAffected()) s += "WARNING rate_affected: " + run.rate.Warning() + "\n";
   s += run.starting_values.Report() + "\n";
   for (const std::string& u : run.undetermined) s += "UNDETERMINED: " + u + "\n";
   for (const FitResult& fit : run.fits) s += "\n" + FitText(run, fit);
@@ -408,26 +554,31 @@ std::string SummaryText(const CalibrationRun& run) {
     }
     s += "\n";
   }
+  const FitResult* kept = run.kept_fit();
   if (!run.diagnosis.empty() || !run.findings.empty()) {
     s += "\nadmissibility and structural misfit (" +
-         (run.fits.empty() ? std::string("-") : run.fits.front().summary.fitter) + "):\n";
+         (kept ? kept->summary.fitter : std::string("-")) + "):\n";
     for (const std::string& line : run.diagnosis) s += "  " + line + "\n";
-    for (const Finding& f : run.findings) s += "  WARNING " + f.Line() + "\n";
+    for (const Finding& f : run.findings) {
+      s += std::string(f.inadmissible ? "  INADMISSIBLE " : "  WARNING ") + f.Line() + "\n";
+    }
     if (run.findings.empty()) s += "  no warnings\n";
   }
   if (run.fits.size() == 2) {
     if (run.agreement_not_compared.empty()) {
-      s += fmt::format("\nceres vs nlopt: largest parameter difference {:.3g} standard errors\n",
+      s += fmt::format("\n{} vs {}: largest parameter difference {:.3g} standard errors\n",
+                       run.fits[0].summary.fitter, run.fits[1].summary.fitter,
                        run.agreement_in_standard_errors);
     } else {
-      s += "\nceres vs nlopt: not compared: " + run.agreement_not_compared + "\n";
+      s += fmt::format("\n{} vs {}: not compared: {}\n", run.fits[0].summary.fitter,
+                       run.fits[1].summary.fitter, run.agreement_not_compared);
     }
+    if (kept) s += "kept: the " + kept->summary.fitter + " fit\n";
   }
-  if (!run.fits.empty()) {
-    s += "\nresiduals per point (" + run.fits.front().summary.fitter + "):\n" +
-         PointsText(run, run.fits.front());
-    s += "\nobjective history (" + run.fits.front().summary.fitter + ", best cost so far):\n";
-    const std::vector<HistoryPoint>& h = run.fits.front().history;
+  if (kept) {
+    s += "\nresiduals per point (" + kept->summary.fitter + "):\n" + PointsText(run, *kept);
+    s += "\nobjective history (" + kept->summary.fitter + ", best cost so far):\n";
+    const std::vector<HistoryPoint>& h = kept->history;
     const size_t step = std::max<size_t>(1, h.size() / 20);
     for (size_t i = 0; i < h.size(); i += step) {
       s += fmt::format("  evaluation {:>7}  cost {:.8g}  {}\n", h[i].evaluation, h[i].cost,
@@ -528,6 +679,9 @@ void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path) {
   file.SetAttribute("/calibration", "asymptotes", ToString(run.config.predictor.method));
   file.SetAttribute("/calibration", "method", ToString(run.config.method));
   file.SetAttribute("/calibration", "residuals", int64_t{problem.num_residuals()});
+  file.SetAttribute("/calibration", "status", ToString(run.outcome.status));
+  file.SetAttribute("/calibration", "reason", run.outcome.reason);
+  if (run.kept_fit()) file.SetAttribute("/calibration", "kept_fit", run.kept_fit()->summary.fitter);
   file.SetAttribute("/calibration", "starting_values", run.starting_values.Report());
   if (run.fits.size() == 2) {
     if (run.agreement_not_compared.empty()) {
@@ -787,7 +941,8 @@ void CheckSlopes(const CalibrationRun& run, const std::vector<double>& v,
     findings->push_back({"kappa_not_below_lambda",
                          fmt::format("kappa* = {:.4g} >= lambda* = {:.4g}: unloading would be "
                                      "as steep as the NCL",
-                                     v[kKappaStar], v[kLambdaStar])});
+                                     v[kKappaStar], v[kLambdaStar]),
+                         /*inadmissible=*/true});
   }
   const StartingValues& sv = run.starting_values;
   if (sv.kappa_star.from_data && sv.lambda_star.from_data &&
@@ -807,7 +962,8 @@ void CheckModelAsbs(const CalibrationProblem& problem, const std::vector<double>
   std::string why;
   std::vector<Prediction> curve;
   if (!problem.predictor().Curve(v, 200, &curve, &why)) {
-    findings->push_back({"asbs_outside", "the model's ASBS cross-section is not closed: " + why});
+    findings->push_back(
+        {"asbs_outside", "the model's ASBS cross-section is not closed: " + why, true});
     return;
   }
   double worst_ocr = std::numeric_limits<double>::infinity(), worst_psi = 0;
@@ -830,21 +986,27 @@ void CheckModelAsbs(const CalibrationProblem& problem, const std::vector<double>
   }
   if (worst_ocr < 1 - kAsbsTolerance) {
     findings->push_back(
-        {"ocr_below_one", fmt::format("the model's compression asymptote at psi_epsilon = "
-                                      "{:.3g} deg has OCR = {:.4g} < 1",
-                                      worst_psi / kDegree, worst_ocr)});
+        {"ocr_below_one",
+         fmt::format("the model's compression asymptote at psi_epsilon = {:.3g} deg has OCR = "
+                     "{:.4g} < 1",
+                     worst_psi / kDegree, worst_ocr),
+         true});
   }
   if (missing > 0) {
     findings->push_back(
-        {"asbs_outside", fmt::format("the model's ASBS cross-section is not closed: {} of {} "
-                                     "stress directions have no asymptote",
-                                     missing, curve.size())});
+        {"asbs_outside",
+         fmt::format("the model's ASBS cross-section is not closed: {} of {} stress directions "
+                     "have no asymptote",
+                     missing, curve.size()),
+         true});
   }
   if (widest > 1 + kAsbsTolerance) {
     findings->push_back(
-        {"asbs_outside", fmt::format("the model's ASBS cross-section reaches p/p_e* = {:.4g} "
-                                     "> 1 (at psi_sigma = {:.3g} deg)",
-                                     widest, widest_psi / kDegree)});
+        {"asbs_outside",
+         fmt::format("the model's ASBS cross-section reaches p/p_e* = {:.4g} > 1 (at psi_sigma "
+                     "= {:.3g} deg)",
+                     widest, widest_psi / kDegree),
+         true});
   }
 }
 
@@ -1013,7 +1175,8 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
   const std::unique_ptr<ConstitutiveModel> model =
       MakeModel(problem.parameters().kind(), fit.values, &why);
   if (!model) {
-    findings.push_back({"invalid_model", "the fitted parameters do not make a model: " + why});
+    findings.push_back(
+        {"invalid_model", "the fitted parameters do not make a model: " + why, true});
     return findings;
   }
   if (problem.parameters().traits().linear_ncl) {
@@ -1035,7 +1198,7 @@ std::string ParametersCsv(const CalibrationRun& run, const FitResult& fit) {
   for (size_t i = 0; i < specs.size(); ++i) {
     double se = std::nan(""), lo = std::nan(""), hi = std::nan("");
     for (size_t k = 0; k < fit.free_indices.size() && k < fit.standard_errors.size(); ++k) {
-      if (fit.free_indices[k] == static_cast<int>(i)) {
+      if (fit.free_indices[k] == static_cast<int>(i) && fit.Reported(k)) {
         se = fit.standard_errors[k];
         lo = fit.lower_95[k];
         hi = fit.upper_95[k];
@@ -1055,10 +1218,11 @@ std::string WarningsText(const CalibrationRun& run) {
     text += code + ": " + message + "\n";
   };
   for (const Finding& f : run.findings) add(f.code, f.message);
+  if (run.rate.MostlyRateAffected()) add("rate_affected", run.rate.Warning());
   for (const std::string& u : run.undetermined) add("undetermined", u);
-  if (!run.fits.empty()) {
-    for (const std::string& w : run.fits.front().warnings) add("fit", w);
-    if (!run.fits.front().summary.success()) add("fit_failed", run.fits.front().summary.Report());
+  if (const FitResult* kept = run.kept_fit()) {
+    for (const std::string& w : kept->warnings) add("fit", w);
+    if (!kept->summary.success()) add("fit_failed", kept->summary.Report());
   }
   for (const StateDataset& d : run.problem->datasets()) {
     for (const std::string& w : d.warnings) add("dataset", d.name + ": " + w);

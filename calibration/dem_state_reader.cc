@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/error.h"
@@ -195,6 +196,19 @@ StateDataset ReadStatesDem(const std::string& path, const std::string& name,
       point.void_ratio = file.ReadDoubleAttribute(group, record::kAsymptoteVoidRatio);
       point.psi_sigma = file.ReadDoubleAttribute(group, record::kAsymptotePsiSigmaDeg) * kDegree;
       point.source = where;
+      // The rate at the asymptote and the stage's validity flags, where recorded.
+      if (file.HasAttribute(group, record::kAsymptoteInertialNumberDmax)) {
+        point.inertial_number_dmin =
+            file.ReadDoubleAttribute(group, record::kAsymptoteInertialNumberDmin);
+        point.inertial_number_dmax =
+            file.ReadDoubleAttribute(group, record::kAsymptoteInertialNumberDmax);
+      }
+      if (file.HasAttribute(group, record::kValidityFlags)) {
+        point.flags = file.ReadStringAttribute(group, record::kValidityFlags);
+        std::replace(point.flags.begin(), point.flags.end(), ',', ';');
+        point.flags.erase(std::remove(point.flags.begin(), point.flags.end(), ' '),
+                          point.flags.end());
+      }
       if (point.kind == StateKind::kUnloading) {
         dataset.warnings.push_back(where + ": an asymptote at psi_epsilon = 180 deg is not used");
         continue;

@@ -19,6 +19,21 @@ std::string FitSummary::Report() const {
       message.empty() ? "" : " (" + message + ")");
 }
 
+bool FitResult::Reported(size_t k) const {
+  return k < standard_errors.size() && std::isfinite(standard_errors[k]) &&
+         !(k < at_bound.size() && at_bound[k]);
+}
+
+int AtBound(const ParameterSpec& spec, double value, double tolerance) {
+  const double range = spec.upper - spec.lower;
+  const auto band = [&](double bound) {
+    return tolerance * (bound != 0 ? std::min(range, std::abs(bound)) : range);
+  };
+  if (value - spec.lower <= band(spec.lower)) return -1;
+  if (spec.upper - value <= band(spec.upper)) return 1;
+  return 0;
+}
+
 bool UncertaintyOptions::IsValid(std::string* why) const {
   if (!(singular_tolerance > 0 && singular_tolerance < 1)) {
     *why = fmt::format("singular_tolerance = {} must be in (0, 1)", singular_tolerance);
@@ -156,20 +171,16 @@ void ComputeUncertainty(const CalibrationProblem& problem, const UncertaintyOpti
       result->correlation(i, j) = d > 0 ? result->covariance(i, j) / d : (i == j ? 1.0 : nan);
     }
   }
+  result->at_bound.assign(static_cast<size_t>(n), false);
   for (int k = 0; k < n; ++k) {
     const ParameterSpec& spec = parameters.specs()[free[k]];
-    const double band = options.bound_tolerance * (spec.upper - spec.lower);
-    if (x[k] - spec.lower <= band) {
-      result->warnings.push_back(fmt::format(
-          "{} = {:.6g} is at its lower bound {}: the optimum may lie outside the bounds and its "
-          "interval is not meaningful",
-          spec.name, x[k], spec.lower));
-    } else if (spec.upper - x[k] <= band) {
-      result->warnings.push_back(fmt::format(
-          "{} = {:.6g} is at its upper bound {}: the optimum may lie outside the bounds and its "
-          "interval is not meaningful",
-          spec.name, x[k], spec.upper));
-    }
+    const int side = AtBound(spec, x[k], options.bound_tolerance);
+    if (side == 0) continue;
+    result->at_bound[k] = true;
+    result->warnings.push_back(fmt::format(
+        "{} = {:.6g} is at its {} bound {}: the optimum may lie outside the bounds, so its "
+        "standard error and interval are not reported",
+        spec.name, x[k], side < 0 ? "lower" : "upper", side < 0 ? spec.lower : spec.upper));
   }
 }
 

@@ -9,6 +9,10 @@
 // singular_tolerance·σ_max are dropped and reported as a near-singular
 // covariance with the parameters of the poorly determined direction.
 // 95 % intervals: value ± t_{0.975, m−n} · standard error.
+// A standard error and interval are reported (FitResult::Reported) only where
+// both mean something: the parameter is in no near-null direction of J and
+// not at a bound of the fit (there the optimum may lie beyond the bound and
+// the linearisation describes the bound, not the data).
 #pragma once
 
 #include <Eigen/Core>
@@ -66,7 +70,8 @@ struct UncertaintyOptions {
   // Relative singular-value threshold of J below which a direction counts as
   // not determined.
   double singular_tolerance = 1e-8;
-  // A parameter within this fraction of its bound range counts as at the bound.
+  // A parameter within this fraction of its bound range (or of the bound's
+  // own magnitude, when smaller) counts as at the bound (AtBound).
   double bound_tolerance = 1e-4;
   // Relative central-difference step for J (of max(|θ|, 1e-3 · bound range)).
   double difference_step = 1e-5;
@@ -81,13 +86,24 @@ struct FitResult {
   Eigen::MatrixXd correlation;          // free × free
   std::vector<double> standard_errors;  // free order; NaN when not determined
   std::vector<double> lower_95, upper_95;
+  std::vector<bool> at_bound;      // free order: ended at a bound of the fit (AtBound)
   double residual_variance = 1.0;  // s²
   int degrees_of_freedom = 0;      // m − n
   double condition_number = 0.0;   // σ_max/σ_min of J (scaled columns)
   std::vector<std::string> warnings;
   std::vector<HistoryPoint> history;
   std::vector<PointResidual> residuals;
+
+  // Whether free parameter k (free order) has a standard error and interval
+  // worth reporting: finite and not at a bound.
+  bool Reported(size_t k) const;
 };
+
+// Whether `value` lies at a bound of `spec` within `tolerance`: within
+// tolerance · min(upper − lower, |bound|) of it (|bound| for a nonzero bound,
+// so that a parameter whose bounds span decades, h_s in [1e2, 1e9] kPa, is
+// not at its lower bound at 7e4). −1 lower, +1 upper, 0 neither.
+int AtBound(const ParameterSpec& spec, double value, double tolerance);
 
 // Fills the uncertainty fields, residuals and warnings of `result` at
 // result->values (which must hold a valid full parameter vector).

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/error.h"
@@ -16,6 +17,15 @@ StateKind KindFromStretching(double psi_epsilon, double tolerance) {
   if (std::abs(std::abs(psi_epsilon) - kPi) <= tolerance) return StateKind::kUnloading;
   if (psi_epsilon > 0 && psi_epsilon < 0.5 * kPi) return StateKind::kCompression;
   return StateKind::kExtension;
+}
+
+bool AsymptoticStatePoint::HasFlag(const std::string& flag) const {
+  for (size_t start = 0; start <= flags.size();) {
+    const size_t end = std::min(flags.find(';', start), flags.size());
+    if (flags.compare(start, end - start, flag) == 0 && end - start == flag.size()) return true;
+    start = end + 1;
+  }
+  return false;
 }
 
 size_t StateDataset::Count(StateKind kind) const {

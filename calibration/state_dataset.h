@@ -64,11 +64,21 @@ struct AsymptoticStatePoint {
   double psi_sigma_ci95 = std::numeric_limits<double>::quiet_NaN();  // rad
   double ln_volume_ci95 = std::numeric_limits<double>::quiet_NaN();
   double source_ocr = std::numeric_limits<double>::quiet_NaN();
+  // The DEM's rate at the state (study tables and DEM results; NaN when the
+  // source does not say): the inertial numbers of the smallest and largest
+  // grains, the largest over the replicates averaged into the state, and
+  // the validity flags of its rows (their union, ';'-separated, e.g.
+  // "rate_affected;overlap_above_2pct").
+  double inertial_number_dmin = std::numeric_limits<double>::quiet_NaN();
+  double inertial_number_dmax = std::numeric_limits<double>::quiet_NaN();
+  std::string flags;
 
   // Whether the point enters the objective (unloading points do not).
   bool IsAsymptotic() const { return kind != StateKind::kUnloading; }
   // Whether its residuals enter the objective (asymptotic, weight > 0).
   bool IsFitted() const { return IsAsymptotic() && weight > 0; }
+  // Whether `flags` holds `flag`.
+  bool HasFlag(const std::string& flag) const;
   // Whether its ψ_ε is known (all asymptotic kinds except kAsbs).
   bool HasStretching() const { return kind != StateKind::kAsbs && kind != StateKind::kUnloading; }
 };

@@ -46,6 +46,7 @@ struct Row {
   int replicate = 1;
   std::string kind, status, case_name, stage, flags, ncl_reference, source;
   double psi_epsilon_deg = 0, p_kpa = 0, e = 0, psi_sigma_deg = 0, ocr = 0;
+  double inertial_number_dmin = std::nan(""), inertial_number_dmax = std::nan("");
 };
 
 std::vector<Row> ReadRows(const std::string& path) {
@@ -84,6 +85,12 @@ std::vector<Row> ReadRows(const std::string& path) {
   const bool has_source = file.Exists(column(names::kColumnSource));
   const std::vector<std::string> source =
       has_source ? file.ReadStrings(column(names::kColumnSource)) : std::vector<std::string>();
+  // Tables (and joined rows) written before issue 36 may lack the rate.
+  const auto optional_doubles = [&](const char* name) {
+    return file.Exists(column(name)) ? file.ReadDoubles(column(name)) : std::vector<double>();
+  };
+  const std::vector<double> i_dmin = optional_doubles(names::kColumnInertialNumberDmin);
+  const std::vector<double> i_dmax = optional_doubles(names::kColumnInertialNumberDmax);
   const size_t n = replicate.size();
   for (size_t size : {kind.size(), status.size(), case_name.size(), stage.size(), flags.size(),
                       psi_e.size(), p.size(), e.size(), psi_s.size()}) {
@@ -108,6 +115,8 @@ std::vector<Row> ReadRows(const std::string& path) {
     r.ocr = k < ocr.size() ? ocr[k] : std::nan("");
     r.ncl_reference = k < reference.size() ? reference[k] : "";
     r.source = k < source.size() ? source[k] : "";
+    if (k < i_dmin.size()) r.inertial_number_dmin = i_dmin[k];
+    if (k < i_dmax.size()) r.inertial_number_dmax = i_dmax[k];
   }
   return rows;
 }
@@ -166,6 +175,11 @@ bool StudyReadOptions::IsValid(std::string* why) const {
         psi_epsilon_min_deg, psi_epsilon_max_deg);
     return false;
   }
+  if (!(max_inertial_number > 0)) {
+    *why = fmt::format("max_inertial_number = {} must be > 0 (infinite: no bound)",
+                       max_inertial_number);
+    return false;
+  }
   if (!(triaxial_kind_tolerance_deg >= 0 && triaxial_kind_tolerance_deg < 45)) {
     *why = fmt::format("triaxial_kind_tolerance_deg = {} must be in [0, 45)",
                        triaxial_kind_tolerance_deg);
@@ -197,6 +211,8 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
   // The ensemble rows (the replicates' mean paths) are no replicate of their
   // state: the replicates' own rows are averaged here.
   const std::string ensemble = ToString(study::TableSource::kEnsemble);
+  const bool bounded = std::isfinite(options.max_inertial_number);
+  int too_fast = 0, rate_unknown = 0;  // rows left out by the I(d_max) bound
   for (const Row& row : rows) {
     if (row.source == ensemble) continue;
     ++present[row.kind + " " + row.status];
@@ -214,6 +230,10 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
       continue;
     }
     if (!options.cases.empty() && !Contains(options.cases, row.case_name)) continue;
+    if (bounded && !(row.inertial_number_dmax < options.max_inertial_number)) {
+      ++(std::isnan(row.inertial_number_dmax) ? rate_unknown : too_fast);
+      continue;
+    }
     const auto key = std::make_pair(row.case_name, row.stage);
     if (!groups.count(key)) order.push_back(key);
     groups[key].push_back(&row);
@@ -227,12 +247,22 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
     for (const auto& [key, count] : present) counts += fmt::format(" {} {};", count, key);
     throw InputError(fmt::format(
         "dataset '{}': {}: no state passes the selections (kinds {}; statuses {}; "
-        "psi_epsilon_range_deg [{}, {}]; exclude_flags {}{}{}); the table holds:{}",
+        "psi_epsilon_range_deg [{}, {}]; exclude_flags {}{}{}{}); the table holds:{}",
         name, path, Join(options.kinds), Join(options.statuses), options.psi_epsilon_min_deg,
         options.psi_epsilon_max_deg, Join(options.exclude_flags),
         options.ncl_references.empty() ? "" : "; ncl_references " + Join(options.ncl_references),
         options.cases.empty() ? "" : fmt::format("; {} named cases", options.cases.size()),
+        bounded ? fmt::format("; max_inertial_number {:g}, which left out {} rows at or above it "
+                              "and {} without an inertial number",
+                              options.max_inertial_number, too_fast, rate_unknown)
+                : "",
         counts));
+  }
+  if (too_fast + rate_unknown > 0) {
+    dataset.warnings.push_back(fmt::format(
+        "max_inertial_number = {:g} left out {} rows with I(d_max) at or above it and {} rows "
+        "without an inertial number",
+        options.max_inertial_number, too_fast, rate_unknown));
   }
   const double stated_psi = options.psi_sigma_uncertainty_deg * kDegree;
   const double stated_v = options.ln_volume_uncertainty;
@@ -240,6 +270,7 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
     const std::vector<const Row*>& members = groups[key];
     std::vector<double> ln_p, ln_v, psi_s, psi_e, ocr;
     std::string replicates;
+    AsymptoticStatePoint point;
     for (const Row* row : members) {
       if (!(row->p_kpa > 0 && row->e > 0 && std::isfinite(row->psi_sigma_deg))) {
         throw InputError(fmt::format(
@@ -255,8 +286,16 @@ StateDataset ReadStatesStudy(const std::string& directory, const std::string& na
       psi_e.push_back(row->psi_epsilon_deg * kDegree);
       if (std::isfinite(row->ocr) && row->ocr > 0) ocr.push_back(std::log(row->ocr));
       replicates += (replicates.empty() ? "r" : ",r") + std::to_string(row->replicate);
+      // The largest I of the replicates, the union of their flags.
+      for (auto [value, into] :
+           {std::pair{row->inertial_number_dmin, &point.inertial_number_dmin},
+            std::pair{row->inertial_number_dmax, &point.inertial_number_dmax}}) {
+        if (std::isfinite(value) && !(*into >= value)) *into = value;
+      }
+      for (const std::string& flag : SplitFlags(row->flags)) {
+        if (!point.HasFlag(flag)) point.flags += (point.flags.empty() ? "" : ";") + flag;
+      }
     }
-    AsymptoticStatePoint point;
     const std::optional<study::TableKind> kind =
         FromString<study::TableKind>(members.front()->kind);
     point.psi_epsilon = Mean(psi_e);

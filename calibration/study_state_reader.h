@@ -17,7 +17,13 @@
 //     (default all; a study with samples of other materials, e.g. φ = 0,
 //     names its own NCL case here so that the others stay out);
 //   cases: only rows of these case names (default all; `study calibrate`
-//     names the rate study's quasi-static cases here, analysis/rate_study.h).
+//     names the rate study's quasi-static cases here, analysis/rate_study.h);
+//   max_inertial_number: only rows with I(d_max) below it (default: no
+//     bound; rows without an inertial number are then left out too, and
+//     what the bound left out is a dataset warning).
+// Each state carries the largest I(d_min), I(d_max) of its replicates' rows
+// and the union of their validity flags (joined rows carry those of the two
+// paths they join, study/state_table.h).
 // Replicates: the state is the replicate mean of ln p, ln(1+e), ψ_σ and ψ_ε
 // (and of the table's OCR); its uncertainties are the standard errors of the
 // mean of ψ_σ and ln(1+e), floored at the stated uncertainty / √n (n
@@ -26,6 +32,7 @@
 // (Student t, n − 1 degrees of freedom) go with the state for the report.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,8 +45,9 @@ struct StudyReadOptions {
   double psi_epsilon_min_deg = -180.0, psi_epsilon_max_deg = 180.0;
   std::vector<std::string> statuses = {"detected"};
   std::vector<std::string> exclude_flags = {"overlap_above_10pct", "gas"};
-  std::vector<std::string> ncl_references;  // empty: all
-  std::vector<std::string> cases;           // empty: all
+  std::vector<std::string> ncl_references;                               // empty: all
+  std::vector<std::string> cases;                                        // empty: all
+  double max_inertial_number = std::numeric_limits<double>::infinity();  // of I(d_max)
   double triaxial_kind_tolerance_deg = 2.0;
   double kind_tolerance_deg = 0.5;         // ψ_ε within this of 0°, 90° counts as there
   double psi_sigma_uncertainty_deg = 0.5;  // one standard deviation, per state

@@ -28,11 +28,18 @@ struct EnumNames<ModelKind> {
   };
 };
 
+// A rate law's branch decided by the state itself (ModelState::branch).
+inline constexpr int kAutoBranch = -1;
+
 // The state of a material point. `stress` is tension positive in kPa.
 struct ModelState {
   Vector6 stress = Vector6::Zero();
   double void_ratio = 0.0;
   Eigen::VectorXd internal;  // model specific, see ConstitutiveModel::internal_names()
+  // For a rate law with switches (ConstitutiveModel::num_switches), the
+  // branch the element-test driver holds over a piece of integration (Cam
+  // clay: elastic or plastic); kAutoBranch: the model decides from the state.
+  int branch = kAutoBranch;
 };
 
 // Rates of the state for one stretching.
@@ -100,12 +107,18 @@ class ConstitutiveModel {
     internal_codes->setZero(num_internal());
   }
 
-  // Functions of the state whose zero crossings are kinks of the rate (Cam
-  // clay: reaching the yield surface). The element-test driver stops the
-  // integration at each crossing and restarts there, so that no step straddles
-  // a kink that its error estimate cannot see. Default: none.
+  // A rate law that is smooth on each of several branches (Cam clay: elastic
+  // and plastic) and switches between them. The element-test driver holds
+  // one branch over each piece of integration (ModelState::branch), the one
+  // Branch gives at the piece's start, and ends the piece where a switch
+  // function of that branch, positive while it holds, crosses zero; the next
+  // piece starts there on the branch the state then takes. So no step mixes
+  // two branches, which its error estimate cannot see. Default: none.
   virtual int num_switches() const { return 0; }
-  virtual void Switches(const ModelState& state, double* values) const {}
+  virtual int Branch(const ModelState& state, const Vector6& stretching) const {
+    return kAutoBranch;
+  }
+  virtual void Switches(const ModelState& state, const Vector6& stretching, double* values) const {}
 
   // The asymptotic state (paper Sec. 2, SPEC §7) of the stress direction ψ_σ
   // (rad, compression positive), where the model has it in closed form:

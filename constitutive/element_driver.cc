@@ -218,7 +218,12 @@ class StageOde : public OdeSystem {
  public:
   StageOde(const ConstitutiveModel& model, const LoadingStage& stage,
            const ElementTestOptions& options, double stress_scale)
-      : model_(model), stage_(stage), options_(options), stress_scale_(stress_scale) {
+      : model_(model),
+        stage_(stage),
+        options_(options),
+        stress_scale_(stress_scale),
+        switch_offsets_(model.num_switches(), 0.0),
+        switch_disabled_(model.num_switches(), false) {
     // Internally tension positive: one sign flip of the whole rate vector.
     prescribed_ = ToVector(FlipSign(stage.rate));
     for (int i = 0; i < 6; ++i) {
@@ -269,6 +274,7 @@ class StageOde : public OdeSystem {
     state.stress = Eigen::Map<const Vector6>(y + kStress);
     state.void_ratio = std::expm1(y[kLogVolume]);
     state.internal = Eigen::Map<const Eigen::VectorXd>(y + kInternal, model_.num_internal());
+    state.branch = branch_;
     return state;
   }
 
@@ -493,9 +499,7 @@ class StageOde : public OdeSystem {
     for (size_t k = 0; k < stage_.stops.size(); ++k) g[k] = StopFunction(stage_.stops[k], t, y);
     const int num_switches = model_.num_switches();
     if (num_switches > 0) {
-      model_.Switches(StateOf(y), g + num_stops());
-      switch_offsets_.resize(num_switches, 0.0);
-      switch_disabled_.resize(num_switches, false);
+      SwitchValues(y, g + num_stops());
       for (int k = 0; k < num_switches; ++k) {
         g[num_stops() + k] = switch_disabled_[k] ? 1.0 : g[num_stops() + k] + switch_offsets_[k];
       }
@@ -509,24 +513,51 @@ class StageOde : public OdeSystem {
     return true;
   }
 
-  // After the integration stopped at a crossing of switch k at y: a small
-  // hysteresis puts y on the far side, so that the restart does not find the
-  // same crossing again (root location leaves y within round-off of g = 0).
-  void PassSwitch(int k, const double* y, double side_before) {
-    std::vector<double> g(num_roots());
-    switch_offsets_.resize(model_.num_switches(), 0.0);
-    switch_offsets_[k] = 0.0;
-    Roots(0.0, y, g.data());
-    const double after = side_before < 0 ? 1.0 : -1.0;
-    switch_offsets_[k] = after * kSwitchHysteresis - g[num_stops() + k];
+  // The model's switch functions of the held branch at y, for the stretching
+  // there (1 where the stage's control has no solution: no crossing).
+  void SwitchValues(const double* y, double* values) {
+    const ModelState state = StateOf(y);
+    Vector6 d;
+    ModelRate rate;
+    if (!SolveStretching(state, &d, &rate)) {
+      std::fill(values, values + model_.num_switches(), 1.0);
+      return;
+    }
+    model_.Switches(state, d, values);
+  }
+
+  // At the start of a piece at y: the branch the model takes there, held
+  // until one of its switch functions (positive while it holds) crosses
+  // zero. A switch that starts below kSwitchHysteresis (at the crossing that
+  // ended the last piece, where root location leaves it within round-off of
+  // zero) is lifted to it, so that the restart does not find the same
+  // crossing again. With a switch disabled the model decides per evaluation.
+  void ChooseBranch(const double* y) {
+    const int num_switches = model_.num_switches();
+    switch_offsets_.assign(num_switches, 0.0);
+    branch_ = kAutoBranch;
+    if (num_switches == 0 || std::find(switch_disabled_.begin(), switch_disabled_.end(), true) !=
+                                 switch_disabled_.end()) {
+      return;
+    }
+    Vector6 d;
+    ModelRate rate;
+    if (!SolveStretching(StateOf(y), &d, &rate)) return;
+    branch_ = model_.Branch(StateOf(y), d);
+    std::vector<double> values(num_switches);
+    SwitchValues(y, values.data());
+    for (int k = 0; k < num_switches; ++k) {
+      if (values[k] < kSwitchHysteresis) switch_offsets_[k] = kSwitchHysteresis - values[k];
+    }
   }
   static constexpr double kSwitchHysteresis = 1e-9;
 
   // A switch that keeps firing (the state slides along it) is ignored for the
-  // rest of the stage; the model's own stabilisation takes over there.
+  // rest of the stage, and the model decides its branch per evaluation; its
+  // own stabilisation takes over there.
   void DisableSwitch(int k) {
-    switch_disabled_.resize(model_.num_switches(), false);
     switch_disabled_[k] = true;
+    branch_ = kAutoBranch;
   }
 
   double StopFunction(const StopCondition& stop, double t, const double* y) {
@@ -595,6 +626,7 @@ class StageOde : public OdeSystem {
   std::string failure_;
   std::vector<double> switch_offsets_;
   std::vector<bool> switch_disabled_;
+  int branch_ = kAutoBranch;  // held over the current piece (ChooseBranch)
 };
 
 ElementTestRecord MakeRecord(const ConstitutiveModel& model, StageOde& ode, double time,
@@ -896,13 +928,15 @@ std::vector<double> OdeStateOf(const ModelState& state, int num_internal) {
   return y;
 }
 
-// A stage with the rate integrator, in pieces: a switch root (a kink of the
-// rate) ends a piece; the next starts there. Each switch stops the
-// integration at most kMaxSwitchStops times per stage: more means the state
-// slides along it (seen in path fuzzing at the Cam clay critical state),
-// where restarts only cost. A limit point of a stress-controlled stage ends
-// it as a failure. `stage_summary` sums the pieces as they end (it keeps
-// them when a piece throws).
+// A stage with the rate integrator, in pieces: each piece holds the branch
+// the model takes at its start (ConstitutiveModel::Branch), a root of that
+// branch's switches ends it, and the next starts there on the branch the
+// state then takes. Each switch stops the integration at most
+// kMaxSwitchStops times per stage: more means the state slides along it
+// (seen in path fuzzing at the Cam clay critical state), where restarts only
+// cost, and the model then decides its branch per evaluation. A limit point of a stress-controlled
+// stage ends it as a failure. `stage_summary` sums the pieces as they end (it keeps them when a
+// piece throws).
 void IntegrateInPieces(Integrator& integrator, StageOde& ode, const LoadingStage& stage,
                        const ElementTestOptions& options, int num_switches, std::vector<double>* y,
                        const Integrator::Observer& observer, IntegrationSummary* stage_summary) {
@@ -914,9 +948,8 @@ void IntegrateInPieces(Integrator& integrator, StageOde& ode, const LoadingStage
   constexpr int kMaxSwitches = 10000;
   std::vector<int> switch_stops(num_switches, 0);
   double start = 0.0;
-  std::vector<double> roots_before(ode.num_roots());
   for (int piece = 0;; ++piece) {
-    ode.Roots(start, y->data(), roots_before.data());
+    ode.ChooseBranch(y->data());
     const IntegrationSummary part =
         integrator.Integrate(ode, start, stage.duration, y->data(), output_times, observer);
     if (piece == 0) {
@@ -957,7 +990,6 @@ void IntegrateInPieces(Integrator& integrator, StageOde& ode, const LoadingStage
     }
     start = part.final_time;
     const int which = part.root_index - ode.num_stops();
-    ode.PassSwitch(which, y->data(), roots_before[part.root_index]);
     if (++switch_stops[which] >= kMaxSwitchStops) ode.DisableSwitch(which);
     stage_summary->root_index = -1;
     stage_summary->termination = TerminationType::kReachedEnd;

@@ -4,7 +4,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "common/error.h"
 #include "constitutive/autodiff.h"
@@ -18,11 +20,23 @@ bool Fail(std::string* why, const std::string& message) {
   return false;
 }
 
+// Whether the rate form flows plastically (Parameters::rate_form_band), from
+// f (kPa²), (M p_c)² = `scale` and the loading n:𝔼:D + β f ‖D‖: on the
+// plastic branch whenever loading > 0 (elsewhere its multiplier would be
+// negative: the elastic rate, so that the branch's rate is continuous), on
+// the elastic one never, and where the state decides (kAutoBranch) when
+// it also lies on or within the band, f ≥ −band·scale.
+bool FlowsPlastically(int branch, double f, double scale, double loading, double band) {
+  if (branch == ModifiedCamClay::kElasticBranch) return false;
+  if (!(loading > 0)) return false;
+  return branch == ModifiedCamClay::kPlasticBranch || f >= -band * scale;
+}
+
 // Tension-positive stress rate and ṗ_c of the rate form.
 template <typename S>
-bool CamClayRate(const ModifiedCamClay::Parameters& c, const Vec6<S>& t, const S& log_1pe,
-                 const S& preconsolidation, const Vec6<S>& d, Vec6<S>* stress_rate,
-                 S* preconsolidation_rate, std::string* why) {
+bool CamClayRate(const ModifiedCamClay::Parameters& c, int branch, const Vec6<S>& t,
+                 const S& log_1pe, const S& preconsolidation, const Vec6<S>& d,
+                 Vec6<S>* stress_rate, S* preconsolidation_rate, std::string* why) {
   using std::exp;
   using std::sqrt;
   const double m2 = c.critical_state_ratio * c.critical_state_ratio;
@@ -52,12 +66,12 @@ bool CamClayRate(const ModifiedCamClay::Parameters& c, const Vec6<S>& t, const S
   for (int i = 0; i < 3; ++i) n[i] -= m2 * (2.0 * p - preconsolidation) / 3.0;
   const S n_trial = Contract(n, trial);
   const double scale = m2 * autodiff::Value(preconsolidation) * autodiff::Value(preconsolidation);
-  const bool on_surface = autodiff::Value(f) >= -c.rate_form_band * scale;
   const S d2 = Contract(d, d);
   S d_norm(0.0);
   if (autodiff::Value(d2) > 0) d_norm = sqrt(d2);
   const S loading = n_trial + c.drift_stabilization * f * d_norm;
-  if (on_surface && autodiff::Value(n_trial) > 0 && autodiff::Value(loading) > 0) {
+  if (FlowsPlastically(branch, autodiff::Value(f), scale, autodiff::Value(loading),
+                       c.rate_form_band)) {
     const S hardening = preconsolidation * m2 * (2.0 * p - preconsolidation) / (lambda - kappa);
     const S denominator = Contract(n, elastic(n)) + m2 * p * hardening;
     if (!(autodiff::Value(denominator) > 0)) {
@@ -168,8 +182,8 @@ bool ModifiedCamClay::Rate(const ModelState& state, const Vector6& stretching, M
   if (!IsAdmissible(state, why)) return false;
   const double log_1pe = std::log1p(state.void_ratio);
   double preconsolidation_rate = 0.0;
-  if (!CamClayRate<double>(parameters_, state.stress, log_1pe, state.internal[0], stretching,
-                           &rate->stress_rate, &preconsolidation_rate, why)) {
+  if (!CamClayRate<double>(parameters_, state.branch, state.stress, log_1pe, state.internal[0],
+                           stretching, &rate->stress_rate, &preconsolidation_rate, why)) {
     return false;
   }
   rate->void_ratio_rate = (1.0 + state.void_ratio) * Trace<double>(stretching);
@@ -188,7 +202,7 @@ bool ModifiedCamClay::Rate(const ModelState& state, const Vector6& stretching, M
     const double f = YieldFunction(state.stress, p_c);
     const double d_norm = FrobeniusNorm<double>(stretching);
     const double loading = n_trial + parameters_.drift_stabilization * f * d_norm;
-    if (f >= -parameters_.rate_form_band * m2 * p_c * p_c && n_trial > 0 && loading > 0) {
+    if (FlowsPlastically(state.branch, f, m2 * p_c * p_c, loading, parameters_.rate_form_band)) {
       double lambda, kappa;
       CompressionSlopes(state.void_ratio, &lambda, &kappa);
       const double p = MeanStress(state.stress);
@@ -223,7 +237,7 @@ bool ModifiedCamClay::Jacobian(const ModelState& state, const Vector6& stretchin
   const Ad preconsolidation = autodiff::Variable<kSize>(state.internal[0], 7);
   Vec6<Ad> stress_rate;
   Ad preconsolidation_rate;
-  if (!CamClayRate<Ad>(parameters_, t, log_1pe, preconsolidation, d, &stress_rate,
+  if (!CamClayRate<Ad>(parameters_, state.branch, t, log_1pe, preconsolidation, d, &stress_rate,
                        &preconsolidation_rate, why)) {
     return false;
   }
@@ -322,12 +336,47 @@ ModelState ModifiedCamClay::MakeState(const Vector6& stress, double void_ratio) 
   return state;
 }
 
-void ModifiedCamClay::Switches(const ModelState& state, double* values) const {
+namespace {
+
+// f/(M p_c)² and the loading n:𝔼:D + β f ‖D‖ over (M p_c)² ‖D‖ at a state.
+void YieldMeasures(const ModifiedCamClay& model, const ModelState& state, const Vector6& stretching,
+                   double* f_scaled, double* loading_scaled) {
+  const ModifiedCamClay::Parameters& c = model.parameters();
   const double p_c = state.internal.size() == 1 ? state.internal[0] : 0.0;
-  const double m = parameters_.critical_state_ratio;
-  const double scale = m * m * p_c * p_c;
-  values[0] =
-      scale > 0 ? YieldFunction(state.stress, p_c) / scale + 0.5 * parameters_.rate_form_band : 1.0;
+  const double scale = c.critical_state_ratio * c.critical_state_ratio * p_c * p_c;
+  const double d_norm = FrobeniusNorm<double>(stretching);
+  if (!(scale > 0) || !(d_norm > 0) || !state.stress.allFinite()) {
+    *f_scaled = *loading_scaled = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  const double f = model.YieldFunction(state.stress, p_c);
+  Vector6 n = model.YieldGradient(state.stress, p_c);
+  n.tail<3>() *= 2.0;  // Voigt: the shear components count twice in n:𝔼:D
+  const double n_trial = n.dot(model.ElasticStiffness(state.stress, state.void_ratio) * stretching);
+  *f_scaled = f / scale;
+  *loading_scaled = (n_trial + c.drift_stabilization * f * d_norm) / (scale * d_norm);
+}
+
+}  // namespace
+
+int ModifiedCamClay::Branch(const ModelState& state, const Vector6& stretching) const {
+  double f = 0, loading = 0;
+  YieldMeasures(*this, state, stretching, &f, &loading);
+  return f >= -parameters_.rate_form_band && loading > 0 ? kPlasticBranch : kElasticBranch;
+}
+
+void ModifiedCamClay::Switches(const ModelState& state, const Vector6& stretching,
+                               double* values) const {
+  double f = 0, loading = 0;
+  YieldMeasures(*this, state, stretching, &f, &loading);
+  if (std::isnan(f)) {
+    values[0] = 1.0;
+  } else if (state.branch == kPlasticBranch) {
+    values[0] = loading;  // unloading ends the plastic branch
+  } else {
+    // Reaching the band while loading ends the elastic branch.
+    values[0] = -std::min(f + parameters_.rate_form_band, loading);
+  }
 }
 
 void ModifiedCamClay::SignConstraints(Vector6* stress_codes,

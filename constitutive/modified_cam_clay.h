@@ -42,17 +42,24 @@ class ModifiedCamClay : public ConstitutiveModel {
     // A state counts as on the yield surface when f ≥ −yield_tolerance (M p_c)²;
     // the stress-point algorithms also use it as their drift tolerance.
     double yield_tolerance = 1e-9;
-    // Rate form only (used by the ODE integrators): the plastic branch is taken
-    // when f ≥ −rate_form_band (M p_c)² and the multiplier is positive, and the
-    // multiplier carries a Baumgarte term, λ̇ = (n:𝔼:D + β f ‖D‖)/(n:𝔼:n + H),
-    // so that ḟ = −β f ‖D‖ pulls integration drift back onto f = 0 (β per unit
-    // strain). Without it the branch switch chatters and implicit integrators
-    // stall; on f = 0 the term vanishes and the exact plastic rate is unchanged.
-    // The band must be wider than the scatter of f over the stage states of
-    // one step, or a step mixes the elastic and plastic branches: at 1e-5, ERK 5
-    // at rtol 7.4e-6 left the surface by 4.6e-3 (M p_c)² after re-yielding
-    // (path fuzzing); at 1e-4 it stays within 1.4e-7. Its cost is yielding
+    // Rate form only (used by the ODE integrators): plastic flow where the
+    // state lies on or within the band f ≥ −rate_form_band (M p_c)² and the
+    // multiplier is positive, with a Baumgarte term in the multiplier,
+    // λ̇ = (n:𝔼:D + β f ‖D‖)/(n:𝔼:n + H), so that ḟ = −β f ‖D‖ pulls
+    // integration drift back onto f = 0 (β per unit strain); on f = 0 the term
+    // vanishes and the exact plastic rate is unchanged. Its cost is yielding
     // up to 1e-4 (M p_c)² early (stresses within ~5e-5 of the surface).
+    //
+    // The element-test driver holds a branch over each piece of integration
+    // (ModelState::branch, chosen by Branch): the elastic one until the state
+    // reaches the band while loading, the plastic one (flowing whenever the
+    // loading is positive, elastic otherwise, so its rate is continuous)
+    // until the loading turns negative (Switches). Deciding the branch at
+    // every evaluation instead (kAutoBranch) mixes the branches within one
+    // step: the stage states of a Runge–Kutta step leave a curved yield
+    // surface by O(h²), far more than the band, and a stage below the band
+    // turns elastic, an error that the step's error estimate does not see
+    // (issue 36 §5: ERK 5 on ψ_ε = 100° had errors of 1e-3 at rtol 1e-5).
     double rate_form_band = 1e-4;
     double drift_stabilization = 100.0;
     bool IsValid(std::string* why) const;
@@ -77,12 +84,17 @@ class ModifiedCamClay : public ConstitutiveModel {
   double VoidRatioForOcr(double mean_stress, double ocr) const override;
   ModelState MakeState(const Vector6& stress, double void_ratio) const override;
   bool ScaleState(double factor, ModelState* state) const override;  // log-log form only
-  // f/(M p_c)² + rate_form_band/2: zero just inside the band where the rate
-  // form turns plastic (path fuzzing: without it an elastic step crossed the
-  // surface by up to 1.2 % of (M p_c)² at rtol 2e-7 before the Baumgarte term
-  // pulled it back).
+  // The branches of the rate form (ModelState::branch; see rate_form_band).
+  static constexpr int kElasticBranch = 0;
+  static constexpr int kPlasticBranch = 1;
+  // Plastic on or within the band while loading, else elastic.
+  int Branch(const ModelState& state, const Vector6& stretching) const override;
+  // One switch, positive while the state's branch holds: on the plastic
+  // branch the loading over (M p_c)² ‖D‖, on the elastic one (and kAutoBranch)
+  // −min(f/(M p_c)² + rate_form_band, that loading), zero where the state
+  // reaches the band while loading.
   int num_switches() const override { return 1; }
-  void Switches(const ModelState& state, double* values) const override;
+  void Switches(const ModelState& state, const Vector6& stretching, double* values) const override;
   // p_c > 0 (single normal stresses may be tensile at high OCR).
   void SignConstraints(Vector6* stress_codes, Eigen::VectorXd* internal_codes) const override;
   // The closed form of the file comment (log-log form, Poisson-ratio elasticity only).

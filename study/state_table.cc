@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <type_traits>
 #include <variant>
 
@@ -655,11 +656,14 @@ Interval MeanInterval95(const std::vector<double>& values) {
 
 namespace {
 
-// A compression or extension path of one case, for the convergence check.
+// A compression or extension path of one case, for the convergence check,
+// with the rate and validity of its stage's row (which a joined state takes).
 struct ConvergencePath {
   std::string case_name;
-  double start_p;
+  double start_p = 0;
   PathSamples samples;
+  double inertial_number_dmin = kNaN, inertial_number_dmax = kNaN;
+  std::string flags;
 };
 // Paths by (replicate, kind, ψ_ε).
 using PathGroups = std::map<std::tuple<int, TableKind, double>, std::vector<ConvergencePath>>;
@@ -688,12 +692,16 @@ void AddConvergencePath(const CaseFolder& c, const dem::StageRecord& stage, cons
                         const TimeSeries& series, PathGroups* paths) {
   if (row.kind != TableKind::kCompression && row.kind != TableKind::kExtension) return;
   const bool rising = row.kind == TableKind::kCompression;
-  ConvergencePath path{c.record.name, 0,
-                       rising ? CompressionPath(series, stage.first_row, stage.last_row)
-                              : ExtensionPath(series, stage.first_row, stage.last_row,
-                                              stage.asymptote->criterion.floor_kpa)};
+  ConvergencePath path;
+  path.case_name = c.record.name;
+  path.samples = rising ? CompressionPath(series, stage.first_row, stage.last_row)
+                        : ExtensionPath(series, stage.first_row, stage.last_row,
+                                        stage.asymptote->criterion.floor_kpa);
   if (path.samples.x.size() < 2) return;
   path.start_p = std::exp(rising ? path.samples.x.front() : path.samples.y.front());
+  path.inertial_number_dmin = row.inertial_number_dmin;
+  path.inertial_number_dmax = row.inertial_number_dmax;
+  path.flags = row.flags;
   const double psi = std::round(row.psi_epsilon_deg * 1e6) / 1e6;
   (*paths)[{c.record.replicate, row.kind, psi}].push_back(std::move(path));
 }
@@ -764,8 +772,33 @@ std::vector<StateRow> EnsembleRows(const std::vector<EnsembleGroup>& groups) {
   return rows;
 }
 
+// A joined state's inertial numbers and flags from the rows of the paths it
+// joins: the larger I of the two (NaN when either is unknown: a state is no
+// slower than its faster path) and the union of their flags, in order.
+void TakeRateOfJoinedPaths(const ConvergencePath& a, const ConvergencePath& b, StateRow* joined) {
+  const auto larger = [](double x, double y) {
+    return std::isfinite(x) && std::isfinite(y) ? std::max(x, y) : kNaN;
+  };
+  joined->inertial_number_dmin = larger(a.inertial_number_dmin, b.inertial_number_dmin);
+  joined->inertial_number_dmax = larger(a.inertial_number_dmax, b.inertial_number_dmax);
+  std::vector<std::string> flags;
+  for (const std::string* list : {&a.flags, &b.flags}) {
+    std::stringstream in(*list);
+    std::string flag;
+    while (std::getline(in, flag, table::kFlagSeparator)) {
+      if (!flag.empty() && std::find(flags.begin(), flags.end(), flag) == flags.end())
+        flags.push_back(flag);
+    }
+  }
+  joined->flags.clear();
+  for (const std::string& flag : flags) {
+    joined->flags += (joined->flags.empty() ? "" : std::string(1, table::kFlagSeparator)) + flag;
+  }
+}
+
 // Paper Sec. 4.3: paths of one ψ_ε from successive starting states; a joined
-// pair adds its state to `rows`.
+// pair adds its state to `rows`, with the larger I and the flags of both
+// paths' rows.
 std::vector<ConvergenceRow> JoinGroups(PathGroups* paths, const ConvergenceTolerance& tolerance,
                                        std::vector<StateRow>* rows, StateTableSummary* summary) {
   std::vector<ConvergenceRow> convergence;
@@ -787,7 +820,10 @@ std::vector<ConvergenceRow> JoinGroups(PathGroups* paths, const ConvergenceToler
       summary->joined += row.status == "joined";
       summary->not_joined += row.status != "joined";
       convergence.push_back(row);
-      if (row.status == "joined") rows->push_back(JoinedRow(row, tolerance));
+      if (row.status == "joined") {
+        rows->push_back(JoinedRow(row, tolerance));
+        TakeRateOfJoinedPaths(group[k - 1], group[k], &rows->back());
+      }
     }
   }
   return convergence;

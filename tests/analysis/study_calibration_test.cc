@@ -39,6 +39,7 @@ fix_undetermined = true
 hdf5 = "calibration.h5"
 summary = "summary.txt"
 plot_data = "plot_data"
+status = "fit_status.toml"
 )";
 
 // ... and for a rate study's quasi-static set.
@@ -74,6 +75,7 @@ fix_undetermined = true
 hdf5 = "calibration.h5"
 summary = "summary.txt"
 plot_data = "plot_data"
+status = "fit_status.toml"
 )";
 
 TEST(StudyCalibration, IsTheConfigurationThatTheGeneratedFileGave) {
@@ -114,6 +116,27 @@ TEST(StudyCalibration, ARateStudyIsFittedToItsQuasiStaticSetWithBothFitters) {
   calibration::testing::ExpectSameConfig(
       built, calibration::ReadCalibrationConfig(ConfigTable::ParseString(text, origin)));
   EXPECT_NE(text.find("study = \"../..\""), std::string::npos) << text;
+}
+
+// Issue 36 §2: the quasi-static selection of a study without rate cases,
+// its states with I(d_max) below a bound, as a key of the file it leaves.
+TEST(StudyCalibration, AQuasiStaticSelectionBoundsTheInertialNumber) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "study_calibration" / "bounded";
+  fs::create_directories(dir);
+  const std::string origin = (dir / "calibration/modified_cam_clay/calibration.toml").string();
+  const calibration::CalibrationConfig built = StudyCalibrationConfig(
+      dir.string(), ModelKind::kModifiedCamClay, nullptr, kQuasiStaticInertialNumber);
+  ASSERT_EQ(built.datasets.size(), 1u);
+  EXPECT_DOUBLE_EQ(built.datasets[0].study.max_inertial_number, 1e-3);
+  const std::string text = calibration::CalibrationConfigText(built);
+  EXPECT_NE(text.find("max_inertial_number = 0.001\n"), std::string::npos) << text;
+  calibration::testing::ExpectSameConfig(
+      built, calibration::ReadCalibrationConfig(ConfigTable::ParseString(text, origin)));
+  // Without a bound the key is not written.
+  EXPECT_EQ(calibration::CalibrationConfigText(
+                StudyCalibrationConfig(dir.string(), ModelKind::kModifiedCamClay, nullptr))
+                .find("max_inertial_number"),
+            std::string::npos);
 }
 
 }  // namespace

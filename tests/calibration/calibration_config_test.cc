@@ -71,6 +71,7 @@ TEST(CalibrationConfig, ReadsAValidFile) {
   EXPECT_FALSE(c.parameters[0].free);
   EXPECT_EQ(c.nlopt.starts, 2);
   EXPECT_EQ(c.hdf5_path, "/d/calib.h5");
+  EXPECT_EQ(c.status_path, "/d/calib_status.toml");
 }
 
 // Every key the reader takes, none at its default.
@@ -99,6 +100,7 @@ ncl_references = ["ncl", "ncl_phi0"]
 cases = ["nc100_psi90", "oc2_psi90"]
 psi_epsilon_range_deg = [-10, 120.5]
 triaxial_kind_tolerance_deg = 3.0
+max_inertial_number = 0.002
 [[dataset]]
 name = "runs"
 dem = ["a.h5", "sub/b.h5"]
@@ -127,6 +129,7 @@ polish = "ceres"
 hdf5 = "out/c.h5"
 summary = "out/c.txt"
 plot_data = "plots"
+status = "out/c_status.toml"
 )";
 
 TEST(CalibrationConfig, ItsTextReadsBackAsTheSameConfiguration) {
@@ -346,10 +349,11 @@ TEST(CalibrationConfig, RefusesTooFewPointsForTheFreeParameters) {
   }
 }
 
-// A failed fit stops where its solver gave up: its values are not a fit, and
-// the summary must not report a "difference of 0 standard errors" against it
-// (the rate study's clay calibration did, with Ceres's Jacobian failing).
-TEST(CalibrationConfig, FitsAreComparedOnlyWhenBothSucceedWithStandardErrors) {
+// A fit that did not converge stops where its solver gave up: its values are
+// not an optimum, and the summary must not report a "difference of 0
+// standard errors" against it (the rate study's clay calibration did, with
+// Ceres's Jacobian failing). Issue 36 §1: only when both converged.
+TEST(CalibrationConfig, FitsAreComparedOnlyWhenBothConvergedWithStandardErrors) {
   FitResult ceres;
   ceres.summary.fitter = "ceres";
   ceres.summary.termination = FitTermination::kConverged;
@@ -368,17 +372,26 @@ TEST(CalibrationConfig, FitsAreComparedOnlyWhenBothSucceedWithStandardErrors) {
   failed.summary.message = "Residual and Jacobian evaluation failed.";
   EXPECT_TRUE(std::isnan(FitAgreementInStandardErrors(failed, nlopt, &why_not)));
   EXPECT_EQ(why_not,
-            "ceres failed (Residual and Jacobian evaluation failed.), so there is no fit of it "
-            "to compare");
-  nlopt.summary.termination = FitTermination::kFailure;
-  nlopt.summary.message = "nlopt failure";
+            "ceres did not converge (failure: Residual and Jacobian evaluation failed.), so "
+            "there is no pair of optima to compare");
+  nlopt.summary.termination = FitTermination::kNoConvergence;
+  nlopt.summary.message = "BOBYQA reached polish_max_evaluations";
   EXPECT_TRUE(std::isnan(FitAgreementInStandardErrors(ceres, nlopt, &why_not)));
-  EXPECT_NE(why_not.find("nlopt:crs2+bobyqa failed (nlopt failure)"), std::string::npos) << why_not;
+  EXPECT_NE(why_not.find("nlopt:crs2+bobyqa did not converge (no_convergence: BOBYQA"),
+            std::string::npos)
+      << why_not;
+  EXPECT_TRUE(std::isnan(FitAgreementInStandardErrors(failed, nlopt, &why_not)));
+  EXPECT_NE(why_not.find("ceres did not converge (failure: Residual and Jacobian evaluation "
+                         "failed.) and nlopt:crs2+bobyqa did not converge"),
+            std::string::npos)
+      << why_not;
 
-  nlopt.summary.termination = FitTermination::kNoConvergence;  // still a fit to compare
+  nlopt.summary.termination = FitTermination::kConverged;
   ceres.standard_errors = {std::nan(""), 0.0};
   EXPECT_TRUE(std::isnan(FitAgreementInStandardErrors(ceres, nlopt, &why_not)));
-  EXPECT_EQ(why_not, "ceres gives no finite standard error of any free parameter");
+  EXPECT_EQ(why_not,
+            "ceres reports no standard error of any free parameter (each is undetermined or at a "
+            "bound)");
 }
 
 }  // namespace

@@ -48,6 +48,7 @@ inline void ExpectSameConfig(const CalibrationConfig& a, const CalibrationConfig
     EXPECT_EQ(d.study.psi_epsilon_min_deg, e.study.psi_epsilon_min_deg);
     EXPECT_EQ(d.study.psi_epsilon_max_deg, e.study.psi_epsilon_max_deg);
     EXPECT_EQ(d.study.triaxial_kind_tolerance_deg, e.study.triaxial_kind_tolerance_deg);
+    EXPECT_EQ(d.study.max_inertial_number, e.study.max_inertial_number);
     EXPECT_EQ(d.study.psi_sigma_uncertainty_deg, e.study.psi_sigma_uncertainty_deg);
     EXPECT_EQ(d.study.ln_volume_uncertainty, e.study.ln_volume_uncertainty);
     EXPECT_EQ(d.study.weight, e.study.weight);
@@ -78,6 +79,7 @@ inline void ExpectSameConfig(const CalibrationConfig& a, const CalibrationConfig
   EXPECT_EQ(a.nlopt.ceres.max_iterations, b.nlopt.ceres.max_iterations);
   EXPECT_EQ(a.hdf5_path, b.hdf5_path);
   EXPECT_EQ(a.summary_path, b.summary_path);
+  EXPECT_EQ(a.status_path, b.status_path);
   EXPECT_EQ(a.plot_data_dir, b.plot_data_dir);
 }
 

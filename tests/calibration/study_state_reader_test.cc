@@ -33,6 +33,8 @@ struct TableRow {
   std::string kind, status = "detected", case_name, stage, flags, ncl_reference = "ncl";
   std::string source;  // written when a row has one
   double psi_epsilon_deg = 0, p_kpa = 100, e = 0.7, psi_sigma_deg = 0, ocr = 1;
+  // Written when a row has them (tables of issue 36 on); NaN: unknown.
+  double i_dmin = std::nan(""), i_dmax = std::nan("");
 };
 
 void WriteTable(const std::string& directory, const std::vector<TableRow>& rows) {
@@ -43,8 +45,12 @@ void WriteTable(const std::string& directory, const std::vector<TableRow>& rows)
   std::vector<int64_t> replicate;
   std::vector<std::string> kind, status, case_name, stage, flags, reference, source;
   bool has_source = false;
-  std::vector<double> psi_e, p, e, ln_v, psi_s, ocr;
+  std::vector<double> psi_e, p, e, ln_v, psi_s, ocr, i_dmin, i_dmax;
+  bool has_rate = false;
   for (const TableRow& r : rows) {
+    i_dmin.push_back(r.i_dmin);
+    i_dmax.push_back(r.i_dmax);
+    has_rate = has_rate || std::isfinite(r.i_dmax);
     replicate.push_back(r.replicate);
     kind.push_back(r.kind);
     status.push_back(r.status);
@@ -75,6 +81,10 @@ void WriteTable(const std::string& directory, const std::vector<TableRow>& rows)
   file.WriteDoubles(g + "/" + names::kColumnPsiSigma, psi_s, "deg");
   file.WriteDoubles(g + "/" + names::kColumnOcr, ocr, "1");
   if (has_source) file.WriteStrings(g + "/" + names::kColumnSource, source);
+  if (has_rate) {
+    file.WriteDoubles(g + "/" + names::kColumnInertialNumberDmin, i_dmin, "1");
+    file.WriteDoubles(g + "/" + names::kColumnInertialNumberDmax, i_dmax, "1");
+  }
   file.Commit();
 }
 
@@ -263,6 +273,115 @@ void ExpectRejected(const std::string& text, const std::string& expected) {
     EXPECT_NE(message.find("calib.toml"), std::string::npos) << message;
     EXPECT_NE(message.find(expected), std::string::npos) << message;
   }
+}
+
+// Issue 36 §2: each state carries the largest inertial numbers of its
+// replicates and the union of their flags; max_inertial_number keeps the
+// rows below a bound on I(d_max) only (rows without one are left out too).
+TEST(StudyStateReader, StatesCarryTheirRateAndABoundOnItSelectsThem) {
+  const fs::path dir = fs::temp_directory_path() / "granasym_study_reader_rate";
+  fs::remove_all(dir);
+  std::vector<TableRow> rows;
+  for (int r = 1; r <= 2; ++r) {
+    TableRow slow;  // an NCL state, quasi-static
+    slow.replicate = r;
+    slow.kind = "ncl";
+    slow.case_name = "ncl";
+    slow.stage = "p200";
+    slow.p_kpa = 200;
+    slow.i_dmin = 1e-5 * r;
+    slow.i_dmax = 1e-4 * r;
+    rows.push_back(slow);
+    TableRow fast = slow;  // a critical state at the paper's rate
+    fast.kind = "csl";
+    fast.case_name = "nc100_psi90";
+    fast.stage = "psi90";
+    fast.psi_epsilon_deg = 90;
+    fast.psi_sigma_deg = 24;
+    fast.i_dmin = 0.005;
+    fast.i_dmax = 0.02 + 0.01 * r;
+    fast.flags = r == 1 ? "rate_affected" : "rate_affected;overlap_above_2pct";
+    rows.push_back(fast);
+  }
+  TableRow joined = rows[0];  // a joined state without an inertial number
+  joined.kind = "compression";
+  joined.case_name = "nc5_psi30+nc20_psi30";
+  joined.stage = names::kStageJoined;
+  joined.psi_epsilon_deg = 30;
+  joined.i_dmin = joined.i_dmax = std::nan("");
+  rows.push_back(joined);
+  WriteTable(dir.string(), rows);
+
+  const StateDataset all = ReadStatesStudy(dir.string(), "all", StudyReadOptions());
+  ASSERT_EQ(all.points.size(), 3u);
+  EXPECT_DOUBLE_EQ(all.points[0].inertial_number_dmin, 2e-5);  // the larger replicate's
+  EXPECT_DOUBLE_EQ(all.points[0].inertial_number_dmax, 2e-4);
+  EXPECT_TRUE(all.points[0].flags.empty());
+  EXPECT_DOUBLE_EQ(all.points[1].inertial_number_dmax, 0.04);
+  EXPECT_EQ(all.points[1].flags, "rate_affected;overlap_above_2pct");
+  EXPECT_TRUE(all.points[1].HasFlag("rate_affected"));
+  EXPECT_FALSE(all.points[1].HasFlag("rate"));
+  EXPECT_TRUE(std::isnan(all.points[2].inertial_number_dmax));
+  EXPECT_TRUE(all.warnings.empty());
+
+  StudyReadOptions quasi_static;
+  quasi_static.max_inertial_number = 1e-3;
+  const StateDataset slow = ReadStatesStudy(dir.string(), "slow", quasi_static);
+  ASSERT_EQ(slow.points.size(), 1u);
+  EXPECT_EQ(slow.points[0].kind, StateKind::kNcl);
+  EXPECT_EQ(slow.points[0].replicates, 2);
+  ASSERT_EQ(slow.warnings.size(), 1u);
+  EXPECT_NE(slow.warnings[0].find("left out 2 rows with I(d_max) at or above it and 1 rows "
+                                  "without an inertial number"),
+            std::string::npos)
+      << slow.warnings[0];
+  // A bound that leaves nothing says so, with what it left out.
+  quasi_static.max_inertial_number = 1e-5;
+  try {
+    ReadStatesStudy(dir.string(), "none", quasi_static);
+    FAIL() << "an empty selection was accepted";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("max_inertial_number 1e-05, which left out 4 rows"),
+              std::string::npos)
+        << error.what();
+  }
+  quasi_static.max_inertial_number = 0;
+  std::string why;
+  EXPECT_FALSE(quasi_static.IsValid(&why));
+  EXPECT_NE(why.find("max_inertial_number"), std::string::npos);
+}
+
+// The summary gives the rate of the fitted states and warns (rate_affected)
+// when more than half of them are flagged.
+TEST(StudyStateReader, MostlyRateAffectedDataAreAWarning) {
+  StateDataset data;
+  for (int k = 0; k < 5; ++k) {
+    AsymptoticStatePoint point;
+    point.inertial_number_dmin = 0.001 * (k + 1);
+    point.inertial_number_dmax = 0.01 * (k + 1);
+    point.flags = k >= 2 ? "overlap_above_2pct;rate_affected" : "";
+    data.points.push_back(point);
+  }
+  AsymptoticStatePoint drawn = data.points.back();  // weight 0: not fitted, not counted
+  drawn.weight = 0;
+  drawn.inertial_number_dmax = 1.0;
+  data.points.push_back(drawn);
+  const RateOfData rate = DescribeRate({data});
+  EXPECT_EQ(rate.states, 5);
+  EXPECT_EQ(rate.with_rate, 5);
+  EXPECT_EQ(rate.rate_affected, 3);
+  EXPECT_DOUBLE_EQ(rate.dmax_low, 0.01);
+  EXPECT_DOUBLE_EQ(rate.dmax_high, 0.05);
+  EXPECT_TRUE(rate.MostlyRateAffected());
+  EXPECT_NE(rate.Text().find("I(d_max) 0.01 to 0.05, I(d_min) 0.001 to 0.005; 3 of 5 flagged "
+                             "rate_affected"),
+            std::string::npos)
+      << rate.Text();
+  EXPECT_NE(rate.Warning().find("3 of the 5 fitted states are flagged rate_affected"),
+            std::string::npos);
+  data.points[2].flags = "overlap_above_2pct";
+  EXPECT_FALSE(DescribeRate({data}).MostlyRateAffected());  // 2 of 5
+  EXPECT_TRUE(DescribeRate({data}).Warning().empty());
 }
 
 TEST(StudyStateReader, CalibrationFileReadsStudySelectionsAndRejectsBadOnes) {

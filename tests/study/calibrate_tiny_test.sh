@@ -2,9 +2,12 @@
 # The main job's last three steps on the tiny study:
 #   calibrate_tiny_test.sh GRANASYM STUDY_DIR WORK_DIR
 # `study calibrate` fits the three models and writes every file the figures
-# and the report read; each model.toml runs through `granasym model run`;
-# the Fig. 5 paths of each fitted model are drawn; the report counts the
-# three calibrations.
+# and the report read, with each model's status in fit_status.toml, and exits
+# with the worst status's code (calibration/fit_status.h); each model.toml
+# runs through `granasym model run`; each calibration.toml reruns through
+# `granasym calibrate` to the same fit, status and exit status; the Fig. 5
+# paths of each fitted model are drawn; the report counts the three
+# calibrations.
 set -euo pipefail
 granasym="$1" study="$2" work="$3"
 [ -f "$study/asymptotic_states.h5" ] || { echo "FAIL: no tiny study at $study"; exit 1; }
@@ -14,9 +17,43 @@ out="$work/study"
 cp -r "$study" "$out"
 rm -rf "$out/calibration" "$out/figures"
 
-"$granasym" study calibrate "$out" | tee "$work/calibrate.txt"
+# The exit status of each status, and the statuses worst first.
+code_of() {
+  case "$1" in
+    converged) echo 0 ;; failed) echo 3 ;; at_bound) echo 5 ;;
+    converged_inadmissible) echo 6 ;; no_convergence) echo 7 ;;
+    *) echo "FAIL: unknown status '$1'" >&2; exit 1 ;;
+  esac
+}
+precedence="failed no_convergence converged_inadmissible at_bound converged"
+status_of() {  # the status in a fit_status.toml, which holds status and reason only
+  [ "$(grep -c . "$1")" -eq 2 ] && grep -q '^reason = ".*"$' "$1" ||
+    { echo "FAIL: $1 does not hold exactly status and reason" >&2; exit 1; }
+  sed -n 's/^status = "\(.*\)"$/\1/p' "$1"
+}
+
+rc=0
+"$granasym" study calibrate "$out" > "$work/calibrate.txt" || rc=$?
+cat "$work/calibrate.txt"
+statuses=""
+for model in hypoplastic_clay modified_cam_clay hypoplastic_sand; do
+  statuses="$statuses $(status_of "$out/calibration/$model/fit_status.toml")"
+done
+worst=""
+for status in $precedence; do
+  case " $statuses " in *" $status "*) worst="$status"; break ;; esac
+done
+[ "$rc" -eq "$(code_of "$worst")" ] ||
+  { echo "FAIL: study calibrate exited $rc with statuses$statuses (worst $worst)"; exit 1; }
+grep -q "exit status $rc" "$work/calibrate.txt" ||
+  { echo "FAIL: study calibrate does not state its exit status"; exit 1; }
 for model in hypoplastic_clay modified_cam_clay hypoplastic_sand; do
   dir="$out/calibration/$model"
+  status=$(status_of "$dir/fit_status.toml")
+  [ "$(sed -n 2p "$dir/summary.txt")" = "status: $status" ] ||
+    { echo "FAIL: $dir/summary.txt does not open with its status"; exit 1; }
+  grep -q "^  status: $status" "$work/calibrate.txt" ||
+    { echo "FAIL: study calibrate does not print the status of $model"; exit 1; }
   for file in calibration.toml calibration.h5 summary.txt parameters.csv warnings.txt model.toml; do
     [ -f "$dir/$file" ] || { echo "FAIL: $dir/$file is missing"; exit 1; }
   done
@@ -27,11 +64,14 @@ for model in hypoplastic_clay modified_cam_clay hypoplastic_sand; do
   [ -s "$dir/plot_data/model_lines.dat" ] || { echo "FAIL: no plot data for $model"; exit 1; }
   "$granasym" model run "$dir/model.toml" --out "$work/$model.h5" > "$work/$model.run.txt" ||
     { cat "$work/$model.run.txt"; echo "FAIL: $dir/model.toml does not run"; exit 1; }
-  # The calibration it leaves reruns as a user would, to the same fit.
+  # The calibration it leaves reruns as a user would, to the same fit and status.
+  rerun=0
   "$granasym" calibrate "$dir/calibration.toml" --out "$work/$model.rerun.h5" \
-    --summary "$work/$model.rerun.txt" --plot-data "$work/$model.rerun_plots" --quiet \
-    > "$work/$model.calibrate.txt" ||
-    { cat "$work/$model.calibrate.txt"; echo "FAIL: $dir/calibration.toml does not rerun"; exit 1; }
+    --summary "$work/$model.rerun.txt" --plot-data "$work/$model.rerun_plots" \
+    --status "$work/$model.rerun_status.toml" --quiet > "$work/$model.calibrate.txt" || rerun=$?
+  [ "$rerun" -eq "$(code_of "$status")" ] &&
+    cmp -s "$dir/fit_status.toml" "$work/$model.rerun_status.toml" ||
+    { cat "$work/$model.calibrate.txt"; echo "FAIL: $dir/calibration.toml reruns to status $rerun"; exit 1; }
   # The same text but for the header line and the wall times.
   tail -n +2 "$dir/summary.txt" | sed -E 's/[0-9.]+(e[-+]?[0-9]+)? s([ )]|$)/T s\2/g' > "$work/a.txt"
   tail -n +2 "$work/$model.rerun.txt" | sed -E 's/[0-9.]+(e[-+]?[0-9]+)? s([ )]|$)/T s\2/g' > "$work/b.txt"

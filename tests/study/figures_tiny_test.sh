@@ -101,7 +101,12 @@ csv = "states.csv"
 [output]
 plot_data = "study/calibration/hypoplastic_clay/plot_data"
 TOML
-"$granasym" calibrate "$work/calibration.toml" --quiet
+# Any status but a failed fit (exit 3) leaves the plot data
+# (calibration/fit_status.h: 0 converged, 5 at_bound, 6 converged_inadmissible,
+# 7 no_convergence): the tiny study's states need not converge cleanly.
+rc=0
+"$granasym" calibrate "$work/calibration.toml" --quiet || rc=$?
+case "$rc" in 0 | 5 | 6 | 7) ;; *) echo "FAIL: calibrate exited with status $rc"; exit 1 ;; esac
 "$granasym" study figures "$out" > "$work/figures_with_model.txt"
 check_figures
 for stem in fig16_asymptotic_states fig17_asbs_sections fig18_asbs_level; do

@@ -95,9 +95,11 @@ grep -q "a rate study, but no I\* has usable" "$work/calibrate.txt" || fail "cal
 # Asked for I* = 0.1: the quasi-static set is two datasets, the ψ_ε = 0°
 # states (drifting too) and the others with the drained cases; the tiny
 # scale's short paths detect no CSL, so each model says which dataset is empty.
-if "$granasym" study calibrate "$out" --inertial-number 0.1 > "$work/calibrate01.txt" 2>&1; then
-  fail "study calibrate fitted the tiny rate study without a detected CSL"
-fi
+rc=0
+"$granasym" study calibrate "$out" --inertial-number 0.1 > "$work/calibrate01.txt" 2>&1 || rc=$?
+[ "$rc" -eq 3 ] || fail "study calibrate without a detected CSL exited $rc, not 3 (failed)"
+grep -q '^status = "failed"$' "$out/calibration/hypoplastic_clay/fit_status.toml" ||
+  fail "fit_status.toml does not say failed"
 grep -q "fitting the 4 rate cases at I\* = 0.1 and the 0 drained cases" "$work/calibrate01.txt" ||
   fail "calibrate --inertial-number 0.1 did not name its quasi-static set"
 grep -q "hypoplastic_clay: FAILED: dataset 'quasi_static': .*no state passes the selections (kinds csl, compression, extension, triaxial; statuses detected" \

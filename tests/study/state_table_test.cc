@@ -13,6 +13,7 @@
 #include "common/time_series.h"
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
+#include "dem/stage_validity.h"
 #include "study/case_record.h"
 #include "study/study_folder.h"
 
@@ -116,6 +117,9 @@ struct SyntheticStage {
   std::string name;
   double psi_epsilon_deg, start_log_p, length;
   std::function<double(double log_p, double strain)> log_volume, psi_sigma_deg;
+  // The rate at the asymptote and the stage's validity flags.
+  double inertial_number_dmin = 0, inertial_number_dmax = 0;
+  std::vector<dem::ValidityFlag> flags = {};
 };
 
 TimeSeries EmptySeries() {
@@ -157,6 +161,9 @@ dem::StageRecord AddStage(const SyntheticStage& stage, TimeSeries* series) {
   a.psi_sigma_deg = psi;
   a.mechanical_coordination = 4.5;
   a.window_strain = 0.3;
+  a.inertial_number_dmin = stage.inertial_number_dmin;
+  a.inertial_number_dmax = stage.inertial_number_dmax;
+  record.validity.flags = stage.flags;
   record.asymptote = a;
   record.asymptote_criterion = a.criterion.Describe();
   record.stop_reason = "stage done";
@@ -191,7 +198,10 @@ void WriteCase(const std::string& study, int replicate, const std::string& name,
   file.Commit();
 }
 
-std::string SyntheticStudy(const std::string& name) {
+// `with_rate`: the path from 20 kPa at I(d_min) 0.002, I(d_max) 0.02 and
+// flagged rate_affected, the one from 100 kPa at 0.0005, 0.005 with an
+// overlap above 2 %.
+std::string SyntheticStudy(const std::string& name, bool with_rate = false) {
   const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "state_table" / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -210,14 +220,24 @@ std::string SyntheticStudy(const std::string& name) {
       auto gap = [sign, log_p0](double log_p) {
         return sign * 0.02 * std::exp(-2 * (log_p - log_p0));
       };
+      SyntheticStage path{
+          "psi30",
+          30.0,
+          log_p0,
+          1.2,
+          [gap, offset](double log_p, double) { return 0.6 + offset - 0.05 * log_p + gap(log_p); },
+          [gap, noise](double log_p, double s) {
+            return 20.0 - 400.0 * gap(log_p) + noise(log_p, s);
+          }};
+      if (with_rate) {
+        const bool slow = start > 50;
+        path.inertial_number_dmin = slow ? 0.0005 : 0.002;
+        path.inertial_number_dmax = slow ? 0.005 : 0.02;
+        path.flags = {slow ? dem::ValidityFlag::kOverlapAbove2Pct
+                           : dem::ValidityFlag::kRateAffected};
+      }
       WriteCase(dir.string(), k, "nc" + std::to_string(static_cast<int>(start)) + "_psi30", "ncl",
-                {{"psi30", 30.0, log_p0, 1.2,
-                  [gap, offset](double log_p, double) {
-                    return 0.6 + offset - 0.05 * log_p + gap(log_p);
-                  },
-                  [gap, noise](double log_p, double s) {
-                    return 20.0 - 400.0 * gap(log_p) + noise(log_p, s);
-                  }}});
+                {path});
     }
   }
   return dir.string();
@@ -364,6 +384,26 @@ TEST(EnsembleRows, TheSummaryNclFitsAndPathConvergenceCountReplicatesOnly) {
     EXPECT_NE(convergence.find(replicate), std::string::npos) << convergence;
   }
   EXPECT_EQ(summary.joined, 3);
+}
+
+// Issue 36 §2: a joined state carries the inertial numbers and flags of the
+// rows of the paths it joins (the larger I, every flag of either), in the
+// table and its CSV, so that selections by flag or by I treat it as its paths.
+TEST(JoinedRows, CarryTheLargerInertialNumbersAndTheFlagsOfThePathsTheyJoin) {
+  const std::string dir = SyntheticStudy("joined_rate", true);
+  WriteStateTable(dir);
+  int joined = 0;
+  for (const StateRow& row : ReadStateTable(dir)) {
+    if (row.source != TableSource::kJoined) continue;
+    ++joined;
+    EXPECT_EQ(row.case_name, "nc20_psi30+nc100_psi30");
+    EXPECT_DOUBLE_EQ(row.inertial_number_dmin, 0.002);
+    EXPECT_DOUBLE_EQ(row.inertial_number_dmax, 0.02);
+    EXPECT_EQ(row.flags, "rate_affected;overlap_above_2pct");
+  }
+  EXPECT_EQ(joined, 3);
+  const std::string csv = ReadTextFile(dir + "/asymptotic_states.csv");
+  EXPECT_NE(csv.find("rate_affected;overlap_above_2pct"), std::string::npos);
 }
 
 }  // namespace
