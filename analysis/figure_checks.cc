@@ -48,7 +48,7 @@ FigureSpec Variants(const Context& ctx, FigureSpec spec, Sample sample,
   }
   // Colour 1: the study's sample, 2: the other; one dash type per start.
   std::vector<std::string> starts;
-  std::string ncl_colours, path_colours, path_dashes, sample_titles;
+  std::string ncl_colours, path_colours, path_dashes;
   std::string reference_title, variant_title;
   for (const CaseData* c : pairs) {
     const bool is_ncl = std::abs(c->NominalPsiEpsilon()) < 0.5;
@@ -71,15 +71,11 @@ FigureSpec Variants(const Context& ctx, FigureSpec spec, Sample sample,
       }
     }
   }
-  std::string start_titles;
-  for (const std::string& start : starts) {
-    start_titles += (start_titles.empty() ? "\"" : " \"") + start + "\"";
-  }
   Set(&spec, "ncl_colours", ncl_colours);
   Set(&spec, "path_colours", path_colours);
   Set(&spec, "path_dashes", path_dashes);
-  Set(&spec, "sample_titles", "\"" + reference_title + "\" \"" + variant_title + "\"");
-  Set(&spec, "start_titles", start_titles);
+  Set(&spec, "sample_titles", QuotedWords({reference_title, variant_title}));
+  Set(&spec, "start_titles", QuotedWords(starts));
   if (ncl.blocks() == 0 && paths.blocks() == 0) {
     return NotDrawn(spec, "no finished case of that sample serves " + spec.figure);
   }
@@ -246,7 +242,7 @@ FigureSpec Fig22(const Context& ctx) {
   if (file.blocks() == 0) return NotDrawn(spec, "no finished case serves Figs. 21-22");
   file.Write(ctx.File("fig22_inertial.tsv"));
   Set(&spec, "n_curves", file.blocks());
-  spec.variables.emplace_back("i_lo", fmt::format("{:.3g}", lowest / 2));
+  SetNumber(&spec, "i_lo", lowest / 2);
   return spec;
 }
 

@@ -231,6 +231,54 @@ std::string Short(double v) {
   return fmt::format("{:.2g}", v);
 }
 
+std::string QuotedWords(const std::vector<std::string>& titles) {
+  std::string words;
+  for (const std::string& title : titles) {
+    words += (words.empty() ? "\"" : " \"") + Clean(title) + "\"";
+  }
+  return words;
+}
+
+std::pair<double, double> AxisRange::Padded() const {
+  if (log) {
+    // At least a decade, so that the axis has a labelled power of ten.
+    double a = std::log(lo), b = std::log(hi);
+    const double pad = 0.08 * (b - a);
+    a -= pad;
+    b += pad;
+    if (b - a < std::log(10.0)) {
+      const double middle = 0.5 * (a + b);
+      a = middle - 0.5 * std::log(10.0);
+      b = middle + 0.5 * std::log(10.0);
+    }
+    return {std::exp(a), std::exp(b)};
+  }
+  const double pad = hi - lo > 1e-12 * std::max(1.0, std::abs(hi)) ? 0.08 * (hi - lo) : 1.0;
+  return {lo - pad, hi + pad};
+}
+
+std::pair<double, double> AxisRange::Linear(double margin, double min_span) const {
+  const double floor = min_span > 0 ? min_span : 1e-3 * std::max(1.0, std::abs(hi));
+  const double span = std::max(hi - lo, floor);
+  return {lo - margin * span, hi + margin * span};
+}
+
+std::pair<double, double> AxisRange::Logarithmic(double margin) const {
+  const double a = std::log10(lo), b = std::log10(hi);
+  const double span = std::max(b - a, 0.2);
+  return {std::pow(10.0, a - margin * span), std::pow(10.0, b + margin * span)};
+}
+
+std::vector<std::vector<double>> LineRows(double n, double lambda, double p_lo, double p_hi,
+                                          int intervals) {
+  std::vector<std::vector<double>> rows;
+  for (int k = 0; k <= intervals; ++k) {
+    const double ln_p = std::log(p_lo) + (std::log(p_hi) - std::log(p_lo)) * k / intervals;
+    rows.push_back({std::exp(ln_p), n - lambda * ln_p});
+  }
+  return rows;
+}
+
 const CaseData* FindCase(const std::vector<CaseData>& cases, int replicate,
                          const std::string& name) {
   for (const CaseData& c : cases) {
@@ -273,11 +321,7 @@ std::string StartLabel(const std::vector<CaseData>& cases, const CaseData& c) {
 }
 
 std::string DirectionLabel(const CaseData& c) {
-  for (size_t k = 0; k < c.stages.size(); ++k) {
-    if (std::isfinite(c.stage_radial_stress[k])) {
-      return fmt::format("σ_r = {} kPa", Short(c.stage_radial_stress[k]));
-    }
-  }
+  if (std::isfinite(c.RadialStress())) return fmt::format("σ_r = {} kPa", Short(c.RadialStress()));
   return fmt::format("ψ_ε = {}°", Short(c.NominalPsiEpsilon()));
 }
 
@@ -447,6 +491,9 @@ void Set(FigureSpec* spec, const std::string& name, int value) {
 }
 void Set(FigureSpec* spec, const std::string& name, const std::string& value) {
   spec->variables.emplace_back(name, Quoted(value));
+}
+void SetNumber(FigureSpec* spec, const std::string& name, double value) {
+  spec->variables.emplace_back(name, fmt::format("{:.6g}", value));
 }
 
 }  // namespace granasym::analysis::figures

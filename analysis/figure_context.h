@@ -6,6 +6,7 @@
 // library: analysis/figure_families.h lists the families.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <limits>
@@ -57,6 +58,46 @@ std::vector<std::vector<double>> Rows(std::initializer_list<const std::vector<do
 // A number for a legend: 3 significant digits, no exponent for kPa values.
 std::string Short(double v);
 
+// Titles as gnuplot words, each quoted: "\"a b\" \"c\"" (read with word()).
+std::string QuotedWords(const std::vector<std::string>& titles);
+
+// The rows (p, ln(1+e)) of the line ln(1+e) = n − λ ln(p / 1 kPa), evenly in
+// ln p from p_lo to p_hi over `intervals` steps.
+std::vector<std::vector<double>> LineRows(double n, double lambda, double p_lo, double p_hi,
+                                          int intervals);
+
+// The range of an axis that holds every point of a figure (non-finite
+// values, and on a log axis non-positive ones, are left out), padded so that
+// no point sits on the frame:
+//  - Padded (the rate study's figures): 8 % each side, in log for a log axis
+//    and then at least a decade; a single linear value ±1 (gnuplot warns
+//    about an empty autoscaled range, which `study figures` treats as an
+//    error);
+//  - Linear and Logarithmic (the paper's figures): `margin` of the span each
+//    side, the span at least `min_span` (0: 1e-3 of the larger magnitude, and
+//    1e-3) or 0.2 decades.
+struct AxisRange {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -std::numeric_limits<double>::infinity();
+  bool log = false;
+  void Add(double v) {
+    if (!std::isfinite(v) || (log && !(v > 0))) return;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  void Add(double v, double half_width) {
+    Add(v);
+    if (std::isfinite(half_width)) {
+      Add(v - half_width);
+      Add(v + half_width);
+    }
+  }
+  bool empty() const { return !(lo <= hi); }
+  std::pair<double, double> Padded() const;
+  std::pair<double, double> Linear(double margin = 0.05, double min_span = 0) const;
+  std::pair<double, double> Logarithmic(double margin = 0.08) const;
+};
+
 // ---------------------------------------------------------------- the study folder
 
 struct Path {
@@ -87,6 +128,13 @@ struct CaseData {
   bool Serves(const std::string& figure) const { return figures.Contains(figure); }
   double NominalPsiEpsilon() const {
     for (double v : stage_psi_epsilon) {
+      if (std::isfinite(v)) return v;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  // σ_r of its first stress-controlled (drained) stage; NaN for none.
+  double RadialStress() const {
+    for (double v : stage_radial_stress) {
       if (std::isfinite(v)) return v;
     }
     return std::numeric_limits<double>::quiet_NaN();
@@ -210,5 +258,7 @@ FigureSpec NotDrawn(FigureSpec spec, const std::string& why);
 // A gnuplot variable of the figure's script: a number, or a text quoted.
 void Set(FigureSpec* spec, const std::string& name, int value);
 void Set(FigureSpec* spec, const std::string& name, const std::string& value);
+// A number variable (6 significant digits), e.g. an axis end.
+void SetNumber(FigureSpec* spec, const std::string& name, double value);
 
 }  // namespace granasym::analysis::figures

@@ -12,45 +12,9 @@
 namespace granasym::analysis::figures {
 namespace {
 
-void AddLine(BlockFile* file, const std::string& title, const NclLine& line, double p_min,
-             double p_max) {
-  std::vector<std::vector<double>> rows;
-  for (int k = 0; k <= 20; ++k) {
-    const double ln_p = std::log(p_min) + (std::log(p_max) - std::log(p_min)) * k / 20;
-    rows.push_back({std::exp(ln_p), line.n - line.lambda * ln_p});
-  }
-  file->Add(title, rows);
-}
-
-}  // namespace
-
-namespace {
-
 // The floor of the valid range of p (SPEC §8.3): rows below it are a gas's
 // tail, drawn faint and never setting an axis.
 constexpr double kFloorKpa = 0.5;
-
-// An axis range with a margin: logarithmic (for p) or linear.
-struct AxisRange {
-  double lo = 1e300, hi = -1e300;
-  void Add(double v) {
-    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
-  }
-  bool valid() const { return lo <= hi; }
-  std::pair<double, double> Linear(double margin = 0.05) const {
-    const double span = std::max(hi - lo, 1e-3 * std::max(1.0, std::abs(hi)));
-    return {lo - margin * span, hi + margin * span};
-  }
-  std::pair<double, double> Logarithmic(double margin = 0.08) const {
-    const double a = std::log10(lo), b = std::log10(hi);
-    const double span = std::max(b - a, 0.2);
-    return {std::pow(10.0, a - margin * span), std::pow(10.0, b + margin * span)};
-  }
-};
-
-void SetNumber(FigureSpec* spec, const std::string& name, double value) {
-  spec->variables.emplace_back(name, fmt::format("{:.6g}", value));
-}
 
 // The CSL ln(1+e) = Γ − λ ln p through the study's detected critical states.
 LineFit CslFit(const Context& ctx) {
@@ -104,14 +68,14 @@ FigureSpec Fig09(const Context& ctx) {
   const NclLine ncl = ctx.StudyNcl(1);
   const int paths = file.blocks();
   if (ncl.valid()) {
-    AddLine(&file, fmt::format("fitted NCL: N = {:.3f}, λ* = {:.4f}", ncl.n, ncl.lambda), ncl,
-            p_min, p_max);
+    file.Add(fmt::format("fitted NCL: N = {:.3f}, λ* = {:.4f}", ncl.n, ncl.lambda),
+             LineRows(ncl.n, ncl.lambda, p_min, p_max, 20));
   }
   file.Write(ctx.File("fig09_paths.tsv"));
   Set(&spec, "n_paths", paths);
   Set(&spec, "has_fit", file.blocks() - paths);
-  Set(&spec, "has_cycles", cycle_p.valid() ? 1 : 0);
-  if (cycle_p.valid()) {
+  Set(&spec, "has_cycles", !cycle_p.empty() ? 1 : 0);
+  if (!cycle_p.empty()) {
     const auto [lo, hi] = cycle_p.Logarithmic(0.05);
     const auto [v_lo, v_hi] = cycle_v.Linear(0.08);
     SetNumber(&spec, "cycle_p_lo", lo);
@@ -167,10 +131,8 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
       cases.end());
   bool all_isochoric = true;
   auto direction_of = [](const CaseData* c) {
-    for (size_t k = 0; k < c->stages.size(); ++k) {
-      if (std::isfinite(c->stage_radial_stress[k])) return c->stage_radial_stress[k];
-    }
-    return c->NominalPsiEpsilon();
+    const double sigma_r = c->RadialStress();
+    return std::isfinite(sigma_r) ? sigma_r : c->NominalPsiEpsilon();
   };
   auto start_key = [&](const CaseData* c) {
     const Start s = StartOf(ctx.cases, c ? *c : CaseData{});
@@ -340,15 +302,10 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
   // The fitted lines of panel (b): the study's NCL and, where the paper
   // draws it, the CSL through the detected critical states.
   BlockFile lines({"p_kpa", "ln_1_plus_e"});
-  if (p_range.valid()) {
+  if (!p_range.empty()) {
     const auto [p_lo, p_hi] = p_range.Logarithmic();
     auto add_line = [&](const std::string& title, double n, double lambda) {
-      std::vector<std::vector<double>> rows;
-      for (int k = 0; k <= 40; ++k) {
-        const double ln_p = std::log(p_lo) + (std::log(p_hi) - std::log(p_lo)) * k / 40;
-        rows.push_back({std::exp(ln_p), n - lambda * ln_p});
-      }
-      lines.Add(title, rows);
+      lines.Add(title, LineRows(n, lambda, p_lo, p_hi, 40));
     };
     const NclLine ncl = ctx.StudyNcl(1);
     if (ncl.valid()) {
@@ -377,17 +334,9 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
   Set(&spec, "n_paths", paths.blocks());
   Set(&spec, "path_colours", colours);
   Set(&spec, "path_dashes", dashes);
-  std::string colour_titles, dash_titles;
-  for (const std::string& t : colour_by_start ? starts : directions) {
-    colour_titles += (colour_titles.empty() ? "\"" : " \"") + t + "\"";
-  }
-  if (!colour_by_start && dash_groups.size() > 1) {
-    for (const std::string& t : dash_groups) {
-      dash_titles += (dash_titles.empty() ? "\"" : " \"") + t + "\"";
-    }
-  }
-  Set(&spec, "colour_titles", colour_titles);
-  Set(&spec, "dash_titles", dash_titles);
+  Set(&spec, "colour_titles", QuotedWords(colour_by_start ? starts : directions));
+  Set(&spec, "dash_titles",
+      !colour_by_start && dash_groups.size() > 1 ? QuotedWords(dash_groups) : "");
   Set(&spec, "colour_heading", colour_by_start ? directions.front() + ", from" : "direction");
   Set(&spec, "n_marks", marks.blocks());
   Set(&spec, "mark_titles", marks.titles());
@@ -430,12 +379,7 @@ FigureSpec Fig12(const Context& ctx) {
   // In numeric order of σ_r, then NC before OC: one colour per σ_r, solid
   // from NC and dashed from OC states.
   std::vector<const CaseData*> cases = ctx.Serving("12");
-  auto radial = [](const CaseData* c) {
-    for (size_t k = 0; k < c->stages.size(); ++k) {
-      if (std::isfinite(c->stage_radial_stress[k])) return c->stage_radial_stress[k];
-    }
-    return std::numeric_limits<double>::quiet_NaN();
-  };
+  auto radial = [](const CaseData* c) { return c->RadialStress(); };
   auto is_oc = [&](const CaseData* c) { return StartOf(ctx.cases, *c).kind == "OC"; };
   std::stable_sort(cases.begin(), cases.end(), [&](const CaseData* a, const CaseData* b) {
     return radial(a) != radial(b) ? radial(a) < radial(b) : is_oc(a) < is_oc(b);

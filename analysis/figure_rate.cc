@@ -15,47 +15,6 @@
 namespace granasym::analysis::figures {
 namespace {
 
-// The range of an axis that holds every point of a figure, padded so that no
-// point sits on the frame and a single value still spans a range (gnuplot
-// warns about an empty autoscaled range, which `study figures` treats as an
-// error): 8 % each side, in log for a log axis (and at least a decade);
-// a single linear value ±1.
-struct AxisRange {
-  double lo = std::numeric_limits<double>::infinity();
-  double hi = -std::numeric_limits<double>::infinity();
-  bool log = false;
-  void Add(double v) {
-    if (!std::isfinite(v) || (log && !(v > 0))) return;
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-  void Add(double v, double half_width) {
-    Add(v);
-    if (std::isfinite(half_width)) {
-      Add(v - half_width);
-      Add(v + half_width);
-    }
-  }
-  bool empty() const { return !(lo <= hi); }
-  std::pair<double, double> Padded() const {
-    if (log) {
-      // At least a decade, so that the axis has a labelled power of ten.
-      double a = std::log(lo), b = std::log(hi);
-      const double pad = 0.08 * (b - a);
-      a -= pad;
-      b += pad;
-      if (b - a < std::log(10.0)) {
-        const double middle = 0.5 * (a + b);
-        a = middle - 0.5 * std::log(10.0);
-        b = middle + 0.5 * std::log(10.0);
-      }
-      return {std::exp(a), std::exp(b)};
-    }
-    const double pad = hi - lo > 1e-12 * std::max(1.0, std::abs(hi)) ? 0.08 * (hi - lo) : 1.0;
-    return {lo - pad, hi + pad};
-  }
-};
-
 // Sets `<name>_min` and `<name>_max` for a script's `set xrange`.
 void SetRange(FigureSpec* spec, const std::string& name, const AxisRange& range) {
   const auto [lo, hi] = range.Padded();
@@ -689,7 +648,7 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   Set(&spec, "modulus_note", ModulusNote(rate, reference));
   spec.variables.emplace_back("band_low", fmt::format("{:g}", band.low));
   spec.variables.emplace_back("band_high", fmt::format("{:g}", band.high));
-  spec.variables.emplace_back("i_left", fmt::format("{:.6g}", i_left));
+  SetNumber(&spec, "i_left", i_left);
   return spec;
 }
 

@@ -96,15 +96,15 @@ FigureSpec Fig16(const Context& ctx) {
   const std::map<double, int> colours = DirectionColours(ctx);
   std::map<double, std::vector<std::vector<double>>> by_direction;
   std::map<double, std::vector<std::string>> labels;
-  double p_lo = 1e300, p_hi = 0, v_lo = 1e300, v_hi = -1e300;
+  AxisRange p_range, lnv_range;
   for (const StateRow* row : ctx.Select(MainStates())) {
     if (!ConstantDirectionKind(row->kind)) continue;
     by_direction[NominalOf(*row)].push_back({row->p_kpa, row->ln_1_plus_e, row->psi_sigma_deg,
                                              row->psi_epsilon_deg,
                                              row->status == TableStatus::kDetected ? 7.0 : 6.0});
     labels[NominalOf(*row)].push_back(StateLabel(*row));
-    p_lo = std::min(p_lo, row->p_kpa), p_hi = std::max(p_hi, row->p_kpa);
-    v_lo = std::min(v_lo, row->ln_1_plus_e), v_hi = std::max(v_hi, row->ln_1_plus_e);
+    p_range.Add(row->p_kpa);
+    lnv_range.Add(row->ln_1_plus_e);
   }
   BlockFile states(
       {"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "psi_epsilon_deg", "point_type", "label"});
@@ -120,13 +120,8 @@ FigureSpec Fig16(const Context& ctx) {
   BlockFile lines({"p_kpa", "ln_1_plus_e"});
   std::vector<std::string> line_styles;
   auto add = [&](const std::string& title, double n, double lambda, const std::string& style) {
-    std::vector<std::vector<double>> rows;
-    for (int k = 0; k <= 40; ++k) {
-      const double ln_p = std::log(p_lo) + (std::log(p_hi) - std::log(p_lo)) * k / 40;
-      rows.push_back({std::exp(ln_p), n - lambda * ln_p});
-    }
     const int before = lines.blocks();
-    lines.Add(title, rows);
+    lines.Add(title, LineRows(n, lambda, p_range.lo, p_range.hi, 40));
     if (lines.blocks() > before) line_styles.push_back(style);
   };
   const NclLine ncl = ctx.StudyNcl(1);
@@ -168,12 +163,12 @@ FigureSpec Fig16(const Context& ctx) {
   Set(&spec, "line_models", styles);
   Set(&spec, "n_models", curves.blocks());
   Set(&spec, "model_titles", curves.titles());
-  const double lp = std::log10(p_lo), hp = std::log10(p_hi), span = std::max(hp - lp, 0.2);
-  const double vspan = std::max(v_hi - v_lo, 0.01);
-  spec.variables.emplace_back("p_lo", fmt::format("{:.6g}", std::pow(10.0, lp - 0.08 * span)));
-  spec.variables.emplace_back("p_hi", fmt::format("{:.6g}", std::pow(10.0, hp + 0.08 * span)));
-  spec.variables.emplace_back("lnv_lo", fmt::format("{:.6g}", v_lo - 0.06 * vspan));
-  spec.variables.emplace_back("lnv_hi", fmt::format("{:.6g}", v_hi + 0.06 * vspan));
+  const auto [p_lo, p_hi] = p_range.Logarithmic(0.08);
+  const auto [v_lo, v_hi] = lnv_range.Linear(0.06, 0.01);
+  SetNumber(&spec, "p_lo", p_lo);
+  SetNumber(&spec, "p_hi", p_hi);
+  SetNumber(&spec, "lnv_lo", v_lo);
+  SetNumber(&spec, "lnv_hi", v_hi);
   return spec;
 }
 
@@ -223,19 +218,18 @@ FigureSpec Fig17(const Context& ctx) {
     }
   }
   model_file.Write(ctx.File("fig17_models.tsv"));
-  std::string model_titles;
-  for (const ModelOverlay& model : ctx.models) {
-    model_titles += (model_titles.empty() ? "\"" : " \"") + model.title + "\"";
-  }
+  std::vector<std::string> titles;
+  for (const ModelOverlay& model : ctx.models) titles.push_back(model.title);
+  const std::string model_titles = QuotedWords(titles);
   spec.caption += " " + ctx.models_note;
   Set(&spec, "n_levels", static_cast<int>(drawn.size()));
   Set(&spec, "level_titles", dem_file.titles());
   Set(&spec, "n_models", static_cast<int>(ctx.models.size()));
   Set(&spec, "model_titles", model_titles);
   // The axes from the DEM's states (a model's section may reach far beyond).
-  spec.variables.emplace_back("x_hi", fmt::format("{:.6g}", std::max(1.1, 1.15 * x_hi)));
-  spec.variables.emplace_back("y_lo", fmt::format("{:.6g}", 1.15 * y_lo - 0.05));
-  spec.variables.emplace_back("y_hi", fmt::format("{:.6g}", 1.15 * y_hi + 0.05));
+  SetNumber(&spec, "x_hi", std::max(1.1, 1.15 * x_hi));
+  SetNumber(&spec, "y_lo", 1.15 * y_lo - 0.05);
+  SetNumber(&spec, "y_hi", 1.15 * y_hi + 0.05);
   return spec;
 }
 
@@ -328,10 +322,10 @@ FigureSpec Fig18(const Context& ctx) {
   Set(&spec, "n_paths", path_file.blocks());
   Set(&spec, "n_models", model_file.blocks());
   // The axes from the DEM's states and paths, not from a model's curve.
-  spec.variables.emplace_back("x_lo", fmt::format("{:.6g}", x_lo / 2));
-  spec.variables.emplace_back("x_hi", fmt::format("{:.6g}", std::max(1.1, 1.15 * x_hi)));
-  spec.variables.emplace_back("y_lo", fmt::format("{:.6g}", 1.15 * y_lo - 0.05));
-  spec.variables.emplace_back("y_hi", fmt::format("{:.6g}", 1.15 * y_hi + 0.05));
+  SetNumber(&spec, "x_lo", x_lo / 2);
+  SetNumber(&spec, "x_hi", std::max(1.1, 1.15 * x_hi));
+  SetNumber(&spec, "y_lo", 1.15 * y_lo - 0.05);
+  SetNumber(&spec, "y_hi", 1.15 * y_hi + 0.05);
   return spec;
 }
 

@@ -52,12 +52,7 @@ class Study {
     for (const CaseData& c : ctx.cases) {
       cases_[{c.replicate, c.name}] = &c;
       if (!c.finished || c.path.empty() || c.sample != Sample::kMain) continue;
-      for (double s : c.stage_radial_stress) {
-        if (std::isfinite(s)) {
-          drained_.emplace_back(&c, s);
-          break;
-        }
-      }
+      if (std::isfinite(c.RadialStress())) drained_.emplace_back(&c, c.RadialStress());
     }
     for (const StateRow& row : ctx.states) {
       if (row.replicate < 1 || row.stage == study::table::kStageJoined) continue;

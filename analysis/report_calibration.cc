@@ -180,9 +180,7 @@ Section ModelSection(const StudyFolder& study, const std::string& model,
   }
   const std::string parameters = folder + "/parameters.csv";
   if (outcome) {
-    std::string reason = outcome->reason;
-    if (!reason.empty() && reason[0] >= 'a' && reason[0] <= 'z') reason[0] += 'A' - 'a';
-    Inline line = Plain("Outcome: " + outcome->Label() + ". " + reason);
+    Inline line = Plain("Outcome: " + outcome->Label() + ". " + outcome->reason);
     if (!outcome->derived) {
       const std::string file = folder + "/fit_status.toml";
       line = line + Plain(" (from ") + Link(file, UrlPath(file), true) + Plain(")");

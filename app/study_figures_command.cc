@@ -90,7 +90,7 @@ void RegisterStudyFiguresCommand(CLI::App* study) {
   static FiguresFlags flags;
   CLI::App* figures = study->add_subcommand(
       "figures",
-      "the paper's figures from a study folder: DIR/figures/<stem>.png and .pdf, their data "
+      "the paper's figures from a study folder: DIR/figures/<stem>.png, .pdf and .svg, their data "
       "under DIR/figures/data/, captions in DIR/figures/index.tsv");
   figures->add_option("dir", flags.directory, "study folder")
       ->required()
