@@ -16,18 +16,20 @@ namespace {
 // φ_c of a triaxial-compression stress ratio M: sin φ = 3M / (6 + M).
 double FrictionAngleDeg(double m) { return std::asin(3 * m / (6 + m)) / kDegree; }
 
-// Per (E, σ_r, ε̇_a): the replicates' means over their usable states.
+// Per (material, σ_r, ε̇_a): the replicates' means over their usable states.
 std::vector<DrainedGroup> Groups(const std::vector<DrainedState>& states,
                                  const RateStudyOptions& options) {
-  using GroupKey = std::tuple<double, double, double>;  // E, σ_r, ε̇_a
+  using GroupKey = std::tuple<DrainedMaterial, double, double>;  // material, σ_r, ε̇_a
   std::map<GroupKey, std::vector<const DrainedState*>> members;
   for (const DrainedState& s : states) {
-    members[{s.youngs_modulus_mpa, s.radial_stress_kpa, s.axial_strain_rate}].push_back(&s);
+    members[{MaterialOf(s), s.radial_stress_kpa, s.axial_strain_rate}].push_back(&s);
   }
   std::vector<DrainedGroup> groups;
   for (const auto& [key, list] : members) {
     DrainedGroup g;
-    std::tie(g.youngs_modulus_mpa, g.radial_stress_kpa, g.axial_strain_rate) = key;
+    SetMaterial(std::get<0>(key), &g);
+    g.radial_stress_kpa = std::get<1>(key);
+    g.axial_strain_rate = std::get<2>(key);
     g.states = static_cast<int>(list.size());
     std::vector<const DrainedState*> used;
     for (const DrainedState* s : list) {
@@ -46,19 +48,18 @@ std::vector<DrainedGroup> Groups(const std::vector<DrainedState>& states,
   return groups;
 }
 
-// The limits as I → 0 of one (E, σ_r) through the usable states of its
+// The limits as I → 0 of one (material, σ_r) through the usable states of its
 // groups (ascending ε̇_a), and the verdict of its two slowest rates.
 DrainedLimit LimitOf(const std::vector<const DrainedGroup*>& groups,
                      const std::vector<DrainedState>& states, const RateStudyOptions& options) {
   DrainedLimit l;
-  l.youngs_modulus_mpa = groups.front()->youngs_modulus_mpa;
+  SetMaterial(MaterialOf(*groups.front()), &l);
   l.radial_stress_kpa = groups.front()->radial_stress_kpa;
   std::vector<double> x, m, lnv, lnp;
   for (const DrainedGroup* g : groups) {
     if (g->used > 0) ++l.rates;
     for (const DrainedState& s : states) {
-      if (s.youngs_modulus_mpa != g->youngs_modulus_mpa ||
-          s.radial_stress_kpa != g->radial_stress_kpa ||
+      if (MaterialOf(s) != MaterialOf(*g) || s.radial_stress_kpa != g->radial_stress_kpa ||
           s.axial_strain_rate != g->axial_strain_rate || !DrainedUsable(s, options) ||
           !(s.inertial_number_dmax > 0)) {
         continue;
@@ -108,11 +109,12 @@ DrainedLimit LimitOf(const std::vector<const DrainedGroup*>& groups,
   return l;
 }
 
-// The quasi-static critical state of one E through the limits of its σ_r.
-DrainedCriticalState CriticalStateOf(double modulus, const std::vector<const DrainedLimit*>& limits,
+// The quasi-static critical state of one material through the limits of its σ_r.
+DrainedCriticalState CriticalStateOf(const DrainedMaterial& material,
+                                     const std::vector<const DrainedLimit*>& limits,
                                      double ln_reference) {
   DrainedCriticalState c;
-  c.youngs_modulus_mpa = modulus;
+  SetMaterial(material, &c);
   c.starts = static_cast<int>(limits.size());
   std::vector<double> ms, x, y;
   for (const DrainedLimit* l : limits) {
@@ -121,16 +123,7 @@ DrainedCriticalState CriticalStateOf(double modulus, const std::vector<const Dra
     y.push_back(l->ln_1_plus_e.mean);
   }
   c.m = Estimate::Of(ms);
-  if (std::isfinite(c.m.mean)) {
-    // dφ/dM = 18 / ((6 + M)² cos φ).
-    const double phi = FrictionAngleDeg(c.m.mean);
-    const double derivative =
-        18.0 / ((6 + c.m.mean) * (6 + c.m.mean) * std::cos(phi * kDegree)) / kDegree;
-    c.phi_c_deg = c.m;
-    c.phi_c_deg.mean = phi;
-    c.phi_c_deg.standard_error = derivative * c.m.standard_error;
-    c.phi_c_deg.half_width = derivative * c.m.half_width;
-  }
+  c.phi_c_deg = FrictionAngleOf(c.m);
   const LineFit fm = FitLine(x, ms);
   if (fm.valid()) c.m_per_ln_p = Estimate::Fitted(fm.slope, fm.slope_error, fm.points);
   const LineFit csl = FitLine(x, y);
@@ -144,6 +137,24 @@ DrainedCriticalState CriticalStateOf(double modulus, const std::vector<const Dra
 
 }  // namespace
 
+Estimate FrictionAngleOf(const Estimate& m) {
+  Estimate phi = m;
+  if (!std::isfinite(m.mean)) return phi;
+  phi.mean = FrictionAngleDeg(m.mean);
+  // dφ/dM = 18 / ((6 + M)² cos φ).
+  const double derivative =
+      18.0 / ((6 + m.mean) * (6 + m.mean) * std::cos(phi.mean * kDegree)) / kDegree;
+  phi.standard_error = derivative * m.standard_error;
+  phi.half_width = derivative * m.half_width;
+  return phi;
+}
+
+std::string MaterialText(const DrainedMaterial& material) {
+  const auto& [modulus, damping, ratio, fraction] = material;
+  return fmt::format("E = {:g} MPa, χ = {:g}, k_t/k_n = {:g}, {}", modulus, damping, ratio,
+                     fraction > 0 ? fmt::format("f = {:g}", fraction) : "a fixed time step");
+}
+
 bool DrainedUsable(const DrainedState& s, const RateStudyOptions& options) {
   return PassesFilters(s.status, s.flags, options.statuses, options) && s.p_kpa > 0 &&
          std::isfinite(s.ln_1_plus_e) && std::isfinite(s.q_over_p);
@@ -155,25 +166,25 @@ DrainedStudy DrainedStudy::Analyse(std::vector<DrainedState> states,
   study.states = std::move(states);
   study.groups = Groups(study.states, options);
 
-  // Per (E, σ_r): the groups in ascending ε̇_a (map order).
-  std::map<std::pair<double, double>, std::vector<const DrainedGroup*>> by_start;
+  // Per (material, σ_r): the groups in ascending ε̇_a (map order).
+  std::map<std::pair<DrainedMaterial, double>, std::vector<const DrainedGroup*>> by_start;
   for (const DrainedGroup& g : study.groups) {
-    by_start[{g.youngs_modulus_mpa, g.radial_stress_kpa}].push_back(&g);
+    by_start[{MaterialOf(g), g.radial_stress_kpa}].push_back(&g);
   }
   for (const auto& [start, groups] : by_start) {
     study.limits.push_back(LimitOf(groups, study.states, options));
   }
 
-  // Per E: the quasi-static critical state through the limits.
-  std::map<double, std::vector<const DrainedLimit*>> by_modulus;
+  // Per material: the quasi-static critical state through the limits.
+  std::map<DrainedMaterial, std::vector<const DrainedLimit*>> by_material;
   for (const DrainedLimit& l : study.limits) {
     if (l.valid() && std::isfinite(l.ln_p_kpa.mean) && std::isfinite(l.ln_1_plus_e.mean)) {
-      by_modulus[l.youngs_modulus_mpa].push_back(&l);
+      by_material[MaterialOf(l)].push_back(&l);
     }
   }
   const double ln_reference = std::log(options.reference_p_kpa);
-  for (const auto& [modulus, limits] : by_modulus) {
-    study.critical.push_back(CriticalStateOf(modulus, limits, ln_reference));
+  for (const auto& [material, limits] : by_material) {
+    study.critical.push_back(CriticalStateOf(material, limits, ln_reference));
   }
   return study;
 }

@@ -10,6 +10,7 @@
 
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "analysis/estimate.h"
@@ -17,30 +18,56 @@
 
 namespace granasym::analysis {
 
+// The material and numerics that the drained analysis keeps apart, each
+// read from the case's scene: besides E, Cundall's local damping χ, the
+// stiffness ratio k_t/k_n and the time-step fraction f (0: a fixed time
+// step), which the study of what sets M varies (issue 39 §2,
+// studies/programmes/critical_state_friction.toml). Every row type below
+// holds them as its first four numbers.
+using DrainedMaterial = std::tuple<double, double, double, double>;  // E, χ, k_t/k_n, f
+template <typename Row>
+DrainedMaterial MaterialOf(const Row& row) {
+  return {row.youngs_modulus_mpa, row.local_damping, row.stiffness_ratio, row.time_step_fraction};
+}
+template <typename Row>
+void SetMaterial(const DrainedMaterial& material, Row* row) {
+  std::tie(row->youngs_modulus_mpa, row->local_damping, row->stiffness_ratio,
+           row->time_step_fraction) = material;
+}
+// "E = 500 MPa, χ = 0.2, k_t/k_n = 1, f = 0.2"
+std::string MaterialText(const DrainedMaterial& material);
+
+// φ_c = asin(3M/(6 + M)) of a triaxial-compression stress ratio M, its
+// interval by the delta method.
+Estimate FrictionAngleOf(const Estimate& m);
+
 // One drained triaxial rate case's asymptotic state (a row of
 // rate_drained_states.csv).
 struct DrainedState {
   int replicate = 1;
   std::string case_name, stage, flags;
   TableStatus status = TableStatus::kNoResult;
-  double youngs_modulus_mpa = 0, radial_stress_kpa = 0, axial_strain_rate = 0;  // ε̇_a (1/s)
+  double youngs_modulus_mpa = 0, local_damping = 0, stiffness_ratio = 0, time_step_fraction = 0;
+  double radial_stress_kpa = 0, axial_strain_rate = 0;  // ε̇_a (1/s)
   double p_kpa = 0, e = 0, ln_1_plus_e = 0, psi_sigma_deg = 0, q_over_p = 0;
   double inertial_number_dmin = 0, inertial_number_dmax = 0;
 };
 
-// Per (E, σ_r, ε̇_a): the replicates' means.
+// Per (material, σ_r, ε̇_a): the replicates' means.
 struct DrainedGroup {
-  double youngs_modulus_mpa = 0, radial_stress_kpa = 0, axial_strain_rate = 0;
+  double youngs_modulus_mpa = 0, local_damping = 0, stiffness_ratio = 0, time_step_fraction = 0;
+  double radial_stress_kpa = 0, axial_strain_rate = 0;
   int states = 0, used = 0;
   Estimate p_kpa, e, ln_1_plus_e, psi_sigma_deg, q_over_p, inertial_number_dmax;
 };
 
-// Per (E, σ_r): y = a + b·I(d_max) through the usable states of every rate
+// Per (material, σ_r): y = a + b·I(d_max) through the usable states of every rate
 // (at least two rates): M = q/p, ln(1+e) and ln p as I → 0; and the two
 // slowest rates compared in M and ln(1+e) (rate_independent when both
 // agree within the 95 % interval of their difference).
 struct DrainedLimit {
-  double youngs_modulus_mpa = 0, radial_stress_kpa = 0;
+  double youngs_modulus_mpa = 0, local_damping = 0, stiffness_ratio = 0, time_step_fraction = 0;
+  double radial_stress_kpa = 0;
   int rates = 0, points = 0;
   double i_min = std::numeric_limits<double>::quiet_NaN();
   double i_max = std::numeric_limits<double>::quiet_NaN();
@@ -53,9 +80,9 @@ struct DrainedLimit {
   bool valid() const { return std::isfinite(m.mean); }
 };
 
-// Per E: the quasi-static critical state from the limits of every σ_r.
+// Per material: the quasi-static critical state from the limits of every σ_r.
 struct DrainedCriticalState {
-  double youngs_modulus_mpa = 0;
+  double youngs_modulus_mpa = 0, local_damping = 0, stiffness_ratio = 0, time_step_fraction = 0;
   int starts = 0;       // σ_r with a limit
   Estimate m;           // mean of the limits' M (Student t, starts − 1 dof)
   Estimate phi_c_deg;   // φ_c = asin(3M/(6 + M)), its interval by the delta method
@@ -68,9 +95,9 @@ struct DrainedCriticalState {
 
 struct DrainedStudy {
   std::vector<DrainedState> states;
-  std::vector<DrainedGroup> groups;            // by (E, σ_r, ε̇_a)
-  std::vector<DrainedLimit> limits;            // by (E, σ_r)
-  std::vector<DrainedCriticalState> critical;  // by E
+  std::vector<DrainedGroup> groups;            // by (material, σ_r, ε̇_a)
+  std::vector<DrainedLimit> limits;            // by (material, σ_r)
+  std::vector<DrainedCriticalState> critical;  // by material
   // `usable`: the rate study's rule for a state's status and flags.
   static DrainedStudy Analyse(std::vector<DrainedState> states, const RateStudyOptions& options);
 };

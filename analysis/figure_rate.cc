@@ -78,6 +78,37 @@ std::string ModulusNote(const RateStudy& rate, double reference) {
              : fmt::format("filled: E = {} MPa, open: E = {} MPa", Short(reference), others);
 }
 
+// The drained cases' materials (drained_study.h) and a legend text for each:
+// "E = 500 MPa" when the drained cases vary E alone, the whole material
+// otherwise (the study of what sets M, issue 39 §2, varies the damping, the
+// stiffness ratio and the time step).
+struct DrainedMaterials {
+  std::map<DrainedMaterial, int> index;  // in map order, from 0
+  bool beyond_modulus = false;           // anything but E varies
+  std::string Text(const DrainedMaterial& m) const {
+    return beyond_modulus ? MaterialText(m) : fmt::format("E = {} MPa", Short(std::get<0>(m)));
+  }
+  // A point type per material beyond E: the filled triangle of the
+  // reference, then other open and filled shapes (gnuplot 4, 6, 8, 10, 12, 14).
+  double Point(const DrainedMaterial& m, bool reference) const {
+    if (!beyond_modulus) return reference ? 9.0 : 8.0;
+    static constexpr double kPoints[] = {9, 4, 6, 8, 10, 12, 14, 5, 7, 11, 13, 15};
+    return kPoints[index.at(m) % std::size(kPoints)];
+  }
+};
+DrainedMaterials MaterialsOf(const RateStudy& rate) {
+  DrainedMaterials m;
+  std::set<std::tuple<double, double, double>> beyond;
+  for (const DrainedGroup& g : rate.drained.groups) {
+    m.index.emplace(MaterialOf(g), 0);
+    beyond.insert({g.local_damping, g.stiffness_ratio, g.time_step_fraction});
+  }
+  int k = 0;
+  for (auto& [material, index] : m.index) index = k++;
+  m.beyond_modulus = beyond.size() > 1;
+  return m;
+}
+
 }  // namespace
 
 FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
@@ -108,12 +139,13 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
   }
   // The drained cases (σ_r = p_0): one curve per (E, rank of the axial rate
   // at each σ_r, slowest first), coloured as the I* nearest its measured I.
-  std::map<std::pair<double, int>, std::vector<const DrainedGroup*>> drained;
+  const DrainedMaterials materials = MaterialsOf(rate);
+  std::map<std::pair<DrainedMaterial, int>, std::vector<const DrainedGroup*>> drained;
   {
-    std::map<std::pair<double, double>, std::vector<const DrainedGroup*>> by_start;
+    std::map<std::pair<DrainedMaterial, double>, std::vector<const DrainedGroup*>> by_start;
     for (const DrainedGroup& g : rate.drained.groups) {
       if (g.used > 0 && std::isfinite(g.psi_sigma_deg.mean)) {
-        by_start[{g.youngs_modulus_mpa, g.radial_stress_kpa}].push_back(&g);
+        by_start[{MaterialOf(g), g.radial_stress_kpa}].push_back(&g);
       }
     }
     for (auto& [start, groups] : by_start) {
@@ -191,10 +223,10 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
         y.Add(g->psi_sigma_deg.mean, g->psi_sigma_deg.half_width);
         rows.push_back({g->p_kpa.mean, LogHalfWidth(g->p_kpa.mean, g->p_kpa.half_width),
                         g->psi_sigma_deg.mean, Zeroed(g->psi_sigma_deg.half_width),
-                        curve.first == reference ? 9.0 : 8.0,
+                        materials.Point(curve.first, std::get<0>(curve.first) == reference),
                         static_cast<double>(nearest_colour(i_mean))});
       }
-      file.Add(fmt::format("drained, I ≈ {:.2g}, E = {} MPa", i_mean, Short(curve.first)), rows);
+      file.Add(fmt::format("drained, I ≈ {:.2g}, {}", i_mean, materials.Text(curve.first)), rows);
     }
     file.Write(ctx.File(fmt::format("rate_psi_sigma_{}.tsv", k)));
     panel_titles += fmt::format("{}\"drained, σ_r = p_0\"", panel_titles.empty() ? "" : " ");
@@ -502,9 +534,10 @@ FigureSpec CriticalStateSpec(const RateStudy& rate, double reference) {
 // The points of rate (c): the group means of M against I(d_max), one curve
 // per (E, p_0) of the ψ_ε = 90° groups and per (E, σ_r) of the drained ones.
 struct CriticalStatePoints {
-  using Curves = std::map<std::pair<double, double>, std::vector<std::vector<double>>>;
-  Curves isochoric, drained;
-  double i_min = 1e300;  // the smallest measured I
+  using Rows = std::vector<std::vector<double>>;
+  std::map<std::pair<double, double>, Rows> isochoric;         // (E, start p)
+  std::map<std::pair<DrainedMaterial, double>, Rows> drained;  // (material, σ_r)
+  double i_min = 1e300;                                        // the smallest measured I
 };
 
 CriticalStatePoints CriticalStateGroups(const RateStudy& rate, double reference,
@@ -524,14 +557,16 @@ CriticalStatePoints CriticalStateGroups(const RateStudy& rate, double reference,
     points.isochoric[{g.key.youngs_modulus_mpa, g.key.start_p_kpa}].push_back(
         row(g.inertial_number_dmax, g.q_over_p, point, g.key.start_p_kpa));
   }
-  // The drained cases (constant σ_r = p_0): triangles, one block per (E, σ_r).
+  // The drained cases (constant σ_r = p_0): triangles (other shapes for
+  // other materials), one block per (material, σ_r).
+  const DrainedMaterials materials = MaterialsOf(rate);
   for (const DrainedGroup& g : rate.drained.groups) {
     if (g.used == 0 || !(g.inertial_number_dmax.mean > 0) || !std::isfinite(g.q_over_p.mean)) {
       continue;
     }
-    const bool ref = g.youngs_modulus_mpa == reference;
-    points.drained[{g.youngs_modulus_mpa, g.radial_stress_kpa}].push_back(
-        row(g.inertial_number_dmax, g.q_over_p, ref ? 9.0 : 8.0, g.radial_stress_kpa));
+    const double point = materials.Point(MaterialOf(g), g.youngs_modulus_mpa == reference);
+    points.drained[{MaterialOf(g), g.radial_stress_kpa}].push_back(
+        row(g.inertial_number_dmax, g.q_over_p, point, g.radial_stress_kpa));
   }
   return points;
 }
@@ -565,15 +600,15 @@ int WriteCriticalStateFits(const Context& ctx, const RateStudy& rate, double ref
             f.limit.mean, f.limit.half_width, f.slope.mean, f.i_max, ref ? 7.0 : 6.0,
             ref ? 5.0 : 4.0, colour->second);
   }
+  const DrainedMaterials materials = MaterialsOf(rate);
   for (const DrainedLimit& l : rate.drained.limits) {
     if (!l.valid()) continue;
     const auto colour = colour_of.find(l.radial_stress_kpa);
     if (colour == colour_of.end()) continue;
-    const bool ref = l.youngs_modulus_mpa == reference;
-    add_fit(fmt::format("E = {} MPa, drained at sigma_r = {} kPa: M_0 = {:.3f}",
-                        Short(l.youngs_modulus_mpa), Short(l.radial_stress_kpa), l.m.mean),
-            l.m.mean, l.m.half_width, l.m_slope.mean, l.i_max, ref ? 9.0 : 8.0, ref ? 9.0 : 8.0,
-            colour->second);
+    const double point = materials.Point(MaterialOf(l), l.youngs_modulus_mpa == reference);
+    add_fit(fmt::format("{}, drained at sigma_r = {} kPa: M_0 = {:.3f}",
+                        materials.Text(MaterialOf(l)), Short(l.radial_stress_kpa), l.m.mean),
+            l.m.mean, l.m.half_width, l.m_slope.mean, l.i_max, point, point, colour->second);
   }
   if (fits.blocks() > 0) {
     fits.Write(ctx.File("rate_critical_state_fits.tsv"));
@@ -613,23 +648,26 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   x.log = true;
   y.Add(band.low);
   y.Add(band.high);
-  for (const CriticalStatePoints::Curves* curves : {&points.isochoric, &points.drained}) {
-    for (const auto& [curve, rows] : *curves) {
+  auto add_ranges = [&x, &y](const auto& curves) {
+    for (const auto& [curve, rows] : curves) {
       for (const std::vector<double>& row : rows) {
         x.Add(row[0], row[1]);
         y.Add(row[2], row[3]);
       }
     }
-  }
+  };
+  add_ranges(points.isochoric);
+  add_ranges(points.drained);
   BlockFile groups({"inertial_number", "inertial_number_ci95", "q_over_p", "q_over_p_ci95",
                     "point_type", "colour"});
   for (auto& [curve, rows] : points.isochoric) {
     std::sort(rows.begin(), rows.end());
     groups.Add(fmt::format("E = {} MPa, NC {} kPa", Short(curve.first), Short(curve.second)), rows);
   }
+  const DrainedMaterials materials = MaterialsOf(rate);
   for (auto& [curve, rows] : points.drained) {
     std::sort(rows.begin(), rows.end());
-    groups.Add(fmt::format("E = {} MPa, drained at sigma_r = {} kPa", Short(curve.first),
+    groups.Add(fmt::format("{}, drained at sigma_r = {} kPa", materials.Text(curve.first),
                            Short(curve.second)),
                rows);
   }

@@ -133,6 +133,12 @@ void ReadRateCase(const std::string& directory, const StateRow& row, RateCases* 
   if (file.HasAttribute(group, dem::record::kStageAxialStrainRate)) {
     DrainedState d = FromRow<DrainedState>(row);  // a drained triaxial stage
     d.youngs_modulus_mpa = modulus;
+    // Keys of the analysis' maps, so never NaN: a stiffness ratio absent
+    // (Hertz–Mindlin has none) and a time-step fraction absent (a fixed time
+    // step, Scene::Canonical) read as 0.
+    d.local_damping = CanonicalNumber(canonical, "material.local_damping").value_or(0.0);
+    d.stiffness_ratio = CanonicalNumber(canonical, "material.stiffness_ratio").value_or(0.0);
+    d.time_step_fraction = CanonicalNumber(canonical, "numerics.time_step_fraction").value_or(0.0);
     d.radial_stress_kpa = file.ReadDoubleAttribute(group, dem::record::kStageRadialStressKpa);
     d.axial_strain_rate = file.ReadDoubleAttribute(group, dem::record::kStageAxialStrainRate);
     cases->drained.push_back(d);

@@ -355,6 +355,9 @@ const Columns<DrainedState> kDrainedStateColumns = {
     {"stage", &DrainedState::stage},
     {"status", &DrainedState::status},
     {"youngs_modulus_mpa", &DrainedState::youngs_modulus_mpa},
+    {"local_damping", &DrainedState::local_damping, true},
+    {"stiffness_ratio", &DrainedState::stiffness_ratio, true},
+    {"time_step_fraction", &DrainedState::time_step_fraction, true},
     {"radial_stress_kpa", &DrainedState::radial_stress_kpa},
     {"axial_strain_rate_per_s", &DrainedState::axial_strain_rate},
     {"p_kpa", &DrainedState::p_kpa},
@@ -369,6 +372,9 @@ const Columns<DrainedState> kDrainedStateColumns = {
 
 const Columns<DrainedGroup> kDrainedGroupColumns = {
     {"youngs_modulus_mpa", &DrainedGroup::youngs_modulus_mpa},
+    {"local_damping", &DrainedGroup::local_damping},
+    {"stiffness_ratio", &DrainedGroup::stiffness_ratio},
+    {"time_step_fraction", &DrainedGroup::time_step_fraction},
     {"radial_stress_kpa", &DrainedGroup::radial_stress_kpa},
     {"axial_strain_rate_per_s", &DrainedGroup::axial_strain_rate},
     {"states", &DrainedGroup::states},
@@ -383,6 +389,9 @@ const Columns<DrainedGroup> kDrainedGroupColumns = {
 
 const Columns<DrainedLimit> kDrainedLimitColumns = {
     {"youngs_modulus_mpa", &DrainedLimit::youngs_modulus_mpa},
+    {"local_damping", &DrainedLimit::local_damping},
+    {"stiffness_ratio", &DrainedLimit::stiffness_ratio},
+    {"time_step_fraction", &DrainedLimit::time_step_fraction},
     {"radial_stress_kpa", &DrainedLimit::radial_stress_kpa},
     {"rates", &DrainedLimit::rates},
     {"points", &DrainedLimit::points},
@@ -402,6 +411,9 @@ const Columns<DrainedLimit> kDrainedLimitColumns = {
 
 const Columns<DrainedCriticalState> kDrainedCriticalColumns = {
     {"youngs_modulus_mpa", &DrainedCriticalState::youngs_modulus_mpa},
+    {"local_damping", &DrainedCriticalState::local_damping},
+    {"stiffness_ratio", &DrainedCriticalState::stiffness_ratio},
+    {"time_step_fraction", &DrainedCriticalState::time_step_fraction},
     {"starts", &DrainedCriticalState::starts},
     {"m", &DrainedCriticalState::m},
     {"phi_c_deg", &DrainedCriticalState::phi_c_deg},
@@ -440,13 +452,14 @@ void WriteDrainedFiles(const std::string& directory, const DrainedStudy& d,
               "constant axial rate), one row per case and detector stage"},
              kDrainedStateColumns, d.states, o);
   WriteTable(directory + "/" + kRateDrainedFile,
-             {"per (E, sigma_r, axial rate): the mean over the replicates' usable states "
+             {"per (material: E, local damping, k_t/k_n, time-step fraction; sigma_r, axial rate): "
+              "the mean over the replicates' usable states "
               "and the half-width of its 95 % interval (Student t, n - 1 degrees of "
               "freedom); q_over_p is the critical-state ratio M",
               usable},
              kDrainedGroupColumns, d.groups, o);
   WriteTable(directory + "/" + kRateDrainedLimitFile,
-             {"per (E, sigma_r): y = a + b I(d_max) by least squares through the usable "
+             {"per (material, sigma_r): y = a + b I(d_max) by least squares through the usable "
               "states of every axial rate (I(d_max) as measured over each asymptote's "
               "window): the limits as I -> 0 of M = q/p, ln(1+e) and ln p with 95 % "
               "intervals (Student t, points - 2 degrees of freedom); the two slowest "
@@ -456,14 +469,15 @@ void WriteDrainedFiles(const std::string& directory, const DrainedStudy& d,
              kDrainedLimitColumns, d.limits, o);
   WriteTable(
       directory + "/" + kRateDrainedCriticalFile,
-      {fmt::format("per E: the quasi-static critical state from the limits of every sigma_r: M "
-                   "the mean of their M (Student t, starts - 1 degrees of freedom), phi_c = "
-                   "asin(3M/(6+M)) (interval by the delta method), dM/d ln p the least-squares "
-                   "slope of their M against ln p (zero within its interval: M independent of "
-                   "p), and the CSL ln(1+e) = Gamma - lambda ln(p / 1 kPa) through their (ln p, "
-                   "ln(1+e)) with its position at p = {:g} kPa (Student t, starts - 2 degrees "
-                   "of freedom; from the scatter of the limits, not their own intervals)",
-                   o.reference_p_kpa),
+      {fmt::format(
+           "per material: the quasi-static critical state from the limits of every sigma_r: M "
+           "the mean of their M (Student t, starts - 1 degrees of freedom), phi_c = "
+           "asin(3M/(6+M)) (interval by the delta method), dM/d ln p the least-squares "
+           "slope of their M against ln p (zero within its interval: M independent of "
+           "p), and the CSL ln(1+e) = Gamma - lambda ln(p / 1 kPa) through their (ln p, "
+           "ln(1+e)) with its position at p = {:g} kPa (Student t, starts - 2 degrees "
+           "of freedom; from the scatter of the limits, not their own intervals)",
+           o.reference_p_kpa),
        usable},
       kDrainedCriticalColumns, d.critical, o);
 }

@@ -498,11 +498,26 @@ std::vector<std::string> RateStudy::Answers() const {
     return e.has_interval() ? fmt::format("{:.{}f} ± {:.{}f}", e.mean, digits, e.half_width, digits)
                             : fmt::format("{:.{}f} (no interval)", e.mean, digits);
   };
+  // Materials beyond E (the study of what sets M, issue 39 §2): the
+  // critical state of each at each rate, with its intervals.
+  std::set<std::tuple<double, double, double>> beyond_modulus;
+  for (const DrainedGroup& g : drained.groups) {
+    beyond_modulus.insert({g.local_damping, g.stiffness_ratio, g.time_step_fraction});
+  }
+  for (const DrainedGroup& g : drained.groups) {
+    if (beyond_modulus.size() < 2 || g.used == 0) continue;
+    answers.push_back(fmt::format(
+        "Drained critical state, {}, σ_r = {:g} kPa, I(d_max) = {:.2g}: M = {}, φ_c = {}°, "
+        "ln(1+e) = {} at p = {:.0f} kPa ({} of {} replicates).",
+        MaterialText(MaterialOf(g)), g.radial_stress_kpa, g.inertial_number_dmax.mean,
+        pm(g.q_over_p, 3), pm(FrictionAngleOf(g.q_over_p), 1), pm(g.ln_1_plus_e, 4), g.p_kpa.mean,
+        g.used, g.states));
+  }
   for (const DrainedCriticalState& c : drained.critical) {
     answers.push_back(fmt::format(
         "Quasi-static critical state (drained triaxial compression extrapolated to I → 0 at {} "
-        "radial stresses, E = {:g} MPa): M = {}, φ_c = {}°{}.",
-        c.starts, c.youngs_modulus_mpa, pm(c.m, 3), pm(c.phi_c_deg, 1),
+        "radial stresses, {}): M = {}, φ_c = {}°{}.",
+        c.starts, MaterialText(MaterialOf(c)), pm(c.m, 3), pm(c.phi_c_deg, 1),
         std::isfinite(c.lambda.mean)
             ? fmt::format("; CSL λ = {}, ln(1+e) at {:g} kPa = {}", pm(c.lambda, 4),
                           options.reference_p_kpa, pm(c.position, 4))
@@ -630,8 +645,8 @@ std::string RateStudy::Text() const {
                         RateText(l.rule, l.rate), l.start_p_kpa, l.Text());
   }
   for (const DrainedCriticalState& c : drained.critical) {
-    text += fmt::format("  drained critical state as I -> 0, E {:g} MPa: {}\n",
-                        c.youngs_modulus_mpa, c.Text(options.reference_p_kpa));
+    text += fmt::format("  drained critical state as I -> 0, {}: {}\n", MaterialText(MaterialOf(c)),
+                        c.Text(options.reference_p_kpa));
   }
   return text;
 }

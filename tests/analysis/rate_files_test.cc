@@ -157,7 +157,8 @@ TEST(DrainedStudy, TheFilesReadBackAndMalformedNumbersNameTheLine) {
   const CsvTextTable critical = table(kRateDrainedCriticalFile);
   ASSERT_EQ(critical.rows.size(), 1u);
   EXPECT_NEAR(std::stod(critical.rows[0][critical.Column("m_mean")]), kM0, 1e-8);
-  EXPECT_NE(study.Text().find("drained critical state as I -> 0, E 500 MPa: M = 0.920"),
+  EXPECT_NE(study.Text().find("drained critical state as I -> 0, E = 500 MPa, χ = 0.5, k_t/k_n = "
+                              "0.3, f = 0.3: M = 0.920"),
             std::string::npos)
       << study.Text();
   // A malformed number names the file, its line and the column.
@@ -166,9 +167,9 @@ TEST(DrainedStudy, TheFilesReadBackAndMalformedNumbersNameTheLine) {
     std::ifstream in(dir / kRateDrainedStatesFile);
     text.assign(std::istreambuf_iterator<char>(in), {});
   }
-  const size_t at = text.find(",500,5,");
+  const size_t at = text.find(",0.3,5,");  // time-step fraction, radial stress
   ASSERT_NE(at, std::string::npos);
-  text.replace(at, 7, ",500,five,");
+  text.replace(at, 7, ",0.3,five,");
   std::ofstream(dir / kRateDrainedStatesFile) << text;
   try {
     ReadDrainedStates(dir.string());

@@ -594,6 +594,43 @@ TEST(DrainedStudy, TheTwoSlowestRatesDecideRateIndependence) {
   }
 }
 
+TEST(DrainedStudy, MaterialsBeyondTheModulusAreKeptApart) {
+  // The study of what sets M (issue 39 §2) varies the damping at one E: the
+  // same cases at χ = 0.05 with M higher by 0.1 must form groups, limits and
+  // critical states of their own, not be averaged with the paper's χ = 0.5.
+  std::vector<DrainedState> states = DrainedStates(0.0);
+  const size_t paper = states.size();
+  for (size_t k = 0; k < paper; ++k) {
+    DrainedState s = states[k];
+    s.local_damping = 0.05;
+    s.q_over_p += 0.1;
+    states.push_back(s);
+  }
+  const DrainedStudy d = DrainedStudy::Analyse(states, {});
+  const DrainedStudy alone = DrainedStudy::Analyse(DrainedStates(0.0), {});
+  ASSERT_EQ(d.groups.size(), 2 * alone.groups.size());
+  ASSERT_EQ(d.critical.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.critical[0].local_damping, 0.05);  // map order: χ ascending
+  EXPECT_DOUBLE_EQ(d.critical[1].local_damping, 0.5);
+  EXPECT_NEAR(d.critical[0].m.mean - d.critical[1].m.mean, 0.1, 1e-9);
+  EXPECT_NEAR(d.critical[1].m.mean, alone.critical.at(0).m.mean, 1e-12);
+
+  RateStudy study;
+  study.drained = d;
+  std::string answers;
+  for (const std::string& a : study.Answers()) answers += a + "\n";
+  EXPECT_NE(answers.find("Drained critical state, E = 500 MPa, χ = 0.05, k_t/k_n = 0.3, f = 0.3, "
+                         "σ_r = 100 kPa"),
+            std::string::npos)
+      << answers;
+  // One material alone: no per-material lines (the limits' answers cover it).
+  RateStudy one;
+  one.drained = alone;
+  for (const std::string& a : one.Answers()) {
+    EXPECT_EQ(a.find("Drained critical state,"), std::string::npos) << a;
+  }
+}
+
 TEST(DrainedStudy, UnusableStatesAreLeftOutAndAStartNeedsTwoRates) {
   std::vector<DrainedState> states = DrainedStates(4.0);
   for (DrainedState& s : states) {

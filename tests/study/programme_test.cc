@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
 #include <map>
 #include <set>
 #include <string>
@@ -514,6 +515,84 @@ TEST(RateProgramme, TinyScaleKeepsOneStartTwoRatesAndTheConstantRate) {
   EXPECT_EQ(path->rule, dem::RateRule::kInertial);
   EXPECT_DOUBLE_EQ(path->inertial.inertial_number, 0.03);
   EXPECT_DOUBLE_EQ(path->psi_epsilon_deg, 90);
+}
+
+// Every programme shipped in studies/programmes loads at every scale it
+// defines, with its NCL case among its cases and its GSD table present.
+TEST(ShippedProgrammes, EveryOneLoadsAtEveryScaleItDefines) {
+  int programmes = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(GRANASYM_PROGRAMMES_DIR)) {
+    if (entry.path().extension() != ".toml") continue;
+    ++programmes;
+    const std::string path = entry.path().string();
+    const Programme tiny = Programme::Load(path, Scale::kTiny);
+    EXPECT_FALSE(tiny.cases.empty()) << path;
+    for (const auto& [scale, spec] : tiny.scales) {
+      SCOPED_TRACE(path + " at " + ToString(scale));
+      const Programme p = Programme::Load(path, scale);
+      EXPECT_FALSE(p.cases.empty());
+      if (!p.ncl_case.empty()) {
+        EXPECT_NE(p.Find(p.ncl_case), nullptr);
+      }
+      if (!p.sample.gsd_path.empty()) {
+        EXPECT_TRUE(std::filesystem::exists(p.sample.gsd_path));
+      }
+    }
+  }
+  EXPECT_GE(programmes, 6);
+}
+
+// studies/programmes/critical_state_friction*.toml (issue 39 §2): each
+// material prepares its own NC state and shears it with the same material.
+TEST(CriticalStateFrictionProgramme, EachMaterialPreparesAndShearsItsOwnSample) {
+  const std::string dir = GRANASYM_PROGRAMMES_DIR;
+  const Programme p = Programme::Load(dir + "/critical_state_friction.toml", Scale::kSmall);
+  EXPECT_EQ(p.Current().count, 5000);
+  EXPECT_EQ(p.Current().replicates, 3);
+  struct Material {
+    const char* suffix;
+    double damping, ratio, fraction;
+  };
+  const Material materials[] = {{"chi0.5_kr0.3_f0.3", 0.5, 0.3, 0.3},
+                                {"chi0.2_kr0.3_f0.3", 0.2, 0.3, 0.3},
+                                {"chi0.05_kr0.3_f0.3", 0.05, 0.3, 0.3},
+                                {"chi0.5_kr0.3_f0.2", 0.5, 0.3, 0.2},
+                                {"chi0.5_kr1_f0.2", 0.5, 1.0, 0.2}};
+  const Plan plan = Plan::Make(p, 1, "out");
+  for (const Material& m : materials) {
+    const std::string ncl = std::string("ncl_") + m.suffix;
+    const std::string drained = std::string("nc100_drained_") + m.suffix;
+    ASSERT_NE(p.Find(ncl), nullptr) << ncl;
+    ASSERT_NE(p.Find(drained), nullptr) << drained;
+    EXPECT_EQ(p.Find(drained)->parent, ncl);
+    for (const std::string& name : {ncl, drained}) {
+      const int k = plan.Find("r3/" + name);
+      ASSERT_GE(k, 0) << name;
+      const dem::Scene scene =
+          dem::Scene::Parse(plan.cases[static_cast<size_t>(k)].scene_text, "scene.toml", ".");
+      EXPECT_DOUBLE_EQ(scene.material.local_damping, m.damping) << name;
+      EXPECT_DOUBLE_EQ(scene.material.stiffness_ratio, m.ratio) << name;
+      EXPECT_DOUBLE_EQ(scene.adaptive_time_step.fraction, m.fraction) << name;
+      if (name == drained) {
+        const auto* triaxial = scene.stages.at(0).As<dem::TriaxialStage>();
+        ASSERT_NE(triaxial, nullptr);
+        EXPECT_DOUBLE_EQ(triaxial->axial_strain_rate, 4.11);
+        EXPECT_DOUBLE_EQ(triaxial->radial_stress_kpa, 100);
+      }
+    }
+  }
+  EXPECT_EQ(p.cases.size(), 10u);
+
+  const Programme narrow =
+      Programme::Load(dir + "/critical_state_friction_narrow.toml", Scale::kSmall);
+  EXPECT_NE(narrow.sample.gsd_path.find("gsd_narrow_0.6_0.8.csv"), std::string::npos);
+  EXPECT_DOUBLE_EQ(narrow.sample.reference_cell_size_mm, 42.0);
+  const Plan narrow_plan = Plan::Make(narrow, 1, "out");
+  const dem::Scene narrow_drained = dem::Scene::Parse(
+      narrow_plan.cases[static_cast<size_t>(narrow_plan.Find("r1/nc100_drained_narrow"))]
+          .scene_text,
+      "scene.toml", ".");
+  EXPECT_DOUBLE_EQ(narrow_drained.stages.at(0).As<dem::TriaxialStage>()->axial_strain_rate, 5.14);
 }
 
 }  // namespace
