@@ -20,4 +20,5 @@ html_theme = "alabaster"
 html_theme_options = {"nosidebar": False, "page_width": "1100px"}
 html_title = "granasym user guide"
 html_show_sourcelink = False
+html_copy_source = False
 language = "en"
