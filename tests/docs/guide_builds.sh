@@ -4,7 +4,9 @@
 # with warnings as errors (-W), nitpicky (-n): a link to a page, a heading
 # anchor (myst_heading_anchors) or a repository file that does not exist, an
 # image that cannot be read, a page left out of every toctree and a
-# literalinclude whose markers moved all fail the build.
+# literalinclude whose markers moved all fail the build. The Markdown files
+# outside the guide that link into it (README.md, docs/*.md) are checked
+# too: every relative link and image names a file that exists.
 set -euo pipefail
 guide="$1" out="$2"
 if ! command -v sphinx-build >/dev/null 2>&1; then
@@ -12,6 +14,20 @@ if ! command -v sphinx-build >/dev/null 2>&1; then
        "(scripts/install_deps.sh)"
   exit 1
 fi
+root="$(cd "$guide/../.." && pwd)"
+broken=0
+for page in "$root/README.md" "$root"/docs/*.md; do
+  # [text](target) and ![alt](target) without a scheme; the anchor dropped.
+  while IFS= read -r target; do
+    file="${target%%#*}"
+    [ -z "$file" ] && continue
+    if [ ! -e "$(dirname "$page")/$file" ]; then
+      echo "FAIL: ${page#"$root"/}: the link to '$target' names no file"
+      broken=1
+    fi
+  done < <(grep -oE '\]\([^) ]+\)' "$page" | sed -E 's/^\]\((.*)\)$/\1/' | grep -vE '^[a-z]+:')
+done
+[ "$broken" -eq 0 ] || exit 1
 rm -rf "$out"
 start=$(date +%s%N)
 sphinx-build -W -n --keep-going -q -b html -d "$out/doctrees" "$guide" "$out/html"
