@@ -20,8 +20,9 @@ if grep -q '^\[study\]' "$input"; then
   scale="${2:-small}"
   out="$root/out/$name-$scale"
   "$granasym" study run "$input" --scale "$scale" --out "$out"
-  # A model whose fit did not converge cleanly exits non-zero (README, "Exit
-  # statuses"); its status is in the report, and the figures and report follow.
+  # A model whose fit did not converge cleanly exits non-zero
+  # (docs/guide/exit-statuses.md); its status is in the report, and the
+  # figures and report follow.
   "$granasym" study calibrate "$out" ||
     echo "run.sh: not every model converged (see above and $out/calibration/*/fit_status.toml)"
   "$granasym" study figures "$out"

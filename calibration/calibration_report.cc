@@ -224,7 +224,7 @@ std::string RateOfData::Warning() const {
       "{} of the {} fitted states are flagged rate_affected (I(d_max) above the DEM's "
       "quasi-static limit; here I(d_max) {:.3g} to {:.3g}): the parameters describe the DEM at "
       "its rate, not its quasi-static behaviour; fit a quasi-static selection (`granasym study "
-      "calibrate --select quasi_static`, README \"Calibration\")",
+      "calibrate --select quasi_static`, docs/guide/calibration.md)",
       rate_affected, states, dmax_low, dmax_high);
 }
 

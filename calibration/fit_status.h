@@ -56,7 +56,7 @@ int Severity(FitStatus status);
 FitStatus Worst(FitStatus a, FitStatus b);
 
 // The exit status of `granasym calibrate` and `granasym study calibrate`
-// (README, "Exit statuses"): converged 0, failed 3 (a failed fit, as for
+// (docs/guide/exit-statuses.md): converged 0, failed 3 (a failed fit, as for
 // every command), at_bound 5, converged_inadmissible 6, no_convergence 7.
 int ExitStatus(FitStatus status);
 

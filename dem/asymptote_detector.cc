@@ -71,7 +71,7 @@ AsymptoteCriterion AsymptoteCriterion::For(PathKind kind) {
     // autocorrelation of 0.4-0.75 between output rows 0.002 apart; the fitted
     // change across a window of 0.3 strain then has a standard error of about
     // 0.85°. Twice that accepts a stationary state; the 1° of the compression
-    // paths would reject one window in four of it (README, "Extension
+    // paths would reject one window in four of it (docs/guide/scenes.md, "Extension
     // asymptotic states").
     c.psi_tolerance_deg = 2.0;
     // At the paper's rate these states are dense flows whose p barely moves

@@ -85,7 +85,7 @@ PathKind StrainPathKind(double psi_epsilon_deg);
 // The criterion of a kind of path ([stage.asymptote]); see the file comment.
 // The defaults (of For(kind)) were tuned on 3000-sphere runs with the
 // paper's numerics (NC to 10 and 200 kPa, then ψ_ε = 20°, 45°, 70°, 90°,
-// 120° and a drained triaxial; README): a window of 0.15 strain or 1.0 of
+// 120° and a drained triaxial; docs/guide/scenes.md): a window of 0.15 strain or 1.0 of
 // ln p holds enough of the fluctuations of a small sample (p scatters by
 // ±20 % on the critical state of 3000 spheres) that a stationary state is
 // accepted within a few windows, while the transients (the drop of p on an

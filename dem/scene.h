@@ -1,6 +1,6 @@
 // A scene: the sample, the material, the numerics, the output and a chain of
 // loading stages, read from a TOML file and validated with messages that name
-// the file, the key, the value and the valid range (docs: README "Scene files").
+// the file, the key, the value and the valid range (docs: docs/guide/scenes.md).
 #pragma once
 
 #include <optional>

@@ -15,6 +15,8 @@
 # already has one; it is removed again afterwards.
 # clang-format (14 on Debian 12) is for the test that keeps the tree
 # formatted (scripts/check_format.sh).
+# python3-sphinx and python3-myst-parser build the user guide (docs/guide;
+# the test Docs.guide_builds and the target `docs`).
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -22,6 +24,7 @@ packages=(
   libcli11-dev libtoml11-dev libfmt-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
+  python3-sphinx python3-myst-parser
   clang-format
   chromium
 )

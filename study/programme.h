@@ -1,9 +1,10 @@
 // A study programme: one TOML file that declares the sample, the shared
 // preparation states and the cases that branch from them, with lists that
-// expand into cases. Layout (README "Studies" documents it for users):
+// expand into cases. Layout (shown to users in docs/guide/reference.md):
 //
 //   [study]
 //   name = "paper"
+//   description = "..."     # optional: a line about the programme (read, not used)
 //   ncl = "ncl"             # the run whose ψ_ε = 0° stages give the study's NCL (OCR, p_e*)
 //   [scale.tiny]            # the sphere count (and so the cell) and the replicates
 //   count = 300
@@ -17,6 +18,7 @@
 //   reference_cell_size_mm = 31.0
 //   seed = 1
 //   gsd = "table.csv"       # optional; default: the reduced Zbraslav GSD
+//   max_attempts = 200000   # optional: placements tried per sphere (as in a scene)
 //   [scene.material]        # scene tables shared by every run (material, numerics, output)
 //   [[run]]
 //   name = "nc{p}_psi{psi}" # placeholders {var} take the values of `vary`
