@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "common/error.h"
@@ -81,6 +82,7 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
     sample.directory = directory + "/samples/r" + std::to_string(r);
     plan.samples.push_back(sample);
   }
+  std::map<std::string, int> index;  // case id → index in plan.cases
   for (int r = 1; r <= spec.replicates; ++r) {
     const std::string replicate = "r" + std::to_string(r);
     for (const CaseSpec& case_spec : programme.cases) {
@@ -97,7 +99,9 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
             "packing = " + TomlQuoted("../../../samples/" + replicate + "/packing.txt") + "\n";
         parent_key = plan.samples[static_cast<size_t>(r - 1)].key;
       } else {
-        c.parent = plan.Find(replicate + "/" + case_spec.parent);
+        const auto parent = index.find(replicate + "/" + case_spec.parent);
+        GRANASYM_CHECK(parent != index.end()) << "the programme orders parents first";
+        c.parent = parent->second;
         GRANASYM_CHECK(c.parent >= 0) << "the programme orders parents first";
         sample_table += "state = " + TomlQuoted("../" + case_spec.parent + "/result.h5") + "\n";
         if (!case_spec.parent_stage.empty()) {
@@ -130,6 +134,7 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
       if (c.parent >= 0)
         plan.cases[static_cast<size_t>(c.parent)].children.push_back(
             static_cast<int>(plan.cases.size()));
+      index.emplace(c.id, static_cast<int>(plan.cases.size()));
       plan.cases.push_back(std::move(c));
     }
   }

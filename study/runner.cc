@@ -15,6 +15,7 @@
 #include <mutex>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include "common/config.h"
 #include "common/error.h"
@@ -23,6 +24,7 @@
 #include "dem/grain_size_distribution.h"
 #include "dem/scene.h"
 #include "dem/simulation.h"
+#include "study/case_queue.h"
 #include "study/case_record.h"
 #include "study/study_folder.h"
 
@@ -151,17 +153,13 @@ CaseOutcome RunModelCase(const PlannedModelCase& m,
 class Scheduler {
  public:
   Scheduler(const Plan& plan, const RunnerOptions& options, const std::vector<int>& selected)
-      : plan_(plan), options_(options), selected_(selected) {
-    for (int k : selected_) in_shard_.insert(k);
-    for (int k : selected_) {
-      state_[k] = State::kWaiting;
-      estimate_[k] = static_cast<double>(plan_.cases[static_cast<size_t>(k)].particles) *
-                     plan_.cases[static_cast<size_t>(k)].estimated_steps;
-    }
-    for (int k : selected_) {
-      const int parent = plan_.cases[static_cast<size_t>(k)].parent;
-      if (parent < 0 || !in_shard_.count(parent)) ready_.push_back(k);
-    }
+      : plan_(plan),
+        options_(options),
+        selected_(selected),
+        queue_(plan, selected),
+        state_(plan.cases.size(), State::kWaiting),
+        outcomes_(plan.cases.size()) {
+    for (int k : selected_) remaining_work_ += queue_.work(k);
   }
 
   StudyOutcome Run() {
@@ -169,12 +167,20 @@ class Scheduler {
     const int jobs = std::max(1, std::min<int>(options_.jobs, static_cast<int>(selected_.size())));
     std::vector<std::thread> workers;
     for (int j = 0; j < jobs; ++j) workers.emplace_back([this] { Work(); });
-    // The progress reporter runs here.
+    // The progress reporter runs here; it also watches for a stop request,
+    // so that waiting cases are given up within a poll whatever the plan's size.
+    const double period = std::min(options_.progress_period_s, 0.2);
+    double last_report = -1e30;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       while (finished_ < selected_.size()) {
-        cv_done_.wait_for(lock, std::chrono::duration<double>(options_.progress_period_s));
-        if (options_.progress) {
+        cv_done_.wait_for(lock, std::chrono::duration<double>(period));
+        if (StopRequested()) {
+          InterruptWaitingLocked();
+          cv_ready_.notify_all();
+        }
+        if (options_.progress && clock.Seconds() - last_report >= options_.progress_period_s) {
+          last_report = clock.Seconds();
           const StudyProgress progress = ProgressLocked(clock.Seconds());
           lock.unlock();
           options_.progress(progress);
@@ -182,6 +188,7 @@ class Scheduler {
         }
       }
     }
+    cv_ready_.notify_all();
     for (std::thread& worker : workers) worker.join();
     if (error_) {
       try {
@@ -193,7 +200,7 @@ class Scheduler {
       }
     }
     StudyOutcome outcome;
-    for (int k : selected_) outcome.cases.push_back(outcomes_[k]);
+    for (int k : selected_) outcome.cases.push_back(outcomes_[static_cast<size_t>(k)]);
     outcome.wall_seconds = clock.Seconds();
     return outcome;
   }
@@ -212,36 +219,39 @@ class Scheduler {
       int k = -1;
       {
         std::unique_lock<std::mutex> lock(mutex_);
-        cv_ready_.wait(lock, [this] { return !ready_.empty() || finished_ == selected_.size(); });
-        if (ready_.empty()) return;
-        k = PopReadyLocked();
-        state_[k] = State::kRunning;
+        cv_ready_.wait(lock, [this] { return !queue_.empty() || finished_ == selected_.size(); });
+        if (queue_.empty()) return;
+        if (StopRequested()) {
+          InterruptWaitingLocked();
+          lock.unlock();
+          cv_ready_.notify_all();
+          cv_done_.notify_all();
+          continue;
+        }
+        k = queue_.Pop();
+        state_[static_cast<size_t>(k)] = State::kRunning;
+        ++running_;
       }
       CaseOutcome outcome;
-      if (StopRequested()) {
+      try {
+        outcome = StopRequested() ? NotStarted(k) : Execute(k);
+      } catch (...) {
+        // An error that is not a result of the case (bad input, a full
+        // disk, a violated invariant): the study stops, and RunStudy
+        // rethrows it once every worker has ended.
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!error_) {
+          error_ = std::current_exception();
+          error_case_ = plan_.cases[static_cast<size_t>(k)].id;
+        }
+        aborted_ = true;
         outcome.id = plan_.cases[static_cast<size_t>(k)].id;
         outcome.status = CaseStatus::kInterrupted;
-        outcome.message = "not started: the study was interrupted";
-      } else {
-        try {
-          outcome = Execute(k);
-        } catch (...) {
-          // An error that is not a result of the case (bad input, a full
-          // disk, a violated invariant): the study stops, and RunStudy
-          // rethrows it once every worker has ended.
-          std::lock_guard<std::mutex> lock(mutex_);
-          if (!error_) {
-            error_ = std::current_exception();
-            error_case_ = plan_.cases[static_cast<size_t>(k)].id;
-          }
-          aborted_ = true;
-          outcome.id = plan_.cases[static_cast<size_t>(k)].id;
-          outcome.status = CaseStatus::kInterrupted;
-          outcome.message = "stopped by an error";
-        }
+        outcome.message = "stopped by an error";
       }
       {
         std::lock_guard<std::mutex> lock(mutex_);
+        --running_;
         Finish(k, outcome);
       }
       cv_ready_.notify_all();
@@ -249,78 +259,62 @@ class Scheduler {
     }
   }
 
-  // The ready case with the most work below it (the critical path first).
-  int PopReadyLocked() {
-    auto below = [this](int k) {
-      double total = 0;
-      std::vector<int> stack{k};
-      while (!stack.empty()) {
-        const int c = stack.back();
-        stack.pop_back();
-        total += estimate_[c];
-        for (int child : plan_.cases[static_cast<size_t>(c)].children) {
-          if (in_shard_.count(child)) stack.push_back(child);
-        }
-      }
-      return total;
-    };
-    auto best = std::max_element(ready_.begin(), ready_.end(),
-                                 [&](int a, int b) { return below(a) < below(b); });
-    const int k = *best;
-    ready_.erase(best);
-    return k;
+  void FinishOneLocked(int k, const CaseOutcome& outcome) {
+    const size_t i = static_cast<size_t>(k);
+    outcomes_[i] = outcome;
+    state_[i] = State::kFinished;
+    ++finished_;
+    remaining_work_ -= queue_.work(k);
+    running_progress_.erase(k);
+    if (outcome.status == CaseStatus::kFailed || outcome.status == CaseStatus::kBlocked) ++failed_;
+    if (outcome.status == CaseStatus::kCached) ++cached_;
+  }
+
+  CaseOutcome NotStarted(int k) const {
+    return {plan_.cases[static_cast<size_t>(k)].id, CaseStatus::kInterrupted,
+            "not started: the study was interrupted", 0, 0};
+  }
+
+  // Every case that has not started is interrupted, at once (a stop request).
+  void InterruptWaitingLocked() {
+    for (int k : queue_.TakeAll()) FinishOneLocked(k, NotStarted(k));
+    for (int k : selected_) {
+      if (state_[static_cast<size_t>(k)] == State::kWaiting) FinishOneLocked(k, NotStarted(k));
+    }
   }
 
   void Finish(int k, const CaseOutcome& outcome) {
-    outcomes_[k] = outcome;
-    state_[k] = State::kFinished;
-    ++finished_;
     done_particle_steps_ += outcome.particle_steps;
-    running_particle_steps_.erase(k);
+    FinishOneLocked(k, outcome);
     if (outcome.status == CaseStatus::kInterrupted) {
       // Its children cannot start: they are interrupted too.
-      std::vector<int> stack(plan_.cases[static_cast<size_t>(k)].children);
-      while (!stack.empty()) {
-        const int c = stack.back();
-        stack.pop_back();
-        if (!in_shard_.count(c) || state_[c] == State::kFinished) continue;
-        outcomes_[c] = {plan_.cases[static_cast<size_t>(c)].id, CaseStatus::kInterrupted,
-                        "not started: the study was interrupted", 0, 0};
-        state_[c] = State::kFinished;
-        ++finished_;
-        for (int g : plan_.cases[static_cast<size_t>(c)].children) stack.push_back(g);
+      for (int c : queue_.Descendants(k)) {
+        if (state_[static_cast<size_t>(c)] == State::kWaiting) FinishOneLocked(c, NotStarted(c));
       }
       return;
     }
-    for (int child : plan_.cases[static_cast<size_t>(k)].children) {
-      if (in_shard_.count(child)) ready_.push_back(child);
-    }
+    queue_.Release(k);
   }
 
   StudyProgress ProgressLocked(double elapsed) const {
     StudyProgress p;
     p.total = static_cast<int>(selected_.size());
-    double remaining = 0, running_done = 0;
-    for (int k : selected_) {
-      const auto state = state_.at(k);
-      if (state == State::kFinished) {
-        ++p.done;
-        const CaseStatus status = outcomes_.at(k).status;
-        if (status == CaseStatus::kFailed || status == CaseStatus::kBlocked) ++p.failed;
-        if (status == CaseStatus::kCached) ++p.cached;
-        continue;
-      }
-      if (state == State::kRunning) ++p.running;
-      const auto it = running_particle_steps_.find(k);
-      const double progressed = it == running_particle_steps_.end() ? 0.0 : it->second;
+    p.done = static_cast<int>(finished_);
+    p.running = running_;
+    p.failed = failed_;
+    p.cached = cached_;
+    double remaining = remaining_work_, running_done = 0;
+    for (const auto& [k, progressed] : running_progress_) {
+      if (state_[static_cast<size_t>(k)] != State::kRunning) continue;
       running_done += progressed;
-      remaining += std::max(0.1 * estimate_.at(k), estimate_.at(k) - progressed);
+      const double work = queue_.work(k);
+      remaining -= work - std::max(0.1 * work, work - progressed);
     }
     p.left = p.total - p.done - p.running;
     const double computed = static_cast<double>(done_particle_steps_) + running_done;
     if (elapsed > 1 && computed > 0) {
       p.particle_steps_per_second = computed / elapsed;
-      p.eta_seconds = remaining / p.particle_steps_per_second;
+      p.eta_seconds = std::max(0.0, remaining) / p.particle_steps_per_second;
     }
     return p;
   }
@@ -330,16 +324,16 @@ class Scheduler {
   const Plan& plan_;
   const RunnerOptions& options_;
   const std::vector<int> selected_;
-  std::set<int> in_shard_;
   std::mutex mutex_;
   std::condition_variable cv_ready_, cv_done_;
-  std::vector<int> ready_;
-  std::map<int, State> state_;
-  std::map<int, double> estimate_;  // particle-steps
-  std::map<int, CaseOutcome> outcomes_;
-  std::map<int, double> running_particle_steps_;
+  CaseQueue queue_;
+  std::vector<State> state_;
+  std::vector<CaseOutcome> outcomes_;
+  std::map<int, double> running_progress_;  // the running cases' particle-steps so far
+  double remaining_work_ = 0;               // estimated particle-steps of unfinished cases
   int64_t done_particle_steps_ = 0;
   size_t finished_ = 0;
+  int running_ = 0, failed_ = 0, cached_ = 0;
   std::atomic<bool> aborted_{false};
   std::exception_ptr error_;
   std::string error_case_;
@@ -415,7 +409,7 @@ CaseOutcome Scheduler::Execute(int k) {
   run.progress = [this, k, &first_step, &c](const dem::RunProgress& progress) {
     if (first_step < 0) first_step = progress.step;
     std::lock_guard<std::mutex> lock(mutex_);
-    running_particle_steps_[k] =
+    running_progress_[k] =
         static_cast<double>(progress.step - first_step) * static_cast<double>(c.particles);
   };
   run.progress_period_s = 0.5;
