@@ -177,9 +177,15 @@ void RegisterStudyCommands(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   merge->add_option("--out", merge_out, "merged study folder (may be the only input)")->required();
   merge->callback([] {
-    const int cases = study::MergeStudies(inputs, merge_out);
-    std::printf("%d finished cases in %s\n", cases, merge_out.c_str());
+    const study::MergeSummary merged = study::MergeStudies(inputs, merge_out);
+    std::printf("%s: %s", merge_out.c_str(), merged.Text().c_str());
     WriteTables(merge_out);
+    // Cases of the study without a result: the table is written (their rows
+    // say why), and the status says the study is incomplete.
+    if (!merged.missing.empty()) {
+      std::printf("%zu cases of the study have no result (listed above)\n", merged.missing.size());
+      throw CLI::RuntimeError(3);
+    }
   });
 #ifdef GRANASYM_HAVE_CALIBRATION
   RegisterStudyCalibrateCommand(study);

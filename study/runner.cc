@@ -13,12 +13,14 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <thread>
 #include <vector>
 
 #include "common/config.h"
 #include "common/error.h"
+#include "common/provenance.h"
 #include "common/stopwatch.h"
 #include "common/text_file.h"
 #include "dem/grain_size_distribution.h"
@@ -54,7 +56,7 @@ CaseRecord RecordOf(const Plan& plan, const PlannedCase& c) {
   return record;
 }
 
-void PrepareDirectory(const Plan& plan) {
+void PrepareDirectory(const Plan& plan, const RunnerOptions& options) {
   const fs::path dir(plan.directory);
   const std::string record = plan.directory + "/study.toml";
   if (fs::exists(dir) && !fs::is_directory(dir)) {
@@ -72,6 +74,25 @@ void PrepareDirectory(const Plan& plan) {
                        "' at scale " + scale + ", not '" + plan.programme.name + "' at " +
                        ToString(plan.scale) + ": give another output folder");
     }
+    // The same name, another programme: an edited programme, run again
+    // (its unchanged cases stay cached), or shards of two programmes.
+    const std::string hash = table.GetString("programme_sha256", "");
+    if (!hash.empty() && hash != plan.programme_sha256) {
+      if (options.shard_count > 1) {
+        throw InputError(fmt::format(
+            "--out {}: holds the study '{}' of another programme (programme_sha256 {} there, {} "
+            "in {}): shards of one study run one programme. Give another output folder, or, "
+            "when the programme was edited on purpose, run it once without --shard to make it "
+            "this folder's programme (unchanged cases stay cached)",
+            plan.directory, programme, hash, plan.programme_sha256, plan.programme.origin));
+      }
+      if (options.log) {
+        options.log(fmt::format(
+            "the programme '{}' changed since this folder's last run (programme_sha256 {} → {}): "
+            "cases whose inputs did not change stay cached",
+            programme, hash, plan.programme_sha256));
+      }
+    }
   } else {
     for (const auto& entry : fs::directory_iterator(dir)) {
       if (entry.path().filename() == ".lock") continue;
@@ -83,6 +104,12 @@ void PrepareDirectory(const Plan& plan) {
   fs::create_directories(dir / "cases");
   fs::create_directories(dir / "samples");
   WriteIfChanged(record, StudyRecordText(plan));
+  // The programme's cases: a case folder of another programme stays (its
+  // cache) but is not part of the study.
+  std::vector<CaseRecord> planned;
+  planned.reserve(plan.cases.size());
+  for (const PlannedCase& c : plan.cases) planned.push_back(RecordOf(plan, c));
+  WriteIfChanged(plan.directory + "/" + kPlanFileName, PlanFileText(planned));
 }
 
 void GenerateSample(const PlannedSample& sample, const std::function<bool()>& stop,
@@ -101,12 +128,36 @@ void GenerateSample(const PlannedSample& sample, const std::function<bool()>& st
   dem::GenerationReport report;
   const dem::Packing packing = dem::GeneratePacking(gsd, sample.options, &report);
   packing.WriteText(sample.packing_path());
+  WriteTextFileAtomically(sample.packing_sha256_path(),
+                          Sha256Hex(ReadTextFile(sample.packing_path())) + "\n");
   WriteTextFileAtomically(sample.directory + "/generation.txt", report.Table());
   WriteTextFileAtomically(key_path, sample.key + "\n");
   if (log) {
     log(fmt::format("sample r{}: {} spheres generated, porosity {:.4f}", sample.replicate,
                     report.count, report.porosity));
   }
+}
+
+// The key the sample's cases are keyed on when its packing.txt is not the
+// one generated for its key (an edited file): nullopt when it is. A sample
+// generated before the packing's hash was recorded has it recorded now.
+std::optional<std::string> EditedSampleKey(const PlannedSample& sample,
+                                           const std::function<void(const std::string&)>& log) {
+  FileLock lock(sample.directory + "/.lock", {});
+  const std::string now = Sha256Hex(ReadTextFile(sample.packing_path()));
+  if (!fs::exists(sample.packing_sha256_path())) {
+    WriteTextFileAtomically(sample.packing_sha256_path(), now + "\n");
+    return std::nullopt;
+  }
+  const std::string generated = ReadTextFile(sample.packing_sha256_path());
+  if (generated == now + "\n") return std::nullopt;
+  if (log) {
+    log(fmt::format(
+        "sample r{}: {} is not the packing generated for it (SHA-256 {}, generated {}): its "
+        "cases are keyed on its content",
+        sample.replicate, sample.packing_path(), now, generated.substr(0, generated.find('\n'))));
+  }
+  return PackingSampleKey(sample.key, now);
 }
 
 // An element test of a constitutive model, cached like a DEM case.
@@ -358,7 +409,7 @@ CaseOutcome Scheduler::Execute(int k) {
   }
   if (const std::optional<DoneRecord>& done = previous;
       done && done->key == c.key && fs::exists(c.result_path())) {
-    const std::string mismatch = ResultMismatch(c.result_path(), *done);
+    const std::string mismatch = ResultMismatch(c.result_path(), *done, true);
     if (mismatch.empty()) {
       outcome.status = done->termination == dem::Termination::kCompleted ? CaseStatus::kCached
                                                                          : CaseStatus::kFailed;
@@ -397,6 +448,7 @@ CaseOutcome Scheduler::Execute(int k) {
   run.output_path = c.result_path();
   run.threads = plan_.threads;
   run.restart = resume;
+  run.case_key = c.key;
   run.stop_requested = [this](int64_t) { return StopRequested(); };
   // The run's own report goes to the case's run.log (appended across
   // resumes); the study's log gets one line when a case starts and ends.
@@ -485,15 +537,26 @@ StudyOutcome RunStudy(const Plan& plan, const RunnerOptions& options) {
     throw InputError(fmt::format("--shard {}/{}: expected K/N with 1 <= K <= N",
                                  options.shard_index, options.shard_count));
   }
-  PrepareDirectory(plan);
+  PrepareDirectory(plan, options);
   const std::vector<int> selected = plan.Shard(options.shard_index, options.shard_count);
   std::set<int> replicates;
   for (int k : selected) replicates.insert(plan.cases[static_cast<size_t>(k)].replicate);
+  std::map<int, std::string> edited;  // replicate → the key of its edited sample
   for (const PlannedSample& sample : plan.samples) {
     if (replicates.count(sample.replicate)) {
       GenerateSample(sample, options.stop_requested, options.log);
+      if (options.stop_requested && options.stop_requested()) break;
+      if (const std::optional<std::string> key = EditedSampleKey(sample, options.log)) {
+        edited[sample.replicate] = *key;
+      }
     }
   }
+  std::optional<Plan> keyed;
+  if (!edited.empty()) {
+    keyed = plan;
+    keyed->KeyOnSamples(edited);
+  }
+  const Plan& run_plan = keyed ? *keyed : plan;
   // Model runs are quick and belong to the first shard.
   std::vector<CaseOutcome> models;
   if (options.shard_index == 1) {
@@ -502,7 +565,7 @@ StudyOutcome RunStudy(const Plan& plan, const RunnerOptions& options) {
       models.push_back(RunModelCase(m, options.log));
     }
   }
-  Scheduler scheduler(plan, options, selected);
+  Scheduler scheduler(run_plan, options, selected);
   StudyOutcome outcome = scheduler.Run();
   outcome.cases.insert(outcome.cases.end(), models.begin(), models.end());
   return outcome;
