@@ -538,6 +538,13 @@ StudyOutcome RunStudy(const Plan& plan, const RunnerOptions& options) {
                                  options.shard_index, options.shard_count));
   }
   PrepareDirectory(plan, options);
+  const bool sharded = options.shard_count > 1;
+  const std::string marker =
+      ShardMarkerPath(plan.directory, options.shard_index, options.shard_count);
+  if (sharded) {
+    fs::create_directories(plan.directory + "/shards");
+    fs::remove(marker);  // an earlier run's: this one has not ended
+  }
   const std::vector<int> selected = plan.Shard(options.shard_index, options.shard_count);
   std::set<int> replicates;
   for (int k : selected) replicates.insert(plan.cases[static_cast<size_t>(k)].replicate);
@@ -568,6 +575,24 @@ StudyOutcome RunStudy(const Plan& plan, const RunnerOptions& options) {
   Scheduler scheduler(run_plan, options, selected);
   StudyOutcome outcome = scheduler.Run();
   outcome.cases.insert(outcome.cases.end(), models.begin(), models.end());
+  if (sharded) {
+    const int failed = outcome.Count(CaseStatus::kFailed),
+              blocked = outcome.Count(CaseStatus::kBlocked),
+              interrupted = outcome.Count(CaseStatus::kInterrupted);
+    const char* status = interrupted > 0        ? "interrupted"
+                         : failed + blocked > 0 ? "failed"
+                                                : "complete";
+    WriteTextFileAtomically(
+        marker,
+        fmt::format("# written by granasym study run --shard {}/{} when it ended\n"
+                    "status = {}\nprogramme_sha256 = {}\ncases = {}\ncomputed = {}\n"
+                    "cached = {}\nfailed = {}\nblocked = {}\ninterrupted = {}\n"
+                    "wall_seconds = {:.1f}\n",
+                    options.shard_index, options.shard_count, TomlQuoted(status),
+                    TomlQuoted(plan.programme_sha256), outcome.cases.size(),
+                    outcome.Count(CaseStatus::kComputed), outcome.Count(CaseStatus::kCached),
+                    failed, blocked, interrupted, outcome.wall_seconds));
+  }
   return outcome;
 }
 

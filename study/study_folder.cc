@@ -20,6 +20,7 @@
 #include "common/hdf5_file.h"
 #include "common/results_version.h"
 #include "common/text_file.h"
+#include "dem/run_record_names.h"
 #include "study/case_record.h"
 
 namespace granasym::study {
@@ -91,7 +92,9 @@ std::string ResultMismatch(const std::string& result_path, const DoneRecord& don
                          result_path, ToString(summary.termination), summary.message,
                          ToString(done.termination));
     }
-    const dem::Provenance provenance = dem::ReadProvenance(file);
+    // (Results written by hand, e.g. by tests, may have no provenance.)
+    const dem::Provenance provenance =
+        file.Exists(dem::record::kProvenance) ? dem::ReadProvenance(file) : dem::Provenance{};
     if (!provenance.case_key.empty()) {
       if (provenance.case_key != done.key) {
         return fmt::format(
@@ -99,7 +102,7 @@ std::string ResultMismatch(const std::string& result_path, const DoneRecord& don
             "key is {}",
             result_path, provenance.case_key, done.key);
       }
-    } else if (!done.inputs.empty()) {
+    } else if (!done.inputs.empty() && file.Exists(dem::record::kProvenance)) {
       // A result written before the case key was recorded.
       if (provenance.scene_sha256 != done.inputs.scene_sha256) {
         return fmt::format(
@@ -292,6 +295,41 @@ std::string DescribeStudy(const std::string& directory) {
         results_key);
   }
   return text + summary + "\n";
+}
+
+std::string ShardMarkerPath(const std::string& directory, int index, int count) {
+  return fmt::format("{}/shards/{}-of-{}.toml", directory, index, count);
+}
+
+std::vector<std::string> UnfinishedShards(const std::vector<std::string>& directories, int count) {
+  std::vector<std::string> unfinished;
+  for (int k = 1; k <= count; ++k) {
+    std::string why = "never ended (no shards/" + std::to_string(k) + "-of-" +
+                      std::to_string(count) + ".toml: not run, killed, or stopped by an error)";
+    for (const std::string& directory : directories) {
+      const std::string path = ShardMarkerPath(directory, k, count);
+      if (!fs::exists(path)) continue;
+      const ConfigTable marker = ConfigTable::ParseFile(path);
+      const std::string study = directory + "/study.toml";
+      const std::string hash =
+          fs::exists(study) ? ConfigTable::ParseFile(study).GetString("programme_sha256", "") : "";
+      if (marker.GetString("programme_sha256", "") != hash) {
+        why = "its marker " + path + " is of another programme (a run before it was edited)";
+        continue;
+      }
+      const std::string status = marker.GetString("status");
+      if (status == "complete") {
+        why.clear();
+        break;
+      }
+      why = fmt::format("ended {} ({} failed, {} blocked, {} interrupted cases; {})", status,
+                        marker.GetInt("failed", 0, Range::NonNegative()),
+                        marker.GetInt("blocked", 0, Range::NonNegative()),
+                        marker.GetInt("interrupted", 0, Range::NonNegative()), path);
+    }
+    if (!why.empty()) unfinished.push_back(fmt::format("shard {}/{}: {}", k, count, why));
+  }
+  return unfinished;
 }
 
 MergeSummary MergeStudies(const std::vector<std::string>& inputs, const std::string& output) {

@@ -90,6 +90,15 @@ void WriteIfChanged(const std::string& path, const std::string& text);
 // count line and the totals of steps and particle-steps.
 std::string DescribeStudy(const std::string& directory);
 
+// DIR/shards/<K>-of-<N>.toml: how shard K of N of a sharded `study run`
+// ended (written when it ends; removed when it starts). `study merge
+// --shards N` names the shards that never ended or whose cases failed.
+std::string ShardMarkerPath(const std::string& directory, int index, int count);
+// The shards of N among the folders `directories` that did not end with
+// every case finished: "shard K/N: why", one per shard. A marker of another
+// programme (programme_sha256 of study.toml) counts as none.
+std::vector<std::string> UnfinishedShards(const std::vector<std::string>& directories, int count);
+
 // What a merged folder holds against its plan.
 struct MergeSummary {
   int finished = 0;                  // cases of the study with their result
