@@ -112,8 +112,8 @@ rc=0
 # An output that cannot be written: status 1 (README's exit statuses), not a failed fit (3).
 unwritable="$work/unwritable"
 cp -r "$out" "$unwritable"
-rm -rf "$unwritable/calibration"
-echo "not a folder" > "$unwritable/calibration"
+rm -rf "$unwritable/calibration/hypoplastic_clay"
+echo "not a folder" > "$unwritable/calibration/hypoplastic_clay"
 rc=0
 "$granasym" study calibrate "$unwritable" --models hypoplastic_clay > "$work/unwritable.txt" 2>&1 || rc=$?
 [ "$rc" -eq 1 ] && grep -q "^failure: " "$work/unwritable.txt" ||
