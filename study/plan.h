@@ -2,8 +2,11 @@
 // samples and cases, each with its folder, its scene and the cache key of
 // its inputs. Layout of a study folder:
 //
-//   DIR/study.toml                   the programme's name, scale, threads, version
-//   DIR/samples/r<K>/packing.txt     the generated sample of replicate K (+ generation.txt, key)
+//   DIR/study.toml                   the programme's name and hash, scale, threads, version
+//   DIR/plan.tsv                     the programme's cases (what the folder's study is)
+//   DIR/shards/<K>-of-<N>.toml       how shard K of a sharded run ended
+//   DIR/samples/r<K>/packing.txt     the generated sample of replicate K (+ generation.txt, key,
+//                                    packing.sha256: its hash as generated)
 //   DIR/cases/r<K>/<case>/scene.toml the scene the case runs (forks from its parent's result)
 //   DIR/cases/r<K>/<case>/case.toml  what the case is: key, parent, run, variables
 //   DIR/cases/r<K>/<case>/result.h5  its result (result.h5.ckpt while it runs)
