@@ -100,7 +100,7 @@ for value in -1 0 nan; do
     "$granasym" study calibrate "$out" --models hypoplastic_clay "$flag" "$value" \
       > "$work/bad_inertial.txt" 2>&1 || rc=$?
     [ "$rc" -eq 2 ] || { cat "$work/bad_inertial.txt"; echo "FAIL: $flag $value exited $rc, expected 2"; exit 1; }
-    grep -q "$flag $value: expected a positive inertial number" "$work/bad_inertial.txt" ||
+    grep -qF -- "$flag $value: expected a positive inertial number" "$work/bad_inertial.txt" ||
       { cat "$work/bad_inertial.txt"; echo "FAIL: $flag $value is not named"; exit 1; }
   done
 done
