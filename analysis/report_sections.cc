@@ -37,6 +37,20 @@ void CheckStem(const std::string& stem, const CsvTextTable& table, int line) {
   }
 }
 
+// "" when `path` is a complete PNG (its signature first, its IEND chunk
+// last); else what is wrong with it.
+std::string PngDefect(const std::string& path) {
+  static const std::string signature = "\x89PNG\r\n\x1a\n";
+  static const std::string iend = std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+  const std::string bytes = ReadTextFile(path);
+  if (bytes.compare(0, signature.size(), signature) != 0) return "no PNG signature";
+  if (bytes.size() < signature.size() + iend.size() ||
+      bytes.compare(bytes.size() - iend.size(), iend.size(), iend) != 0) {
+    return "no IEND chunk at its end (truncated)";
+  }
+  return "";
+}
+
 // Whether a row of the state table is an ensemble row (source column; older
 // tables have none).
 bool IsEnsembleRow(const CsvTextTable& states, const std::vector<std::string>& row) {
@@ -253,7 +267,7 @@ Section OverviewSection(const StudyFolder& study, const std::vector<CaseRow>& ca
     add("asymptotic states", Plain(text));
   }
   add("figures",
-      Plain(fmt::format("{} in figures/index.tsv, {} not drawn (no SVG or PNG)", figures,
+      Plain(fmt::format("{} in figures/index.tsv, {} not drawn (no SVG or valid PNG)", figures,
                         figures_missing)),
       figures_missing > 0 ? "flagged" : "");
   add("models calibrated", Plain(fmt::format("{} of 3", models)));
@@ -308,13 +322,25 @@ std::vector<Section> FigureSections(const StudyFolder& study, int* figures, int*
         (row[figure].rfind("Sec.", 0) == 0 ? "" : "Figure ") + row[figure] + ": " + row[title];
     const std::string& label = section.title;
     const std::string png = "figures/" + row[stem] + ".png", svg = "figures/" + row[stem] + ".svg";
-    if (study.Exists(svg) || study.Exists(png)) {
+    // A PNG that is not a whole PNG (truncated, or not a PNG) is reported,
+    // not shown, and the figure counts as not drawn. (A broken SVG stops
+    // the report, naming it: MakeInlineSvg parses it.)
+    const std::string png_defect = study.Exists(png) ? PngDefect(study.Path(png)) : "";
+    const bool png_valid = study.Exists(png) && png_defect.empty();
+    const bool svg_valid = study.Exists(svg);
+    if (!png_defect.empty()) {
+      ++*missing;
+      absent->push_back(png + " (invalid)");
+      section.blocks.push_back(
+          Note(Code(png) + Plain(" is not a valid PNG (" + png_defect + "): run ") +
+               DirectoryHint("figures", study.directory) + Plain(" to draw it again.")));
+    } else if (svg_valid || png_valid) {
       // In the page the image itself (the page is one file); in report.md a link.
       Block image;
       image.type = Block::Type::kFigure;
-      image.image = study.Exists(png) ? png : svg;
+      image.image = png_valid ? png : svg;
       image.text = Plain(label);
-      if (study.Exists(svg)) {
+      if (svg_valid) {
         image.svg_markup =
             MakeInlineSvg(ReadTextFile(study.Path(svg)), row[stem] + "-", label, study.Path(svg))
                 .markup;
@@ -344,7 +370,7 @@ std::vector<Section> FigureSections(const StudyFolder& study, int* figures, int*
     std::sort(others.begin(), others.end());
     for (const char* extension : {"png", "pdf", "svg"}) {
       const std::string file = "figures/" + row[stem] + "." + extension;
-      if (!study.Exists(file)) continue;
+      if (!study.Exists(file) || (file == png && !png_valid)) continue;
       std::string kind = extension;
       std::transform(kind.begin(), kind.end(), kind.begin(), ::toupper);
       files = files + Plain(files.empty() ? "" : " · ") + Link(kind, UrlPath(file), true);

@@ -93,6 +93,11 @@ int DrawFigures(const std::string& out, std::vector<analysis::FigureSpec>* figur
   const std::string gnuplot = data_only ? "" : FindOnPath("gnuplot");
   int failed = 0;
   for (analysis::FigureSpec& figure : *figures) {
+    // The images of an earlier run go first: a figure not drawn this time
+    // (no gnuplot, no data, a failure, --data-only) shows none.
+    for (const char* extension : {".png", ".pdf", ".svg"}) {
+      fs::remove(out + "/figures/" + figure.stem + extension);
+    }
     if (!figure.not_drawn.empty()) {
       std::printf("  %-28s not drawn: %s\n", figure.stem.c_str(), figure.not_drawn.c_str());
       continue;

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -52,11 +53,13 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
                    "else the states with I(d_max) below --max-inertial-number (default: "
                    "quasi_static for a rate study, all otherwise)")
       ->check(CLI::IsMember({"all", "quasi_static"}));
-  calibrate->add_option(
+  static CLI::Option* inertial_number_option = nullptr;
+  static CLI::Option* max_inertial_number_option = nullptr;
+  inertial_number_option = calibrate->add_option(
       "--inertial-number", inertial_number,
       "a rate study (with rate_states.csv), --select quasi_static: fit the rate cases at this I* "
       "only (default: the smallest I* with usable psi_epsilon = 90 deg states from two starts)");
-  calibrate->add_option(
+  max_inertial_number_option = calibrate->add_option(
       "--max-inertial-number", max_inertial_number,
       fmt::format("a study without rate cases, --select quasi_static: fit the states with "
                   "I(d_max) below this (default {:g})",
@@ -76,12 +79,30 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
                        ": no asymptotic_states.h5 (run `granasym study run` or `granasym study "
                        "merge` first)");
     }
+    // An inertial number given is a positive, finite number (0, a negative
+    // value or NaN would select nothing, or everything, silently).
+    for (const auto& [option, value] :
+         {std::make_pair(inertial_number_option, inertial_number),
+          std::make_pair(max_inertial_number_option, max_inertial_number)}) {
+      if (option->count() > 0 && !(std::isfinite(value) && value > 0)) {
+        throw InputError(fmt::format(
+            "{} {}: expected a positive inertial number (e.g. 1e-3): it selects the states the "
+            "models are fitted to",
+            option->get_name(), option->as<std::string>()));
+      }
+    }
     const std::optional<analysis::RateStudy> rate = analysis::ReadRateStudy(directory);
     const bool quasi_static_set = select.empty() ? rate.has_value() : select == "quasi_static";
     if (inertial_number > 0 && !(rate && quasi_static_set)) {
-      throw InputError("--inertial-number " + fmt::format("{:g}", inertial_number) + ": " +
-                       (rate ? "only with --select quasi_static"
-                             : directory + " is not a rate study (no rate_states.csv)"));
+      throw InputError(
+          "--inertial-number " + fmt::format("{:g}", inertial_number) + ": " +
+          (rate ? "only with --select quasi_static"
+                : directory +
+                      " is not a rate study (no rate_states.csv): --inertial-number selects a "
+                      "rate study's quasi-static rate cases; here the states are selected by "
+                      "--select quasi_static and --max-inertial-number (I(d_max) below it, "
+                      "default " +
+                      fmt::format("{:g}", analysis::kQuasiStaticInertialNumber) + ")"));
     }
     if (max_inertial_number > 0 && !(quasi_static_set && !rate)) {
       throw InputError("--max-inertial-number " + fmt::format("{:g}", max_inertial_number) + ": " +
@@ -125,6 +146,11 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
             analysis::CalibrateStudyModel(directory, kind, selection, bound);
         std::printf("%s\n", done.text.c_str());
         status = done.outcome.status;
+      } catch (const FileError&) {
+        throw;  // an output that cannot be written: status 1 (README), not a failed fit
+      } catch (const fs::filesystem_error& error) {
+        throw FileError(fmt::format("cannot write the calibration of {} in {}: {}",
+                                    calibration::ToString(kind), directory, error.what()));
       } catch (const std::exception& error) {
         std::printf("%s: FAILED: %s\n  status: failed\n", calibration::ToString(kind),
                     error.what());

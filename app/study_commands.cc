@@ -149,8 +149,10 @@ void RegisterStudyCommands(CLI::App& app) {
       std::printf("shard %d/%d done; when all shards are done: granasym study merge %s --out %s\n",
                   options.shard_index, options.shard_count, out.c_str(), out.c_str());
     }
-    // Failed and blocked cases are results of the study (the table says why);
-    // the exit status stays 0 so that a job array goes on to its merge.
+    // Failed and blocked cases are results of the study (the table says
+    // why): a whole study exits 0; a shard exits 3, so that its array task
+    // shows as failed (the merge job runs after the array in any case and
+    // names the shard: study merge --shards N).
     const int unfinished =
         outcome.Count(study::CaseStatus::kFailed) + outcome.Count(study::CaseStatus::kBlocked);
     if (unfinished > 0) {
@@ -158,6 +160,7 @@ void RegisterStudyCommands(CLI::App& app) {
           "%d cases failed or were blocked: see the message column of the state table "
           "or `granasym study status %s`\n",
           unfinished, out.c_str());
+      if (options.shard_count > 1) throw CLI::RuntimeError(3);
     }
   });
 
@@ -176,10 +179,30 @@ void RegisterStudyCommands(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingDirectory);
   merge->add_option("--out", merge_out, "merged study folder (may be the only input)")->required();
+  static int merge_shards = 0;
+  merge
+      ->add_option("--shards", merge_shards,
+                   "the study ran as N shards (--shard K/N): name every shard that did not end "
+                   "with all its cases finished (DIR/shards/K-of-N.toml)")
+      ->check(CLI::Range(1, 1000000));
   merge->callback([] {
-    const int cases = study::MergeStudies(inputs, merge_out);
-    std::printf("%d finished cases in %s\n", cases, merge_out.c_str());
+    const std::vector<std::string> shards = merge_shards > 0
+                                                ? study::UnfinishedShards(inputs, merge_shards)
+                                                : std::vector<std::string>{};
+    const study::MergeSummary merged = study::MergeStudies(inputs, merge_out);
+    std::printf("%s: %s", merge_out.c_str(), merged.Text().c_str());
     WriteTables(merge_out);
+    // Shards that did not finish, cases of the study without a result: the
+    // table is written (their rows say why), and the status says the study
+    // is incomplete.
+    for (const std::string& line : shards) std::printf("%s\n", line.c_str());
+    if (!merged.missing.empty() || !shards.empty()) {
+      std::printf(
+          "incomplete: %zu of %d shards did not finish, %zu cases have no result (listed "
+          "above)\n",
+          shards.size(), merge_shards, merged.missing.size());
+      throw CLI::RuntimeError(3);
+    }
   });
 #ifdef GRANASYM_HAVE_CALIBRATION
   RegisterStudyCalibrateCommand(study);

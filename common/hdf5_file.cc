@@ -18,13 +18,21 @@ namespace {
 // Once per process, before any other HDF5 call: no exit handler (see the
 // header: it would close again a file whose H5Fclose failed, and crash), and
 // no printing of HDF5's error stack (the errors are reported here).
+// The error stack's printing is set per thread in a thread-safe HDF5 (as
+// Debian's is): each thread that calls HDF5 through this layer switches it
+// off before its first call, or a worker's failed read prints HDF5's own
+// diagnostics (some 40 lines) before this layer's message.
 void InitializeHdf5() {
   static const bool initialized = [] {
     H5dont_atexit();
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     return true;
   }();
   (void)initialized;
+  thread_local const bool silenced = [] {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)silenced;
 }
 
 // What HDF5's error stack says about the call that just failed.
@@ -287,6 +295,7 @@ void Hdf5File::Close() {
 }
 
 void Hdf5File::Commit() {
+  InitializeHdf5();
   GRANASYM_CHECK(!temporary_path_.empty()) << "Commit() on a file opened for reading";
   if (H5Fflush(id_, H5F_SCOPE_GLOBAL) < 0) FailWrite("H5Fflush", path_, "/");
   // The last metadata are written on close: a failed close is a failed write.
@@ -300,12 +309,14 @@ void Hdf5File::Commit() {
 
 void Hdf5File::WriteDoubles(const std::string& name, const std::vector<double>& values,
                             const std::string& units) {
+  InitializeHdf5();
   WriteArray(id_, path_, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, values.data(), {values.size()},
              units);
 }
 
 void Hdf5File::WriteMatrix(const std::string& name, const std::vector<double>& values, size_t rows,
                            size_t cols, const std::string& units) {
+  InitializeHdf5();
   GRANASYM_CHECK(values.size() == rows * cols)
       << name << ": " << values.size() << " values for " << rows << "x" << cols;
   WriteArray(id_, path_, name, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, values.data(), {rows, cols},
@@ -314,11 +325,13 @@ void Hdf5File::WriteMatrix(const std::string& name, const std::vector<double>& v
 
 void Hdf5File::WriteInts(const std::string& name, const std::vector<int64_t>& values,
                          const std::string& units) {
+  InitializeHdf5();
   WriteArray(id_, path_, name, H5T_NATIVE_INT64, H5T_STD_I64LE, values.data(), {values.size()},
              units);
 }
 
 void Hdf5File::WriteString(const std::string& name, const std::string& value) {
+  InitializeHdf5();
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   Handle type = StringType();
   Handle lcpl = CreateLinkProperties();
@@ -333,6 +346,7 @@ void Hdf5File::WriteString(const std::string& name, const std::string& value) {
 }
 
 void Hdf5File::WriteStrings(const std::string& name, const std::vector<std::string>& values) {
+  InitializeHdf5();
   const hsize_t size = values.size();
   Handle space(H5Screate_simple(1, &size, nullptr), H5Sclose);
   Handle type = StringType();
@@ -350,6 +364,7 @@ void Hdf5File::WriteStrings(const std::string& name, const std::vector<std::stri
 }
 
 void Hdf5File::CreateGroup(const std::string& name) {
+  InitializeHdf5();
   if (Exists(name)) return;
   Handle lcpl = CreateLinkProperties();
   Handle group(H5Gcreate2(id_, name.c_str(), lcpl.get(), H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
@@ -373,21 +388,25 @@ void WriteScalarAttribute(hid_t file_id, const std::string& file, const std::str
 }  // namespace
 
 void Hdf5File::SetAttribute(const std::string& object, const std::string& name, double value) {
+  InitializeHdf5();
   WriteScalarAttribute(id_, path_, object, name, H5T_NATIVE_DOUBLE, &value);
 }
 
 void Hdf5File::SetAttribute(const std::string& object, const std::string& name, int64_t value) {
+  InitializeHdf5();
   WriteScalarAttribute(id_, path_, object, name, H5T_NATIVE_INT64, &value);
 }
 
 void Hdf5File::SetAttribute(const std::string& object, const std::string& name,
                             const std::string& value) {
+  InitializeHdf5();
   Handle type = StringType();
   const char* text = value.c_str();
   WriteScalarAttribute(id_, path_, object, name, type.get(), &text);
 }
 
 bool Hdf5File::Exists(const std::string& name) const {
+  InitializeHdf5();
   if (name == "/" || name.empty()) return true;
   // Check each prefix: H5Lexists fails on a missing intermediate group.
   size_t position = name[0] == '/' ? 1 : 0;
@@ -405,6 +424,7 @@ bool Hdf5File::Exists(const std::string& name) const {
 }
 
 std::vector<std::string> Hdf5File::List(const std::string& group) const {
+  InitializeHdf5();
   Handle handle(H5Gopen2(id_, group.c_str(), H5P_DEFAULT), H5Gclose);
   if (!handle.valid()) FailRead("H5Gopen2", path_, Object(group));
   H5G_info_t info;
@@ -425,11 +445,13 @@ std::vector<std::string> Hdf5File::List(const std::string& group) const {
 }
 
 std::vector<double> Hdf5File::ReadDoubles(const std::string& name) const {
+  InitializeHdf5();
   return ReadArray<double>(id_, path_, name, H5T_NATIVE_DOUBLE, nullptr);
 }
 
 std::vector<double> Hdf5File::ReadMatrix(const std::string& name, size_t* rows,
                                          size_t* cols) const {
+  InitializeHdf5();
   std::vector<hsize_t> dims;
   std::vector<double> values = ReadArray<double>(id_, path_, name, H5T_NATIVE_DOUBLE, &dims);
   if (dims.size() != 2) {
@@ -441,10 +463,12 @@ std::vector<double> Hdf5File::ReadMatrix(const std::string& name, size_t* rows,
 }
 
 std::vector<int64_t> Hdf5File::ReadInts(const std::string& name) const {
+  InitializeHdf5();
   return ReadArray<int64_t>(id_, path_, name, H5T_NATIVE_INT64, nullptr);
 }
 
 std::string Hdf5File::ReadString(const std::string& name) const {
+  InitializeHdf5();
   Handle dataset(H5Dopen2(id_, name.c_str(), H5P_DEFAULT), H5Dclose);
   if (!dataset.valid()) FailRead("H5Dopen2", path_, Dataset(name));
   Handle type = StringType();
@@ -457,7 +481,53 @@ std::string Hdf5File::ReadString(const std::string& name) const {
   return value;
 }
 
+namespace {
+
+// H5Lvisit: the paths of every dataset below the root.
+herr_t CollectDataset(hid_t group, const char* name, const H5L_info_t* info, void* data) {
+  if (info->type != H5L_TYPE_HARD) return 0;
+  const hid_t object = H5Oopen(group, name, H5P_DEFAULT);
+  if (object < 0) return 0;  // reported when read
+  if (H5Iget_type(object) == H5I_DATASET) {
+    static_cast<std::vector<std::string>*>(data)->push_back(std::string("/") + name);
+  }
+  H5Oclose(object);
+  return 0;
+}
+
+}  // namespace
+
+void Hdf5File::CheckData() const {
+  InitializeHdf5();
+  std::vector<std::string> datasets;
+  if (H5Lvisit(id_, H5_INDEX_NAME, H5_ITER_INC, CollectDataset, &datasets) < 0) {
+    FailRead("H5Lvisit", path_, "its groups");
+  }
+  for (const std::string& name : datasets) {
+    Handle dataset(H5Dopen2(id_, name.c_str(), H5P_DEFAULT), H5Dclose);
+    if (!dataset.valid()) FailRead("H5Dopen2", path_, Dataset(name));
+    Handle file_type(H5Dget_type(dataset.get()), H5Tclose);
+    if (!file_type.valid()) FailRead("H5Dget_type", path_, Dataset(name));
+    // Variable-length strings live in the global heap, which has no checksum.
+    if (H5Tget_class(file_type.get()) == H5T_STRING || H5Tis_variable_str(file_type.get()) > 0) {
+      continue;
+    }
+    Handle type(H5Tget_native_type(file_type.get(), H5T_DIR_ASCEND), H5Tclose);
+    if (!type.valid()) FailRead("H5Tget_native_type", path_, Dataset(name));
+    Handle space(H5Dget_space(dataset.get()), H5Sclose);
+    if (!space.valid()) FailRead("H5Dget_space", path_, Dataset(name));
+    const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+    if (count < 0) FailRead("H5Sget_simple_extent_npoints", path_, Dataset(name));
+    if (count == 0) continue;
+    std::vector<unsigned char> buffer(static_cast<size_t>(count) * H5Tget_size(type.get()));
+    if (H5Dread(dataset.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()) < 0) {
+      FailRead("H5Dread", path_, Dataset(name));
+    }
+  }
+}
+
 std::vector<std::string> Hdf5File::ReadStrings(const std::string& name) const {
+  InitializeHdf5();
   Handle dataset(H5Dopen2(id_, name.c_str(), H5P_DEFAULT), H5Dclose);
   if (!dataset.valid()) FailRead("H5Dopen2", path_, Dataset(name));
   Handle space(H5Dget_space(dataset.get()), H5Sclose);
@@ -478,6 +548,7 @@ std::vector<std::string> Hdf5File::ReadStrings(const std::string& name) const {
 }
 
 bool Hdf5File::HasAttribute(const std::string& object, const std::string& name) const {
+  InitializeHdf5();
   if (!Exists(object)) return false;
   Handle target = OpenObject(id_, path_, object);
   const htri_t exists = H5Aexists(target.get(), name.c_str());
@@ -501,15 +572,18 @@ T ReadScalarAttribute(hid_t file_id, const std::string& file, const std::string&
 }  // namespace
 
 double Hdf5File::ReadDoubleAttribute(const std::string& object, const std::string& name) const {
+  InitializeHdf5();
   return ReadScalarAttribute<double>(id_, path_, object, name, H5T_NATIVE_DOUBLE);
 }
 
 int64_t Hdf5File::ReadIntAttribute(const std::string& object, const std::string& name) const {
+  InitializeHdf5();
   return ReadScalarAttribute<int64_t>(id_, path_, object, name, H5T_NATIVE_INT64);
 }
 
 std::string Hdf5File::ReadStringAttribute(const std::string& object,
                                           const std::string& name) const {
+  InitializeHdf5();
   Handle type = StringType();
   char* text = ReadScalarAttribute<char*>(id_, path_, object, name, type.get());
   std::string value = text ? text : "";

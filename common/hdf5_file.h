@@ -87,6 +87,10 @@ class Hdf5File {
   std::string ReadString(const std::string& name) const;
   std::vector<std::string> ReadStrings(const std::string& name) const;
   bool HasAttribute(const std::string& object, const std::string& name) const;
+  // Reads every dataset of numbers (their Fletcher32 checksums) and throws
+  // as a read does for the first that fails: a whole file checked at once,
+  // e.g. a cached result before it is trusted.
+  void CheckData() const;
   double ReadDoubleAttribute(const std::string& object, const std::string& name) const;
   int64_t ReadIntAttribute(const std::string& object, const std::string& name) const;
   std::string ReadStringAttribute(const std::string& object, const std::string& name) const;

@@ -786,6 +786,7 @@ void WriteProvenance(Hdf5File& file, const Provenance& p) {
   file.SetAttribute(g, kParentSceneSha256, p.parent_scene_sha256);
   file.SetAttribute(g, kThreads, p.threads);
   file.SetAttribute(g, kCpuModel, p.cpu_model);
+  if (!p.case_key.empty()) file.SetAttribute(g, kCaseKey, p.case_key);
 }
 
 Provenance ReadProvenance(const Hdf5File& file) {
@@ -805,6 +806,7 @@ Provenance ReadProvenance(const Hdf5File& file) {
   p.parent_scene_sha256 = file.ReadStringAttribute(g, kParentSceneSha256);
   p.threads = file.ReadIntAttribute(g, kThreads);
   p.cpu_model = file.ReadStringAttribute(g, kCpuModel);
+  if (file.HasAttribute(g, kCaseKey)) p.case_key = file.ReadStringAttribute(g, kCaseKey);
   return p;
 }
 
@@ -882,6 +884,7 @@ std::string DescribeResult(const Hdf5File& file) {
     }
     line("start", start);
     line("cpu", p.cpu_model);
+    if (!p.case_key.empty()) line("case_key", p.case_key);
   } else {
     line("scene", StringAttributeOr(file, kScene, kSceneOrigin, "?"));
   }

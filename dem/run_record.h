@@ -146,6 +146,7 @@ struct Provenance {
   std::string parent_file, parent_stage, parent_scene_sha256;  // forks only
   int64_t threads = 0;
   std::string cpu_model;
+  std::string case_key;  // RunOptions::case_key ("" when none was given)
 };
 
 // The sample and, when generated, its GSD comparison (report may be null).

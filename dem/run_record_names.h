@@ -238,5 +238,7 @@ inline constexpr char kParentFile[] = "parent_file";
 inline constexpr char kParentStage[] = "parent_stage";
 inline constexpr char kParentSceneSha256[] = "parent_scene_sha256";
 inline constexpr char kCpuModel[] = "cpu_model";
+// The caller's name for what the run computes (a study case's key); absent: none.
+inline constexpr char kCaseKey[] = "case_key";
 
 }  // namespace granasym::dem::record

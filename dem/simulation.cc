@@ -267,6 +267,7 @@ RunSummary Simulation::Run() {
     threads_ = HardwareThreads();
   }
   contents_.provenance = RunProvenance(scene_, threads_);
+  contents_.provenance.case_key = options_.case_key;
   Start();
   const OutputOptions& output = scene_.output;
   if (output.overlap_histogram) {

@@ -36,6 +36,10 @@ struct RunOptions {
   // Progress, at most every progress_period_s of wall-clock time.
   std::function<void(const RunProgress& progress)> progress;
   double progress_period_s = 0.25;
+  // What the caller calls this run (a study case's key, study/plan.h):
+  // recorded in the result's /provenance, so that a result found under
+  // another case's name is known not to be that case's. Empty: none.
+  std::string case_key;
   bool IsValid(std::string* why) const;
 };
 

@@ -1,7 +1,10 @@
 #include "study/case_record.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <filesystem>
+#include <optional>
 
 #include "common/config.h"
 #include "common/error.h"
@@ -190,11 +193,136 @@ CaseDone CaseRecord::Done() const {
   return outcome;
 }
 
+namespace {
+
+constexpr char kPlanHeader[] = "id\tname\treplicate\tparent\tparent_stage\trun\tfigures";
+
+// A field of plan.tsv: backslash, tab and line breaks escaped.
+std::string Escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\\') {
+      out += "\\\\";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+std::string Unescaped(const std::string& text) {
+  std::string out;
+  for (size_t k = 0; k < text.size(); ++k) {
+    if (text[k] != '\\' || k + 1 == text.size()) {
+      out += text[k];
+      continue;
+    }
+    const char next = text[++k];
+    out += next == 't' ? '\t' : next == 'n' ? '\n' : next == 'r' ? '\r' : next;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string PlanFileText(const std::vector<CaseRecord>& cases) {
+  std::string text = std::string(
+                         "# the cases of the programme this folder was last run with "
+                         "(written by granasym study run)\n") +
+                     kPlanHeader + "\n";
+  for (const CaseRecord& c : cases) {
+    text += Escaped(c.id) + "\t" + Escaped(c.name) + "\t" + std::to_string(c.replicate) + "\t" +
+            Escaped(c.parent) + "\t" + Escaped(c.parent_stage) + "\t" + Escaped(c.run) + "\t" +
+            Escaped(c.figures.Text()) + "\n";
+  }
+  return text;
+}
+
+std::optional<std::vector<CaseRecord>> ReadPlannedCases(const std::string& study_directory) {
+  const std::string path = study_directory + "/" + kPlanFileName;
+  if (!fs::exists(path)) return std::nullopt;
+  const std::string text = ReadTextFile(path);
+  std::vector<CaseRecord> cases;
+  size_t at = 0;
+  int line_number = 0;
+  bool header = false;
+  while (at < text.size()) {
+    size_t end = text.find('\n', at);
+    if (end == std::string::npos) end = text.size();
+    const std::string line = text.substr(at, end - at);
+    at = end + 1;
+    ++line_number;
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      if (line != kPlanHeader) {
+        throw InputError(fmt::format("{}: line {}: expected the header '{}', found '{}'", path,
+                                     line_number, kPlanHeader, line));
+      }
+      header = true;
+      continue;
+    }
+    std::vector<std::string> fields;
+    size_t start = 0;
+    for (;;) {
+      const size_t tab = line.find('\t', start);
+      fields.push_back(Unescaped(line.substr(start, tab - start)));
+      if (tab == std::string::npos) break;
+      start = tab + 1;
+    }
+    if (fields.size() != 7) {
+      throw InputError(fmt::format("{}: line {}: {} fields, expected 7 ({})", path, line_number,
+                                   fields.size(), kPlanHeader));
+    }
+    CaseRecord c;
+    c.id = fields[0];
+    c.name = fields[1];
+    try {
+      c.replicate = std::stoi(fields[2]);
+    } catch (const std::exception&) {
+      c.replicate = 0;
+    }
+    if (c.replicate < 1 || c.id != "r" + fields[2] + "/" + c.name) {
+      throw InputError(fmt::format(
+          "{}: line {}: id '{}', name '{}' and replicate '{}' do not agree (expected the id "
+          "r<replicate>/<name>, replicate >= 1)",
+          path, line_number, c.id, c.name, fields[2]));
+    }
+    c.parent = fields[3];
+    c.parent_stage = fields[4];
+    c.run = fields[5];
+    c.figures =
+        FigureSet::Parse(fields[6], fmt::format("{}: line {}", path, line_number), "figures");
+    c.directory = study_directory + "/cases/" + c.id;
+    cases.push_back(std::move(c));
+  }
+  if (!header) throw InputError(path + ": no header line '" + kPlanHeader + "'");
+  return cases;
+}
+
 std::vector<CaseRecord> ReadCaseRecords(const std::string& study_directory) {
   std::vector<CaseRecord> records;
-  for (const std::string& folder : CaseFolders(study_directory)) {
-    records.push_back(CaseRecord::Read(folder));
+  const std::optional<std::vector<CaseRecord>> planned = ReadPlannedCases(study_directory);
+  if (!planned) {
+    for (const std::string& folder : CaseFolders(study_directory)) {
+      records.push_back(CaseRecord::Read(folder));
+    }
+    return records;
   }
+  for (const CaseRecord& c : *planned) {
+    if (fs::exists(c.directory + "/" + CaseRecord::kFileName)) {
+      records.push_back(CaseRecord::Read(c.directory));
+    } else {
+      records.push_back(c);
+    }
+  }
+  std::sort(records.begin(), records.end(),
+            [](const CaseRecord& a, const CaseRecord& b) { return a.directory < b.directory; });
   return records;
 }
 

@@ -106,8 +106,23 @@ struct CaseRecord {
   std::string result_path() const { return directory + "/result.h5"; }
 };
 
-// The records of every case folder of a study (DIR/cases/r<K>/<name> with a
-// case.toml), in the order of their folders.
+// DIR/plan.tsv: the cases of the programme the folder was last run with
+// (`study run` writes it; `study merge` copies it), one line per case: id,
+// name, replicate, parent, parent_stage, run, figures. What the state table,
+// `study status` and `study merge` hold the case folders to: a case removed
+// from the programme keeps its folder (its cache) but is no longer part of
+// the study, and a planned case without a folder is a case with no result.
+inline constexpr char kPlanFileName[] = "plan.tsv";
+std::string PlanFileText(const std::vector<CaseRecord>& cases);
+// The planned cases, each with its folder (DIR/cases/<id>) and no key or
+// variables (case.toml holds them); nullopt without a plan.tsv (a folder of
+// an older version: every case folder is the study's). A malformed line is
+// an InputError naming the file and the line.
+std::optional<std::vector<CaseRecord>> ReadPlannedCases(const std::string& study_directory);
+
+// The records of the study's cases, in the order of their folders: with a
+// plan.tsv, each planned case (its case.toml when its folder has one, else
+// the plan's line); without, every case folder with a case.toml.
 std::vector<CaseRecord> ReadCaseRecords(const std::string& study_directory);
 
 }  // namespace granasym::study

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "common/error.h"
@@ -39,7 +40,42 @@ double EstimateSteps(const dem::Stage& stage, double time_step, double density) 
   return strain / (rate * time_step);
 }
 
+// A case's key and its inputs (done.toml) from its canonical scene and its
+// parent's (or sample's) key.
+void KeyCase(const std::string& canonical, const std::string& parent_key,
+             const std::string& results_key, int threads, PlannedCase* c) {
+  Sha256 hash;
+  AddField(hash, "kind", "granasym-study-case-v2");
+  AddField(hash, "scene", canonical);
+  AddField(hash, "parent", parent_key);
+  AddField(hash, "parent_stage", c->spec.parent_stage);
+  AddField(hash, "results", results_key);
+  AddField(hash, "threads", std::to_string(threads));
+  c->key = hash.HexDigest();
+  c->inputs = {Sha256Hex(canonical), parent_key, results_key, threads};
+}
+
 }  // namespace
+
+std::string PackingSampleKey(const std::string& sample_key, const std::string& packing_sha256) {
+  Sha256 hash;
+  AddField(hash, "kind", "granasym-study-edited-sample-v1");
+  AddField(hash, "sample", sample_key);
+  AddField(hash, "packing_sha256", packing_sha256);
+  return hash.HexDigest();
+}
+
+void Plan::KeyOnSamples(const std::map<int, std::string>& sample_keys) {
+  for (PlannedCase& c : cases) {
+    const auto it = sample_keys.find(c.replicate);
+    if (it == sample_keys.end()) continue;
+    const std::string parent_key =
+        c.parent < 0 ? it->second : cases[static_cast<size_t>(c.parent)].key;
+    const dem::Scene scene =
+        dem::Scene::Parse(c.scene_text, c.directory + "/scene.toml", c.directory);
+    KeyCase(scene.Canonical(), parent_key, results_key, threads, &c);
+  }
+}
 
 Plan Plan::Make(const Programme& programme, int threads, const std::string& directory,
                 const std::string& results_key) {
@@ -81,6 +117,7 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
     sample.directory = directory + "/samples/r" + std::to_string(r);
     plan.samples.push_back(sample);
   }
+  std::map<std::string, int> index;  // case id → index in plan.cases
   for (int r = 1; r <= spec.replicates; ++r) {
     const std::string replicate = "r" + std::to_string(r);
     for (const CaseSpec& case_spec : programme.cases) {
@@ -97,7 +134,9 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
             "packing = " + TomlQuoted("../../../samples/" + replicate + "/packing.txt") + "\n";
         parent_key = plan.samples[static_cast<size_t>(r - 1)].key;
       } else {
-        c.parent = plan.Find(replicate + "/" + case_spec.parent);
+        const auto parent = index.find(replicate + "/" + case_spec.parent);
+        GRANASYM_CHECK(parent != index.end()) << "the programme orders parents first";
+        c.parent = parent->second;
         GRANASYM_CHECK(c.parent >= 0) << "the programme orders parents first";
         sample_table += "state = " + TomlQuoted("../" + case_spec.parent + "/result.h5") + "\n";
         if (!case_spec.parent_stage.empty()) {
@@ -113,16 +152,7 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
         throw InputError(programme.origin + ": case '" + case_spec.name + "' (from [[run]] '" +
                          case_spec.run + "'): " + error.what());
       }
-      Sha256 hash;
-      const std::string canonical = scene.Canonical();
-      AddField(hash, "kind", "granasym-study-case-v2");
-      AddField(hash, "scene", canonical);
-      AddField(hash, "parent", parent_key);
-      AddField(hash, "parent_stage", case_spec.parent_stage);
-      AddField(hash, "results", plan.results_key);
-      AddField(hash, "threads", std::to_string(threads));
-      c.key = hash.HexDigest();
-      c.inputs = {Sha256Hex(canonical), parent_key, plan.results_key, threads};
+      KeyCase(scene.Canonical(), parent_key, plan.results_key, threads, &c);
       const double time_step = scene.time_step_s.value_or(1.2e-7);
       for (const dem::Stage& stage : scene.stages) {
         c.estimated_steps += EstimateSteps(stage, time_step, scene.material.density);
@@ -130,9 +160,39 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
       if (c.parent >= 0)
         plan.cases[static_cast<size_t>(c.parent)].children.push_back(
             static_cast<int>(plan.cases.size()));
+      index.emplace(c.id, static_cast<int>(plan.cases.size()));
       plan.cases.push_back(std::move(c));
     }
   }
+  Sha256 identity;
+  AddField(identity, "kind", "granasym-programme-v1");
+  AddField(identity, "name", programme.name);
+  AddField(identity, "scale", ToString(scale));
+  AddField(identity, "replicates", std::to_string(spec.replicates));
+  for (const PlannedSample& sample : plan.samples) {
+    AddField(identity, "sample",
+             std::to_string(sample.options.count) + "/" + std::to_string(sample.options.seed) +
+                 "/" + std::to_string(sample.options.max_attempts));
+    std::ostringstream cell;
+    cell.precision(17);
+    cell << sample.options.cell_size;
+    AddField(identity, "cell_size_m", cell.str());
+  }
+  AddField(identity, "gsd", gsd_text);
+  AddField(identity, "ncl", programme.ncl_case);
+  for (const CaseSpec& c : programme.cases) {
+    AddField(identity, "case", c.name);
+    AddField(identity, "parent", c.parent);
+    AddField(identity, "parent_stage", c.parent_stage);
+    AddField(identity, "run", c.run);
+    AddField(identity, "figures", c.figures.Text());
+    AddField(identity, "scene", c.scene_body);
+  }
+  for (const ModelCaseSpec& model : programme.model_cases) {
+    AddField(identity, "model_run", model.name);
+    AddField(identity, "test", model.text);
+  }
+  plan.programme_sha256 = identity.HexDigest();
   for (const ModelCaseSpec& model : programme.model_cases) {
     PlannedModelCase m;
     m.id = "models/" + model.name;
@@ -195,6 +255,7 @@ std::string StudyRecordText(const Plan& plan) {
       << "replicates = " << plan.samples.size() << "\n"
       << "count = " << plan.programme.At(plan.scale).count << "\n"
       << "ncl = " << TomlQuoted(plan.programme.ncl_case) << "\n"
+      << "programme_sha256 = " << TomlQuoted(plan.programme_sha256) << "\n"
       << "program_version = " << TomlQuoted(plan.program_version) << "\n";
   // The programme's [figures] table, read by `study figures`.
   const std::string figures = plan.programme.figures.ToToml();

@@ -2,8 +2,11 @@
 // samples and cases, each with its folder, its scene and the cache key of
 // its inputs. Layout of a study folder:
 //
-//   DIR/study.toml                   the programme's name, scale, threads, version
-//   DIR/samples/r<K>/packing.txt     the generated sample of replicate K (+ generation.txt, key)
+//   DIR/study.toml                   the programme's name and hash, scale, threads, version
+//   DIR/plan.tsv                     the programme's cases (what the folder's study is)
+//   DIR/shards/<K>-of-<N>.toml       how shard K of a sharded run ended
+//   DIR/samples/r<K>/packing.txt     the generated sample of replicate K (+ generation.txt, key,
+//                                    packing.sha256: its hash as generated)
 //   DIR/cases/r<K>/<case>/scene.toml the scene the case runs (forks from its parent's result)
 //   DIR/cases/r<K>/<case>/case.toml  what the case is: key, parent, run, variables
 //   DIR/cases/r<K>/<case>/result.h5  its result (result.h5.ckpt while it runs)
@@ -15,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -32,6 +36,8 @@ struct PlannedSample {
   std::string key;        // SHA-256 of what generates it
   std::string directory;  // DIR/samples/r<K>
   std::string packing_path() const { return directory + "/packing.txt"; }
+  // The SHA-256 of packing.txt as generated (hex), written beside it.
+  std::string packing_sha256_path() const { return directory + "/packing.sha256"; }
 };
 
 struct PlannedCase {
@@ -64,8 +70,13 @@ struct Plan {
   Scale scale = Scale::kTiny;
   int threads = 1;
   std::string directory;
-  std::string program_version;         // provenance only: no key depends on it
-  std::string results_key;             // common/results_version.h: every key depends on it
+  std::string program_version;  // provenance only: no key depends on it
+  std::string results_key;      // common/results_version.h: every key depends on it
+  // SHA-256 of the programme as expanded at the scale (its name, sample,
+  // cases with their scenes, parents and figures, model runs): the study's
+  // identity in study.toml, beside the name, so that shards of two
+  // programmes of one name are never mixed.
+  std::string programme_sha256;
   std::vector<PlannedSample> samples;  // one per replicate
   std::vector<PlannedCase> cases;      // parents before children
   std::vector<PlannedModelCase> model_cases;
@@ -82,8 +93,18 @@ struct Plan {
   // every shard includes the ancestors of its leaves (computed once, by
   // whichever shard gets there first). In dependency order.
   std::vector<int> Shard(int index, int count) const;
+  // The cases of the replicates in `sample_keys` keyed on those sample keys
+  // instead of their samples' (and their descendants on their new keys): a
+  // sample whose packing.txt is not the one its key generates (an edited
+  // file) is keyed on its content (PackingSampleKey), so that the NCL and
+  // everything forked from it are computed again from it.
+  void KeyOnSamples(const std::map<int, std::string>& sample_keys);
   int Find(const std::string& id) const;  // -1 when absent
 };
+
+// The key standing in for a sample's key when its packing's SHA-256 is not
+// the one recorded when it was generated.
+std::string PackingSampleKey(const std::string& sample_key, const std::string& packing_sha256);
 
 // The text of DIR/study.toml for a plan.
 std::string StudyRecordText(const Plan& plan);

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 #include <toml.hpp>
@@ -470,8 +471,10 @@ Table SharedScene(const std::string& origin, const Table& top) {
 }
 
 // A case's `from` ("sample", "RUN" or "RUN@STAGE") against the cases before it.
+// `names`: the index in programme.cases of each case so far.
 void ResolveParent(const std::string& origin, const std::string& case_where,
-                   const std::string& from, const Programme& programme, CaseSpec* spec) {
+                   const std::string& from, const Programme& programme,
+                   const std::map<std::string, size_t>& names, CaseSpec* spec) {
   if (from == "sample") return;
   const size_t at = from.find('@');
   spec->parent = from.substr(0, at);
@@ -484,7 +487,9 @@ void ResolveParent(const std::string& origin, const std::string& case_where,
                spec->parent + "\" (its final state)");
     }
   }
-  const CaseSpec* parent = programme.Find(spec->parent);
+  const auto found_parent = names.find(spec->parent);
+  const CaseSpec* parent =
+      found_parent == names.end() ? nullptr : &programme.cases[found_parent->second];
   const Scale scale = programme.scale;
   if (!parent) {
     Fail(origin, case_where + ".from",
@@ -559,8 +564,8 @@ Array ExpandStages(const std::string& origin, const std::string& where, const Ar
 // One [[run]] (`where`: "run[K]") into its cases, one per combination of its
 // `vary` lists; `names` holds the case names so far.
 void ExpandRun(const std::string& origin, const std::string& where, const Table& run,
-               const Table& shared, const ScaleExpansion& expansion, std::set<std::string>* names,
-               Programme* programme) {
+               const Table& shared, const ScaleExpansion& expansion,
+               std::map<std::string, size_t>* names, Programme* programme) {
   CheckKeys(origin, where + ".", run, {"name", "from", "vary", "figures", "scene", "stage"});
   const std::string name_template = StringAt(origin, where + ".name", run, "", true);
   const std::string from_template = StringAt(origin, where + ".from", run, "", true);
@@ -594,17 +599,18 @@ void ExpandRun(const std::string& origin, const std::string& where, const Table&
            fmt::format("gives '{}…' of {} characters: a case name (a folder name) has at most {}",
                        spec.name.substr(0, 40), spec.name.size(), Programme::kMaxNameLength));
     }
-    if (!names->insert(spec.name).second) {
+    if (names->count(spec.name)) {
       Fail(origin, where + ".name", "gives '" + spec.name + "' twice: case names are unique");
     }
     const std::string from =
         Substitute(Value(from_template), variables, origin, where + ".from").as_string().str;
-    ResolveParent(origin, where + " (case '" + spec.name + "')", from, *programme, &spec);
+    ResolveParent(origin, where + " (case '" + spec.name + "')", from, *programme, *names, &spec);
     Table scene = shared;
     MergeInto(scene, Substitute(Value(overrides), variables, origin, where + ".scene").as_table());
     scene["stage"] =
         Value(ExpandStages(origin, where, stages->as_array(), variables, expansion, &spec));
     spec.scene_body = FormatTable(scene);
+    names->emplace(spec.name, programme->cases.size());
     programme->cases.push_back(std::move(spec));
   }
 }
@@ -617,7 +623,7 @@ void ExpandRuns(const std::string& origin, const Table& top, const ScaleExpansio
   if (!runs || !runs->is_array() || runs->as_array().empty()) {
     Fail(origin, "run", "is missing: a programme needs at least one [[run]]");
   }
-  std::set<std::string> names;
+  std::map<std::string, size_t> names;  // case name → index in programme->cases
   for (size_t r = 0; r < runs->as_array().size(); ++r) {
     const std::string where = "run[" + std::to_string(r + 1) + "]";
     const Table& run = TableAt(origin, where, runs->as_array()[r]);

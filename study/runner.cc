@@ -13,16 +13,20 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include "common/config.h"
 #include "common/error.h"
+#include "common/provenance.h"
 #include "common/stopwatch.h"
 #include "common/text_file.h"
 #include "dem/grain_size_distribution.h"
 #include "dem/scene.h"
 #include "dem/simulation.h"
+#include "study/case_queue.h"
 #include "study/case_record.h"
 #include "study/study_folder.h"
 
@@ -52,7 +56,7 @@ CaseRecord RecordOf(const Plan& plan, const PlannedCase& c) {
   return record;
 }
 
-void PrepareDirectory(const Plan& plan) {
+void PrepareDirectory(const Plan& plan, const RunnerOptions& options) {
   const fs::path dir(plan.directory);
   const std::string record = plan.directory + "/study.toml";
   if (fs::exists(dir) && !fs::is_directory(dir)) {
@@ -70,6 +74,25 @@ void PrepareDirectory(const Plan& plan) {
                        "' at scale " + scale + ", not '" + plan.programme.name + "' at " +
                        ToString(plan.scale) + ": give another output folder");
     }
+    // The same name, another programme: an edited programme, run again
+    // (its unchanged cases stay cached), or shards of two programmes.
+    const std::string hash = table.GetString("programme_sha256", "");
+    if (!hash.empty() && hash != plan.programme_sha256) {
+      if (options.shard_count > 1) {
+        throw InputError(fmt::format(
+            "--out {}: holds the study '{}' of another programme (programme_sha256 {} there, {} "
+            "in {}): shards of one study run one programme. Give another output folder, or, "
+            "when the programme was edited on purpose, run it once without --shard to make it "
+            "this folder's programme (unchanged cases stay cached)",
+            plan.directory, programme, hash, plan.programme_sha256, plan.programme.origin));
+      }
+      if (options.log) {
+        options.log(fmt::format(
+            "the programme '{}' changed since this folder's last run (programme_sha256 {} → {}): "
+            "cases whose inputs did not change stay cached",
+            programme, hash, plan.programme_sha256));
+      }
+    }
   } else {
     for (const auto& entry : fs::directory_iterator(dir)) {
       if (entry.path().filename() == ".lock") continue;
@@ -81,6 +104,12 @@ void PrepareDirectory(const Plan& plan) {
   fs::create_directories(dir / "cases");
   fs::create_directories(dir / "samples");
   WriteIfChanged(record, StudyRecordText(plan));
+  // The programme's cases: a case folder of another programme stays (its
+  // cache) but is not part of the study.
+  std::vector<CaseRecord> planned;
+  planned.reserve(plan.cases.size());
+  for (const PlannedCase& c : plan.cases) planned.push_back(RecordOf(plan, c));
+  WriteIfChanged(plan.directory + "/" + kPlanFileName, PlanFileText(planned));
 }
 
 void GenerateSample(const PlannedSample& sample, const std::function<bool()>& stop,
@@ -99,12 +128,36 @@ void GenerateSample(const PlannedSample& sample, const std::function<bool()>& st
   dem::GenerationReport report;
   const dem::Packing packing = dem::GeneratePacking(gsd, sample.options, &report);
   packing.WriteText(sample.packing_path());
+  WriteTextFileAtomically(sample.packing_sha256_path(),
+                          Sha256Hex(ReadTextFile(sample.packing_path())) + "\n");
   WriteTextFileAtomically(sample.directory + "/generation.txt", report.Table());
   WriteTextFileAtomically(key_path, sample.key + "\n");
   if (log) {
     log(fmt::format("sample r{}: {} spheres generated, porosity {:.4f}", sample.replicate,
                     report.count, report.porosity));
   }
+}
+
+// The key the sample's cases are keyed on when its packing.txt is not the
+// one generated for its key (an edited file): nullopt when it is. A sample
+// generated before the packing's hash was recorded has it recorded now.
+std::optional<std::string> EditedSampleKey(const PlannedSample& sample,
+                                           const std::function<void(const std::string&)>& log) {
+  FileLock lock(sample.directory + "/.lock", {});
+  const std::string now = Sha256Hex(ReadTextFile(sample.packing_path()));
+  if (!fs::exists(sample.packing_sha256_path())) {
+    WriteTextFileAtomically(sample.packing_sha256_path(), now + "\n");
+    return std::nullopt;
+  }
+  const std::string generated = ReadTextFile(sample.packing_sha256_path());
+  if (generated == now + "\n") return std::nullopt;
+  if (log) {
+    log(fmt::format(
+        "sample r{}: {} is not the packing generated for it (SHA-256 {}, generated {}): its "
+        "cases are keyed on its content",
+        sample.replicate, sample.packing_path(), now, generated.substr(0, generated.find('\n'))));
+  }
+  return PackingSampleKey(sample.key, now);
 }
 
 // An element test of a constitutive model, cached like a DEM case.
@@ -151,17 +204,13 @@ CaseOutcome RunModelCase(const PlannedModelCase& m,
 class Scheduler {
  public:
   Scheduler(const Plan& plan, const RunnerOptions& options, const std::vector<int>& selected)
-      : plan_(plan), options_(options), selected_(selected) {
-    for (int k : selected_) in_shard_.insert(k);
-    for (int k : selected_) {
-      state_[k] = State::kWaiting;
-      estimate_[k] = static_cast<double>(plan_.cases[static_cast<size_t>(k)].particles) *
-                     plan_.cases[static_cast<size_t>(k)].estimated_steps;
-    }
-    for (int k : selected_) {
-      const int parent = plan_.cases[static_cast<size_t>(k)].parent;
-      if (parent < 0 || !in_shard_.count(parent)) ready_.push_back(k);
-    }
+      : plan_(plan),
+        options_(options),
+        selected_(selected),
+        queue_(plan, selected),
+        state_(plan.cases.size(), State::kWaiting),
+        outcomes_(plan.cases.size()) {
+    for (int k : selected_) remaining_work_ += queue_.work(k);
   }
 
   StudyOutcome Run() {
@@ -169,12 +218,20 @@ class Scheduler {
     const int jobs = std::max(1, std::min<int>(options_.jobs, static_cast<int>(selected_.size())));
     std::vector<std::thread> workers;
     for (int j = 0; j < jobs; ++j) workers.emplace_back([this] { Work(); });
-    // The progress reporter runs here.
+    // The progress reporter runs here; it also watches for a stop request,
+    // so that waiting cases are given up within a poll whatever the plan's size.
+    const double period = std::min(options_.progress_period_s, 0.2);
+    double last_report = -1e30;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       while (finished_ < selected_.size()) {
-        cv_done_.wait_for(lock, std::chrono::duration<double>(options_.progress_period_s));
-        if (options_.progress) {
+        cv_done_.wait_for(lock, std::chrono::duration<double>(period));
+        if (StopRequested()) {
+          InterruptWaitingLocked();
+          cv_ready_.notify_all();
+        }
+        if (options_.progress && clock.Seconds() - last_report >= options_.progress_period_s) {
+          last_report = clock.Seconds();
           const StudyProgress progress = ProgressLocked(clock.Seconds());
           lock.unlock();
           options_.progress(progress);
@@ -182,6 +239,7 @@ class Scheduler {
         }
       }
     }
+    cv_ready_.notify_all();
     for (std::thread& worker : workers) worker.join();
     if (error_) {
       try {
@@ -193,7 +251,7 @@ class Scheduler {
       }
     }
     StudyOutcome outcome;
-    for (int k : selected_) outcome.cases.push_back(outcomes_[k]);
+    for (int k : selected_) outcome.cases.push_back(outcomes_[static_cast<size_t>(k)]);
     outcome.wall_seconds = clock.Seconds();
     return outcome;
   }
@@ -212,36 +270,39 @@ class Scheduler {
       int k = -1;
       {
         std::unique_lock<std::mutex> lock(mutex_);
-        cv_ready_.wait(lock, [this] { return !ready_.empty() || finished_ == selected_.size(); });
-        if (ready_.empty()) return;
-        k = PopReadyLocked();
-        state_[k] = State::kRunning;
+        cv_ready_.wait(lock, [this] { return !queue_.empty() || finished_ == selected_.size(); });
+        if (queue_.empty()) return;
+        if (StopRequested()) {
+          InterruptWaitingLocked();
+          lock.unlock();
+          cv_ready_.notify_all();
+          cv_done_.notify_all();
+          continue;
+        }
+        k = queue_.Pop();
+        state_[static_cast<size_t>(k)] = State::kRunning;
+        ++running_;
       }
       CaseOutcome outcome;
-      if (StopRequested()) {
+      try {
+        outcome = StopRequested() ? NotStarted(k) : Execute(k);
+      } catch (...) {
+        // An error that is not a result of the case (bad input, a full
+        // disk, a violated invariant): the study stops, and RunStudy
+        // rethrows it once every worker has ended.
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!error_) {
+          error_ = std::current_exception();
+          error_case_ = plan_.cases[static_cast<size_t>(k)].id;
+        }
+        aborted_ = true;
         outcome.id = plan_.cases[static_cast<size_t>(k)].id;
         outcome.status = CaseStatus::kInterrupted;
-        outcome.message = "not started: the study was interrupted";
-      } else {
-        try {
-          outcome = Execute(k);
-        } catch (...) {
-          // An error that is not a result of the case (bad input, a full
-          // disk, a violated invariant): the study stops, and RunStudy
-          // rethrows it once every worker has ended.
-          std::lock_guard<std::mutex> lock(mutex_);
-          if (!error_) {
-            error_ = std::current_exception();
-            error_case_ = plan_.cases[static_cast<size_t>(k)].id;
-          }
-          aborted_ = true;
-          outcome.id = plan_.cases[static_cast<size_t>(k)].id;
-          outcome.status = CaseStatus::kInterrupted;
-          outcome.message = "stopped by an error";
-        }
+        outcome.message = "stopped by an error";
       }
       {
         std::lock_guard<std::mutex> lock(mutex_);
+        --running_;
         Finish(k, outcome);
       }
       cv_ready_.notify_all();
@@ -249,78 +310,62 @@ class Scheduler {
     }
   }
 
-  // The ready case with the most work below it (the critical path first).
-  int PopReadyLocked() {
-    auto below = [this](int k) {
-      double total = 0;
-      std::vector<int> stack{k};
-      while (!stack.empty()) {
-        const int c = stack.back();
-        stack.pop_back();
-        total += estimate_[c];
-        for (int child : plan_.cases[static_cast<size_t>(c)].children) {
-          if (in_shard_.count(child)) stack.push_back(child);
-        }
-      }
-      return total;
-    };
-    auto best = std::max_element(ready_.begin(), ready_.end(),
-                                 [&](int a, int b) { return below(a) < below(b); });
-    const int k = *best;
-    ready_.erase(best);
-    return k;
+  void FinishOneLocked(int k, const CaseOutcome& outcome) {
+    const size_t i = static_cast<size_t>(k);
+    outcomes_[i] = outcome;
+    state_[i] = State::kFinished;
+    ++finished_;
+    remaining_work_ -= queue_.work(k);
+    running_progress_.erase(k);
+    if (outcome.status == CaseStatus::kFailed || outcome.status == CaseStatus::kBlocked) ++failed_;
+    if (outcome.status == CaseStatus::kCached) ++cached_;
+  }
+
+  CaseOutcome NotStarted(int k) const {
+    return {plan_.cases[static_cast<size_t>(k)].id, CaseStatus::kInterrupted,
+            "not started: the study was interrupted", 0, 0};
+  }
+
+  // Every case that has not started is interrupted, at once (a stop request).
+  void InterruptWaitingLocked() {
+    for (int k : queue_.TakeAll()) FinishOneLocked(k, NotStarted(k));
+    for (int k : selected_) {
+      if (state_[static_cast<size_t>(k)] == State::kWaiting) FinishOneLocked(k, NotStarted(k));
+    }
   }
 
   void Finish(int k, const CaseOutcome& outcome) {
-    outcomes_[k] = outcome;
-    state_[k] = State::kFinished;
-    ++finished_;
     done_particle_steps_ += outcome.particle_steps;
-    running_particle_steps_.erase(k);
+    FinishOneLocked(k, outcome);
     if (outcome.status == CaseStatus::kInterrupted) {
       // Its children cannot start: they are interrupted too.
-      std::vector<int> stack(plan_.cases[static_cast<size_t>(k)].children);
-      while (!stack.empty()) {
-        const int c = stack.back();
-        stack.pop_back();
-        if (!in_shard_.count(c) || state_[c] == State::kFinished) continue;
-        outcomes_[c] = {plan_.cases[static_cast<size_t>(c)].id, CaseStatus::kInterrupted,
-                        "not started: the study was interrupted", 0, 0};
-        state_[c] = State::kFinished;
-        ++finished_;
-        for (int g : plan_.cases[static_cast<size_t>(c)].children) stack.push_back(g);
+      for (int c : queue_.Descendants(k)) {
+        if (state_[static_cast<size_t>(c)] == State::kWaiting) FinishOneLocked(c, NotStarted(c));
       }
       return;
     }
-    for (int child : plan_.cases[static_cast<size_t>(k)].children) {
-      if (in_shard_.count(child)) ready_.push_back(child);
-    }
+    queue_.Release(k);
   }
 
   StudyProgress ProgressLocked(double elapsed) const {
     StudyProgress p;
     p.total = static_cast<int>(selected_.size());
-    double remaining = 0, running_done = 0;
-    for (int k : selected_) {
-      const auto state = state_.at(k);
-      if (state == State::kFinished) {
-        ++p.done;
-        const CaseStatus status = outcomes_.at(k).status;
-        if (status == CaseStatus::kFailed || status == CaseStatus::kBlocked) ++p.failed;
-        if (status == CaseStatus::kCached) ++p.cached;
-        continue;
-      }
-      if (state == State::kRunning) ++p.running;
-      const auto it = running_particle_steps_.find(k);
-      const double progressed = it == running_particle_steps_.end() ? 0.0 : it->second;
+    p.done = static_cast<int>(finished_);
+    p.running = running_;
+    p.failed = failed_;
+    p.cached = cached_;
+    double remaining = remaining_work_, running_done = 0;
+    for (const auto& [k, progressed] : running_progress_) {
+      if (state_[static_cast<size_t>(k)] != State::kRunning) continue;
       running_done += progressed;
-      remaining += std::max(0.1 * estimate_.at(k), estimate_.at(k) - progressed);
+      const double work = queue_.work(k);
+      remaining -= work - std::max(0.1 * work, work - progressed);
     }
     p.left = p.total - p.done - p.running;
     const double computed = static_cast<double>(done_particle_steps_) + running_done;
     if (elapsed > 1 && computed > 0) {
       p.particle_steps_per_second = computed / elapsed;
-      p.eta_seconds = remaining / p.particle_steps_per_second;
+      p.eta_seconds = std::max(0.0, remaining) / p.particle_steps_per_second;
     }
     return p;
   }
@@ -330,16 +375,16 @@ class Scheduler {
   const Plan& plan_;
   const RunnerOptions& options_;
   const std::vector<int> selected_;
-  std::set<int> in_shard_;
   std::mutex mutex_;
   std::condition_variable cv_ready_, cv_done_;
-  std::vector<int> ready_;
-  std::map<int, State> state_;
-  std::map<int, double> estimate_;  // particle-steps
-  std::map<int, CaseOutcome> outcomes_;
-  std::map<int, double> running_particle_steps_;
+  CaseQueue queue_;
+  std::vector<State> state_;
+  std::vector<CaseOutcome> outcomes_;
+  std::map<int, double> running_progress_;  // the running cases' particle-steps so far
+  double remaining_work_ = 0;               // estimated particle-steps of unfinished cases
   int64_t done_particle_steps_ = 0;
   size_t finished_ = 0;
+  int running_ = 0, failed_ = 0, cached_ = 0;
   std::atomic<bool> aborted_{false};
   std::exception_ptr error_;
   std::string error_case_;
@@ -364,7 +409,7 @@ CaseOutcome Scheduler::Execute(int k) {
   }
   if (const std::optional<DoneRecord>& done = previous;
       done && done->key == c.key && fs::exists(c.result_path())) {
-    const std::string mismatch = ResultMismatch(c.result_path(), *done);
+    const std::string mismatch = ResultMismatch(c.result_path(), *done, true);
     if (mismatch.empty()) {
       outcome.status = done->termination == dem::Termination::kCompleted ? CaseStatus::kCached
                                                                          : CaseStatus::kFailed;
@@ -403,6 +448,7 @@ CaseOutcome Scheduler::Execute(int k) {
   run.output_path = c.result_path();
   run.threads = plan_.threads;
   run.restart = resume;
+  run.case_key = c.key;
   run.stop_requested = [this](int64_t) { return StopRequested(); };
   // The run's own report goes to the case's run.log (appended across
   // resumes); the study's log gets one line when a case starts and ends.
@@ -415,7 +461,7 @@ CaseOutcome Scheduler::Execute(int k) {
   run.progress = [this, k, &first_step, &c](const dem::RunProgress& progress) {
     if (first_step < 0) first_step = progress.step;
     std::lock_guard<std::mutex> lock(mutex_);
-    running_particle_steps_[k] =
+    running_progress_[k] =
         static_cast<double>(progress.step - first_step) * static_cast<double>(c.particles);
   };
   run.progress_period_s = 0.5;
@@ -491,15 +537,33 @@ StudyOutcome RunStudy(const Plan& plan, const RunnerOptions& options) {
     throw InputError(fmt::format("--shard {}/{}: expected K/N with 1 <= K <= N",
                                  options.shard_index, options.shard_count));
   }
-  PrepareDirectory(plan);
+  PrepareDirectory(plan, options);
+  const bool sharded = options.shard_count > 1;
+  const std::string marker =
+      ShardMarkerPath(plan.directory, options.shard_index, options.shard_count);
+  if (sharded) {
+    fs::create_directories(plan.directory + "/shards");
+    fs::remove(marker);  // an earlier run's: this one has not ended
+  }
   const std::vector<int> selected = plan.Shard(options.shard_index, options.shard_count);
   std::set<int> replicates;
   for (int k : selected) replicates.insert(plan.cases[static_cast<size_t>(k)].replicate);
+  std::map<int, std::string> edited;  // replicate → the key of its edited sample
   for (const PlannedSample& sample : plan.samples) {
     if (replicates.count(sample.replicate)) {
       GenerateSample(sample, options.stop_requested, options.log);
+      if (options.stop_requested && options.stop_requested()) break;
+      if (const std::optional<std::string> key = EditedSampleKey(sample, options.log)) {
+        edited[sample.replicate] = *key;
+      }
     }
   }
+  std::optional<Plan> keyed;
+  if (!edited.empty()) {
+    keyed = plan;
+    keyed->KeyOnSamples(edited);
+  }
+  const Plan& run_plan = keyed ? *keyed : plan;
   // Model runs are quick and belong to the first shard.
   std::vector<CaseOutcome> models;
   if (options.shard_index == 1) {
@@ -508,9 +572,27 @@ StudyOutcome RunStudy(const Plan& plan, const RunnerOptions& options) {
       models.push_back(RunModelCase(m, options.log));
     }
   }
-  Scheduler scheduler(plan, options, selected);
+  Scheduler scheduler(run_plan, options, selected);
   StudyOutcome outcome = scheduler.Run();
   outcome.cases.insert(outcome.cases.end(), models.begin(), models.end());
+  if (sharded) {
+    const int failed = outcome.Count(CaseStatus::kFailed),
+              blocked = outcome.Count(CaseStatus::kBlocked),
+              interrupted = outcome.Count(CaseStatus::kInterrupted);
+    const char* status = interrupted > 0        ? "interrupted"
+                         : failed + blocked > 0 ? "failed"
+                                                : "complete";
+    WriteTextFileAtomically(
+        marker,
+        fmt::format("# written by granasym study run --shard {}/{} when it ended\n"
+                    "status = {}\nprogramme_sha256 = {}\ncases = {}\ncomputed = {}\n"
+                    "cached = {}\nfailed = {}\nblocked = {}\ninterrupted = {}\n"
+                    "wall_seconds = {:.1f}\n",
+                    options.shard_index, options.shard_count, TomlQuoted(status),
+                    TomlQuoted(plan.programme_sha256), outcome.cases.size(),
+                    outcome.Count(CaseStatus::kComputed), outcome.Count(CaseStatus::kCached),
+                    failed, blocked, interrupted, outcome.wall_seconds));
+  }
   return outcome;
 }
 

@@ -86,8 +86,9 @@ std::vector<CaseFolder> ListCases(const std::string& directory) {
       if (!outcome.mismatch.empty()) c.message = outcome.mismatch;
     }
     if (!c.finished && c.message.empty()) {
-      c.message = fs::exists(folder / "result.h5.ckpt") ? "interrupted: resumes on the next run"
-                                                        : "not run";
+      c.message = !fs::exists(folder) ? "not run (no case folder: was its shard run?)"
+                  : fs::exists(folder / "result.h5.ckpt") ? "interrupted: resumes on the next run"
+                                                          : "not run";
     }
     cases.push_back(std::move(c));
   }

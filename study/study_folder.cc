@@ -11,6 +11,8 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <set>
 #include <thread>
 
 #include "common/config.h"
@@ -18,6 +20,7 @@
 #include "common/hdf5_file.h"
 #include "common/results_version.h"
 #include "common/text_file.h"
+#include "dem/run_record_names.h"
 #include "study/case_record.h"
 
 namespace granasym::study {
@@ -79,16 +82,46 @@ std::optional<DoneRecord> ReadDone(const std::string& directory) {
   return done;
 }
 
-std::string ResultMismatch(const std::string& result_path, const DoneRecord& done) {
+std::string ResultMismatch(const std::string& result_path, const DoneRecord& done,
+                           bool check_data) {
   try {
     const Hdf5File file = Hdf5File::OpenRead(result_path);
     const dem::RunSummary summary = dem::ReadSummary(file);
-    if (summary.termination == done.termination) return "";
-    return fmt::format("{} holds a run that ended '{}' ({}), not the '{}' of done.toml",
-                       result_path, ToString(summary.termination), summary.message,
-                       ToString(done.termination));
+    if (summary.termination != done.termination) {
+      return fmt::format("{} holds a run that ended '{}' ({}), not the '{}' of done.toml",
+                         result_path, ToString(summary.termination), summary.message,
+                         ToString(done.termination));
+    }
+    // (Results written by hand, e.g. by tests, may have no provenance.)
+    const dem::Provenance provenance =
+        file.Exists(dem::record::kProvenance) ? dem::ReadProvenance(file) : dem::Provenance{};
+    if (!provenance.case_key.empty()) {
+      if (provenance.case_key != done.key) {
+        return fmt::format(
+            "{} is the result of another case: its provenance's case key is {}, this case's "
+            "key is {}",
+            result_path, provenance.case_key, done.key);
+      }
+    } else if (!done.inputs.empty() && file.Exists(dem::record::kProvenance)) {
+      // A result written before the case key was recorded.
+      if (provenance.scene_sha256 != done.inputs.scene_sha256) {
+        return fmt::format(
+            "{} is the result of another scene: its provenance's scene hash is {}, done.toml "
+            "records {}",
+            result_path, provenance.scene_sha256, done.inputs.scene_sha256);
+      }
+      if (provenance.threads != done.inputs.threads) {
+        return fmt::format("{} was computed with {} threads, done.toml records {}", result_path,
+                           provenance.threads, done.inputs.threads);
+      }
+    }
+    if (check_data) file.CheckData();
+    return "";
   } catch (const InputError& error) {
     return error.what();
+  } catch (const RuntimeError& error) {
+    // A damaged file can fail a read in ways other than a checksum.
+    return std::string(error.what()) + " (the file is damaged)";
   }
 }
 
@@ -189,8 +222,27 @@ std::string DescribeStudy(const std::string& directory) {
   std::string text = ReadTextFile(directory + "/study.toml");
   std::map<std::string, int> counts;
   std::vector<std::string> lines;
+  // The programme's cases (plan.tsv): folders of cases it no longer names
+  // are counted, not listed; its cases without a folder are listed as not run.
   std::vector<fs::path> folders;
-  for (const std::string& folder : CaseFolders(directory, false)) folders.emplace_back(folder);
+  const std::optional<std::vector<CaseRecord>> planned = ReadPlannedCases(directory);
+  std::set<std::string> planned_ids;
+  if (planned) {
+    for (const CaseRecord& c : *planned) planned_ids.insert(c.id);
+  }
+  int outside = 0;
+  for (const std::string& folder : CaseFolders(directory, false)) {
+    if (planned && !planned_ids.count(CaseId(folder))) {
+      ++outside;
+      continue;
+    }
+    planned_ids.erase(CaseId(folder));
+    folders.emplace_back(folder);
+  }
+  if (planned) {
+    for (const std::string& id : planned_ids) folders.push_back(fs::path(directory) / "cases" / id);
+    std::sort(folders.begin(), folders.end());
+  }
   const std::map<std::string, int64_t> own_steps = OwnSteps(directory);
   double particle_steps = 0, wall_seconds = 0;
   int64_t case_steps = 0;
@@ -218,8 +270,15 @@ std::string DescribeStudy(const std::string& directory) {
     ++counts[status];
   }
   for (const std::string& line : lines) text += line + "\n";
-  std::string summary = fmt::format("{} case folders:", folders.size());
+  std::string summary =
+      fmt::format("{} cases{}:", folders.size(), planned ? " in the programme" : " (case folders)");
   for (const auto& [status, count] : counts) summary += fmt::format(" {} {}", count, status);
+  if (outside > 0) {
+    summary += fmt::format(
+        "\n{} case folders are not in the programme (plan.tsv): not part of the study; their "
+        "cached results stay for a programme that names them again",
+        outside);
+  }
   summary += fmt::format(
       "\nfinished cases: {} steps of their own, {:.4g} particle-steps, {:.1f} s of case wall "
       "time ({:.3g} particle-steps/s per case)",
@@ -238,7 +297,42 @@ std::string DescribeStudy(const std::string& directory) {
   return text + summary + "\n";
 }
 
-int MergeStudies(const std::vector<std::string>& inputs, const std::string& output) {
+std::string ShardMarkerPath(const std::string& directory, int index, int count) {
+  return fmt::format("{}/shards/{}-of-{}.toml", directory, index, count);
+}
+
+std::vector<std::string> UnfinishedShards(const std::vector<std::string>& directories, int count) {
+  std::vector<std::string> unfinished;
+  for (int k = 1; k <= count; ++k) {
+    std::string why = "never ended (no shards/" + std::to_string(k) + "-of-" +
+                      std::to_string(count) + ".toml: not run, killed, or stopped by an error)";
+    for (const std::string& directory : directories) {
+      const std::string path = ShardMarkerPath(directory, k, count);
+      if (!fs::exists(path)) continue;
+      const ConfigTable marker = ConfigTable::ParseFile(path);
+      const std::string study = directory + "/study.toml";
+      const std::string hash =
+          fs::exists(study) ? ConfigTable::ParseFile(study).GetString("programme_sha256", "") : "";
+      if (marker.GetString("programme_sha256", "") != hash) {
+        why = "its marker " + path + " is of another programme (a run before it was edited)";
+        continue;
+      }
+      const std::string status = marker.GetString("status");
+      if (status == "complete") {
+        why.clear();
+        break;
+      }
+      why = fmt::format("ended {} ({} failed, {} blocked, {} interrupted cases; {})", status,
+                        marker.GetInt("failed", 0, Range::NonNegative()),
+                        marker.GetInt("blocked", 0, Range::NonNegative()),
+                        marker.GetInt("interrupted", 0, Range::NonNegative()), path);
+    }
+    if (!why.empty()) unfinished.push_back(fmt::format("shard {}/{}: {}", k, count, why));
+  }
+  return unfinished;
+}
+
+MergeSummary MergeStudies(const std::vector<std::string>& inputs, const std::string& output) {
   if (inputs.empty()) throw InputError("study merge: give at least one study folder");
   std::string record;
   for (const std::string& input : inputs) {
@@ -260,7 +354,7 @@ int MergeStudies(const std::vector<std::string>& inputs, const std::string& outp
         return table.GetString(key, "");
       };
       for (const char* key : {"programme", "programme_file", "scale", "threads", "replicates",
-                              "count", "ncl", "program_version"}) {
+                              "count", "ncl", "programme_sha256", "program_version"}) {
         const std::string a = value(first, key), b = value(other, key);
         if (a != b) {
           what = fmt::format("{} is '{}' there and '{}' here", key, a, b);
@@ -271,6 +365,24 @@ int MergeStudies(const std::vector<std::string>& inputs, const std::string& outp
                        what +
                        "): only shards of one study (programme, scale, threads, version) can be "
                        "merged");
+    }
+  }
+  std::optional<std::string> plan_text;  // the first input's plan.tsv
+  for (const std::string& input : inputs) {
+    const std::string plan_path = input + "/" + kPlanFileName;
+    const std::optional<std::string> text =
+        fs::exists(plan_path) ? std::optional<std::string>(ReadTextFile(plan_path)) : std::nullopt;
+    if (input == inputs.front()) {
+      plan_text = text;
+    } else if (text != plan_text) {
+      auto cases = [](const std::optional<std::string>& t) {
+        return t ? std::to_string(std::count(t->begin(), t->end(), '\n') - 2) + " cases"
+                 : std::string("none");
+      };
+      throw InputError(fmt::format(
+          "{}/{} differs from {}/{} ({} there, {} here): only shards of one programme can be "
+          "merged",
+          input, kPlanFileName, inputs.front(), kPlanFileName, cases(plan_text), cases(text)));
     }
   }
   const bool in_place = inputs.size() == 1 && fs::exists(output) &&
@@ -287,6 +399,7 @@ int MergeStudies(const std::vector<std::string>& inputs, const std::string& outp
     }
     fs::create_directories(output);
     WriteTextFileAtomically(output + "/study.toml", record);
+    if (plan_text) WriteTextFileAtomically(output + "/" + kPlanFileName, *plan_text);
   }
   std::map<std::string, std::string> keys;  // case id → key
   for (const std::string& input : inputs) {
@@ -339,9 +452,46 @@ int MergeStudies(const std::vector<std::string>& inputs, const std::string& outp
       }
     }
   }
-  int cases = 0;
-  for (const auto& [id, key] : keys) cases += id.rfind("cases/", 0) == 0;
-  return cases;
+  // Every case of the study (the plan's, or every folder's without one):
+  // finished, or why not.
+  MergeSummary summary;
+  const std::vector<CaseRecord> records = ReadCaseRecords(output);
+  if (plan_text) summary.planned = static_cast<int>(records.size());
+  for (const CaseRecord& c : records) {
+    const CaseDone done = c.Done();
+    if (done.finished) {
+      ++summary.finished;
+      continue;
+    }
+    std::string why;
+    if (!fs::exists(c.directory)) {
+      why = "no case folder in any input (was its shard run?)";
+    } else if (!done.mismatch.empty()) {
+      why = done.mismatch;
+    } else if (done.current) {
+      why = "done.toml but no result.h5";
+    } else if (done.done) {
+      why = "computed for other inputs, not run for the current ones";
+    } else if (fs::exists(c.directory + "/result.h5.ckpt")) {
+      why = "interrupted (a checkpoint in its input folder: run its shard again)";
+    } else {
+      why = "not run";
+    }
+    summary.missing.push_back(c.id + ": " + why);
+  }
+  return summary;
+}
+
+std::string MergeSummary::Text(size_t listed) const {
+  std::string text = planned >= 0
+                         ? fmt::format("{} of the plan's {} cases finished", finished, planned)
+                         : fmt::format("{} finished cases", finished);
+  if (missing.empty()) return text + "\n";
+  text += fmt::format("; {} without a result (rows with status no_result in the state table):",
+                      missing.size());
+  for (size_t k = 0; k < missing.size() && k < listed; ++k) text += "\n  " + missing[k];
+  if (missing.size() > listed) text += fmt::format("\n  … and {} more", missing.size() - listed);
+  return text + "\n";
 }
 
 }  // namespace granasym::study

@@ -55,10 +55,15 @@ struct DoneRecord {
 };
 std::optional<DoneRecord> ReadDone(const std::string& directory);
 void WriteDone(const std::string& directory, const DoneRecord& done);
-// "" when the DEM result `result_path` ended as `done` records; else why not:
-// a partial result under the final name (a run interrupted after done.toml
-// was written by another), or a result that cannot be read.
-std::string ResultMismatch(const std::string& result_path, const DoneRecord& done);
+// "" when the DEM result `result_path` is the run `done` records; else why
+// not, in one line: a partial result under the final name (a run
+// interrupted after done.toml was written by another), the result of
+// another case (its /provenance/case_key is not done.key; a result written
+// before case keys were recorded: its scene hash or thread count is not the
+// one done.toml records), or a result that cannot be read. `check_data`:
+// every dataset's checksum is read too (a flipped bit in the data).
+std::string ResultMismatch(const std::string& result_path, const DoneRecord& done,
+                           bool check_data = false);
 
 // The case folders DIR/cases/r<K>/<case> (those with a case.toml when
 // `with_record`), sorted.
@@ -85,10 +90,31 @@ void WriteIfChanged(const std::string& path, const std::string& text);
 // count line and the totals of steps and particle-steps.
 std::string DescribeStudy(const std::string& directory);
 
+// DIR/shards/<K>-of-<N>.toml: how shard K of N of a sharded `study run`
+// ended (written when it ends; removed when it starts). `study merge
+// --shards N` names the shards that never ended or whose cases failed.
+std::string ShardMarkerPath(const std::string& directory, int index, int count);
+// The shards of N among the folders `directories` that did not end with
+// every case finished: "shard K/N: why", one per shard. A marker of another
+// programme (programme_sha256 of study.toml) counts as none.
+std::vector<std::string> UnfinishedShards(const std::vector<std::string>& directories, int count);
+
+// What a merged folder holds against its plan.
+struct MergeSummary {
+  int finished = 0;                  // cases of the study with their result
+  int planned = -1;                  // the plan's cases (plan.tsv); -1 without one
+  std::vector<std::string> missing;  // "r1/case: why" for each case of the study without a result
+  // A line for the finished cases and, when some are missing, how many and
+  // which (at most `listed` named, then how many more).
+  std::string Text(size_t listed = 20) const;
+};
+
 // Combines the case folders of `inputs` into `output` (hard links where the
 // filesystem allows, copies otherwise); `output` may be the only input.
-// Two inputs with different keys for one case are an error. Returns the
-// number of finished cases in `output`.
-int MergeStudies(const std::vector<std::string>& inputs, const std::string& output);
+// Two inputs with different keys for one case are an error, and so are
+// inputs of different studies (study.toml) or plans (plan.tsv). Every case
+// of the plan is either finished in `output` or named in `missing` with why
+// (a shard that never ran leaves its cases without a folder).
+MergeSummary MergeStudies(const std::vector<std::string>& inputs, const std::string& output);
 
 }  // namespace granasym::study

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Submits a granasym study to Slurm: a job array of SHARDS shards
 # (paper.sbatch) and the merge (merge.sbatch) that runs once all of them have
-# succeeded. Prints both job ids.
+# ended, succeeded or not (afterany: it names the shards that did not
+# finish and then exits 3). Prints both job ids.
 #
 #   [SHARDS=8] [SCALE=paper] [OUT=DIR] [PROGRAMME=FILE] [GRANASYM=PATH] \
 #     studies/slurm/submit.sh [SBATCH_OPTION...]
@@ -56,7 +57,8 @@ shards_job="$(sbatch --parsable --export=ALL --array="0-$((shards - 1))" "$@" \
   "$here/paper.sbatch")"
 shards_job="${shards_job%%;*}"
 echo "shards job $shards_job: $shards array tasks of $programme, scale $scale, into $out"
-merge_job="$(sbatch --parsable --export=ALL --dependency="afterok:$shards_job" "$@" \
+merge_job="$(sbatch --parsable --export=ALL --dependency="afterany:$shards_job" "$@" \
   "$here/merge.sbatch")"
 merge_job="${merge_job%%;*}"
-echo "merge job $merge_job: after every task of job $shards_job has succeeded"
+echo "merge job $merge_job: after every task of job $shards_job has ended (it names the shards" \
+     "that did not finish)"

@@ -23,6 +23,11 @@ void Write(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
+// The smallest file the report takes for a PNG: the signature and the IEND
+// chunk (what it checks; it does not decode images).
+const std::string kPng =
+    std::string("\x89PNG\r\n\x1a\n") + std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12);
+
 int Count(const std::string& text, const std::string& what) {
   int count = 0;
   for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++count;
@@ -85,7 +90,7 @@ fs::path FullStudy(const std::string& name) {
         "stem\tfigure\ttitle\tcaption\n"
         "fig16_psi\t16\tψ_σ against ψ_ε\tAll paths; p < 100 kPa & \"quoted\" <i>markup</i>\n"
         "fig08_overlap\t8\tOverlaps\tNot drawn yet\n");
-  Write(dir / "figures/fig16_psi.png", "not really a PNG: the writer only links it");
+  Write(dir / "figures/fig16_psi.png", kPng);
   Write(dir / "figures/fig16_psi.pdf", "%PDF");
   Write(dir / "figures/fig16_psi.csv", "x,y\n");
   const fs::path clay = dir / "calibration/hypoplastic_clay";
@@ -221,7 +226,7 @@ TEST(StudyReport, FiguresAreInlineSvgOrDataUrisAndLinkedBelow) {
         "fig08_overlap\t8\tOverlaps\tA PNG only\n");
   Write(dir / "figures/fig16_psi.svg", kGnuplotSvg);
   Write(dir / "figures/fig17_asbs.svg", kGnuplotSvg);
-  Write(dir / "figures/fig08_overlap.png", "Man");
+  Write(dir / "figures/fig08_overlap.png", kPng);
   const ReportSummary summary = WriteReport(dir.string());
   EXPECT_EQ(summary.figures, 3);
   EXPECT_EQ(summary.figures_missing, 0);
@@ -235,7 +240,8 @@ TEST(StudyReport, FiguresAreInlineSvgOrDataUrisAndLinkedBelow) {
   EXPECT_EQ(html.find("onmouse"), std::string::npos);
   // No image is linked: the PNG without an SVG is in the page.
   EXPECT_EQ(Count(html, "<img "), 1);
-  EXPECT_NE(html.find("<img src=\"data:image/png;base64,TWFu\""), std::string::npos);
+  EXPECT_NE(html.find("<img src=\"data:image/png;base64,iVBORw0KGgoAAAAASUVORK5CYII=\""),
+            std::string::npos);
   EXPECT_EQ(html.find("src=\"figures/"), std::string::npos);
   // Below each figure its files; report.md links the PNG (else the SVG).
   EXPECT_NE(html.find("Files: <a href=\"figures/fig16_psi.png\"><code>PNG</code></a> · <a "
@@ -464,6 +470,27 @@ TEST(StudyReport, EveryFigureOfTheIndexAppearsWithItsImageOrAMissingNote) {
   EXPECT_EQ(summary.absent, (std::vector<std::string>{
                                 "calibration/hypoplastic_sand/", "calibration/modified_cam_clay/",
                                 "figures/fig08_overlap.png", "findings.csv"}));
+}
+
+// A truncated PNG and a file that is no PNG are reported as invalid and
+// counted as not drawn, never shown.
+TEST(StudyReport, ATruncatedOrFakePngIsReportedInvalidNotShown) {
+  for (const std::string& bad : {kPng.substr(0, kPng.size() - 3), std::string("GIF89a fake")}) {
+    const fs::path dir = FullStudy("bad_png");
+    Write(dir / "figures/fig16_psi.png", bad);
+    const ReportSummary summary = WriteReport(dir.string());
+    EXPECT_EQ(summary.figures, 2);
+    EXPECT_EQ(summary.figures_missing, 2);  // fig08 has no image; fig16's is invalid
+    const std::string html = ReadTextFile(summary.html_path);
+    EXPECT_EQ(Count(html, "<img "), 0);
+    EXPECT_NE(html.find("<code>figures/fig16_psi.png</code> is not a valid PNG ("),
+              std::string::npos);
+    EXPECT_EQ(html.find("href=\"figures/fig16_psi.png\""), std::string::npos);
+    EXPECT_NE(html.find(bad.size() > 12 ? "truncated" : "no PNG signature"), std::string::npos);
+    EXPECT_NE(
+        std::find(summary.absent.begin(), summary.absent.end(), "figures/fig16_psi.png (invalid)"),
+        summary.absent.end());
+  }
 }
 
 TEST(StudyReport, EveryStateRowAppearsInBothFiles) {

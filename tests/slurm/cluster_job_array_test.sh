@@ -3,8 +3,8 @@
 # array of two tasks runs (both at once on a node with two or more CPUs) and
 # sees its array variables, a job with --dependency=afterok on the array runs
 # only after both tasks and reads their outputs, and a job that depends on an
-# array with a failing task is never started (what studies/slurm/submit.sh
-# relies on: no merge after a failed shard).
+# array with a failing task is never started (why studies/slurm/submit.sh
+# makes its merge afterany: slurm_failed_shard_test.sh).
 #
 #   tests/slurm/cluster_job_array_test.sh     (as root; starts its own cluster)
 #   GRANASYM_SLURM_TEST_TIMEOUT  seconds to wait for the jobs (default 120)

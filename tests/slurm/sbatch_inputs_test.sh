@@ -36,4 +36,25 @@ for command in "study merge" "study calibrate" "study figures" "study report"; d
 done
 grep -q "study calibrate exited 3" "$work/merge.txt" ||
   { echo "FAIL: the failed calibration is not reported"; cat "$work/merge.txt"; exit 1; }
-echo "PASS: JOBS=0 refused; a failed calibration still gets figures and a report, exit 3"
+
+# An incomplete study (study merge exits 3: shards or cases named): the
+# figures and the report are still made, SHARDS reaches the merge as
+# --shards, and the job ends with 3.
+incomplete="$work/incomplete"
+cat > "$incomplete" <<'FAKE'
+#!/usr/bin/env bash
+echo "$*" >> "$CALLS"
+[ "$1 $2" = "study merge" ] && exit 3
+exit 0
+FAKE
+chmod +x "$incomplete"
+: > "$CALLS"
+status=0
+SHARDS=4 GRANASYM="$incomplete" OUT="$work/out" bash "$root/studies/slurm/merge.sbatch" \
+  > "$work/incomplete.txt" 2>&1 || status=$?
+[ "$status" = 3 ] || { echo "FAIL: merge.sbatch exited $status after an incomplete merge"; exit 1; }
+grep -q "^study merge .* --shards 4" "$CALLS" || { echo "FAIL: SHARDS not passed"; cat "$CALLS"; exit 1; }
+grep -q "^study report" "$CALLS" || { echo "FAIL: no report after an incomplete merge"; exit 1; }
+grep -q "the study is incomplete" "$work/incomplete.txt" ||
+  { echo "FAIL: the incomplete study is not reported"; cat "$work/incomplete.txt"; exit 1; }
+echo "PASS: JOBS=0 refused; a failed calibration still gets figures and a report, exit 3; an incomplete merge too"

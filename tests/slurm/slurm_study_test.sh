@@ -70,7 +70,7 @@ cluster_s="$(echo "$(date +%s.%N) $start" | awk '{ printf "%.1f", $1 - $2 }')"
 states="$(job_states "$shards_job" "$merge_job")"
 echo "$states"
 [ "$(job_states "$merge_job")" = "$merge_job COMPLETED" ] || fail "the merge did not complete"
-# The merge started after the last shard ended (afterok on the whole array).
+# The merge started after the last shard ended (afterany on the whole array).
 epoch() { date -d "$1" +%s; }
 merge_start="$(epoch "$(job_field "$merge_job" StartTime)")"
 for ((task = 0; task < shards; ++task)); do

@@ -90,4 +90,32 @@ done
 "$granasym" study report "$out" | tee "$work/report.txt"
 grep -q "3 of 3 models calibrated" "$work/report.txt" ||
   { echo "FAIL: the report does not count the three calibrations"; exit 1; }
-echo "PASS: three models calibrated, their Fig. 5 paths drawn and reported"
+
+# Inertial numbers that select nothing are refused (status 2) naming the
+# flag; --inertial-number on a study without rate cases names what selects
+# its states instead. Nothing is fitted.
+for value in -1 0 nan; do
+  for flag in --inertial-number --max-inertial-number; do
+    rc=0
+    "$granasym" study calibrate "$out" --models hypoplastic_clay "$flag" "$value" \
+      > "$work/bad_inertial.txt" 2>&1 || rc=$?
+    [ "$rc" -eq 2 ] || { cat "$work/bad_inertial.txt"; echo "FAIL: $flag $value exited $rc, expected 2"; exit 1; }
+    grep -qF -- "$flag $value: expected a positive inertial number" "$work/bad_inertial.txt" ||
+      { cat "$work/bad_inertial.txt"; echo "FAIL: $flag $value is not named"; exit 1; }
+  done
+done
+rc=0
+"$granasym" study calibrate "$out" --models hypoplastic_clay --inertial-number 1e-3 \
+  > "$work/not_rate.txt" 2>&1 || rc=$?
+[ "$rc" -eq 2 ] && grep -q "is not a rate study.*--max-inertial-number" "$work/not_rate.txt" ||
+  { cat "$work/not_rate.txt"; echo "FAIL: --inertial-number on a study without rate cases"; exit 1; }
+# An output that cannot be written: status 1 (README's exit statuses), not a failed fit (3).
+unwritable="$work/unwritable"
+cp -r "$out" "$unwritable"
+rm -rf "$unwritable/calibration/hypoplastic_clay"
+echo "not a folder" > "$unwritable/calibration/hypoplastic_clay"
+rc=0
+"$granasym" study calibrate "$unwritable" --models hypoplastic_clay > "$work/unwritable.txt" 2>&1 || rc=$?
+[ "$rc" -eq 1 ] && grep -q "^failure: " "$work/unwritable.txt" ||
+  { cat "$work/unwritable.txt"; echo "FAIL: an unwritable output exited $rc, expected 1"; exit 1; }
+echo "PASS: three models calibrated, their Fig. 5 paths drawn and reported; bad inertial numbers and an unwritable output refused"

@@ -114,4 +114,17 @@ for stem in fig16_asymptotic_states fig17_asbs_sections fig18_asbs_level; do
     { echo "FAIL: $stem does not overlay the calibrated model"; exit 1; }
 done
 [ -s "$out/figures/data/fig16_model_lines.tsv" ] || { echo "FAIL: no model lines"; exit 1; }
-echo "PASS: $(echo $stems | wc -w) figures, with and without a calibrated model"
+
+# 4. gnuplot gone: nothing is drawn (status 4), no image of the earlier run
+#    stays under a caption that says it was not drawn, and the report counts
+#    every figure as not drawn.
+rc=0
+env PATH=/nonexistent "$granasym" study figures "$out" > "$work/no_gnuplot.txt" 2>&1 || rc=$?
+[ "$rc" -eq 4 ] || { echo "FAIL: study figures without gnuplot exited $rc, expected 4"; exit 1; }
+left=$(find "$out/figures" -maxdepth 1 \( -name '*.png' -o -name '*.pdf' -o -name '*.svg' \) | wc -l)
+[ "$left" -eq 0 ] || { echo "FAIL: $left images of the earlier run left after a run without gnuplot"; exit 1; }
+"$granasym" study report "$out" > "$work/report.txt"
+missing=$(grep -c "is missing: run" "$out/report.md" || true)
+[ "$missing" -eq "$(echo $stems | wc -w)" ] ||
+  { echo "FAIL: the report says $missing figures are missing, expected $(echo $stems | wc -w)"; exit 1; }
+echo "PASS: $(echo $stems | wc -w) figures, with and without a calibrated model; none left without gnuplot"

@@ -267,8 +267,9 @@ done < <(tail -n +2 "$dir/figures/index.tsv")
 [ "$hovered" -gt 0 ] || { echo "FAIL: no figure has hover labels to check"; exit 1; }
 
 # The check must fail on a broken image: a copy of the study whose first
-# figure with a PNG has no SVG and its PNG truncated (so the page carries
-# the broken PNG).
+# figure with a PNG has no SVG and its PNG cut to 40 bytes and closed with
+# an IEND chunk (so the report takes it, having checked the signature and
+# the IEND chunk only, and the page carries a PNG that does not decode).
 broken="$work/broken_image"
 cp -r "$dir" "$broken"
 rm -f "$broken"/index.html.*.txt
@@ -282,8 +283,13 @@ label="Figure $figure: $title"
 label=$(sed 's/&/\&amp;/g; s/</\&lt;/g; s/>/\&gt;/g' <<<"$label")
 rm -f "$broken/figures/$stem.svg"
 head -c 40 "$dir/figures/$stem.png" > "$broken/figures/$stem.png"
+# A PNG only truncated is refused by the report itself, as invalid.
 "$granasym" study report "$broken" > /dev/null
-echo "a copy with figures/$stem.png truncated to 40 bytes:"
+grep -qF "figures/$stem.png\` is not a valid PNG" "$broken/report.md" ||
+  { echo "FAIL: the report did not refuse figures/$stem.png truncated to 40 bytes"; exit 1; }
+printf '\x00\x00\x00\x00IEND\xae\x42\x60\x82' >> "$broken/figures/$stem.png"
+"$granasym" study report "$broken" > /dev/null
+echo "a copy with figures/$stem.png cut to 40 bytes and an IEND chunk:"
 check "$broken/index.html" > "$work/broken_image.txt" &&
   { cat "$work/broken_image.txt"; echo "FAIL: the check did not notice the broken image"; exit 1; }
 grep 'broken image' "$work/broken_image.txt"
