@@ -352,14 +352,39 @@ std::string FitText(const CalibrationRun& run, const FitResult& fit) {
                                 : "not determined",
                      "", spec.units);
   }
-  if (fit.correlation.rows() > 1) {
-    s += "  correlation matrix (free parameters):\n";
+  if (!fit.null_directions.empty()) {
+    // (JᵀJ)⁻¹ does not exist: correlations would describe the pseudo-inverse.
+    s += fmt::format(
+        "  correlations not reported: the Jacobian is rank-deficient (rank {} of {}); the data "
+        "do not determine these directions (relative changes of the parameters):\n",
+        static_cast<int>(fit.free_indices.size() - fit.null_directions.size()),
+        fit.free_indices.size());
+    for (const NullDirection& null : fit.null_directions) {
+      s += fmt::format("    {} (singular value ratio {:.3g})\n",
+                       null.Text(parameters, fit.free_indices), null.singular_ratio);
+    }
+  } else if (fit.correlation.rows() > 1) {
+    s += "  correlation matrix (free parameters; (J^T J)^-1 normalised):\n";
+    s += fmt::format("    {:<14}", "");
+    for (int c = 0; c < fit.correlation.cols(); ++c) {
+      s += fmt::format(" {:>7.7}", parameters.specs()[fit.free_indices[c]].name);
+    }
+    s += "\n";
+    std::string strong;
     for (int r = 0; r < fit.correlation.rows(); ++r) {
       s += fmt::format("    {:<14}", parameters.specs()[fit.free_indices[r]].name);
-      for (int c = 0; c < fit.correlation.cols(); ++c)
+      for (int c = 0; c < fit.correlation.cols(); ++c) {
         s += fmt::format(" {:>7.3f}", fit.correlation(r, c));
+        if (c > r && std::abs(fit.correlation(r, c)) > 0.95) {
+          strong +=
+              fmt::format("{}{} and {} ({:.3f})", strong.empty() ? "" : ", ",
+                          parameters.specs()[fit.free_indices[r]].name,
+                          parameters.specs()[fit.free_indices[c]].name, fit.correlation(r, c));
+        }
+      }
       s += "\n";
     }
+    if (!strong.empty()) s += "  strongly correlated (|rho| > 0.95): " + strong + "\n";
   }
   for (const std::string& w : fit.warnings) s += "  WARNING: " + w + "\n";
   // Residuals per dataset.

@@ -89,9 +89,10 @@ ResidualGroups DefaultResidualGroups(const CalibrationProblem& problem) {
 
 bool ParetoOptions::IsValid(std::string* why) const {
   if (points < 5 || points % 2 == 0 || points > 101) {
-    *why = fmt::format("pareto points = {} must be odd and in [5, 101] (the middle one is the "
-                       "ordinary fit)",
-                       points);
+    *why = fmt::format(
+        "pareto points = {} must be odd and in [5, 101] (the middle one is the "
+        "ordinary fit)",
+        points);
     return false;
   }
   if (!(max_weight_ratio > 1 && max_weight_ratio <= 1e8)) {
@@ -122,9 +123,9 @@ ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResul
   for (int g = 0; g < 2; ++g) front.residuals[g] = groups.Residuals(problem, g);
   for (int g = 0; g < 2; ++g) {
     if (front.residuals[g] == 0) {
-      front.not_computed = fmt::format(
-          "no trade-off to compute: the group {} ({}) has no fitted residuals", groups.names[g],
-          groups.descriptions[g]);
+      front.not_computed =
+          fmt::format("no trade-off to compute: the group {} ({}) has no fitted residuals",
+                      groups.names[g], groups.descriptions[g]);
       return front;
     }
   }
@@ -230,8 +231,7 @@ ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResul
         c.weight, c.normalised[0], c.normalised[1],
         front.compromise == front.ordinary ? "; it is the ordinary fit (w = 0.5)" : "");
   }
-  front.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  front.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return front;
 }
 
@@ -245,10 +245,9 @@ std::string ParetoCsv(const ParetoFront& front, const ModelParameters& parameter
   csv += "\n";
   for (size_t j = 0; j < front.points.size(); ++j) {
     const ParetoPoint& p = front.points[j];
-    csv += fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}",
-                       p.weight, p.cost[0], p.cost[1], p.rms[0], p.rms[1], p.normalised[0],
-                       p.normalised[1], p.converged ? 1 : 0,
-                       static_cast<int>(j) == front.compromise ? 1 : 0,
+    csv += fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}", p.weight,
+                       p.cost[0], p.cost[1], p.rms[0], p.rms[1], p.normalised[0], p.normalised[1],
+                       p.converged ? 1 : 0, static_cast<int>(j) == front.compromise ? 1 : 0,
                        static_cast<int>(j) == front.ordinary ? 1 : 0);
     for (double v : p.values) csv += fmt::format(",{:.10g}", v);
     csv += "\n";

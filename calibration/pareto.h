@@ -52,13 +52,13 @@ ResidualGroups DefaultResidualGroups(const CalibrationProblem& problem);
 
 struct ParetoOptions {
   bool enabled = true;
-  int points = 11;                 // odd, >= 5
-  double max_weight_ratio = 1e3;   // the ends' w/(1 − w) and its inverse
+  int points = 11;                // odd, >= 5
+  double max_weight_ratio = 1e3;  // the ends' w/(1 − w) and its inverse
   bool IsValid(std::string* why) const;
 };
 
 struct ParetoPoint {
-  double weight = 0.5;  // w of group 0
+  double weight = 0.5;                        // w of group 0
   std::array<double, 2> cost = {0, 0};        // C_g, unweighted by w
   std::array<double, 2> rms = {0, 0};         // √(2 C_g / m_g): RMS weighted residual
   std::array<double, 2> normalised = {0, 0};  // f_g (see above)

@@ -153,7 +153,8 @@ class Profiler {
     specs[parameter].free = false;
     specs[parameter].value = value;
     for (size_t i = 0; i < specs.size(); ++i) {
-      if (specs[i].free) specs[i].value = std::min(std::max(warm[i], specs[i].lower), specs[i].upper);
+      if (specs[i].free)
+        specs[i].value = std::min(std::max(warm[i], specs[i].lower), specs[i].upper);
     }
     try {
       const CalibrationProblem sub(problem_.datasets(), parameters, problem_.predictor().options());
@@ -232,8 +233,8 @@ bool ProfileOptions::IsValid(std::string* why) const {
     return false;
   }
   if (max_extension_points < 1 || max_extension_points > 20) {
-    *why = fmt::format("profile max_extension_points = {} must be in [1, 20]",
-                       max_extension_points);
+    *why =
+        fmt::format("profile max_extension_points = {} must be in [1, 20]", max_extension_points);
     return false;
   }
   if (threads < 0) {
@@ -285,8 +286,7 @@ ProfileSet ProfileLikelihood(const CalibrationProblem& problem, const FitResult&
   set.fit_cost = fit.summary.final_cost;
   const bool scaled = ceres.uncertainty.scale_by_residual_variance;
   const int dof = problem.num_residuals() - problem.num_free();
-  set.residual_variance =
-      scaled ? 2.0 * fit.summary.final_cost / std::max(1, dof) : 1.0;
+  set.residual_variance = scaled ? 2.0 * fit.summary.final_cost / std::max(1, dof) : 1.0;
   if (!(set.residual_variance > 0)) set.residual_variance = 1.0;  // an exact fit
   set.threshold = scaled ? std::pow(StudentQuantile(0.975, std::max(1, dof)), 2) : kChiSquare1;
   set.statistic = scaled ? fmt::format(
@@ -307,9 +307,8 @@ ProfileSet ProfileLikelihood(const CalibrationProblem& problem, const FitResult&
   const Profiler profiler(problem, fit, ceres, options, set.threshold, set.residual_variance);
   set.profiles.resize(parameters.size());
   const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  set.threads = std::max(
-      1, std::min(static_cast<int>(parameters.size()), options.threads > 0 ? options.threads
-                                                                           : hardware));
+  set.threads = std::max(1, std::min(static_cast<int>(parameters.size()),
+                                     options.threads > 0 ? options.threads : hardware));
   std::atomic<size_t> next{0};
   std::vector<std::string> errors(parameters.size());
   const auto work = [&] {
@@ -342,8 +341,8 @@ ProfileSet ProfileLikelihood(const CalibrationProblem& problem, const FitResult&
       }
     }
   }
-  if (best && 2.0 * (set.fit_cost - set.reference_cost) / set.residual_variance >
-                  0.1 * set.threshold) {
+  if (best &&
+      2.0 * (set.fit_cost - set.reference_cost) / set.residual_variance > 0.1 * set.threshold) {
     set.warnings.push_back(fmt::format(
         "profile_lower_cost: the profile of {} reaches cost {:.6g} at {} = {:.6g}, below the "
         "fit's {:.6g}: the fit is not at the least-squares optimum; the profile statistics are "
@@ -370,11 +369,11 @@ std::string ProfilesCsv(const ProfileSet& set) {
   const auto number = [](double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : ""; };
   for (const ParameterProfile& profile : set.profiles) {
     for (const ProfilePoint& point : profile.points) {
-      csv += fmt::format("{},{},{},{},{:.10g},{},{},{},{},{},{}\n", profile.name,
-                         number(point.value), number(point.cost), number(point.statistic),
-                         set.threshold, point.converged ? 1 : 0, profile.log_scale ? 1 : 0,
-                         number(profile.optimum), number(profile.lower), number(profile.upper),
-                         profile.flat() ? 1 : 0);
+      csv +=
+          fmt::format("{},{},{},{},{:.10g},{},{},{},{},{},{}\n", profile.name, number(point.value),
+                      number(point.cost), number(point.statistic), set.threshold,
+                      point.converged ? 1 : 0, profile.log_scale ? 1 : 0, number(profile.optimum),
+                      number(profile.lower), number(profile.upper), profile.flat() ? 1 : 0);
     }
   }
   return csv;
@@ -389,8 +388,8 @@ std::string ProfilesText(const ProfileSet& set) {
   std::string s = fmt::format(
       "profile likelihood: {} parameters, {} refits, {:.2f} s on {} thread{}; {} flat (not "
       "determined)\n  {}\n",
-      set.profiles.size(), refits, set.wall_seconds, set.threads, set.threads == 1 ? "" : "s",
-      flat, set.statistic);
+      set.profiles.size(), refits, set.wall_seconds, set.threads, set.threads == 1 ? "" : "s", flat,
+      set.statistic);
   if (2.0 * (set.fit_cost - set.reference_cost) / set.residual_variance > 1e-3 * set.threshold) {
     s += fmt::format("  cost_min = {:.6g} (a profile point; the fit's cost is {:.6g})\n",
                      set.reference_cost, set.fit_cost);
@@ -404,8 +403,7 @@ std::string ProfilesText(const ProfileSet& set) {
     const std::string shape =
         profile.flat() ? profile.Text().substr(profile.name.size() + 2) : "determined";
     s += fmt::format("  {:<14} {:>12.6g} {:>28}  {:>6}  {}{}{}\n", profile.name, profile.optimum,
-                     interval, profile.points.size(), shape,
-                     profile.log_scale ? " (log grid)" : "",
+                     interval, profile.points.size(), shape, profile.log_scale ? " (log grid)" : "",
                      profile.fitted ? "" : " (fixed as undetermined; profiled from its value)");
   }
   for (const std::string& w : set.warnings) s += "  WARNING: " + w + "\n";

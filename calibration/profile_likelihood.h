@@ -71,10 +71,10 @@ struct ProfileOptions {
 };
 
 struct ProfilePoint {
-  double value = 0.0;      // the profiled parameter
-  double cost = 0.0;       // ½ Σ r² with the others re-optimised; +∞ when the refit failed
-  double statistic = 0.0;  // D (see above); +∞ when the refit failed
-  bool converged = false;  // the refit converged (the optimum: the fit's own)
+  double value = 0.0;          // the profiled parameter
+  double cost = 0.0;           // ½ Σ r² with the others re-optimised; +∞ when the refit failed
+  double statistic = 0.0;      // D (see above); +∞ when the refit failed
+  bool converged = false;      // the refit converged (the optimum: the fit's own)
   std::vector<double> values;  // the full parameter vector there
 };
 

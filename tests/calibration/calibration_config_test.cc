@@ -285,6 +285,11 @@ TEST(CalibrationConfig, RunsAWholeCalibrationAndWritesItsRecord) {
   EXPECT_NE(summary.find("95 % interval"), std::string::npos);
   EXPECT_NE(summary.find("UMAT"), std::string::npos);
   EXPECT_NE(summary.find("ceres vs nlopt"), std::string::npos);
+  // Full rank: the correlations of (JᵀJ)⁻¹, not null directions.
+  EXPECT_NE(summary.find("correlation matrix (free parameters; (J^T J)^-1 normalised)"),
+            std::string::npos)
+      << summary;
+  EXPECT_EQ(summary.find("correlations not reported"), std::string::npos) << summary;
 
   const Hdf5File file = Hdf5File::OpenRead(config.hdf5_path);
   const std::vector<double> values = file.ReadDoubles("/fits/ceres/values");

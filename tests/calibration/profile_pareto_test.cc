@@ -118,8 +118,7 @@ TEST(ProfileLikelihood, FlagsAParameterTheDataDoNotActOnAsFlat) {
   ASSERT_TRUE(fit.summary.success()) << fit.summary.Report();
   ProfileOptions profile_options;
   profile_options.threads = 2;
-  const ProfileSet set =
-      ProfileLikelihood(problem, fit, {kShearParameter}, ceres, profile_options);
+  const ProfileSet set = ProfileLikelihood(problem, fit, {kShearParameter}, ceres, profile_options);
   ASSERT_EQ(set.profiles.size(), 4u);  // φ_c, λ*, N and r
   const ParameterProfile& r = set.profiles.back();
   EXPECT_EQ(r.name, "r");
@@ -146,6 +145,37 @@ TEST(ProfileLikelihood, FlagsAParameterTheDataDoNotActOnAsFlat) {
   EXPECT_EQ(ProfilesCsv(serial), ProfilesCsv(set));
 }
 
+// κ* acts on neither the NCL nor the hypoplastic CSL (OCR 2 whatever κ*): the
+// Jacobian is rank-deficient in κ*'s direction, said instead of correlations.
+TEST(FitResult, NamesTheNullDirectionsOfARankDeficientJacobian) {
+  const std::vector<double> truth = testing::LondonClay();
+  testing::SyntheticOptions options;
+  options.psi_epsilons_deg = {0, 90};
+  ModelParameters parameters = StartNear(ModelKind::kHypoplasticClay, truth);
+  parameters.mutable_specs()[kShearParameter].free = false;
+  const CalibrationProblem problem(
+      {testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, options)}, parameters,
+      PredictorOptions());
+  const FitResult fit = CeresFitter(CeresFitter::Options()).Fit(problem);
+  ASSERT_TRUE(fit.summary.success()) << fit.summary.Report();
+  ASSERT_EQ(fit.null_directions.size(), 1u);
+  const NullDirection& null = fit.null_directions.front();
+  ASSERT_EQ(null.components.size(), 4u);
+  EXPECT_NEAR(std::abs(null.components[kKappaStar]), 1.0, 1e-6);
+  EXPECT_EQ(null.Text(problem.parameters(), fit.free_indices), "1.00 kappa_star");
+  EXPECT_LT(null.singular_ratio, 1e-8);
+  // The full-rank fit of every direction has none.
+  const CalibrationProblem full(
+      {testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, {})},
+      StartNear(ModelKind::kHypoplasticClay, truth), PredictorOptions());
+  EXPECT_TRUE(CeresFitter(CeresFitter::Options()).Fit(full).null_directions.empty());
+  // A direction of two parameters, signed by its largest component.
+  NullDirection pair;
+  pair.components = {0.0, -0.8, 0.0, 0.6};
+  EXPECT_EQ(pair.Text(problem.parameters(), fit.free_indices),
+            "0.80 lambda_star - 0.60 n_intercept");
+}
+
 // Data whose critical states lie above the model's CSL (OCR_c of the DEM
 // below 2): the compression side and the critical side pull φ_c, λ*, N apart.
 StateDataset ConflictingData() {
@@ -164,9 +194,8 @@ StateDataset ConflictingData() {
 
 TEST(ParetoFront, IsMonotoneOnConflictingDataWithTheKneeAsCompromise) {
   const std::vector<double> truth = testing::LondonClay();
-  const CalibrationProblem problem({ConflictingData()},
-                                   StartNear(ModelKind::kHypoplasticClay, truth),
-                                   PredictorOptions());
+  const CalibrationProblem problem(
+      {ConflictingData()}, StartNear(ModelKind::kHypoplasticClay, truth), PredictorOptions());
   const CeresFitter::Options ceres;
   const FitResult fit = CeresFitter(ceres).Fit(problem);
   ASSERT_TRUE(fit.summary.success()) << fit.summary.Report();
