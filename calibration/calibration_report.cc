@@ -966,11 +966,13 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
     WriteCurvedModelLines(problem, fit, range, folder);
   }
   // Profiles and the front of an earlier run do not stay behind.
-  for (const char* stale : {"profiles.csv", "pareto.csv", "profiles.png", "pareto.png"}) {
+  for (const char* stale :
+       {"profiles.csv", "profile_parameters.csv", "pareto.csv", "profiles.png", "pareto.png"}) {
     std::filesystem::remove(folder + "/" + stale);
   }
   if (!run.profiles.empty()) {
     WriteTextFileAtomically(folder + "/profiles.csv", ProfilesCsv(run.profiles));
+    WriteTextFileAtomically(folder + "/profile_parameters.csv", ProfileParametersCsv(run.profiles));
   }
   if (run.pareto.computed()) {
     WriteTextFileAtomically(folder + "/pareto.csv", ParetoCsv(run.pareto, problem.parameters()));

@@ -239,7 +239,7 @@ std::string ParetoCsv(const ParetoFront& front, const ModelParameters& parameter
   const std::string &a = front.groups.names[0], &b = front.groups.names[1];
   std::string csv = fmt::format(
       "weight,cost_{0},cost_{1},rms_{0},rms_{1},normalised_{0},normalised_{1},converged,"
-      "compromise,ordinary",
+      "compromise,ordinary,group_0,group_1",
       a, b);
   for (const ParameterSpec& spec : parameters.specs()) csv += "," + spec.name;
   csv += "\n";
@@ -249,6 +249,7 @@ std::string ParetoCsv(const ParetoFront& front, const ModelParameters& parameter
                        p.cost[0], p.cost[1], p.rms[0], p.rms[1], p.normalised[0], p.normalised[1],
                        p.converged ? 1 : 0, static_cast<int>(j) == front.compromise ? 1 : 0,
                        static_cast<int>(j) == front.ordinary ? 1 : 0);
+    csv += "," + a + "," + b;
     for (double v : p.values) csv += fmt::format(",{:.10g}", v);
     csv += "\n";
   }
@@ -258,8 +259,9 @@ std::string ParetoCsv(const ParetoFront& front, const ModelParameters& parameter
 std::string ParetoText(const ParetoFront& front, const ModelParameters& parameters) {
   if (!front.computed()) return "pareto front: not computed: " + front.not_computed + "\n";
   std::string s = fmt::format(
-      "pareto front: {} ({} residuals) against {} ({} residuals), weighted-sum sweep of {} "
-      "points, {:.2f} s\n",
+      "pareto front: {} (group 0, {} residuals) against {} (group 1, {} residuals), "
+      "weighted-sum sweep of {} points, {:.2f} s; w weights group 0, cost_g = 1/2 sum r^2 and "
+      "rms_g its RMS weighted residual\n",
       front.groups.names[0], front.residuals[0], front.groups.names[1], front.residuals[1],
       front.points.size(), front.wall_seconds);
   s += fmt::format("  {:>10} {:>12} {:>12} {:>10} {:>10}", "w", "cost_0", "cost_1", "rms_0",

@@ -90,7 +90,8 @@ ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResul
                                const ParetoOptions& options);
 
 // pareto.csv: weight,cost_<g0>,cost_<g1>,rms_<g0>,rms_<g1>,normalised_<g0>,
-// normalised_<g1>,converged,compromise,ordinary, then the parameters.
+// normalised_<g1>,converged,compromise,ordinary,group_0,group_1 (the groups'
+// names on every row, for the figure), then the parameters.
 std::string ParetoCsv(const ParetoFront& front, const ModelParameters& parameters);
 // The summary's section.
 std::string ParetoText(const ParetoFront& front, const ModelParameters& parameters);

@@ -379,6 +379,20 @@ std::string ProfilesCsv(const ProfileSet& set) {
   return csv;
 }
 
+std::string ProfileParametersCsv(const ProfileSet& set) {
+  std::string csv =
+      "parameter,log_scale,optimum,threshold,flat,low,high,low_crossed,high_crossed\n";
+  for (const ParameterProfile& p : set.profiles) {
+    const bool low = p.lower_end == ProfileEnd::kCrossed,
+               high = p.upper_end == ProfileEnd::kCrossed;
+    csv +=
+        fmt::format("{},{},{:.10g},{:.10g},{},{:.10g},{:.10g},{},{}\n", p.name, p.log_scale ? 1 : 0,
+                    p.optimum, set.threshold, p.flat() ? 1 : 0, low ? p.lower : p.flat_low,
+                    high ? p.upper : p.flat_high, low ? 1 : 0, high ? 1 : 0);
+  }
+  return csv;
+}
+
 std::string ProfilesText(const ProfileSet& set) {
   int refits = 0, flat = 0;
   for (const ParameterProfile& profile : set.profiles) {

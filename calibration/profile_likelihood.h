@@ -131,6 +131,11 @@ ProfileSet ProfileLikelihood(const CalibrationProblem& problem, const FitResult&
 // profiles.csv: parameter,value,cost,statistic,threshold,converged,log_scale,
 // optimum,ci95_low,ci95_high,flat — one row per grid point, by parameter.
 std::string ProfilesCsv(const ProfileSet& set);
+// profile_parameters.csv, one row per profile for the figure
+// (plots/calibration_profiles.gp): parameter,log_scale,optimum,threshold,
+// flat,low,high,low_crossed,high_crossed — low and high the interval's ends
+// where the profile crosses the threshold, else the ends of its flat range.
+std::string ProfileParametersCsv(const ProfileSet& set);
 // The summary's section: the statistic, then one line per parameter.
 std::string ProfilesText(const ProfileSet& set);
 

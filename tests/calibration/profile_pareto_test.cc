@@ -232,6 +232,7 @@ TEST(ParetoFront, IsMonotoneOnConflictingDataWithTheKneeAsCompromise) {
   EXPECT_NE(front.rule.find("knee"), std::string::npos);
   const std::string csv = ParetoCsv(front, problem.parameters());
   EXPECT_EQ(csv.rfind("weight,cost_ncl_compression,cost_csl_extension,", 0), 0u) << csv;
+  EXPECT_NE(csv.find(",ordinary,group_0,group_1,phi_c_deg,"), std::string::npos) << csv;
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 12);
 }
 
