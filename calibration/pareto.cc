@@ -260,8 +260,9 @@ std::string ParetoText(const ParetoFront& front, const ModelParameters& paramete
   if (!front.computed()) return "pareto front: not computed: " + front.not_computed + "\n";
   std::string s = fmt::format(
       "pareto front: {} (group 0, {} residuals) against {} (group 1, {} residuals), "
-      "weighted-sum sweep of {} points, {:.2f} s; w weights group 0, cost_g = 1/2 sum r^2 and "
-      "rms_g its RMS weighted residual\n",
+      "weighted-sum sweep of {} points, {:.2f} s\n"
+      "  (w weights group 0; cost_g = 1/2 sum r^2 over group g, rms_g its RMS weighted "
+      "residual)\n",
       front.groups.names[0], front.residuals[0], front.groups.names[1], front.residuals[1],
       front.points.size(), front.wall_seconds);
   s += fmt::format("  {:>10} {:>12} {:>12} {:>10} {:>10}", "w", "cost_0", "cost_1", "rms_0",

@@ -270,8 +270,10 @@ std::string ParameterProfile::Text() const {
   if (!flat()) {
     return fmt::format("{}: [{:.6g}, {:.6g}]", name, lower, upper);
   }
-  return fmt::format("{}: flat from {:.6g}{} to {:.6g}{}: not determined", name, flat_low,
-                     end_text(lower_end), flat_high, end_text(upper_end));
+  // A side that crosses the threshold ends at its crossing.
+  return fmt::format("{}: flat from {:.6g}{} to {:.6g}{}: not determined", name,
+                     lower_end == ProfileEnd::kCrossed ? lower : flat_low, end_text(lower_end),
+                     upper_end == ProfileEnd::kCrossed ? upper : flat_high, end_text(upper_end));
 }
 
 ProfileSet ProfileLikelihood(const CalibrationProblem& problem, const FitResult& fit,
@@ -327,35 +329,29 @@ ProfileSet ProfileLikelihood(const CalibrationProblem& problem, const FitResult&
   for (const std::string& error : errors) {
     if (!error.empty()) throw RuntimeError("profile likelihood: " + error);
   }
-  // The least cost found: a profile point below the fit means the fit missed
-  // the optimum.
-  set.reference_cost = set.fit_cost;
-  const ProfilePoint* best = nullptr;
-  const ParameterProfile* best_profile = nullptr;
-  for (const ParameterProfile& profile : set.profiles) {
+  for (ParameterProfile& profile : set.profiles) {
+    // cost_min: the fit's, or the profile's own least cost where lower.
+    profile.reference_cost = set.fit_cost;
+    profile.least_value = profile.optimum;
     for (const ProfilePoint& point : profile.points) {
-      if (point.cost < set.reference_cost) {
-        set.reference_cost = point.cost;
-        best = &point;
-        best_profile = &profile;
+      if (point.cost < profile.reference_cost) {
+        profile.reference_cost = point.cost;
+        profile.least_value = point.value;
       }
     }
-  }
-  if (best &&
-      2.0 * (set.fit_cost - set.reference_cost) / set.residual_variance > 0.1 * set.threshold) {
-    set.warnings.push_back(fmt::format(
-        "profile_lower_cost: the profile of {} reaches cost {:.6g} at {} = {:.6g}, below the "
-        "fit's {:.6g}: the fit is not at the least-squares optimum; the profile statistics are "
-        "taken against the lower cost",
-        best_profile->name, set.reference_cost, best_profile->name, best->value, set.fit_cost));
-  }
-  for (size_t j = 0; j < set.profiles.size(); ++j) {
-    ParameterProfile& profile = set.profiles[j];
-    Finish(set.reference_cost, set.residual_variance, set.threshold, &profile);
-    if (profile.lower_end == ProfileEnd::kDomain || profile.upper_end == ProfileEnd::kDomain) {
-      if (!profile.failure.empty()) {
-        set.warnings.push_back("profile_refit_failed: " + profile.failure);
-      }
+    const double drop = 2.0 * (set.fit_cost - profile.reference_cost) / set.residual_variance;
+    if (profile.fitted && drop > 0.1 * set.threshold) {
+      set.warnings.push_back(fmt::format(
+          "profile_lower_cost: the profile of {} reaches cost {:.6g} at {} = {:.6g}, below the "
+          "fit's {:.6g} (D = {:.3g}): the fit is not at the least-squares optimum; its profile is "
+          "taken against the lower cost",
+          profile.name, profile.reference_cost, profile.name, profile.least_value, set.fit_cost,
+          drop));
+    }
+    Finish(profile.reference_cost, set.residual_variance, set.threshold, &profile);
+    if ((profile.lower_end == ProfileEnd::kDomain || profile.upper_end == ProfileEnd::kDomain) &&
+        !profile.failure.empty()) {
+      set.warnings.push_back("profile_refit_failed: " + profile.failure);
     }
   }
   set.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -404,10 +400,6 @@ std::string ProfilesText(const ProfileSet& set) {
       "determined)\n  {}\n",
       set.profiles.size(), refits, set.wall_seconds, set.threads, set.threads == 1 ? "" : "s", flat,
       set.statistic);
-  if (2.0 * (set.fit_cost - set.reference_cost) / set.residual_variance > 1e-3 * set.threshold) {
-    s += fmt::format("  cost_min = {:.6g} (a profile point; the fit's cost is {:.6g})\n",
-                     set.reference_cost, set.fit_cost);
-  }
   s += fmt::format("  {:<14} {:>12} {:>28}  {:>6}  {}\n", "parameter", "value",
                    "profile 95 % interval", "points", "profile");
   for (const ParameterProfile& profile : set.profiles) {
@@ -416,9 +408,16 @@ std::string ProfilesText(const ProfileSet& set) {
                        : fmt::format("[{:.6g}, {:.6g}]", profile.lower, profile.upper);
     const std::string shape =
         profile.flat() ? profile.Text().substr(profile.name.size() + 2) : "determined";
-    s += fmt::format("  {:<14} {:>12.6g} {:>28}  {:>6}  {}{}{}\n", profile.name, profile.optimum,
-                     interval, profile.points.size(), shape, profile.log_scale ? " (log grid)" : "",
-                     profile.fitted ? "" : " (fixed as undetermined; profiled from its value)");
+    const double drop = 2.0 * (set.fit_cost - profile.reference_cost) / set.residual_variance;
+    const std::string least =
+        !profile.fitted && drop > 1e-3 * set.threshold
+            ? fmt::format("; least cost at {:.6g}, D = {:.3g} at its fixed value",
+                          profile.least_value, drop)
+            : "";
+    s += fmt::format(
+        "  {:<14} {:>12.6g} {:>28}  {:>6}  {}{}{}\n", profile.name, profile.optimum, interval,
+        profile.points.size(), shape, profile.log_scale ? " (log grid)" : "",
+        profile.fitted ? "" : " (fixed as undetermined; profiled from its value" + least + ")");
   }
   for (const std::string& w : set.warnings) s += "  WARNING: " + w + "\n";
   return s;

@@ -6,7 +6,8 @@
 //   D(θ) = 2 (cost(θ) − cost_min) / s²
 //
 // (s² the fit's residual variance, 1 when the uncertainties are true standard
-// deviations) is compared with the 95 % threshold of one parameter:
+// deviations; cost_min the fit's cost, or the profile's own least cost where
+// lower: ParameterProfile::reference_cost) is compared with the 95 % threshold of one parameter:
 // t²_{0.975, m−n} (= F_{1, m−n; 0.95}) with the residual-variance estimate,
 // χ²_{1; 0.95} = 3.84 without; for a model linear in its parameters the
 // profile interval is then exactly the Jacobian (Wald) interval of
@@ -93,6 +94,12 @@ struct ParameterProfile {
   double upper = std::numeric_limits<double>::quiet_NaN();
   // The lowest and highest values whose statistic stays below the threshold.
   double flat_low = 0.0, flat_high = 0.0;
+  // cost_min of D: the fit's cost, or this profile's least cost where lower
+  // (a fitted parameter's: the fit missed the optimum, a warning; an
+  // undetermined one's: the data prefer another value, not significantly
+  // when the profile is flat).
+  double reference_cost = 0.0;
+  double least_value = 0.0;  // where the profile's cost is least
   int refits = 0;
   double wall_seconds = 0.0;
   std::string failure;  // why the last refit of a kDomain side failed
@@ -105,8 +112,7 @@ struct ParameterProfile {
 
 struct ProfileSet {
   std::vector<ParameterProfile> profiles;
-  double fit_cost = 0.0;        // the profiled fit's cost
-  double reference_cost = 0.0;  // the least cost found (the fit's or a profile point's)
+  double fit_cost = 0.0;  // the profiled fit's cost
   double residual_variance = 1.0;
   double threshold = 0.0;
   std::string statistic;  // how D and the threshold were computed, in words
