@@ -1,13 +1,16 @@
 // The report's fitted parameters (analysis/report_sections.h): each model's
-// outcome with an honest label, its parameters with their intervals, its
+// outcome with an honest label, its parameters with their intervals and
+// profile-likelihood flags, the profile and Pareto figures where drawn, its
 // warnings and summary.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
 #include <map>
+#include <tuple>
 
 #include "analysis/report.h"
+#include "analysis/report_images.h"
 #include "analysis/report_sections.h"
 #include "analysis/report_tables.h"
 #include "common/config.h"
@@ -190,9 +193,20 @@ Section ModelSection(const StudyFolder& study, const std::string& model,
     const size_t name = table.Column("parameter"), value = table.Column("value"),
                  error = table.Column("std_error"), low = table.Column("ci95_low"),
                  high = table.Column("ci95_high"), status = table.Column("status");
+    // The profile likelihood's columns (calibrations since issue 36 §3).
+    const bool profiled =
+        std::find(table.columns.begin(), table.columns.end(), "profile") != table.columns.end();
+    const size_t profile = profiled ? table.Column("profile") : 0,
+                 profile_low = profiled ? table.Column("profile_low") : 0,
+                 profile_high = profiled ? table.Column("profile_high") : 0;
     Block block;
     block.type = Block::Type::kTable;
     block.header = {"parameter", "value", "standard error", "95 % interval", "status"};
+    if (profiled) {
+      block.header.push_back("profile 95 % interval");
+      block.header.push_back("profile");
+    }
+    std::vector<std::string> flat, determined;
     std::map<std::string, int> by_status;
     for (const auto& row : table.rows) {
       const std::optional<double> v = Number(row[value]), s = Number(row[error]),
@@ -209,6 +223,22 @@ Section ModelSection(const StudyFolder& study, const std::string& model,
                                  "num"},
                             Cell{Plain(interval), "num"},
                             Cell{Plain(row[status]), plain ? "" : StatusCss(row[status])}});
+      if (profiled) {
+        const std::optional<double> plo = Number(row[profile_low]), phi = Number(row[profile_high]);
+        const std::string& shape = row[profile];
+        // A flat side has no end: "[0.04, —]".
+        const std::string profile_interval =
+            shape.empty() ? std::string("—")
+                          : fmt::format("[{}, {}]", plo ? fmt::format("{:.6g}", *plo) : "—",
+                                        phi ? fmt::format("{:.6g}", *phi) : "—");
+        block.rows.back().push_back(Cell{Plain(profile_interval), "num"});
+        block.rows.back().push_back(Cell{Plain(shape.empty()     ? "not profiled"
+                                               : shape == "flat" ? "flat: not determined"
+                                                                 : shape),
+                                         shape == "flat" ? StatusCss("undetermined") : ""});
+        if (shape == "flat") flat.push_back(row[name]);
+        if (shape == "determined") determined.push_back(row[name]);
+      }
       ++by_status[row[status]];
     }
     std::string counts;
@@ -219,9 +249,45 @@ Section ModelSection(const StudyFolder& study, const std::string& model,
         Paragraph(Plain(fmt::format("{} parameters ({}), from ", table.rows.size(), counts)) +
                   Link(parameters, UrlPath(parameters), true) + Plain(".")));
     section.blocks.push_back(std::move(block));
+    if (profiled) {
+      section.blocks.push_back(Paragraph(Plain(fmt::format(
+          "Profile likelihoods (each parameter fixed on a grid, the others refitted; summary.txt "
+          "says how): {} determined{}; {} flat, not determined{}.",
+          determined.size(), determined.empty() ? "" : " (" + Joined(determined) + ")", flat.size(),
+          flat.empty() ? "" : " (" + Joined(flat) + ")"))));
+    }
   } else {
     absent->push_back(parameters);
     section.blocks.push_back(Note(Code(parameters) + Plain(" is absent: no fitted parameters.")));
+  }
+  // The profile and Pareto figures of the plot data, where drawn.
+  for (const auto& [data, png, label, caption] :
+       {std::tuple<std::string, std::string, std::string, std::string>{
+            folder + "/plot_data/profiles.csv", folder + "/plot_data/profiles.png",
+            "Profile likelihoods: " + model,
+            "Each parameter's profile: D = 2 (cost - cost_min)/s^2 with the other parameters "
+            "refitted, against its 95 % threshold (dashed); the interval where D stays below it "
+            "is shaded, red where the profile stays flat to a bound or over a decade."},
+        {folder + "/plot_data/pareto.csv", folder + "/plot_data/pareto.png",
+         "Pareto front: " + model,
+         "The trade-off between two groups of states over a weighted-sum sweep, with the "
+         "ordinary fit (equal weights) and the compromise (the knee: closest to each group's "
+         "least cost in normalised costs) marked; summary.txt lists each point's parameters."}}) {
+    if (study.Exists(png)) {
+      Block image;
+      image.type = Block::Type::kFigure;
+      image.image = png;
+      image.text = Plain(label);
+      image.data_uri = DataUri("image/png", ReadTextFile(study.Path(png)));
+      section.blocks.push_back(std::move(image));
+      section.blocks.push_back(Paragraph(Plain(caption + " From ") + Code(png) + Plain(".")));
+    } else if (study.Exists(data)) {
+      absent->push_back(png);
+      section.blocks.push_back(Note(Code(png) + Plain(" is missing (its data ") + Code(data) +
+                                    Plain(" is there): run ") +
+                                    DirectoryHint("calibrate", study.directory) +
+                                    Plain(" with gnuplot on PATH to draw it.")));
+    }
   }
   const std::string warnings = folder + "/warnings.txt";
   if (study.Exists(warnings)) {

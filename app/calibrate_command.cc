@@ -1,13 +1,15 @@
 // `granasym calibrate CONFIG.toml [--out FILE.h5] [--summary FILE.txt]
 // [--plot-data DIR] [--status FILE.toml] [--quiet]`: parse, validate, call
 // the calibration library, write the HDF5 record atomically, the readable
-// summary, the status file and the plot data; exit with the fit's status
+// summary, the status file and the plot data with the profile and Pareto
+// figures (app/figure_drawing.h); exit with the fit's status
 // (calibration/fit_status.h: 0 only when it converged).
 #include "app/calibrate_command.h"
 
 #include <cstdio>
 #include <string>
 
+#include "app/figure_drawing.h"
 #include "calibration/calibration_config.h"
 #include "calibration/calibration_report.h"
 #include "common/error.h"
@@ -53,8 +55,12 @@ void RunCalibrate(const CalibrateFlags& flags) {
   std::printf("status: %s: %s\nrecord: %s\nsummary: %s\nstatus file: %s\n",
               calibration::ToString(run.outcome.status), run.outcome.reason.c_str(),
               config.hdf5_path.c_str(), config.summary_path.c_str(), config.status_path.c_str());
-  if (plotted)
+  if (plotted) {
     std::printf("plot data: %s (see plots/calibration_*.gp)\n", config.plot_data_dir.c_str());
+    for (const std::string& line : DrawCalibrationFigures(config.plot_data_dir)) {
+      std::printf("figure: %s\n", line.c_str());
+    }
+  }
   const int exit_status = calibration::ExitStatus(run.outcome.status);
   if (exit_status != 0) throw CLI::RuntimeError(exit_status);
 }

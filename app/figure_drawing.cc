@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <tuple>
 
 #include "common/error.h"
 
@@ -85,6 +86,38 @@ std::string Draw(const std::string& gnuplot, const std::string& wrapper,
 std::string PlotsDirectory() {
   if (const char* dir = std::getenv("GRANASYM_PLOTS_DIR")) return dir;
   return GRANASYM_PLOTS_DIR;
+}
+
+std::vector<std::string> DrawCalibrationFigures(const std::string& plot_data) {
+  std::vector<std::string> lines;
+  const std::string scripts = fs::path(PlotsDirectory()).parent_path().string();
+  const std::string gnuplot = FindOnPath("gnuplot");
+  for (const auto& [data, script, image] :
+       {std::tuple<const char*, const char*, const char*>{"profiles.csv", "calibration_profiles.gp",
+                                                          "profiles.png"},
+        {"pareto.csv", "calibration_pareto.gp", "pareto.png"}}) {
+    if (!fs::exists(fs::path(plot_data) / data)) continue;
+    const std::string png = (fs::path(plot_data) / image).string();
+    fs::remove(png);
+    std::string why;
+    if (gnuplot.empty()) {
+      why = "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+    } else if (plot_data.find('\'') != std::string::npos) {
+      why = "the folder's name holds a quote, which gnuplot's -e cannot take";
+    } else {
+      std::string output;
+      const int status =
+          RunCapturing({gnuplot, "-e", "dir='" + plot_data + "'", scripts + "/" + script}, &output);
+      while (!output.empty() && (output.back() == '\n' || output.back() == ' ')) output.pop_back();
+      if (status != 0) {
+        why = "gnuplot failed (exit " + std::to_string(status) + "): " + output;
+      } else if (!fs::exists(png) || fs::file_size(png) == 0) {
+        why = "gnuplot wrote no " + png + (output.empty() ? "" : ": " + output);
+      }
+    }
+    lines.push_back(why.empty() ? png : png + " not drawn: " + why);
+  }
+  return lines;
 }
 
 int DrawFigures(const std::string& out, std::vector<analysis::FigureSpec>* figures,

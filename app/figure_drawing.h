@@ -17,6 +17,13 @@ namespace granasym {
 // The folder of the gnuplot scripts (plots/study/).
 std::string PlotsDirectory();
 
+// Draws the calibration figures whose data the plot-data folder `plot_data`
+// holds (calibration_report.h WritePlotData): profiles.png with
+// plots/calibration_profiles.gp and pareto.png with plots/calibration_pareto.gp
+// (the folder above PlotsDirectory()). Returns one line per figure: its path,
+// or why it was not drawn (no gnuplot on PATH, gnuplot's message).
+std::vector<std::string> DrawCalibrationFigures(const std::string& plot_data);
+
 // Writes the wrappers of `figures` under OUT/figures/ and draws each figure
 // with data (all of them, or those whose stem is in `only`); a figure that
 // fails gets the reason in `not_drawn` and its caption. Prints one line per

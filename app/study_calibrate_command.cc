@@ -1,7 +1,8 @@
 // `granasym study calibrate DIR [--models hypoplastic_clay,modified_cam_clay,hypoplastic_sand]
 // [--select all|quasi_static] [--inertial-number I*] [--max-inertial-number I]`:
 // calibrates each model to the study's asymptotic states
-// (analysis/study_calibration.h), prints a line per model with its status
+// (analysis/study_calibration.h), draws its profile and Pareto figures
+// (app/figure_drawing.h), prints a line per model with its status
 // and exits with the worst status (calibration/fit_status.h).
 #include "app/study_calibrate_command.h"
 
@@ -18,6 +19,7 @@
 #include "analysis/quasi_static_selection.h"
 #include "analysis/rate_files.h"
 #include "analysis/study_calibration.h"
+#include "app/figure_drawing.h"
 #include "calibration/fit_status.h"
 #include "calibration/model_parameters.h"
 #include "common/error.h"
@@ -36,7 +38,8 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
       "calibrate",
       "fit the constitutive models to the study's asymptotic states; writes "
       "DIR/calibration/<model>/ (calibration.toml, calibration.h5, summary.txt, parameters.csv, "
-      "warnings.txt, model.toml, fit_status.toml, plot_data/); exits 0 when every model "
+      "warnings.txt, model.toml, fit_status.toml, plot_data/ with profiles.png and pareto.png); "
+      "exits 0 when every model "
       "converged, else with the worst model's status (3 failed, 5 at_bound, 6 "
       "converged_inadmissible, 7 no_convergence)");
   calibrate->add_option("dir", directory, "study folder (with asymptotic_states.h5)")
@@ -146,6 +149,12 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
             analysis::CalibrateStudyModel(directory, kind, selection, bound);
         std::printf("%s\n", done.text.c_str());
         status = done.outcome.status;
+        const std::string plot_data =
+            (fs::path(directory) / "calibration" / calibration::ToString(kind) / "plot_data")
+                .string();
+        for (const std::string& line : DrawCalibrationFigures(plot_data)) {
+          std::printf("  figure: %s\n", line.c_str());
+        }
       } catch (const FileError&) {
         throw;  // an output that cannot be written: status 1 (README), not a failed fit
       } catch (const fs::filesystem_error& error) {

@@ -13,6 +13,8 @@
 #include "calibration/fit_result.h"
 #include "calibration/model_parameters.h"
 #include "calibration/nlopt_fitter.h"
+#include "calibration/pareto.h"
+#include "calibration/profile_likelihood.h"
 #include "calibration/starting_values.h"
 #include "calibration/state_dataset.h"
 #include "calibration/study_state_reader.h"

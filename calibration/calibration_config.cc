@@ -223,6 +223,17 @@ void ReadFitter(const ConfigTable& f, CalibrationConfig* config) {
       f.GetInt("max_iterations", config->ceres.max_iterations, Range::Closed(1, 1e6)));
   config->ceres.uncertainty.scale_by_residual_variance =
       f.GetBool("scale_by_residual_variance", config->ceres.uncertainty.scale_by_residual_variance);
+  config->profiles.enabled = f.GetBool("profiles", config->profiles.enabled);
+  config->profiles.points_per_side = static_cast<int>(
+      f.GetInt("profile_points_per_side", config->profiles.points_per_side, Range::Closed(2, 50)));
+  config->pareto.enabled = f.GetBool("pareto", config->pareto.enabled);
+  config->pareto.points =
+      static_cast<int>(f.GetInt("pareto_points", config->pareto.points, Range::Closed(5, 101)));
+  if (config->pareto.points % 2 == 0) {
+    f.Fail("pareto_points", fmt::format("pareto_points = {} must be odd (the middle point is the "
+                                        "ordinary fit)",
+                                        config->pareto.points));
+  }
   if (f.Has("nlopt")) {
     const ConfigTable t = f.GetTable("nlopt");
     config->nlopt.algorithm = t.GetEnum("algorithm", config->nlopt.algorithm);
@@ -384,10 +395,13 @@ std::string CalibrationConfigText(const CalibrationConfig& config, const std::st
   }
   s += fmt::format(
       "\n[fitter]\nmethod = {}\nfix_undetermined = {}\nmax_iterations = {}\n"
-      "scale_by_residual_variance = {}\n",
+      "scale_by_residual_variance = {}\nprofiles = {}\nprofile_points_per_side = {}\n"
+      "pareto = {}\npareto_points = {}\n",
       TomlQuoted(ToString(config.method)), config.fix_undetermined ? "true" : "false",
       config.ceres.max_iterations,
-      config.ceres.uncertainty.scale_by_residual_variance ? "true" : "false");
+      config.ceres.uncertainty.scale_by_residual_variance ? "true" : "false",
+      config.profiles.enabled ? "true" : "false", config.profiles.points_per_side,
+      config.pareto.enabled ? "true" : "false", config.pareto.points);
   s += fmt::format(
       "[fitter.nlopt]\nalgorithm = {}\nstarts = {}\nmax_evaluations = {}\nseed = {}\n"
       "polish = {}\n",

@@ -56,6 +56,11 @@
 //   fix_undetermined = true       # fix parameters the data do not determine, refit
 //   max_iterations = 200          # ceres
 //   scale_by_residual_variance = true
+//   profiles = true               # profile-likelihood intervals of every fitted
+//                                 #   and undetermined parameter (profile_likelihood.h)
+//   profile_points_per_side = 8   #   grid points each side of the optimum (2-50)
+//   pareto = true                 # the Pareto front of two residual groups (pareto.h)
+//   pareto_points = 11            #   weighted-sum sweep: odd, 5-101
 //   [fitter.nlopt]
 //   algorithm = "crs2"            # crs2 | isres | direct_l | mlsl
 //   starts = 3
@@ -81,6 +86,8 @@
 #include "calibration/dem_state_reader.h"
 #include "calibration/model_parameters.h"
 #include "calibration/nlopt_fitter.h"
+#include "calibration/pareto.h"
+#include "calibration/profile_likelihood.h"
 #include "calibration/study_state_reader.h"
 #include "common/config.h"
 #include "common/enum_names.h"
@@ -140,6 +147,9 @@ struct CalibrationConfig {
   bool fix_undetermined = true;
   CeresFitter::Options ceres;
   NloptFitter::Options nlopt;
+  // After the fit: profile likelihoods and the Pareto front (RunCalibration).
+  ProfileOptions profiles;
+  ParetoOptions pareto;
   std::string hdf5_path, summary_path, plot_data_dir, status_path;
 };
 

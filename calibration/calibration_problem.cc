@@ -283,4 +283,18 @@ std::vector<std::string> CalibrationProblem::ResidualLabels() const {
   return labels;
 }
 
+std::vector<std::pair<int, int>> CalibrationProblem::ResidualPoints() const {
+  std::vector<std::pair<int, int>> owners;
+  for (size_t d = 0; d < datasets_.size(); ++d) {
+    for (size_t k = 0; k < datasets_[d].points.size(); ++k) {
+      const AsymptoticStatePoint& point = datasets_[d].points[k];
+      if (!point.IsFitted()) continue;
+      const std::pair<int, int> owner(static_cast<int>(d), static_cast<int>(k));
+      if (point.HasStretching()) owners.push_back(owner);
+      owners.push_back(owner);
+    }
+  }
+  return owners;
+}
+
 }  // namespace granasym::calibration

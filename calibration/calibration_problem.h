@@ -74,6 +74,8 @@ class CalibrationProblem {
                 std::string* why) const;
   // Labels of the weighted residuals: "dataset/source: psi_sigma" etc.
   std::vector<std::string> ResidualLabels() const;
+  // The (dataset, point) of each weighted residual, in the order of Residuals.
+  std::vector<std::pair<int, int>> ResidualPoints() const;
 
   long evaluations() const { return evaluations_; }
 

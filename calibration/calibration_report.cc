@@ -303,6 +303,17 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   }
   if (kept && kept->summary.success()) {
     run.findings = CheckAdmissibility(run, *kept, &run.diagnosis);
+    if (config.profiles.enabled) {
+      std::vector<int> also;
+      for (size_t i = 0; i < undetermined.size(); ++i) {
+        if (undetermined[i]) also.push_back(static_cast<int>(i));
+      }
+      run.profiles = ProfileLikelihood(*run.problem, *kept, also, config.ceres, config.profiles);
+    }
+    if (config.pareto.enabled) {
+      run.pareto = ComputeParetoFront(*run.problem, *kept, DefaultResidualGroups(*run.problem),
+                                      config.ceres, config.pareto);
+    }
   }
   run.outcome = DecideFitStatus(run);
   return run;
@@ -341,14 +352,39 @@ std::string FitText(const CalibrationRun& run, const FitResult& fit) {
                                 : "not determined",
                      "", spec.units);
   }
-  if (fit.correlation.rows() > 1) {
-    s += "  correlation matrix (free parameters):\n";
+  if (!fit.null_directions.empty()) {
+    // (JᵀJ)⁻¹ does not exist: correlations would describe the pseudo-inverse.
+    s += fmt::format(
+        "  correlations not reported: the Jacobian is rank-deficient (rank {} of {}); the data "
+        "do not determine these directions (relative changes of the parameters):\n",
+        static_cast<int>(fit.free_indices.size() - fit.null_directions.size()),
+        fit.free_indices.size());
+    for (const NullDirection& null : fit.null_directions) {
+      s += fmt::format("    {} (singular value ratio {:.3g})\n",
+                       null.Text(parameters, fit.free_indices), null.singular_ratio);
+    }
+  } else if (fit.correlation.rows() > 1) {
+    s += "  correlation matrix (free parameters; (J^T J)^-1 normalised):\n";
+    s += fmt::format("    {:<14}", "");
+    for (int c = 0; c < fit.correlation.cols(); ++c) {
+      s += fmt::format(" {:>7.7}", parameters.specs()[fit.free_indices[c]].name);
+    }
+    s += "\n";
+    std::string strong;
     for (int r = 0; r < fit.correlation.rows(); ++r) {
       s += fmt::format("    {:<14}", parameters.specs()[fit.free_indices[r]].name);
-      for (int c = 0; c < fit.correlation.cols(); ++c)
+      for (int c = 0; c < fit.correlation.cols(); ++c) {
         s += fmt::format(" {:>7.3f}", fit.correlation(r, c));
+        if (c > r && std::abs(fit.correlation(r, c)) > 0.95) {
+          strong +=
+              fmt::format("{}{} and {} ({:.3f})", strong.empty() ? "" : ", ",
+                          parameters.specs()[fit.free_indices[r]].name,
+                          parameters.specs()[fit.free_indices[c]].name, fit.correlation(r, c));
+        }
+      }
       s += "\n";
     }
+    if (!strong.empty()) s += "  strongly correlated (|rho| > 0.95): " + strong + "\n";
   }
   for (const std::string& w : fit.warnings) s += "  WARNING: " + w + "\n";
   // Residuals per dataset.
@@ -574,6 +610,10 @@ std::string SummaryText(const CalibrationRun& run) {
                        run.fits[1].summary.fitter, run.agreement_not_compared);
     }
     if (kept) s += "kept: the " + kept->summary.fitter + " fit\n";
+  }
+  if (!run.profiles.empty()) s += "\n" + ProfilesText(run.profiles);
+  if (run.pareto.computed() || !run.pareto.not_computed.empty()) {
+    s += "\n" + ParetoText(run.pareto, problem.parameters());
   }
   if (kept) {
     s += "\nresiduals per point (" + kept->summary.fitter + "):\n" + PointsText(run, *kept);
@@ -925,6 +965,18 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
   } else {
     WriteCurvedModelLines(problem, fit, range, folder);
   }
+  // Profiles and the front of an earlier run do not stay behind.
+  for (const char* stale :
+       {"profiles.csv", "profile_parameters.csv", "pareto.csv", "profiles.png", "pareto.png"}) {
+    std::filesystem::remove(folder + "/" + stale);
+  }
+  if (!run.profiles.empty()) {
+    WriteTextFileAtomically(folder + "/profiles.csv", ProfilesCsv(run.profiles));
+    WriteTextFileAtomically(folder + "/profile_parameters.csv", ProfileParametersCsv(run.profiles));
+  }
+  if (run.pareto.computed()) {
+    WriteTextFileAtomically(folder + "/pareto.csv", ParetoCsv(run.pareto, problem.parameters()));
+  }
 }
 
 namespace {
@@ -1190,7 +1242,8 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
 }
 
 std::string ParametersCsv(const CalibrationRun& run, const FitResult& fit) {
-  std::string csv = "parameter,value,std_error,ci95_low,ci95_high,status\n";
+  std::string csv =
+      "parameter,value,std_error,ci95_low,ci95_high,status,profile_low,profile_high,profile\n";
   const std::vector<ParameterSpec>& specs = run.problem->parameters().specs();
   auto number = [](double x) {
     return std::isfinite(x) ? fmt::format("{:.10g}", x) : std::string();
@@ -1205,8 +1258,16 @@ std::string ParametersCsv(const CalibrationRun& run, const FitResult& fit) {
       }
     }
     const ParameterStatus status = i < run.status.size() ? run.status[i] : ParameterStatus::kFitted;
-    csv += fmt::format("{},{},{},{},{},{}\n", specs[i].name, number(fit.values[i]), number(se),
-                       number(lo), number(hi), ToString(status));
+    std::string profile_low, profile_high, profile;
+    for (const ParameterProfile& p : run.profiles.profiles) {
+      if (p.parameter != static_cast<int>(i)) continue;
+      profile_low = number(p.lower);
+      profile_high = number(p.upper);
+      profile = p.flat() ? "flat" : "determined";
+    }
+    csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", specs[i].name, number(fit.values[i]),
+                       number(se), number(lo), number(hi), ToString(status), profile_low,
+                       profile_high, profile);
   }
   return csv;
 }
@@ -1227,6 +1288,14 @@ std::string WarningsText(const CalibrationRun& run) {
   for (const StateDataset& d : run.problem->datasets()) {
     for (const std::string& w : d.warnings) add("dataset", d.name + ": " + w);
   }
+  for (const ParameterProfile& p : run.profiles.profiles) {
+    if (p.flat()) add("profile_flat", p.Text() + " (its profile likelihood, profiles.csv)");
+  }
+  for (const std::string& w : run.profiles.warnings) {
+    const size_t colon = w.find(": ");
+    add(w.substr(0, colon), w.substr(colon + 2));
+  }
+  for (const std::string& w : run.pareto.warnings) add("pareto", w.substr(w.find(": ") + 2));
   return text;
 }
 

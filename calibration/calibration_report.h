@@ -13,6 +13,8 @@
 #include "calibration/calibration_problem.h"
 #include "calibration/fit_result.h"
 #include "calibration/fit_status.h"
+#include "calibration/pareto.h"
+#include "calibration/profile_likelihood.h"
 #include "calibration/starting_values.h"
 
 namespace granasym::calibration {
@@ -92,6 +94,11 @@ struct CalibrationRun {
   FitOutcome outcome;
   // The rate of the fitted data (summary line; a rate_affected warning).
   RateOfData rate;
+  // Of the kept fit when it succeeded and the config asks for them: the
+  // profile likelihood of every free and every undetermined parameter, and
+  // the Pareto front of the default residual groups (empty otherwise).
+  ProfileSet profiles;
+  ParetoFront pareto;
 
   // The kept fit; nullptr without one.
   const FitResult* kept_fit() const;
@@ -123,7 +130,8 @@ ModelParameters ChooseParameters(ModelKind kind, const std::vector<ParameterChoi
                                  const std::vector<StateDataset>& datasets = {});
 
 // Reads the datasets, estimates starting values, builds the problem and runs
-// the fitters. Throws InputError for bad data (naming file/line/column).
+// the fitters, then (config.profiles, config.pareto) the profile likelihoods
+// and the Pareto front of the kept fit. Throws InputError for bad data (naming file/line/column).
 // With fix_undetermined (default), a Ceres fit finds the free parameter the
 // data determine least — in the near-null space of the scaled Jacobian, or
 // with a 95 % interval covering its whole bound range (the widest relative to
@@ -153,12 +161,16 @@ CalibrationRun RunCalibration(const CalibrationConfig& config);
 std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResult& fit,
                                         std::vector<std::string>* diagnosis);
 
-// parameters.csv: parameter,value,std_error,ci95_low,ci95_high,status; the
-// standard error and interval empty where not FitResult::Reported.
+// parameters.csv: parameter,value,std_error,ci95_low,ci95_high,status,
+// profile_low,profile_high,profile; the standard error and interval empty
+// where not FitResult::Reported; profile_low/high the profile's 95 %
+// interval (empty where it does not cross the threshold) and profile
+// "determined" or "flat" (empty when not profiled).
 std::string ParametersCsv(const CalibrationRun& run, const FitResult& fit);
 // warnings.txt: one "code: message" per line (findings, the rate_affected
-// warning, fit warnings of the kept fit, dataset warnings and undetermined
-// parameters); empty when none.
+// warning, fit warnings of the kept fit, dataset warnings, undetermined
+// parameters, profile_flat per flat profile and the profiles' and the Pareto
+// sweep's own warnings); empty when none.
 std::string WarningsText(const CalibrationRun& run);
 // model.toml: the [model] block of the fit and an example element test
 // (isotropic compression, then isochoric shear) so that `granasym model run`
@@ -169,7 +181,9 @@ std::string ModelToml(const CalibrationRun& run, const FitResult& fit);
 // reason ("status: at_bound", "reason: ...").
 std::string SummaryText(const CalibrationRun& run);
 void WriteCalibrationHdf5(const CalibrationRun& run, const std::string& path);
-// states.csv, model_curve.csv, model_lines.dat in `folder` (created). The
+// states.csv, model_curve.csv, model_lines.dat in `folder` (created), and
+// profiles.csv (ProfilesCsv) and pareto.csv (ParetoCsv) when computed, for
+// plots/calibration_profiles.gp and plots/calibration_pareto.gp. The
 // sand model has no analytic ASBS: its model_curve.csv holds the states at
 // the data's ψ_ε (and 0°, 90°) at the geometric-mean p of the data, and its
 // model_lines.dat the integrated paths (not straight lines) at each ψ_ε.

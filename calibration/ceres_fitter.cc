@@ -135,7 +135,7 @@ FitResult CeresFitter::Fit(const CalibrationProblem& problem,
     default:
       result.summary.termination = FitTermination::kFailure;
   }
-  if (result.summary.termination != FitTermination::kFailure) {
+  if (options_.compute_uncertainty && result.summary.termination != FitTermination::kFailure) {
     ComputeUncertainty(problem, options_.uncertainty, &result);
   }
   result.summary.evaluations = problem.evaluations() - evaluations0;

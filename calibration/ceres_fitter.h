@@ -21,6 +21,10 @@ class CeresFitter {
     // Central-difference step, relative to the parameter value.
     double relative_step = 1e-6;
     UncertaintyOptions uncertainty;
+    // The covariance, intervals and residuals at the optimum
+    // (ComputeUncertainty); false for refits that need only the cost
+    // (profile_likelihood.h, pareto.h).
+    bool compute_uncertainty = true;
     bool IsValid(std::string* why) const;
   };
 

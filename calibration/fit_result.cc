@@ -19,6 +19,23 @@ std::string FitSummary::Report() const {
       message.empty() ? "" : " (" + message + ")");
 }
 
+std::string NullDirection::Text(const ModelParameters& parameters,
+                                const std::vector<int>& free) const {
+  // The sign of the largest component positive, so that the text is stable.
+  double largest = 0;
+  for (double c : components) largest = std::abs(c) > std::abs(largest) ? c : largest;
+  const double sign = largest < 0 ? -1.0 : 1.0;
+  std::string text;
+  for (size_t k = 0; k < components.size() && k < free.size(); ++k) {
+    const double c = sign * components[k];
+    if (std::abs(c) < 0.05) continue;
+    text += text.empty() ? fmt::format("{:.2f} {}", c, parameters.specs()[free[k]].name)
+                         : fmt::format(" {} {:.2f} {}", c < 0 ? "-" : "+", std::abs(c),
+                                       parameters.specs()[free[k]].name);
+  }
+  return text;
+}
+
 bool FitResult::Reported(size_t k) const {
   return k < standard_errors.size() && std::isfinite(standard_errors[k]) &&
          !(k < at_bound.size() && at_bound[k]);
@@ -131,6 +148,10 @@ void ComputeUncertainty(const CalibrationProblem& problem, const UncertaintyOpti
     if (sv[i] > options.singular_tolerance * smax && sv[i] > 0) {
       inverse += v * v.transpose() / (sv[i] * sv[i]);
     } else {
+      NullDirection null;
+      null.singular_ratio = smax > 0 ? sv[i] / smax : 0.0;
+      for (int k = 0; k < n; ++k) null.components.push_back(v[k]);
+      result->null_directions.push_back(null);
       std::string names;
       for (int k = 0; k < n; ++k) {
         if (std::abs(v[k]) > 0.3) {

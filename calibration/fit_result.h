@@ -7,7 +7,9 @@
 // then relative weights); otherwise s² = 1 (they are true standard deviations).
 // (JᵀJ)⁻¹ comes from the SVD of J; singular values below
 // singular_tolerance·σ_max are dropped and reported as a near-singular
-// covariance with the parameters of the poorly determined direction.
+// covariance with the parameters of the poorly determined direction, and
+// kept as null_directions (the summary then names them instead of printing
+// correlations, which would describe the pseudo-inverse).
 // 95 % intervals: value ± t_{0.975, m−n} · standard error.
 // A standard error and interval are reported (FitResult::Reported) only where
 // both mean something: the parameter is in no near-null direction of J and
@@ -78,13 +80,24 @@ struct UncertaintyOptions {
   bool IsValid(std::string* why) const;
 };
 
+// A direction of the free parameters that the data do not determine: a right
+// singular vector of the scaled Jacobian (columns per relative change of each
+// parameter) whose singular value is below singular_tolerance · σ_max.
+struct NullDirection {
+  double singular_ratio = 0.0;     // σ/σ_max
+  std::vector<double> components;  // free order, unit length, relative changes
+  // "0.71 lambda_star - 0.70 n_intercept" (components above 0.05 in size).
+  std::string Text(const ModelParameters& parameters, const std::vector<int>& free) const;
+};
+
 struct FitResult {
   FitSummary summary;
   std::vector<double> values;  // full parameter vector (model_parameters.h order)
   std::vector<int> free_indices;
-  Eigen::MatrixXd covariance;           // free × free, in the parameters' units
-  Eigen::MatrixXd correlation;          // free × free
-  std::vector<double> standard_errors;  // free order; NaN when not determined
+  Eigen::MatrixXd covariance;   // free × free, in the parameters' units
+  Eigen::MatrixXd correlation;  // free × free; meaningful when null_directions is empty
+  std::vector<NullDirection> null_directions;  // of the Jacobian; empty: full rank
+  std::vector<double> standard_errors;         // free order; NaN when not determined
   std::vector<double> lower_95, upper_95;
   std::vector<bool> at_bound;      // free order: ended at a bound of the fit (AtBound)
   double residual_variance = 1.0;  // s²

@@ -605,6 +605,47 @@ TEST(StudyReport, CalibrationShowsIntervalsStatusesWarningsAndSummary) {
             std::string::npos);
 }
 
+// A calibration with profile likelihoods (parameters.csv's profile columns)
+// and the Pareto figure: the flags in the table, a sentence naming the flat
+// ones, the Pareto PNG inline; profiles.csv without its PNG is a note.
+TEST(StudyReport, CalibrationShowsProfileFlagsAndTheParetoFigure) {
+  const fs::path dir = FullStudy("profiles");
+  const fs::path clay = dir / "calibration/hypoplastic_clay";
+  Write(clay / "parameters.csv",
+        "parameter,value,std_error,ci95_low,ci95_high,status,profile_low,profile_high,profile\n"
+        "lambda_star,0.0252,0.0011,0.023,0.0274,fitted,0.0231,0.0276,determined\n"
+        "r,0.4,,,,undetermined,0.09,,flat\n"
+        "kappa_star,0.004,,,,fixed,,,\n");
+  Write(clay / "plot_data/pareto.csv", "weight\n0.5\n");
+  Write(clay / "plot_data/pareto.png", "not really a PNG either");
+  Write(clay / "plot_data/profiles.csv", "parameter,value\n");
+  const ReportSummary summary = WriteReport(dir.string());
+  const std::string html = ReadTextFile(summary.html_path);
+  const std::string md = ReadTextFile(summary.markdown_path);
+  EXPECT_NE(html.find("<th>profile 95 % interval</th>"), std::string::npos) << html;
+  EXPECT_NE(html.find("<td class=\"num\">[0.0231, 0.0276]</td><td>determined</td>"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("<td class=\"num\">[0.09, —]</td><td class=\"status-undetermined\">flat: "
+                      "not determined</td>"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("<td>not profiled</td>"), std::string::npos) << html;
+  EXPECT_NE(html.find("1 determined (lambda_star); 1 flat, not determined (r)."), std::string::npos)
+      << html;
+  EXPECT_NE(md.find("![Pareto front: hypoplastic_clay](calibration/hypoplastic_clay/plot_data/"
+                    "pareto.png)"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(html.find("<code>calibration/hypoplastic_clay/plot_data/profiles.png</code> is "
+                      "missing (its data"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(std::find(summary.absent.begin(), summary.absent.end(),
+                      "calibration/hypoplastic_clay/plot_data/profiles.png"),
+            summary.absent.end());
+}
+
 TEST(StudyReport, RunTimesCountEachCaseOwnStepsAndTotal) {
   const fs::path dir = FullStudy("run_times");
   const std::string html = ReadTextFile(WriteReport(dir.string()).html_path);

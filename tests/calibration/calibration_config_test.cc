@@ -119,6 +119,10 @@ method = "nlopt"
 fix_undetermined = false
 max_iterations = 77
 scale_by_residual_variance = false
+profiles = false
+profile_points_per_side = 5
+pareto = false
+pareto_points = 13
 [fitter.nlopt]
 algorithm = "isres"
 starts = 5
@@ -163,6 +167,13 @@ TEST(CalibrationConfig, RejectsBadFilesNamingTheKey) {
       Replace(kConfig, "psi_sigma_uncertainty_deg = 0.3", "psi_sigma_uncertainty_deg = -1"),
       "psi_sigma_uncertainty_deg");
   ExpectRejected("[model]\nkind = \"hypoplastic_clay\"\n", "dataset");
+  ExpectRejected(Replace(kConfig, "method = \"both\"", "method = \"both\"\npareto_points = 12"),
+                 "pareto_points = 12 must be odd");
+  ExpectRejected(Replace(kConfig, "method = \"both\"", "method = \"both\"\npareto_points = 3"),
+                 "pareto_points");
+  ExpectRejected(
+      Replace(kConfig, "method = \"both\"", "method = \"both\"\nprofile_points_per_side = 1"),
+      "profile_points_per_side");
 }
 
 // Calibration fits the clay models only: the sand model is a valid model kind
@@ -274,6 +285,11 @@ TEST(CalibrationConfig, RunsAWholeCalibrationAndWritesItsRecord) {
   EXPECT_NE(summary.find("95 % interval"), std::string::npos);
   EXPECT_NE(summary.find("UMAT"), std::string::npos);
   EXPECT_NE(summary.find("ceres vs nlopt"), std::string::npos);
+  // Full rank: the correlations of (JᵀJ)⁻¹, not null directions.
+  EXPECT_NE(summary.find("correlation matrix (free parameters; (J^T J)^-1 normalised)"),
+            std::string::npos)
+      << summary;
+  EXPECT_EQ(summary.find("correlations not reported"), std::string::npos) << summary;
 
   const Hdf5File file = Hdf5File::OpenRead(config.hdf5_path);
   const std::vector<double> values = file.ReadDoubles("/fits/ceres/values");
@@ -287,6 +303,19 @@ TEST(CalibrationConfig, RunsAWholeCalibrationAndWritesItsRecord) {
   EXPECT_TRUE(std::filesystem::exists(config.plot_data_dir + "/states.csv"));
   EXPECT_TRUE(std::filesystem::exists(config.plot_data_dir + "/model_curve.csv"));
   EXPECT_TRUE(std::filesystem::exists(config.plot_data_dir + "/model_lines.dat"));
+  // The profiles of the four free parameters and the front (on by default).
+  ASSERT_EQ(run.profiles.profiles.size(), 4u);
+  EXPECT_NE(summary.find("profile likelihood: 4 parameters"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("pareto front: ncl_compression"), std::string::npos) << summary;
+  EXPECT_TRUE(std::filesystem::exists(config.plot_data_dir + "/profiles.csv"));
+  EXPECT_TRUE(std::filesystem::exists(config.plot_data_dir + "/pareto.csv"));
+  const std::string parameters = ParametersCsv(run, run.fits[0]);
+  EXPECT_EQ(parameters.rfind("parameter,value,std_error,ci95_low,ci95_high,status,profile_low,"
+                             "profile_high,profile\n",
+                             0),
+            0u)
+      << parameters;
+  EXPECT_NE(parameters.find(",determined\n"), std::string::npos) << parameters;
   std::filesystem::remove_all(dir);
 }
 

@@ -184,9 +184,13 @@ TEST(FitStatus, TheModelsOwnStatesConverge) {
   std::istringstream csv(ParametersCsv(run, *run.kept_fit()));
   int fitted = 0;
   for (std::string line; std::getline(csv, line);) {
-    if (line.size() < 7 || line.substr(line.size() - 7) != ",fitted") continue;
+    // parameter,value,std_error,ci95_low,ci95_high,status,profile_low,profile_high,profile
+    const size_t status = line.find(",fitted,");
+    if (status == std::string::npos) continue;
     ++fitted;
-    EXPECT_EQ(line.find(",,"), std::string::npos) << line;
+    EXPECT_EQ(line.substr(0, status).find(",,"), std::string::npos) << line;
+    // Determined by its profile likelihood too.
+    EXPECT_EQ(line.substr(line.size() - 11), ",determined") << line;
   }
   EXPECT_GE(fitted, 4);
 }
@@ -197,7 +201,8 @@ TEST(FitStatus, ACslTheModelCannotReachEndsAtABoundWithoutItsStandardError) {
                    FitStatus::kAtBound, "kappa_star = 0.0001 at its lower bound 0.0001");
   // No standard error or interval at a bound.
   const std::string csv = ParametersCsv(run, *run.kept_fit());
-  EXPECT_NE(csv.find("\nkappa_star,0.0001,,,,at_bound\n"), std::string::npos) << csv;
+  // Its profile stays below the threshold down to the bound: flat.
+  EXPECT_NE(csv.find("\nkappa_star,0.0001,,,,at_bound,,,flat\n"), std::string::npos) << csv;
   EXPECT_NE(SummaryText(run).find("at bound"), std::string::npos) << SummaryText(run);
   // Nor in a near-null direction of the Jacobian (its standard error NaN).
   FitResult& fit = run.fits[run.kept];
@@ -206,7 +211,7 @@ TEST(FitStatus, ACslTheModelCannotReachEndsAtABoundWithoutItsStandardError) {
   const std::string without = ParametersCsv(run, fit);
   const size_t phi = without.find("\nphi_c_deg,");
   ASSERT_NE(phi, std::string::npos);
-  EXPECT_NE(without.find(",,,,fitted\n", phi), std::string::npos) << without;
+  EXPECT_NE(without.find(",,,,fitted,", phi), std::string::npos) << without;
   const std::string summary = SummaryText(run);
   EXPECT_NE(summary.find("not determined"), std::string::npos) << summary;
   EXPECT_EQ(summary.find("nan"), std::string::npos) << summary;

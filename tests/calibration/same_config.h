@@ -66,6 +66,10 @@ inline void ExpectSameConfig(const CalibrationConfig& a, const CalibrationConfig
   }
   EXPECT_EQ(a.method, b.method);
   EXPECT_EQ(a.fix_undetermined, b.fix_undetermined);
+  EXPECT_EQ(a.profiles.enabled, b.profiles.enabled);
+  EXPECT_EQ(a.profiles.points_per_side, b.profiles.points_per_side);
+  EXPECT_EQ(a.pareto.enabled, b.pareto.enabled);
+  EXPECT_EQ(a.pareto.points, b.pareto.points);
   EXPECT_EQ(a.ceres.max_iterations, b.ceres.max_iterations);
   EXPECT_EQ(a.ceres.uncertainty.scale_by_residual_variance,
             b.ceres.uncertainty.scale_by_residual_variance);

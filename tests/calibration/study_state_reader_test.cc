@@ -501,7 +501,10 @@ void ExpectRecovered(ModelKind kind, const std::vector<double>& truth,
   for (const Finding& f : run.findings) ADD_FAILURE() << f.Line();
   // parameters.csv has one row per parameter with its status.
   const std::string csv = ParametersCsv(run, fit);
-  EXPECT_EQ(csv.rfind("parameter,value,std_error,ci95_low,ci95_high,status\n", 0), 0u);
+  EXPECT_EQ(csv.rfind("parameter,value,std_error,ci95_low,ci95_high,status,profile_low,"
+                      "profile_high,profile\n",
+                      0),
+            0u);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6);
   EXPECT_NE(csv.find("lambda_star,"), std::string::npos);
 }

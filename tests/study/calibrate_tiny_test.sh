@@ -57,7 +57,7 @@ for model in hypoplastic_clay modified_cam_clay hypoplastic_sand; do
   for file in calibration.toml calibration.h5 summary.txt parameters.csv warnings.txt model.toml; do
     [ -f "$dir/$file" ] || { echo "FAIL: $dir/$file is missing"; exit 1; }
   done
-  head -1 "$dir/parameters.csv" | grep -q "^parameter,value,std_error,ci95_low,ci95_high,status$" ||
+  head -1 "$dir/parameters.csv" | grep -q "^parameter,value,std_error,ci95_low,ci95_high,status,profile_low,profile_high,profile$" ||
     { echo "FAIL: $dir/parameters.csv has another header"; exit 1; }
   [ "$(tail -n +2 "$dir/parameters.csv" | wc -l)" -ge 4 ] ||
     { echo "FAIL: $dir/parameters.csv has fewer than 4 parameters"; exit 1; }

@@ -1,0 +1,291 @@
+// The weighted-sum Pareto sweep over two groups of residuals.
+#include "calibration/pareto.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "common/error.h"
+
+namespace granasym::calibration {
+
+namespace {
+
+// The group costs C_g and the other residuals' cost at `values`; false when
+// the model is undefined there.
+bool GroupCosts(const CalibrationProblem& problem, const ResidualGroups& groups,
+                const std::vector<double>& values, std::array<double, 2>* cost) {
+  const std::vector<int>& free = problem.free_indices();
+  std::vector<double> x;
+  for (int i : free) x.push_back(values[i]);
+  std::vector<double> r(static_cast<size_t>(problem.num_residuals()));
+  std::string why;
+  if (!problem.Residuals(x.data(), r.data(), &why)) return false;
+  const std::vector<std::pair<int, int>> owners = problem.ResidualPoints();
+  *cost = {0, 0};
+  for (size_t j = 0; j < r.size(); ++j) {
+    const int g = groups.point_group[owners[j].first][owners[j].second];
+    if (g >= 0) (*cost)[g] += 0.5 * r[j] * r[j];
+  }
+  return std::isfinite((*cost)[0]) && std::isfinite((*cost)[1]);
+}
+
+// The problem with group 0's points weighted by 2w and group 1's by 2(1 − w),
+// starting from `start` (a full vector).
+CalibrationProblem Weighted(const CalibrationProblem& problem, const ResidualGroups& groups,
+                            double w, const std::vector<double>& start) {
+  std::vector<StateDataset> datasets = problem.datasets();
+  for (size_t d = 0; d < datasets.size(); ++d) {
+    for (size_t k = 0; k < datasets[d].points.size(); ++k) {
+      const int g = groups.point_group[d][k];
+      if (g >= 0) datasets[d].points[k].weight *= 2.0 * (g == 0 ? w : 1.0 - w);
+    }
+  }
+  ModelParameters parameters = problem.parameters();
+  for (int i : problem.free_indices()) {
+    ParameterSpec& spec = parameters.mutable_specs()[i];
+    spec.value = std::min(std::max(start[i], spec.lower), spec.upper);
+  }
+  return CalibrationProblem(std::move(datasets), std::move(parameters),
+                            problem.predictor().options());
+}
+
+}  // namespace
+
+int ResidualGroups::Residuals(const CalibrationProblem& problem, int g) const {
+  int count = 0;
+  for (const auto& [d, k] : problem.ResidualPoints()) count += point_group[d][k] == g ? 1 : 0;
+  return count;
+}
+
+ResidualGroups DefaultResidualGroups(const CalibrationProblem& problem) {
+  ResidualGroups groups;
+  groups.names = {"ncl_compression", "csl_extension"};
+  groups.descriptions = {"NCL, compression and ASBS states", "critical and extension states"};
+  for (const StateDataset& dataset : problem.datasets()) {
+    std::vector<int> row;
+    for (const AsymptoticStatePoint& point : dataset.points) {
+      switch (point.kind) {
+        case StateKind::kNcl:
+        case StateKind::kCompression:
+        case StateKind::kAsbs:
+          row.push_back(0);
+          break;
+        case StateKind::kCsl:
+        case StateKind::kExtension:
+          row.push_back(1);
+          break;
+        case StateKind::kUnloading:
+          row.push_back(-1);
+          break;
+      }
+    }
+    groups.point_group.push_back(std::move(row));
+  }
+  return groups;
+}
+
+bool ParetoOptions::IsValid(std::string* why) const {
+  if (points < 5 || points % 2 == 0 || points > 101) {
+    *why = fmt::format(
+        "pareto points = {} must be odd and in [5, 101] (the middle one is the "
+        "ordinary fit)",
+        points);
+    return false;
+  }
+  if (!(max_weight_ratio > 1 && max_weight_ratio <= 1e8)) {
+    *why = fmt::format("pareto max_weight_ratio = {} must be in (1, 1e8]", max_weight_ratio);
+    return false;
+  }
+  return true;
+}
+
+bool ParetoFront::Monotone(double tolerance) const {
+  for (size_t j = 1; j < points.size(); ++j) {
+    const ParetoPoint &a = points[j - 1], &b = points[j];
+    if (b.cost[0] > a.cost[0] + tolerance * std::max(a.cost[0], b.cost[0])) return false;
+    if (b.cost[1] < a.cost[1] - tolerance * std::max(a.cost[1], b.cost[1])) return false;
+  }
+  return true;
+}
+
+ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResult& fit,
+                               const ResidualGroups& groups, const CeresFitter::Options& ceres,
+                               const ParetoOptions& options) {
+  std::string why;
+  GRANASYM_CHECK(options.IsValid(&why)) << why;
+  GRANASYM_CHECK(groups.point_group.size() == problem.datasets().size());
+  const auto t0 = std::chrono::steady_clock::now();
+  ParetoFront front;
+  front.groups = groups;
+  for (int g = 0; g < 2; ++g) front.residuals[g] = groups.Residuals(problem, g);
+  for (int g = 0; g < 2; ++g) {
+    if (front.residuals[g] == 0) {
+      front.not_computed =
+          fmt::format("no trade-off to compute: the group {} ({}) has no fitted residuals",
+                      groups.names[g], groups.descriptions[g]);
+      return front;
+    }
+  }
+  if (!fit.summary.success()) {
+    front.not_computed = "no successful fit to start the sweep from";
+    return front;
+  }
+  CeresFitter::Options refit_options = ceres;
+  refit_options.compute_uncertainty = false;
+  const int n = options.points, mid = n / 2;
+  const double span = std::log10(options.max_weight_ratio);
+  front.points.resize(static_cast<size_t>(n));
+  std::vector<bool> done(static_cast<size_t>(n), false);
+  const auto solve = [&](int j, const std::vector<double>& start) {
+    ParetoPoint& point = front.points[j];
+    const double ratio = std::pow(10.0, -span + 2.0 * span * j / (n - 1));
+    point.weight = j == mid ? 0.5 : ratio / (1.0 + ratio);
+    if (j == mid) {
+      point.values = fit.values;  // the ordinary fit itself
+      point.converged = fit.summary.termination == FitTermination::kConverged;
+    } else {
+      try {
+        const CalibrationProblem weighted = Weighted(problem, groups, point.weight, start);
+        const FitResult result = CeresFitter(refit_options).Fit(weighted);
+        if (!result.summary.success()) {
+          front.warnings.push_back(fmt::format("pareto: the fit at w = {:.4g} failed: {}",
+                                               point.weight, result.summary.message));
+          return false;
+        }
+        point.values = result.values;
+        point.converged = result.summary.termination == FitTermination::kConverged;
+      } catch (const std::exception& error) {
+        front.warnings.push_back(
+            fmt::format("pareto: the fit at w = {:.4g} failed: {}", point.weight, error.what()));
+        return false;
+      }
+    }
+    if (!GroupCosts(problem, groups, point.values, &point.cost)) {
+      front.warnings.push_back(
+          fmt::format("pareto: the model is undefined at the fit for w = {:.4g}", point.weight));
+      return false;
+    }
+    for (int g = 0; g < 2; ++g) point.rms[g] = std::sqrt(2.0 * point.cost[g] / front.residuals[g]);
+    done[j] = true;
+    return true;
+  };
+  solve(mid, fit.values);
+  for (int step : {+1, -1}) {
+    std::vector<double> start = fit.values;
+    for (int j = mid + step; j >= 0 && j < n; j += step) {
+      if (solve(j, start)) start = front.points[j].values;
+    }
+  }
+  std::vector<ParetoPoint> kept;
+  for (int j = 0; j < n; ++j) {
+    if (done[j]) kept.push_back(front.points[j]);
+    if (j == mid) front.ordinary = static_cast<int>(kept.size()) - 1;
+  }
+  front.points = std::move(kept);
+  for (const ParetoPoint& point : front.points) {
+    if (!point.converged) {
+      front.warnings.push_back(
+          fmt::format("pareto: the fit at w = {:.4g} stopped before converging", point.weight));
+    }
+  }
+  // Normalised costs and the knee.
+  std::array<double, 2> low, high;
+  for (int g = 0; g < 2; ++g) {
+    low[g] = high[g] = front.points[front.ordinary].cost[g];
+    for (const ParetoPoint& point : front.points) {
+      low[g] = std::min(low[g], point.cost[g]);
+      high[g] = std::max(high[g], point.cost[g]);
+    }
+  }
+  front.trade_off = true;
+  for (int g = 0; g < 2; ++g) {
+    if (!(high[g] - low[g] > 1e-6 * std::max(high[g], 1e-300))) front.trade_off = false;
+  }
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t j = 0; j < front.points.size(); ++j) {
+    ParetoPoint& point = front.points[j];
+    for (int g = 0; g < 2; ++g) {
+      point.normalised[g] = front.trade_off ? (point.cost[g] - low[g]) / (high[g] - low[g]) : 0.0;
+    }
+    const double distance = std::hypot(point.normalised[0], point.normalised[1]);
+    if (front.trade_off && distance < best) {
+      best = distance;
+      front.compromise = static_cast<int>(j);
+    }
+  }
+  if (!front.trade_off) {
+    front.compromise = front.ordinary;
+    front.rule =
+        "no trade-off: the two groups' costs change by less than 1e-6 over the front (the "
+        "groups agree), so the compromise is the ordinary fit";
+  } else {
+    const ParetoPoint& c = front.points[front.compromise];
+    front.rule = fmt::format(
+        "the knee: the point closest to the utopia point (each group's least cost on the front) "
+        "in costs normalised by their range on the front (w = {:.4g}, normalised costs {:.3f} "
+        "and {:.3f}); it gives up equal fractions of what each group can gain, whatever the "
+        "groups' sizes and units{}",
+        c.weight, c.normalised[0], c.normalised[1],
+        front.compromise == front.ordinary ? "; it is the ordinary fit (w = 0.5)" : "");
+  }
+  front.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return front;
+}
+
+std::string ParetoCsv(const ParetoFront& front, const ModelParameters& parameters) {
+  const std::string &a = front.groups.names[0], &b = front.groups.names[1];
+  std::string csv = fmt::format(
+      "weight,cost_{0},cost_{1},rms_{0},rms_{1},normalised_{0},normalised_{1},converged,"
+      "compromise,ordinary,group_0,group_1",
+      a, b);
+  for (const ParameterSpec& spec : parameters.specs()) csv += "," + spec.name;
+  csv += "\n";
+  for (size_t j = 0; j < front.points.size(); ++j) {
+    const ParetoPoint& p = front.points[j];
+    csv += fmt::format("{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}", p.weight,
+                       p.cost[0], p.cost[1], p.rms[0], p.rms[1], p.normalised[0], p.normalised[1],
+                       p.converged ? 1 : 0, static_cast<int>(j) == front.compromise ? 1 : 0,
+                       static_cast<int>(j) == front.ordinary ? 1 : 0);
+    csv += "," + a + "," + b;
+    for (double v : p.values) csv += fmt::format(",{:.10g}", v);
+    csv += "\n";
+  }
+  return csv;
+}
+
+std::string ParetoText(const ParetoFront& front, const ModelParameters& parameters) {
+  if (!front.computed()) return "pareto front: not computed: " + front.not_computed + "\n";
+  std::string s = fmt::format(
+      "pareto front: {} (group 0, {} residuals) against {} (group 1, {} residuals), "
+      "weighted-sum sweep of {} points, {:.2f} s\n"
+      "  (w weights group 0; cost_g = 1/2 sum r^2 over group g, rms_g its RMS weighted "
+      "residual)\n",
+      front.groups.names[0], front.residuals[0], front.groups.names[1], front.residuals[1],
+      front.points.size(), front.wall_seconds);
+  s += fmt::format("  {:>10} {:>12} {:>12} {:>10} {:>10}", "w", "cost_0", "cost_1", "rms_0",
+                   "rms_1");
+  for (const ParameterSpec& spec : parameters.specs()) {
+    if (spec.free) s += fmt::format(" {:>11}", spec.name);
+  }
+  s += "\n";
+  for (size_t j = 0; j < front.points.size(); ++j) {
+    const ParetoPoint& p = front.points[j];
+    s += fmt::format("  {:>10.4g} {:>12.6g} {:>12.6g} {:>10.4g} {:>10.4g}", p.weight, p.cost[0],
+                     p.cost[1], p.rms[0], p.rms[1]);
+    for (size_t i = 0; i < parameters.specs().size(); ++i) {
+      if (parameters.specs()[i].free) s += fmt::format(" {:>11.5g}", p.values[i]);
+    }
+    const bool c = static_cast<int>(j) == front.compromise,
+               o = static_cast<int>(j) == front.ordinary;
+    s += c && o ? "  compromise, ordinary fit" : c ? "  compromise" : o ? "  ordinary fit" : "";
+    s += "\n";
+  }
+  s += "  compromise: " + front.rule + "\n";
+  for (const std::string& w : front.warnings) s += "  WARNING: " + w + "\n";
+  return s;
+}
+
+}  // namespace granasym::calibration

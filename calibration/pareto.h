@@ -1,0 +1,99 @@
+// The trade-off between two groups of residuals (issue 36 §3): a Pareto
+// front by a weighted-sum sweep.
+//
+// A ResidualGroups assigns each data point (dataset, point) to group 0, 1 or
+// neither (−1); a point's residuals belong to its group. The default split
+// (DefaultResidualGroups) is the compression side — NCL, compression and
+// ASBS states — against the critical and extension states (CSL,
+// extension): the two sides of the paper's point about the CSL's position
+// against the NCL. Whole-path datasets slot in as another split (asymptotic
+// states against paths) through the same interface.
+//
+// The sweep minimises, for weights w of group 0,
+//
+//   w · C_0 + (1 − w) · C_1 (+ ½ C_other),   C_g = ½ Σ_{residuals of g} r²
+//
+// (the points' weights scaled by 2w and 2(1 − w), so w = ½ is the ordinary
+// fit), at w/(1 − w) = 10^x for x evenly from −log10(max_weight_ratio) to
+// +log10(max_weight_ratio) (an odd number of points: the middle one is the
+// ordinary fit), each fit warm-started from its neighbour towards the ends.
+// A weighted sum finds the convex part of the front only.
+//
+// The compromise: the knee, the point closest to the utopia point (each
+// group's least cost on the front) in costs normalised by their range on the
+// front, f_g = (C_g − min C_g)/(max C_g − min C_g): it gives up equal
+// fractions of what each group can gain, whatever the groups' sizes and
+// units. When either cost changes by less than 1e-6 of itself over the
+// front, the groups agree and the compromise is the ordinary fit.
+#pragma once
+
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "calibration/calibration_problem.h"
+#include "calibration/ceres_fitter.h"
+#include "calibration/fit_result.h"
+
+namespace granasym::calibration {
+
+struct ResidualGroups {
+  std::array<std::string, 2> names;  // e.g. "ncl_compression", "csl_extension"
+  std::array<std::string, 2> descriptions;
+  // Per dataset and point: 0, 1 or −1 (neither: kept at its own weight).
+  std::vector<std::vector<int>> point_group;
+  // The number of weighted residuals of group g in `problem`.
+  int Residuals(const CalibrationProblem& problem, int g) const;
+};
+
+// The default split (see above).
+ResidualGroups DefaultResidualGroups(const CalibrationProblem& problem);
+
+struct ParetoOptions {
+  bool enabled = true;
+  int points = 11;                // odd, >= 5
+  double max_weight_ratio = 1e3;  // the ends' w/(1 − w) and its inverse
+  bool IsValid(std::string* why) const;
+};
+
+struct ParetoPoint {
+  double weight = 0.5;                        // w of group 0
+  std::array<double, 2> cost = {0, 0};        // C_g, unweighted by w
+  std::array<double, 2> rms = {0, 0};         // √(2 C_g / m_g): RMS weighted residual
+  std::array<double, 2> normalised = {0, 0};  // f_g (see above)
+  std::vector<double> values;                 // full parameter vector
+  bool converged = false;
+};
+
+struct ParetoFront {
+  ResidualGroups groups;
+  std::array<int, 2> residuals = {0, 0};  // m_g
+  std::vector<ParetoPoint> points;        // ascending in weight
+  int compromise = -1;                    // index into points
+  int ordinary = -1;                      // w = ½
+  bool trade_off = false;                 // false: the groups agree
+  std::string rule;                       // the compromise rule and why, in words
+  std::string not_computed;               // non-empty: why there is no front
+  std::vector<std::string> warnings;
+  double wall_seconds = 0.0;
+  bool computed() const { return not_computed.empty() && !points.empty(); }
+  // Whether C_0 does not increase and C_1 does not decrease with w (each
+  // step within `tolerance` of the larger cost).
+  bool Monotone(double tolerance) const;
+};
+
+// The front of `problem` (its kept fit `fit` is the start of the sweep);
+// not_computed says why when a group has no residuals.
+ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResult& fit,
+                               const ResidualGroups& groups, const CeresFitter::Options& ceres,
+                               const ParetoOptions& options);
+
+// pareto.csv: weight,cost_<g0>,cost_<g1>,rms_<g0>,rms_<g1>,normalised_<g0>,
+// normalised_<g1>,converged,compromise,ordinary,group_0,group_1 (the groups'
+// names on every row, for the figure), then the parameters.
+std::string ParetoCsv(const ParetoFront& front, const ModelParameters& parameters);
+// The summary's section.
+std::string ParetoText(const ParetoFront& front, const ModelParameters& parameters);
+
+}  // namespace granasym::calibration

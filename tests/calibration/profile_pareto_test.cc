@@ -1,0 +1,261 @@
+// Profile likelihoods and the Pareto front on synthetic data: profile
+// intervals hold the true parameters and agree with the Jacobian's where the
+// model is nearly linear; a parameter the data do not act on is flagged
+// flat with the range it stays flat over; the front over two conflicting
+// groups of states is monotone, and its compromise is the knee.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "calibration/calibration_problem.h"
+#include "calibration/ceres_fitter.h"
+#include "calibration/pareto.h"
+#include "calibration/profile_likelihood.h"
+#include "synthetic_data.h"
+
+namespace granasym::calibration {
+namespace {
+
+ModelParameters StartNear(ModelKind kind, const std::vector<double>& truth) {
+  ModelParameters parameters = ModelParameters::Defaults(kind);
+  const double factors[] = {1.1, 0.9, 1.2, 0.98, 1.2};
+  for (int i = 0; i < kNumClayParameters; ++i) {
+    parameters.mutable_specs()[i].value = truth[i] * factors[i];
+  }
+  return parameters;
+}
+
+TEST(ProfileLikelihood, GridScaleFollowsTheBounds) {
+  ParameterSpec spec;
+  spec.lower = 1e-3;
+  spec.upper = 0.5;
+  EXPECT_TRUE(ProfiledOnLogScale(spec));  // λ*: bounds over two decades
+  spec.lower = 5;
+  spec.upper = 50;
+  EXPECT_FALSE(ProfiledOnLogScale(spec));  // φ_c
+  spec.lower = 0;
+  spec.upper = 0.49;
+  EXPECT_FALSE(ProfiledOnLogScale(spec));  // ν: not positive
+  std::string why;
+  ProfileOptions options;
+  EXPECT_TRUE(options.IsValid(&why)) << why;
+  options.points_per_side = 1;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("points_per_side"), std::string::npos) << why;
+}
+
+TEST(ProfileLikelihood, IntervalsHoldTheTruthAndMatchTheJacobiansNearTheOptimum) {
+  const std::vector<double> truth = testing::LondonClay();
+  const CalibrationProblem problem(
+      {testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, {})},
+      StartNear(ModelKind::kHypoplasticClay, truth), PredictorOptions());
+  const CeresFitter::Options ceres;
+  const FitResult fit = CeresFitter(ceres).Fit(problem);
+  ASSERT_EQ(fit.summary.termination, FitTermination::kConverged) << fit.summary.Report();
+  const ProfileSet set = ProfileLikelihood(problem, fit, {}, ceres, ProfileOptions());
+  ASSERT_EQ(set.profiles.size(), 5u);
+  EXPECT_TRUE(set.warnings.empty()) << set.warnings.front();
+  // With s² from the residuals: t²(0.975, m − n), near 3.84 for many residuals.
+  EXPECT_GT(set.threshold, 3.84);
+  EXPECT_LT(set.threshold, 4.1);
+  for (size_t k = 0; k < set.profiles.size(); ++k) {
+    const ParameterProfile& p = set.profiles[k];
+    SCOPED_TRACE(p.name);
+    EXPECT_EQ(p.parameter, fit.free_indices[k]);
+    EXPECT_FALSE(p.flat()) << p.Text();
+    EXPECT_EQ(p.lower_end, ProfileEnd::kCrossed);
+    EXPECT_EQ(p.upper_end, ProfileEnd::kCrossed);
+    EXPECT_LE(p.lower, truth[p.parameter]);
+    EXPECT_GE(p.upper, truth[p.parameter]);
+    EXPECT_LT(p.lower, p.optimum);
+    EXPECT_GT(p.upper, p.optimum);
+    // The grid: 2 × 8 points and the optimum, ascending; D = 0 at the optimum.
+    EXPECT_GE(p.points.size(), 9u);
+    EXPECT_LE(p.points.size(), 17u + 8u);
+    for (size_t j = 1; j < p.points.size(); ++j) {
+      EXPECT_GT(p.points[j].value, p.points[j - 1].value);
+    }
+    // The profile interval and the Jacobian's agree to a fifth of the latter's
+    // width (small noise: the model is nearly linear over the interval),
+    // except for r, which acts through K/G about as ln r does: its profile
+    // reaches much farther above the optimum than below (here [0.31, 1.12]
+    // around 0.49, where the Jacobian's symmetric interval ends at 0.76).
+    ASSERT_TRUE(fit.Reported(k));
+    const double width = fit.upper_95[k] - fit.lower_95[k];
+    EXPECT_NEAR(p.lower, fit.lower_95[k], 0.2 * width);
+    if (p.parameter == kShearParameter) {
+      EXPECT_GT(p.upper - p.optimum, 2.0 * (p.optimum - p.lower));
+      EXPECT_GT(p.upper, fit.upper_95[k] + 0.2 * width);
+    } else {
+      EXPECT_NEAR(p.upper, fit.upper_95[k], 0.2 * width);
+    }
+  }
+  // The CSV has a row per grid point with the interval.
+  const std::string csv = ProfilesCsv(set);
+  EXPECT_EQ(csv.rfind("parameter,value,cost,statistic,threshold,converged,log_scale,", 0), 0u);
+  size_t rows = 0;
+  for (const ParameterProfile& p : set.profiles) rows += p.points.size();
+  EXPECT_EQ(static_cast<size_t>(std::count(csv.begin(), csv.end(), '\n')), rows + 1);
+  EXPECT_NE(ProfilesText(set).find("0 flat"), std::string::npos) << ProfilesText(set);
+}
+
+// Only the NCL and the CSL: above r ≈ 0.09 r acts on neither, so a fit with
+// r fixed and its profile from the fixed value stay flat up to the bound;
+// below it the model's critical state moves and the profile rises.
+TEST(ProfileLikelihood, FlagsAParameterTheDataDoNotActOnAsFlat) {
+  const std::vector<double> truth = testing::LondonClay();
+  testing::SyntheticOptions options;
+  options.psi_epsilons_deg = {0, 90};
+  ModelParameters parameters = StartNear(ModelKind::kHypoplasticClay, truth);
+  parameters.mutable_specs()[kShearParameter].free = false;
+  parameters.mutable_specs()[kShearParameter].value = 0.4;
+  parameters.mutable_specs()[kKappaStar].free = false;
+  const CalibrationProblem problem(
+      {testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, options)}, parameters,
+      PredictorOptions());
+  const CeresFitter::Options ceres;
+  const FitResult fit = CeresFitter(ceres).Fit(problem);
+  ASSERT_TRUE(fit.summary.success()) << fit.summary.Report();
+  ProfileOptions profile_options;
+  profile_options.threads = 2;
+  const ProfileSet set = ProfileLikelihood(problem, fit, {kShearParameter}, ceres, profile_options);
+  ASSERT_EQ(set.profiles.size(), 4u);  // φ_c, λ*, N and r
+  const ParameterProfile& r = set.profiles.back();
+  EXPECT_EQ(r.name, "r");
+  EXPECT_FALSE(r.fitted);
+  EXPECT_TRUE(r.log_scale);
+  EXPECT_TRUE(r.flat()) << r.Text();
+  EXPECT_EQ(r.lower_end, ProfileEnd::kCrossed);
+  EXPECT_EQ(r.upper_end, ProfileEnd::kBound);
+  EXPECT_LT(r.lower, 0.1);
+  EXPECT_GT(r.lower, 0.05);
+  EXPECT_TRUE(std::isnan(r.upper));
+  EXPECT_DOUBLE_EQ(r.flat_high, 3.0);  // the default upper bound
+  EXPECT_NE(r.Text().find("to 3 (bound): not determined"), std::string::npos) << r.Text();
+  for (const ProfilePoint& point : r.points) {
+    if (point.value >= 0.1) EXPECT_NEAR(point.statistic, 0.0, 1e-6) << point.value;
+  }
+  for (size_t k = 0; k + 1 < set.profiles.size(); ++k) {
+    EXPECT_FALSE(set.profiles[k].flat()) << set.profiles[k].Text();
+  }
+  // The same profiles on one thread.
+  profile_options.threads = 1;
+  const ProfileSet serial =
+      ProfileLikelihood(problem, fit, {kShearParameter}, ceres, profile_options);
+  EXPECT_EQ(ProfilesCsv(serial), ProfilesCsv(set));
+}
+
+// κ* acts on neither the NCL nor the hypoplastic CSL (OCR 2 whatever κ*): the
+// Jacobian is rank-deficient in κ*'s direction, said instead of correlations.
+TEST(FitResult, NamesTheNullDirectionsOfARankDeficientJacobian) {
+  const std::vector<double> truth = testing::LondonClay();
+  testing::SyntheticOptions options;
+  options.psi_epsilons_deg = {0, 90};
+  ModelParameters parameters = StartNear(ModelKind::kHypoplasticClay, truth);
+  parameters.mutable_specs()[kShearParameter].free = false;
+  const CalibrationProblem problem(
+      {testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, options)}, parameters,
+      PredictorOptions());
+  const FitResult fit = CeresFitter(CeresFitter::Options()).Fit(problem);
+  ASSERT_TRUE(fit.summary.success()) << fit.summary.Report();
+  ASSERT_EQ(fit.null_directions.size(), 1u);
+  const NullDirection& null = fit.null_directions.front();
+  ASSERT_EQ(null.components.size(), 4u);
+  EXPECT_NEAR(std::abs(null.components[kKappaStar]), 1.0, 1e-6);
+  EXPECT_EQ(null.Text(problem.parameters(), fit.free_indices), "1.00 kappa_star");
+  EXPECT_LT(null.singular_ratio, 1e-8);
+  // The full-rank fit of every direction has none.
+  const CalibrationProblem full(
+      {testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, {})},
+      StartNear(ModelKind::kHypoplasticClay, truth), PredictorOptions());
+  EXPECT_TRUE(CeresFitter(CeresFitter::Options()).Fit(full).null_directions.empty());
+  // A direction of two parameters, signed by its largest component.
+  NullDirection pair;
+  pair.components = {0.0, -0.8, 0.0, 0.6};
+  EXPECT_EQ(pair.Text(problem.parameters(), fit.free_indices),
+            "0.80 lambda_star - 0.60 n_intercept");
+}
+
+// Data whose critical states lie above the model's CSL (OCR_c of the DEM
+// below 2): the compression side and the critical side pull φ_c, λ*, N apart.
+StateDataset ConflictingData() {
+  const std::vector<double> truth = testing::LondonClay();
+  testing::SyntheticOptions options;
+  options.psi_epsilons_deg = {0, 30, 60, 90, 100, 110};
+  options.seed = 11;
+  StateDataset data = testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, options);
+  for (AsymptoticStatePoint& point : data.points) {
+    if (point.kind == StateKind::kCsl || point.kind == StateKind::kExtension) {
+      point.void_ratio = std::expm1(std::log1p(point.void_ratio) + 0.03);
+    }
+  }
+  return data;
+}
+
+TEST(ParetoFront, IsMonotoneOnConflictingDataWithTheKneeAsCompromise) {
+  const std::vector<double> truth = testing::LondonClay();
+  const CalibrationProblem problem(
+      {ConflictingData()}, StartNear(ModelKind::kHypoplasticClay, truth), PredictorOptions());
+  const CeresFitter::Options ceres;
+  const FitResult fit = CeresFitter(ceres).Fit(problem);
+  ASSERT_TRUE(fit.summary.success()) << fit.summary.Report();
+  const ResidualGroups groups = DefaultResidualGroups(problem);
+  EXPECT_EQ(groups.Residuals(problem, 0) + groups.Residuals(problem, 1), problem.num_residuals());
+  const ParetoFront front = ComputeParetoFront(problem, fit, groups, ceres, ParetoOptions());
+  ASSERT_TRUE(front.computed()) << front.not_computed;
+  ASSERT_EQ(front.points.size(), 11u);
+  EXPECT_TRUE(front.warnings.empty()) << front.warnings.front();
+  EXPECT_TRUE(front.trade_off);
+  EXPECT_TRUE(front.Monotone(1e-6)) << ParetoText(front, problem.parameters());
+  // A real conflict: each end gains much for its group over the other end.
+  const ParetoPoint &first = front.points.front(), &last = front.points.back();
+  EXPECT_LT(first.weight, 0.01);
+  EXPECT_GT(last.weight, 0.99);
+  EXPECT_LT(last.cost[0], 0.5 * first.cost[0]);
+  EXPECT_LT(first.cost[1], 0.5 * last.cost[1]);
+  // The ordinary fit is the middle point; the compromise is the knee.
+  EXPECT_EQ(front.ordinary, 5);
+  EXPECT_DOUBLE_EQ(front.points[5].weight, 0.5);
+  EXPECT_NEAR(front.points[5].cost[0] + front.points[5].cost[1], fit.summary.final_cost,
+              1e-9 * fit.summary.final_cost);
+  ASSERT_GE(front.compromise, 0);
+  const auto distance = [](const ParetoPoint& p) {
+    return std::hypot(p.normalised[0], p.normalised[1]);
+  };
+  for (const ParetoPoint& p : front.points) {
+    EXPECT_GE(distance(p), distance(front.points[front.compromise]));
+    for (int g = 0; g < 2; ++g) {
+      EXPECT_GE(p.normalised[g], 0.0);
+      EXPECT_LE(p.normalised[g], 1.0);
+    }
+  }
+  EXPECT_NE(front.rule.find("knee"), std::string::npos);
+  const std::string csv = ParetoCsv(front, problem.parameters());
+  EXPECT_EQ(csv.rfind("weight,cost_ncl_compression,cost_csl_extension,", 0), 0u) << csv;
+  EXPECT_NE(csv.find(",ordinary,group_0,group_1,phi_c_deg,"), std::string::npos) << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 12);
+}
+
+TEST(ParetoFront, SaysWhyWithoutASecondGroup) {
+  const std::vector<double> truth = testing::LondonClay();
+  testing::SyntheticOptions options;
+  options.psi_epsilons_deg = {0, 30, 60};
+  ModelParameters parameters = StartNear(ModelKind::kHypoplasticClay, truth);
+  parameters.mutable_specs()[kShearParameter].free = false;
+  const CalibrationProblem problem(
+      {testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, options)}, parameters,
+      PredictorOptions());
+  const FitResult fit = CeresFitter(CeresFitter::Options()).Fit(problem);
+  const ParetoFront front = ComputeParetoFront(problem, fit, DefaultResidualGroups(problem),
+                                               CeresFitter::Options(), ParetoOptions());
+  EXPECT_FALSE(front.computed());
+  EXPECT_NE(front.not_computed.find("csl_extension"), std::string::npos) << front.not_computed;
+  std::string why;
+  ParetoOptions even;
+  even.points = 10;
+  EXPECT_FALSE(even.IsValid(&why));
+  EXPECT_NE(why.find("odd"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace granasym::calibration
