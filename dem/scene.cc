@@ -12,6 +12,7 @@
 #include "common/config.h"
 #include "common/error.h"
 #include "common/state_measures.h"
+#include "dem/scene_keys.h"
 #include "dem/stage_types.h"
 
 namespace granasym::dem {
@@ -28,6 +29,7 @@ Scene Scene::Load(const std::string& path) {
 Scene Scene::Parse(const std::string& text, const std::string& origin,
                    const std::string& base_directory) {
   const ConfigTable root = ConfigTable::ParseString(text, origin);
+  root.UseKeys({&SceneKeys(), &StageKeys()});
   Scene scene;
   scene.origin = origin;
   scene.text = text;
