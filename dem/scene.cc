@@ -205,8 +205,10 @@ Packing Scene::BuildSample(GenerationReport* report) const {
   }
 }
 
-double Scene::TimeStep(const Packing& packing) const {
-  const ContactDurations durations = ComputeContactDurations(packing.radii, material);
+double Scene::TimeStep(const Packing& packing) const { return TimeStep(packing.radii); }
+
+double Scene::TimeStep(const std::vector<double>& radii) const {
+  const ContactDurations durations = ComputeContactDurations(radii, material);
   if (!time_step_s) {
     const AdaptiveTimeStep::Options& adaptive = adaptive_time_step;
     if (adaptive.fraction > durations.stability_fraction) {
@@ -227,7 +229,7 @@ double Scene::TimeStep(const Packing& packing) const {
           origin, adaptive.max_time_step, kSmallestTimeStepFraction,
           durations.smallest_reduced_mass, smallest));
     }
-    return AdaptiveTimeStep(adaptive, material, packing.radii).UpperBound();
+    return AdaptiveTimeStep(adaptive, material, radii).UpperBound();
   }
   if (*time_step_s < kSmallestTimeStepFraction * durations.smallest_reduced_mass) {
     throw InputError(fmt::format(
