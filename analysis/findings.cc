@@ -147,9 +147,6 @@ std::string WithInterval(const Estimate& e, int digits = 3) {
 Estimate SlopeOf(const LineFit& fit) {
   return Estimate::Fitted(fit.slope, fit.slope_error, fit.points);
 }
-Estimate InterceptOf(const LineFit& fit) {
-  return Estimate::Fitted(fit.intercept, fit.intercept_error, fit.points);
-}
 double Rms(const std::vector<double>& r) {
   double s = 0;
   for (double v : r) s += v * v;

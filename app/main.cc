@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "app/keys_command.h"
 #include "app/progress.h"
 #include "app/signals.h"
 #include "app/study_commands.h"
@@ -172,6 +173,7 @@ int main(int argc, char** argv) {
   granasym::RegisterDemCommands(app);
   granasym::RegisterExportCommand(app);
   granasym::RegisterStudyCommands(app);
+  granasym::RegisterKeysCommand(app);
 #ifdef GRANASYM_HAVE_CONSTITUTIVE
   granasym::RegisterModelCommands(app);
 #endif

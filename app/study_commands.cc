@@ -1,5 +1,8 @@
 #include "app/study_commands.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <mutex>
 #include <optional>
@@ -21,6 +24,7 @@
 #include "common/error.h"
 #include "common/output_path.h"
 #include "dem/packing.h"
+#include "study/cost.h"
 #include "study/parallelism.h"
 #include "study/plan.h"
 #include "study/programme.h"
@@ -161,6 +165,111 @@ void RegisterStudyCommands(CLI::App& app) {
           "or `granasym study status %s`\n",
           unfinished, out.c_str());
       if (options.shard_count > 1) throw CLI::RuntimeError(3);
+    }
+  });
+
+  // granasym study plan
+  CLI::App* plan_command = study->add_subcommand(
+      "plan",
+      "dry run: the cases, their depth and estimated particle-steps, the wall time on this "
+      "machine at a measured rate, peak memory, jobs x threads and Slurm time limits");
+  static std::string plan_programme;
+  static study::Scale plan_scale = study::Scale::kSmall;
+  static int plan_jobs = 0, plan_threads = 0, plan_shards = 0;
+  plan_command
+      ->add_option("programme", plan_programme,
+                   "programme file (TOML), e.g. studies/programmes/paper.toml")
+      ->required()
+      ->check(CLI::ExistingFile);
+  AddEnumOption(plan_command, "--scale", &plan_scale, "sample size");
+  plan_command
+      ->add_option("--jobs", plan_jobs,
+                   "cases at once (default: as `study run` chooses; per array task with --shards)")
+      ->check(CLI::Range(1, 1024));
+  plan_command
+      ->add_option("--threads", plan_threads,
+                   "OpenMP threads per case (default: as `study run` chooses)")
+      ->check(CLI::Range(1, 1024));
+  plan_command
+      ->add_option("--shards", plan_shards,
+                   "Slurm array tasks (`study run --shard K/N`): each shard's time and a time "
+                   "limit per task")
+      ->check(CLI::Range(1, 100000));
+  plan_command->callback([] {
+    const study::Programme programme = study::Programme::Load(plan_programme, plan_scale);
+    const int64_t spheres = programme.At(plan_scale).count;
+    const study::Parallelism parallelism = study::ChooseParallelism(
+        HardwareThreads(), dem::PhysicalMemoryBytes(), spheres, plan_jobs, plan_threads);
+    const study::Plan plan = study::Plan::Make(programme, parallelism.threads, "study");
+    if (plan_shards > static_cast<int>(plan.cases.size())) {
+      throw InputError(
+          fmt::format("--shards {}: the programme has {} cases at scale {}: use at "
+                      "most {} shards",
+                      plan_shards, plan.cases.size(), ToString(plan_scale), plan.cases.size()));
+    }
+    std::printf(
+        "study plan of '%s' at scale %s: %zu cases (%zu replicates of %zu) of %lld "
+        "spheres, %zu model element tests\n",
+        programme.name.c_str(), ToString(plan_scale), plan.cases.size(), plan.samples.size(),
+        programme.cases.size(), static_cast<long long>(spheres), plan.model_cases.size());
+    std::fflush(stdout);
+    const study::MeasuredRate rate = study::RateFor(programme, spheres, parallelism.threads);
+    const std::string cache = study::RateCachePath();
+    std::printf(
+        "rate: %.3g particle-steps/s per case at %lld spheres on %d thread(s), sample "
+        "generation %.2g s (%s %s on %s)\n",
+        rate.particle_steps_per_second, static_cast<long long>(spheres), rate.threads,
+        rate.generation_seconds, rate.cached ? "cached, measured" : "measured now",
+        rate.measured_at.c_str(), rate.cpu_model.c_str());
+    if (!rate.cached) {
+      std::printf("  (%s)\n", cache.empty() ? "not cached: neither XDG_CACHE_HOME nor HOME is set"
+                                            : ("cached in " + cache).c_str());
+    }
+    const study::PlanCost cost = study::EstimateCost(plan, rate, parallelism.jobs, plan_shards);
+    size_t width = 4;
+    for (const study::PlannedCase& c : plan.cases) width = std::max(width, c.id.size());
+    std::printf("\n%-*s  %5s  %10s  %10s  %14s  %10s\n", static_cast<int>(width), "case", "depth",
+                "time step", "steps", "particle-steps", "time");
+    for (const study::CaseCost& c : cost.cases) {
+      const study::PlannedCase& planned = plan.cases[static_cast<size_t>(c.index)];
+      std::printf("%-*s  %5d  %10.3g  %10.3g  %14.3g  %10s\n", static_cast<int>(width),
+                  planned.id.c_str(), c.depth, planned.time_step, c.steps, c.particle_steps,
+                  study::DurationText(c.seconds).c_str());
+    }
+    std::printf(
+        "\ntotal: %zu cases, depth up to %d, %.3g steps, %.3g particle-steps, %s of case "
+        "time; %zu sample(s) generated first, %s\n",
+        cost.cases.size(), cost.max_depth(),
+        [&] {
+          double steps = 0;
+          for (const study::CaseCost& c : cost.cases) steps += c.steps;
+          return steps;
+        }(),
+        cost.particle_steps, study::DurationText(cost.case_seconds).c_str(), plan.samples.size(),
+        study::DurationText(cost.generation_seconds).c_str());
+    std::printf(
+        "wall time on this machine: %s with %d jobs x %d thread(s) (the longest chain of "
+        "cases: %s)\n",
+        study::DurationText(cost.wall_seconds).c_str(), parallelism.jobs, parallelism.threads,
+        study::DurationText(cost.critical_seconds).c_str());
+    std::printf("peak memory: ~%.3g GB (%d case(s) at once of %lld spheres, %.0f B/sphere)\n",
+                cost.peak_memory_bytes / 1e9, parallelism.jobs, static_cast<long long>(spheres),
+                study::kCaseBytesPerSphere);
+    std::printf("jobs x threads: %d x %d (%s)\n", parallelism.jobs, parallelism.threads,
+                parallelism.reason.c_str());
+    if (plan_shards > 0) {
+      std::printf(
+          "\nSlurm, %d shards (array tasks) of %d job(s) x %d thread(s), at this machine's "
+          "rate:\n",
+          plan_shards, parallelism.jobs, parallelism.threads);
+      for (const study::ShardCost& shard : cost.shards) {
+        std::printf("  shard %d/%d: %d cases, %s\n", shard.index, plan_shards, shard.cases,
+                    study::DurationText(shard.seconds).c_str());
+      }
+      std::printf("time limit per array task: --time=%s (%.1f x the longest shard)\n",
+                  study::SlurmTime(cost.shard_time_limit_seconds).c_str(), study::kTimeLimitMargin);
+    } else {
+      std::printf("(Slurm: --shards N gives each array task's time and a time limit)\n");
     }
   });
 

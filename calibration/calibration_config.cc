@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/key_table.h"
 #include "common/text_file.h"
 
 namespace granasym::calibration {
@@ -268,7 +269,143 @@ void ReadOutput(const ConfigTable& root, CalibrationConfig* config) {
 
 }  // namespace
 
+const KeyTable& CalibrationKeys() {
+  static const KeyTable table = [] {
+    auto other = [](std::string table, std::string key, KeyType type, std::string valid,
+                    std::string fallback, std::string meaning, std::string when = "") {
+      return KeySpec{std::move(table),
+                     std::move(key),
+                     type,
+                     "",
+                     Range::Any(),
+                     std::move(valid),
+                     std::move(fallback),
+                     std::move(meaning),
+                     std::move(when)};
+    };
+    auto number = [](std::string table, std::string key, KeyType type, std::string unit,
+                     Range range, std::string fallback, std::string meaning,
+                     std::string when = "") {
+      return KeySpec{
+          std::move(table),    std::move(key),     type,           std::move(unit), range, "",
+          std::move(fallback), std::move(meaning), std::move(when)};
+    };
+    const std::string study = "study datasets", dem = "dem datasets", csv = "csv datasets";
+    std::vector<KeySpec> keys = {
+        other("", "model", KeyType::kTable, "", "required", "the model to calibrate"),
+        other("", "parameters", KeyType::kTable, "", "all free, from the data",
+              "choices for the model's parameters, one table per parameter"),
+        other("", "dataset", KeyType::kTables, "", "required",
+              "the data: one or more, each exactly one of study, dem, csv"),
+        other("", "fitter", KeyType::kTable, "", "the defaults below", "the fit"),
+        other("", "output", KeyType::kTable, "", "beside the calibration file",
+              "where the results go (paths relative to the calibration file)"),
+        other("model", "kind", KeyType::kString, AllowedNames<ModelKind>(), "hypoplastic_clay",
+              "the constitutive model"),
+        other("model", "asymptotes", KeyType::kString, AllowedNames<AsymptoteMethod>(), "analytic",
+              "how the model's asymptotic states are computed"),
+    };
+    for (ModelKind kind : EnumValues<ModelKind>()) {
+      const std::string when = "model.kind = " + std::string(ToString(kind));
+      const ModelParameters defaults = ModelParameters::Defaults(kind);
+      for (const ParameterSpec& spec : defaults.specs()) {
+        keys.push_back(other("parameters", spec.name, KeyType::kTable, "", "free",
+                             spec.description + " (" + spec.symbol + ")", when));
+        const std::string t = "parameters." + spec.name;
+        const std::string unit = spec.units == "1" ? "" : spec.units;
+        keys.push_back(other(t, "free", KeyType::kBool, "true or false", "true",
+                             "fitted, or fixed at value", when));
+        keys.push_back(number(t, "value", KeyType::kNumber, unit, spec.domain,
+                              "from the data (typical " + fmt::format("{:g}", spec.value) + ")",
+                              "start or fixed value", when));
+        keys.push_back(number(t, "lower", KeyType::kNumber, unit, spec.domain,
+                              fmt::format("{:g}", spec.lower), "lower bound of the fit", when));
+        keys.push_back(number(t, "upper", KeyType::kNumber, unit, spec.domain,
+                              fmt::format("{:g}", spec.upper), "upper bound of the fit", when));
+      }
+    }
+    const std::vector<KeySpec> rest = {
+        other("dataset[]", "name", KeyType::kString, "a name", "dataset<N>",
+              "the dataset's name in the report"),
+        other("dataset[]", "study", KeyType::kString, "a study folder", "none",
+              "the study's asymptotic_states.h5"),
+        other("dataset[]", "dem", KeyType::kStrings, "result files and globs", "none",
+              "granasym DEM results"),
+        other("dataset[]", "csv", KeyType::kString, "a CSV file of states", "none",
+              "states in a CSV table"),
+        number("dataset[]", "weight", KeyType::kNumber, "", Range::NonNegative(), "1",
+               "multiplies the squared residuals; 0: read and drawn, not fitted"),
+        number("dataset[]", "psi_sigma_uncertainty_deg", KeyType::kNumber, "deg", Range::Positive(),
+               "0.5", "uncertainty of psi_sigma per state"),
+        number("dataset[]", "ln_1_plus_e_uncertainty", KeyType::kNumber, "", Range::Positive(),
+               "0.002", "uncertainty of ln(1+e) per state"),
+        other("dataset[]", "kinds", KeyType::kStrings, "ncl, csl, compression, extension, triaxial",
+              "all", "the kinds of states taken", study),
+        other("dataset[]", "statuses", KeyType::kStrings,
+              "detected, drifting, not_reached, gas, invalid, no_result", "detected",
+              "the detector statuses taken", study),
+        other("dataset[]", "exclude_flags", KeyType::kStrings, "validity flags",
+              "overlap_above_10pct, gas", "rows carrying any of them are left out", study),
+        other("dataset[]", "ncl_references", KeyType::kStrings, "NCL case names", "all",
+              "only states whose OCR refers to these NCL cases", study),
+        other("dataset[]", "cases", KeyType::kStrings, "case names", "all", "only these cases",
+              study),
+        number("dataset[]", "psi_epsilon_range_deg", KeyType::kNumbers, "deg",
+               Range::Closed(-180, 180), "[-180, 180]", "[lo, hi] of the psi_epsilon taken", study),
+        number("dataset[]", "triaxial_kind_tolerance_deg", KeyType::kNumber, "deg",
+               Range::Closed(0, 44), "2", "triaxial states within this of 90 deg are critical",
+               study),
+        number("dataset[]", "max_inertial_number", KeyType::kNumber, "", Range::Open(0, 10),
+               "no bound", "only rows with I(d_max) below it", study),
+        number("dataset[]", "ncl_min_p_kpa", KeyType::kNumber, "kPa", Range::NonNegative(), "50",
+               "lowest p of NCL rows", dem),
+        number("dataset[]", "max_line_points", KeyType::kInteger, "", Range::AtLeast(2), "12",
+               "most NCL/unloading rows per stage", dem),
+        number("dataset[]", "asbs_ln_1_plus_e", KeyType::kNumbers, "", Range::Positive(), "none",
+               "ASBS cross-section points at these ln(1+e) (clay models)", dem),
+        other("dataset[]", "kind", KeyType::kString, "auto, " + AllowedNames<StateKind>(), "auto",
+              "the kind of every state of the file", csv),
+        other("dataset[]", "ignore_columns", KeyType::kString, "comma-separated column names",
+              "none", "columns to skip", csv),
+        other("fitter", "method", KeyType::kString, AllowedNames<FitMethod>(), "ceres",
+              "the fitter (both: the two compared)"),
+        other("fitter", "fix_undetermined", KeyType::kBool, "true or false", "true",
+              "fix parameters the data do not determine, and refit"),
+        number("fitter", "max_iterations", KeyType::kInteger, "", Range::Closed(1, 1e6), "200",
+               "Ceres iterations"),
+        other("fitter", "scale_by_residual_variance", KeyType::kBool, "true or false", "true",
+              "scale the covariance by the residual variance (uncertainties as weights)"),
+        other("fitter", "nlopt", KeyType::kTable, "", "the defaults below", "the global search"),
+        other("fitter.nlopt", "algorithm", KeyType::kString, AllowedNames<GlobalAlgorithm>(),
+              "crs2", "NLopt's global algorithm"),
+        number("fitter.nlopt", "starts", KeyType::kInteger, "", Range::Closed(1, 1000), "3",
+               "independent global searches"),
+        number("fitter.nlopt", "max_evaluations", KeyType::kInteger, "", Range::Closed(10, 1e8),
+               "1500", "evaluations per search"),
+        number("fitter.nlopt", "seed", KeyType::kInteger, "", Range::NonNegative(), "1",
+               "NLopt's random seed of the first start"),
+        other("fitter.nlopt", "polish", KeyType::kString, AllowedNames<LocalPolish>(), "bobyqa",
+              "the local polish of the best start"),
+        other("output", "hdf5", KeyType::kString, "a file path", "CALIBRATION.h5",
+              "the fit's HDF5 file"),
+        other("output", "summary", KeyType::kString, "a file path", "CALIBRATION.txt",
+              "the text summary"),
+        other("output", "plot_data", KeyType::kString, "a folder", "CALIBRATION_plots",
+              "CSV/DAT files for plots/*.gp"),
+        other("output", "status", KeyType::kString, "a file path", "CALIBRATION_status.toml",
+              "the fit's status and reason"),
+    };
+    keys.insert(keys.end(), rest.begin(), rest.end());
+    return KeyTable("calibration",
+                    "a calibration file (granasym calibrate FILE): the model, its parameters, "
+                    "the datasets, the fitter and the outputs",
+                    std::move(keys));
+  }();
+  return table;
+}
+
 CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
+  root.UseKeys({&CalibrationKeys()});
   CalibrationConfig config;
   config.origin = root.origin();
   const ConfigTable model = root.GetTable("model");

@@ -92,6 +92,10 @@
 #include "common/config.h"
 #include "common/enum_names.h"
 
+namespace granasym {
+class KeyTable;
+}  // namespace granasym
+
 namespace granasym::calibration {
 
 struct DatasetConfig {
@@ -154,6 +158,12 @@ struct CalibrationConfig {
 };
 
 // Reads and validates the whole file (unknown keys included).
+// The keys of a calibration file (common/key_table.h; `granasym keys
+// calibration`); the [parameters.<name>] entries come from every model's
+// traits (constitutive/model_traits.h), so a new parameter is listed with
+// its unit, domain and typical value.
+const KeyTable& CalibrationKeys();
+
 CalibrationConfig ReadCalibrationConfig(const ConfigTable& root);
 CalibrationConfig ReadCalibrationConfigFile(const std::string& path);
 

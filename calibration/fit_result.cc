@@ -3,12 +3,12 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/SVD>
 #include <cmath>
 #include <limits>
 
 #include "common/error.h"
 #include "common/statistics.h"
+#include "constitutive/eigen.h"
 
 namespace granasym::calibration {
 

@@ -17,12 +17,12 @@
 // the linearisation describes the bound, not the data).
 #pragma once
 
-#include <Eigen/Core>
 #include <string>
 #include <vector>
 
 #include "calibration/calibration_problem.h"
 #include "common/enum_names.h"
+#include "constitutive/eigen.h"
 
 namespace granasym::calibration {
 

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <toml.hpp>
 
 #include "common/error.h"
+#include "common/key_table.h"
 
 namespace granasym {
 
@@ -14,6 +17,8 @@ struct ConfigTable::Document {
   toml::value root;
   // Keys that a reader asked for, per table prefix.
   std::map<std::string, std::set<std::string>> known;
+  // The key tables of the input kind (UseKeys); empty: none consulted.
+  std::vector<const KeyTable*> key_tables;
 };
 
 namespace {
@@ -101,8 +106,27 @@ void ConfigTable::Fail(const std::string& key, const std::string& explanation) c
 
 void ConfigTable::MarkKnown(const std::string& key) const { document_->known[prefix_].insert(key); }
 
-const void* ConfigTable::Find(const std::string& key) const {
+void ConfigTable::UseKeys(std::vector<const KeyTable*> tables) const {
+  document_->key_tables = std::move(tables);
+}
+
+const void* ConfigTable::Find(const std::string& key, std::vector<const KeySpec*>* specs) const {
   MarkKnown(key);
+  if (!document_->key_tables.empty()) {
+    std::vector<const KeySpec*> found;
+    std::string kinds;
+    for (const KeyTable* table : document_->key_tables) {
+      for (const KeySpec* spec : table->Find(prefix_, key)) {
+        table->MarkConsulted(spec);
+        found.push_back(spec);
+      }
+      kinds += (kinds.empty() ? "" : ", ") + table->kind();
+    }
+    GRANASYM_CHECK(!found.empty())
+        << *origin_ << ": the parser reads key '" << KeyName(key) << "', which the key tables ("
+        << kinds << ") lack: add it to its table (`granasym keys` prints them)";
+    if (specs) *specs = std::move(found);
+  }
   const toml::value& table = AsValue(table_);
   if (!table.is_table()) return nullptr;
   const auto& entries = table.as_table();
@@ -111,6 +135,44 @@ const void* ConfigTable::Find(const std::string& key) const {
 }
 
 bool ConfigTable::Has(const std::string& key) const { return Find(key) != nullptr; }
+
+void ConfigTable::CheckRange(const std::string& key, const std::vector<const KeySpec*>& specs,
+                             const Range& range) const {
+  // A read without a range only fetches the value for a message (e.g. the
+  // other contact law's constant, refused with its own explanation).
+  if (specs.empty() || range.Describe().empty()) return;
+  std::string listed;
+  for (const KeySpec* spec : specs) {
+    if (spec->range.Describe() == range.Describe()) return;
+    listed += (listed.empty() ? "'" : ", '") + spec->range.Describe() + "'";
+  }
+  GRANASYM_CHECK(false) << *origin_ << ": the parser checks key '" << KeyName(key)
+                        << "' against the range '" << range.Describe()
+                        << "', its key table against " << listed;
+}
+
+void ConfigTable::CheckDefault(const std::string& key, const std::vector<const KeySpec*>& specs,
+                               const std::string& fallback, double number) const {
+  bool any_stated = false;
+  std::string listed;
+  for (const KeySpec* spec : specs) {
+    char* end = nullptr;
+    const double stated = std::strtod(spec->fallback.c_str(), &end);
+    const bool numeric = end && *end == '\0' && end != spec->fallback.c_str();
+    if (numeric && std::isfinite(number)) {
+      any_stated = true;
+      if (std::abs(stated - number) <= 1e-9 * std::max(std::abs(stated), std::abs(number))) return;
+    } else if (!numeric && (spec->fallback == "true" || spec->fallback == "false")) {
+      any_stated = true;
+      if (spec->fallback == fallback) return;
+    } else {
+      return;  // a default in words (e.g. "by path kind"): nothing to compare
+    }
+    listed += (listed.empty() ? "'" : ", '") + spec->fallback + "'";
+  }
+  GRANASYM_CHECK(!any_stated) << *origin_ << ": the parser's default of key '" << KeyName(key)
+                              << "' is " << fallback << ", its key table's " << listed;
+}
 
 std::vector<std::string> ConfigTable::Keys() const {
   std::vector<std::string> keys;
@@ -151,7 +213,9 @@ double NumberOf(const ConfigTable& table, const std::string& key, const toml::va
 }  // namespace
 
 double ConfigTable::GetDouble(const std::string& key, Range range) const {
-  const void* found = Find(key);
+  std::vector<const KeySpec*> specs;
+  const void* found = Find(key, &specs);
+  CheckRange(key, specs, range);
   if (!found) Fail(key, "is missing: expected " + ExpectedNumber(range));
   const double value = NumberOf(*this, key, AsValue(found), range);
   if (!range.Contains(value)) {
@@ -161,11 +225,16 @@ double ConfigTable::GetDouble(const std::string& key, Range range) const {
 }
 
 double ConfigTable::GetDouble(const std::string& key, double fallback, Range range) const {
-  return Has(key) ? GetDouble(key, range) : fallback;
+  std::vector<const KeySpec*> specs;
+  const bool has = Find(key, &specs) != nullptr;
+  CheckDefault(key, specs, FormatNumber(fallback), fallback);
+  return has ? GetDouble(key, range) : fallback;
 }
 
 int64_t ConfigTable::GetInt(const std::string& key, Range range) const {
-  const void* found = Find(key);
+  std::vector<const KeySpec*> specs;
+  const void* found = Find(key, &specs);
+  CheckRange(key, specs, range);
   if (!found) {
     Fail(key, "is missing: expected an integer" +
                   (range.Describe().empty() ? "" : " " + range.Describe()));
@@ -186,7 +255,10 @@ int64_t ConfigTable::GetInt(const std::string& key, Range range) const {
 }
 
 int64_t ConfigTable::GetInt(const std::string& key, int64_t fallback, Range range) const {
-  return Has(key) ? GetInt(key, range) : fallback;
+  std::vector<const KeySpec*> specs;
+  const bool has = Find(key, &specs) != nullptr;
+  CheckDefault(key, specs, std::to_string(fallback), static_cast<double>(fallback));
+  return has ? GetInt(key, range) : fallback;
 }
 
 bool ConfigTable::GetBool(const std::string& key) const {
@@ -198,7 +270,10 @@ bool ConfigTable::GetBool(const std::string& key) const {
 }
 
 bool ConfigTable::GetBool(const std::string& key, bool fallback) const {
-  return Has(key) ? GetBool(key) : fallback;
+  std::vector<const KeySpec*> specs;
+  const bool has = Find(key, &specs) != nullptr;
+  CheckDefault(key, specs, fallback ? "true" : "false", std::numeric_limits<double>::quiet_NaN());
+  return has ? GetBool(key) : fallback;
 }
 
 std::string ConfigTable::GetString(const std::string& key) const {
@@ -226,7 +301,9 @@ std::string ConfigTable::GetChoice(const std::string& key, const std::vector<std
 }
 
 std::vector<double> ConfigTable::GetDoubles(const std::string& key, Range range) const {
-  const void* found = Find(key);
+  std::vector<const KeySpec*> specs;
+  const void* found = Find(key, &specs);
+  CheckRange(key, specs, range);
   if (!found) Fail(key, "is missing: expected an array of numbers");
   const toml::value& value = AsValue(found);
   if (!value.is_array())

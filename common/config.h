@@ -20,6 +20,9 @@ class basic_value;
 
 namespace granasym {
 
+class KeyTable;
+struct KeySpec;
+
 // Magnitudes beyond which no number of a configuration file is a setting
 // (every number read is checked against them, whatever its key's range).
 inline constexpr double kLargestSetting = 1e100;
@@ -102,6 +105,12 @@ class ConfigTable {
   // that no Get/Has call asked for.
   void CheckNoUnknownKeys() const;
 
+  // Makes every later read of this document consult the key tables of its
+  // input kind (common/key_table.h): a key read that they lack, or read with
+  // another range or default than theirs, is an InvariantError (a parser
+  // that drifted from its table). Called by a parser on the table it gets.
+  void UseKeys(std::vector<const KeyTable*> tables) const;
+
   // Full dotted name of a key of this table, e.g. "stage[2].stop.mean_stress_kpa".
   std::string KeyName(const std::string& key) const;
   const std::string& origin() const { return *origin_; }
@@ -111,7 +120,13 @@ class ConfigTable {
  private:
   struct Document;
   ConfigTable(std::shared_ptr<Document> document, const void* table, std::string prefix);
-  const void* Find(const std::string& key) const;
+  // The key's value (nullptr when absent); with key tables in use, `specs`
+  // gets the key's entries (never empty: a key they lack is an InvariantError).
+  const void* Find(const std::string& key, std::vector<const KeySpec*>* specs = nullptr) const;
+  void CheckRange(const std::string& key, const std::vector<const KeySpec*>& specs,
+                  const Range& range) const;
+  void CheckDefault(const std::string& key, const std::vector<const KeySpec*>& specs,
+                    const std::string& fallback, double number) const;
   void MarkKnown(const std::string& key) const;
 
   std::shared_ptr<Document> document_;

@@ -6,9 +6,9 @@
 
 #include <cmath>
 #include <string>
-#include <unsupported/Eigen/AutoDiff>
 
 #include "constitutive/constitutive_model.h"
+#include "constitutive/eigen.h"
 
 namespace granasym {
 namespace autodiff {

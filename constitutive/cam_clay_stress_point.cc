@@ -5,11 +5,11 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/LU>
 #include <cmath>
 
 #include "common/error.h"
 #include "constitutive/autodiff.h"
+#include "constitutive/eigen.h"
 
 namespace granasym {
 

@@ -7,12 +7,12 @@
 // The void ratio always follows ė = (1 + e) tr D.
 #pragma once
 
-#include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "common/enum_names.h"
+#include "constitutive/eigen.h"
 #include "constitutive/voigt.h"
 
 namespace granasym {

@@ -4,14 +4,12 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/LU>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 
 #include "common/error.h"
 #include "common/stopwatch.h"
+#include "constitutive/eigen.h"
 #include "constitutive/model_traits.h"
 
 namespace granasym {

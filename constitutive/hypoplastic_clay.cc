@@ -4,12 +4,12 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/LU>
 #include <cmath>
 
 #include "common/error.h"
 #include "constitutive/asymptotic_states.h"
 #include "constitutive/autodiff.h"
+#include "constitutive/eigen.h"
 #include "constitutive/stress_direction.h"
 
 namespace granasym {

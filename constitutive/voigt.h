@@ -9,10 +9,10 @@
 // the scalar so that the models can be differentiated automatically.
 #pragma once
 
-#include <Eigen/Core>
 #include <cmath>
 
 #include "common/state_measures.h"
+#include "constitutive/eigen.h"
 
 namespace granasym {
 

@@ -12,6 +12,7 @@
 #include "common/config.h"
 #include "common/error.h"
 #include "common/state_measures.h"
+#include "dem/scene_keys.h"
 #include "dem/stage_types.h"
 
 namespace granasym::dem {
@@ -28,6 +29,7 @@ Scene Scene::Load(const std::string& path) {
 Scene Scene::Parse(const std::string& text, const std::string& origin,
                    const std::string& base_directory) {
   const ConfigTable root = ConfigTable::ParseString(text, origin);
+  root.UseKeys({&SceneKeys(), &StageKeys()});
   Scene scene;
   scene.origin = origin;
   scene.text = text;
@@ -203,8 +205,10 @@ Packing Scene::BuildSample(GenerationReport* report) const {
   }
 }
 
-double Scene::TimeStep(const Packing& packing) const {
-  const ContactDurations durations = ComputeContactDurations(packing.radii, material);
+double Scene::TimeStep(const Packing& packing) const { return TimeStep(packing.radii); }
+
+double Scene::TimeStep(const std::vector<double>& radii) const {
+  const ContactDurations durations = ComputeContactDurations(radii, material);
   if (!time_step_s) {
     const AdaptiveTimeStep::Options& adaptive = adaptive_time_step;
     if (adaptive.fraction > durations.stability_fraction) {
@@ -225,7 +229,7 @@ double Scene::TimeStep(const Packing& packing) const {
           origin, adaptive.max_time_step, kSmallestTimeStepFraction,
           durations.smallest_reduced_mass, smallest));
     }
-    return AdaptiveTimeStep(adaptive, material, packing.radii).UpperBound();
+    return AdaptiveTimeStep(adaptive, material, radii).UpperBound();
   }
   if (*time_step_s < kSmallestTimeStepFraction * durations.smallest_reduced_mass) {
     throw InputError(fmt::format(

@@ -80,6 +80,9 @@ struct Scene {
   // (ContactDurations::stability_fraction); a max_time_step_s below
   // kSmallestTimeStepFraction of the smallest contact duration.
   double TimeStep(const Packing& packing) const;
+  // The same for spheres of these radii (m): a cost estimate before any sample exists
+  // (study plan: the radii a sample of the GSD at its count will have).
+  double TimeStep(const std::vector<double>& radii) const;
   // What the scene implies at this time step (the largest the run takes),
   // checked before the first step:
   // every stage moves the cell by at least kSmallestStrainPerStep per step,

@@ -14,12 +14,13 @@
 # services (exit 101, invoke-rc.d's "action not allowed"), unless the machine
 # already has one; it is removed again afterwards.
 # clang-format (14 on Debian 12) is for the test that keeps the tree
-# formatted (scripts/check_format.sh).
+# formatted (scripts/check_format.sh). ccache caches compilations for
+# scripts/build.sh (rebuilds after a branch switch or a clean).
 # python3-sphinx and python3-myst-parser build the user guide (docs/guide;
 # the test Docs.guide_builds and the target `docs`).
 set -euo pipefail
 packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config ccache
   libeigen3-dev libceres-dev libgoogle-glog-dev libnlopt-cxx-dev libnlopt-dev libsundials-dev libhdf5-dev
   libcli11-dev libtoml11-dev libfmt-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev

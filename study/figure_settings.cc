@@ -8,6 +8,7 @@
 
 #include "common/config.h"
 #include "common/error.h"
+#include "common/key_table.h"
 #include "common/text_file.h"
 
 namespace granasym::study {
@@ -34,7 +35,36 @@ bool Matches(const std::vector<std::string>& patterns, const std::string& name) 
 
 }  // namespace
 
+const KeyTable& FigureKeys() {
+  auto strings = [](const char* key, const char* valid, const char* fallback, const char* meaning) {
+    return KeySpec{"figures", key,      KeyType::kStrings, "", Range::Any(),
+                   valid,     fallback, meaning,           ""};
+  };
+  static const KeyTable table(
+      "figures",
+      "the [figures] table of a programme (kept in the study's study.toml): what `granasym "
+      "study figures` draws; its flags override it key by key, and no key changes a case",
+      {
+          {"figures", "levels", KeyType::kNumbers, "", kLevelRange, "", "chosen from the data",
+           "ln(1+e) of the ASBS cross-sections (Fig. 17)", ""},
+          {"figures", "fig18_level", KeyType::kNumber, "", kLevelRange, "",
+           "the level of the OC psi_epsilon = 90 deg path", "ln(1+e) of Fig. 18's cross-section",
+           ""},
+          strings("cases", "case names or shell patterns", "every case", "the cases drawn"),
+          strings("exclude_cases", "case names or shell patterns", "none",
+                  "cases left out (after `cases`)"),
+          strings("only", "paper figure numbers or file stems (e.g. 10, fig16_asymptotic_states)",
+                  "every figure", "the figures drawn"),
+          strings("models", "hypoplastic_clay, modified_cam_clay, hypoplastic_sand; [] for none",
+                  "every calibrated model", "the calibrated models overlaid"),
+          {"figures", "replicates", KeyType::kBool, "", Range::Any(), "true or false", "false",
+           "draw every replicate's path under the mean", ""},
+      });
+  return table;
+}
+
 FigureSettings FigureSettings::FromConfig(const ConfigTable& table) {
+  table.UseKeys({&FigureKeys()});
   FigureSettings s;
   if (table.Has("levels")) s.levels = table.GetDoubles("levels", kLevelRange);
   if (table.Has("fig18_level")) s.fig18_level = table.GetDouble("fig18_level", kLevelRange);

@@ -20,12 +20,16 @@
 
 namespace granasym {
 class ConfigTable;
-}
+class KeyTable;
+}  // namespace granasym
 
 namespace granasym::study {
 
 // The calibrated models a study can overlay, in the order figures draw them.
 extern const std::vector<std::string> kFigureModels;
+
+// The keys of the [figures] table (common/key_table.h; `granasym keys figures`).
+const KeyTable& FigureKeys();
 
 struct FigureSettings {
   std::vector<double> levels;         // empty: chosen from the data

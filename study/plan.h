@@ -51,7 +51,8 @@ struct PlannedCase {
   std::string key;         // SHA-256 of the canonical scene, the parent's key, results key, threads
   KeyInputs inputs;        // what the key is made of (recorded in done.toml)
   int64_t particles = 0;
-  double estimated_steps = 0;  // from the stop conditions, for the ETA
+  double time_step = 0;        // (s): the scene's fixed step, or its adaptive rule's upper bound
+  double estimated_steps = 0;  // from the stop conditions at that step (ETA, shards, study plan)
   std::string result_path() const { return directory + "/result.h5"; }
 };
 

@@ -15,8 +15,102 @@
 
 #include "common/config.h"
 #include "common/error.h"
+#include "common/key_table.h"
 
 namespace granasym::study {
+
+const KeyTable& ProgrammeKeys() {
+  auto key = [](std::string table, std::string name, KeyType type, std::string valid,
+                std::string fallback, std::string meaning) {
+    return KeySpec{
+        std::move(table),    std::move(name),    type, "", Range::Any(), std::move(valid),
+        std::move(fallback), std::move(meaning), ""};
+  };
+  auto integer = [](std::string table, std::string name, Range range, std::string fallback,
+                    std::string meaning) {
+    return KeySpec{std::move(table),
+                   std::move(name),
+                   KeyType::kInteger,
+                   "",
+                   range,
+                   "",
+                   std::move(fallback),
+                   std::move(meaning),
+                   ""};
+  };
+  static const KeyTable table(
+      "programme",
+      "a study programme (granasym study run PROGRAMME): the sample, the scales, the shared "
+      "scene tables and the runs that expand into cases (layout: study/programme.h). Scene "
+      "tables: granasym keys scene; [[run.stage]] tables: granasym keys stage; [figures]: "
+      "granasym keys figures",
+      {
+          key("", "study", KeyType::kTable, "", "required", "the programme's name and NCL"),
+          key("", "scale", KeyType::kTable, "tiny, small, medium, paper", "required",
+              "one table per scale: sphere count, replicates, restrictions"),
+          key("", "sample", KeyType::kTable, "", "the defaults below",
+              "the generated sample at its reference count and cell"),
+          key("", "scene", KeyType::kTable, "material, numerics, output (granasym keys scene)",
+              "none", "scene tables shared by every run"),
+          key("", "run", KeyType::kTables, "", "required",
+              "DEM runs; lists in vary expand into cases"),
+          key("", "model_run", KeyType::kTables, "", "none",
+              "constitutive-model element tests (the tables of granasym model run)"),
+          key("", "figures", KeyType::kTable, "granasym keys figures", "none",
+              "what granasym study figures draws"),
+          key("study", "name", KeyType::kString, "a name", "required", "the programme's name"),
+          key("study", "description", KeyType::kString, "text", "none", "one line about it"),
+          key("study", "ncl", KeyType::kString, "a case name", "none",
+              "the run whose psi_epsilon = 0 stages give the study's NCL (OCR, p_e*)"),
+          integer("scale.*", "count", Range::Closed(2, 2000000000), "required",
+                  "spheres of the sample (the cell follows at constant porosity)"),
+          integer("scale.*", "replicates", Range::Closed(1, 1000), "1",
+                  "samples with seeds seed, seed + 1, ..."),
+          key("scale.*", "only", KeyType::kTable, "variable = [values]", "every value",
+              "the values of vary/each lists kept at this scale"),
+          key("scale.*", "variables", KeyType::kTable, "name = value", "none",
+              "placeholders {name} with a value at this scale (every scale the same names)"),
+          integer("sample", "reference_count", Range::Closed(2, 2000000000), "150000",
+                  "the count at which the cell is reference_cell_size_mm"),
+          {"sample", "reference_cell_size_mm", KeyType::kNumber, "mm", Range::Closed(1e-3, 1e6), "",
+           "31", "the cell side at reference_count", ""},
+          integer("sample", "seed", Range::Closed(0, 9007199254740992.0), "1",
+                  "seed of the first replicate's sample"),
+          integer("sample", "max_attempts", Range::Closed(1, 1000000000), "200000",
+                  "random positions tried per sphere"),
+          key("sample", "gsd", KeyType::kString, "a CSV file (relative to the programme)",
+              "the reduced Zbraslav GSD", "the grain-size distribution"),
+          key("run[]", "name", KeyType::kString, "a folder name; {var} placeholders", "required",
+              "the cases' names"),
+          key("run[]", "from", KeyType::kString, "sample, RUN or RUN@STAGE", "required",
+              "the state the cases start from"),
+          key("run[]", "vary", KeyType::kTable, "variable = [values]", "none",
+              "every combination of the lists is one case"),
+          key("run[]", "figures", KeyType::kString,
+              "comma-separated figure numbers 1-22, Sec. N, rate", "none", "what the cases serve"),
+          key("run[]", "scene", KeyType::kTable, "material, numerics, output", "none",
+              "overrides of the shared scene tables"),
+          key("run[]", "stage", KeyType::kTables, "stage tables (granasym keys stage) + each",
+              "required", "the run's stages"),
+          key("run[].stage[]", "each", KeyType::kTable, "variable = [values]", "none",
+              "repeat this stage for every value"),
+          key("model_run[]", "name", KeyType::kString, "a name; {var} placeholders", "required",
+              "the element tests' names"),
+          key("model_run[]", "vary", KeyType::kTable, "variable = [values]", "none",
+              "every combination is one test"),
+          key("model_run[]", "figures", KeyType::kString, "as run.figures", "none",
+              "what the tests serve"),
+          key("model_run[]", "model", KeyType::kTable, "granasym model run's [model]", "required",
+              "the model and its parameters"),
+          key("model_run[]", "initial", KeyType::kTable, "granasym model run's [initial]",
+              "required", "the initial state"),
+          key("model_run[]", "integration", KeyType::kTable, "granasym model run's [integration]",
+              "the model's defaults", "the integrator"),
+          key("model_run[]", "stage", KeyType::kTables, "granasym model run's [[stage]]",
+              "required", "the loading"),
+      });
+  return table;
+}
 namespace {
 
 // Sorted tables, so that a generated scene is the same text every time.
@@ -36,15 +130,35 @@ std::string TypeName(const Value& value) {
   return out.str();
 }
 
-// Rejects keys of `table` outside `allowed`, naming the valid ones.
+// Rejects keys of `table` outside those of its table in ProgrammeKeys()
+// (`pattern`: "", "study", "scale.*", "run[]", ...), naming the valid ones.
 void CheckKeys(const std::string& origin, const std::string& prefix, const Table& table,
-               const std::set<std::string>& allowed) {
+               const std::string& pattern) {
+  std::set<std::string> allowed;
+  for (const KeySpec& spec : ProgrammeKeys().keys()) {
+    if (spec.table != pattern) continue;
+    allowed.insert(spec.key);
+    ProgrammeKeys().MarkConsulted(&spec);
+  }
+  GRANASYM_CHECK(!allowed.empty()) << "the programme key table has no table '" << pattern << "'";
   for (const auto& [key, value] : table) {
     if (allowed.count(key)) continue;
     std::string valid;
     for (const std::string& name : allowed) valid += (valid.empty() ? "" : ", ") + name;
     Fail(origin, prefix + key, "is not known here: valid keys are " + valid);
   }
+}
+
+// Marks a key that the parser reads outside CheckKeys as read from the table.
+void ConsultKey(const std::string& pattern, const std::string& key) {
+  bool found = false;
+  for (const KeySpec& spec : ProgrammeKeys().keys()) {
+    if (spec.table == pattern && spec.key == key) {
+      ProgrammeKeys().MarkConsulted(&spec);
+      found = true;
+    }
+  }
+  GRANASYM_CHECK(found) << "the programme key table lacks " << pattern << "." << key;
 }
 
 // `key` may be a dotted name for messages ("study.name"): the table is
@@ -324,7 +438,7 @@ const Table& OptionalTable(const std::string& origin, const Table& top, const st
 // [study]: the name, description and NCL case.
 void ParseStudy(const std::string& origin, const Table& top, Programme* programme) {
   const Table& study = OptionalTable(origin, top, "study");
-  CheckKeys(origin, "study.", study, {"name", "description", "ncl"});
+  CheckKeys(origin, "study.", study, "study");
   programme->name = StringAt(origin, "study.name", study, "", true);
   programme->description = StringAt(origin, "study.description", study, "", false);
   programme->ncl_case = StringAt(origin, "study.ncl", study, "", false);
@@ -336,7 +450,7 @@ ScaleSpec ParseScale(const std::string& origin, const std::string& name, const V
                      std::map<std::string, std::vector<Value>>* only, Variables* variables) {
   const std::string prefix = "scale." + name + ".";
   const Table& table = TableAt(origin, "scale." + name, value);
-  CheckKeys(origin, prefix, table, {"count", "replicates", "only", "variables"});
+  CheckKeys(origin, prefix, table, "scale.*");
   ScaleSpec spec;
   if (!FindKey(table, "count")) Fail(origin, prefix + "count", "is missing");
   spec.count = IntAt(origin, prefix + "count", table, 0, 2, 2000000000);
@@ -438,8 +552,7 @@ void CheckRestrictions(const std::string& origin, const Table& top,
 void ParseSample(const std::string& origin, const Table& top, const std::string& base_directory,
                  SampleSpec* s) {
   const Table& sample = OptionalTable(origin, top, "sample");
-  CheckKeys(origin, "sample.", sample,
-            {"reference_count", "reference_cell_size_mm", "seed", "gsd", "max_attempts"});
+  CheckKeys(origin, "sample.", sample, "sample");
   s->reference_count =
       IntAt(origin, "sample.reference_count", sample, s->reference_count, 2, 2000000000);
   s->reference_cell_size_mm =
@@ -519,6 +632,7 @@ Array ExpandStages(const std::string& origin, const std::string& where, const Ar
   for (size_t k = 0; k < stages.size(); ++k) {
     const std::string stage_where = where + ".stage[" + std::to_string(k + 1) + "]";
     Table stage = TableAt(origin, stage_where, stages[k]);
+    ConsultKey("run[].stage[]", "each");
     const bool repeats = stage.count("each") > 0;
     const Value each = repeats ? stage.at("each") : Value();
     stage.erase("each");
@@ -566,7 +680,7 @@ Array ExpandStages(const std::string& origin, const std::string& where, const Ar
 void ExpandRun(const std::string& origin, const std::string& where, const Table& run,
                const Table& shared, const ScaleExpansion& expansion,
                std::map<std::string, size_t>* names, Programme* programme) {
-  CheckKeys(origin, where + ".", run, {"name", "from", "vary", "figures", "scene", "stage"});
+  CheckKeys(origin, where + ".", run, "run[]");
   const std::string name_template = StringAt(origin, where + ".name", run, "", true);
   const std::string from_template = StringAt(origin, where + ".from", run, "", true);
   const FigureSet figures = FigureSet::Parse(StringAt(origin, where + ".figures", run, "", false),
@@ -641,8 +755,7 @@ void ExpandModelRuns(const std::string& origin, const Table& top, const ScaleExp
   for (size_t m = 0; m < models->as_array().size(); ++m) {
     const std::string where = "model_run[" + std::to_string(m + 1) + "]";
     const Table& entry = TableAt(origin, where, models->as_array()[m]);
-    CheckKeys(origin, where + ".", entry,
-              {"name", "vary", "figures", "model", "initial", "integration", "stage"});
+    CheckKeys(origin, where + ".", entry, "model_run[]");
     const std::string name_template = StringAt(origin, where + ".name", entry, "", true);
     for (Variables variables :
          Combinations(origin, where + ".vary", FindKey(entry, "vary"), expansion)) {
@@ -694,7 +807,7 @@ Programme Programme::Parse(const std::string& text, const std::string& origin,
     throw InputError(origin + ": TOML syntax error: " + error.what());
   }
   const Table& top = root.as_table();
-  CheckKeys(origin, "", top, {"study", "scale", "sample", "scene", "run", "model_run", "figures"});
+  CheckKeys(origin, "", top, "");
   Programme programme;
   programme.origin = origin;
   programme.scale = scale;

@@ -55,6 +55,10 @@
 #include "study/case_record.h"
 #include "study/figure_settings.h"
 
+namespace granasym {
+class KeyTable;
+}  // namespace granasym
+
 namespace granasym::study {
 
 enum class Scale { kTiny, kSmall, kMedium, kPaper };
@@ -118,6 +122,10 @@ struct ModelCaseSpec {
   std::map<std::string, std::string> variables;
   std::string text;
 };
+
+// The keys of a programme file (common/key_table.h; `granasym keys
+// programme`): the parser refuses a key outside its table's entries here.
+const KeyTable& ProgrammeKeys();
 
 struct Programme {
   // A programme's cases are refused above this many (of one `vary`, or in

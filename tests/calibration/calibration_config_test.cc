@@ -2,6 +2,7 @@
 // the HDF5 record, summary and plot data.
 #include "calibration/calibration_config.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,8 +11,10 @@
 
 #include "calibration/calibration_report.h"
 #include "calibration/csv_state_reader.h"
+#include "calibration/model_parameters.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
+#include "common/key_table.h"
 #include "synthetic_data.h"
 #include "tests/calibration/same_config.h"
 #include "tests/common/enum_spellings.h"
@@ -421,6 +424,40 @@ TEST(CalibrationConfig, FitsAreComparedOnlyWhenBothConvergedWithStandardErrors) 
   EXPECT_EQ(why_not,
             "ceres reports no standard error of any free parameter (each is undetermined or at a "
             "bound)");
+}
+
+}  // namespace
+}  // namespace granasym::calibration
+
+namespace granasym::calibration {
+namespace {
+
+// The key table against the parser: every key of the table is read by some
+// file (kEveryKey, and every model's parameter tables), every key a file may
+// hold is in it (the parser's reads consult it), made-up keys are refused.
+TEST(CalibrationKeys, EveryKeyOfTheTableIsReadAndMadeUpKeysAreRefused) {
+  CalibrationKeys().ResetConsulted();
+  ReadCalibrationConfig(ConfigTable::ParseString(kEveryKey, "/d/e/calib.toml"));
+  for (ModelKind kind : EnumValues<ModelKind>()) {
+    std::string text = fmt::format("[model]\nkind = \"{}\"\n", ToString(kind));
+    const ModelParameters defaults = ModelParameters::Defaults(kind);
+    for (const ParameterSpec& spec : defaults.specs()) {
+      text += fmt::format(
+          "[parameters.{}]\nfree = true\nvalue = {:.17g}\nlower = {:.17g}\nupper = {:.17g}\n",
+          spec.name, spec.value, spec.lower, spec.upper);
+    }
+    text += "[[dataset]]\ncsv = \"states.csv\"\n";
+    const CalibrationConfig config =
+        ReadCalibrationConfig(ConfigTable::ParseString(text, "k.toml"));
+    EXPECT_EQ(config.parameters.size(), defaults.specs().size());
+  }
+  const std::vector<std::string> unread = CalibrationKeys().Unconsulted();
+  EXPECT_TRUE(unread.empty()) << "never read: " << unread.front();
+  ExpectRejected(std::string(kConfig) + "[output]\nhdf6 = \"x.h5\"\n",
+                 "key 'output.hdf6' is not a known key (valid keys here: hdf5, plot_data, "
+                 "status, summary)");
+  const std::string markdown = CalibrationKeys().Render(KeyFormat::kMarkdown);
+  EXPECT_NE(markdown.find("## [parameters.lambda_star]"), std::string::npos) << markdown;
 }
 
 }  // namespace

@@ -6,13 +6,13 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
 #include "common/error.h"
 #include "common/state_measures.h"
 #include "constitutive/asymptotic_states.h"
+#include "constitutive/eigen.h"
 #include "constitutive/element_driver.h"
 #include "tests/constitutive/test_models.h"
 

@@ -38,8 +38,8 @@ TEST(ModelTraits, EveryModelHasOneTableOfItsOwnKind) {
     const ModelTraits& traits = Traits(kind);
     EXPECT_EQ(traits.kind, kind);
     EXPECT_FALSE(std::string(traits.title).empty());
-    EXPECT_EQ(traits.parameters.size(),
-              static_cast<size_t>(traits.linear_ncl ? kNumClayParameters : kNumSandParameters))
+    EXPECT_EQ(traits.parameters.size(), traits.linear_ncl ? static_cast<size_t>(kNumClayParameters)
+                                                          : static_cast<size_t>(kNumSandParameters))
         << ToString(kind);
     EXPECT_TRUE(traits.read != nullptr && traits.make != nullptr &&
                 traits.export_orders != nullptr);

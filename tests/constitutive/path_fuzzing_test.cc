@@ -12,7 +12,6 @@
 //   GRANASYM_FUZZ_PATHS=5000 build-models/tests/constitutive_tests --gtest_filter='PathFuzzing*'
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -23,6 +22,7 @@
 #include <string>
 
 #include "common/error.h"
+#include "constitutive/eigen.h"
 #include "constitutive/element_driver.h"
 #include "tests/constitutive/test_models.h"
 
