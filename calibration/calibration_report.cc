@@ -235,7 +235,19 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   CalibrationRun run;
   run.config = config;
   std::vector<StateDataset> datasets;
-  for (const DatasetConfig& d : config.datasets) datasets.push_back(ReadDataset(d));
+  std::vector<PathDataset> paths;
+  for (const DatasetConfig& d : config.datasets) {
+    if (d.is_path) {
+      paths.push_back(ReadPathDem(d.path, d.name, d.path_read));
+    } else {
+      datasets.push_back(ReadDataset(d));
+    }
+  }
+  if (datasets.empty()) {
+    throw InputError(
+        "calibration: only path datasets; a calibration needs asymptotic states beside them "
+        "(a [[dataset]] with study, dem or csv)");
+  }
   run.starting_values = EstimateStartingValues(datasets);
   run.rate = DescribeRate(datasets);
   ModelParameters parameters =
@@ -244,7 +256,7 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   if (config.fix_undetermined) {
     // What these data cannot identify whatever the fit (no states in the
     // directions a parameter acts on) is fixed before the first fit.
-    for (const auto& [index, need] : Unidentifiable(datasets, parameters)) {
+    for (const auto& [index, need] : Unidentifiable(datasets, parameters, paths)) {
       ParameterSpec& spec = parameters.mutable_specs()[index];
       spec.free = false;
       undetermined[index] = true;
@@ -253,7 +265,7 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
                       spec.name, spec.value, need));
     }
   }
-  run.problem = std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor);
+  run.problem = std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor, paths);
   if (config.fix_undetermined) {
     // One parameter per round: fixing one of a correlated pair often
     // determines the other.
@@ -273,7 +285,8 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
             "had reached {:.6g})",
             spec.name, spec.value, why, probe.values[index]));
       }
-      run.problem = std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor);
+      run.problem =
+          std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor, paths);
     }
   }
   if (config.method != FitMethod::kNlopt) {
