@@ -30,9 +30,9 @@ void PathDataset::Validate() const {
   }
   for (size_t k = 0; k < samples.size(); ++k) {
     const PathSample& s = samples[k];
-    if (!(std::isfinite(s.axial_stress) && std::isfinite(s.radial_stress) &&
-          s.MeanStress() > 0 && std::isfinite(s.void_ratio) && s.void_ratio > 0 &&
-          std::isfinite(s.axial_strain) && std::isfinite(s.radial_strain))) {
+    if (!(std::isfinite(s.axial_stress) && std::isfinite(s.radial_stress) && s.MeanStress() > 0 &&
+          std::isfinite(s.void_ratio) && s.void_ratio > 0 && std::isfinite(s.axial_strain) &&
+          std::isfinite(s.radial_strain))) {
       throw InputError(fmt::format(
           "{}: sample {}: sigma_a = {}, sigma_r = {} kPa, e = {}, eps_a = {}, eps_r = {}: "
           "stresses and strains must be finite, p > 0 and e > 0",
@@ -47,8 +47,8 @@ void PathDataset::Validate() const {
     }
   }
   if (!(weight >= 0)) {
-    throw InputError(fmt::format("{}: weight = {} must be >= 0 (0: drawn, not fitted)", where,
-                                 weight));
+    throw InputError(
+        fmt::format("{}: weight = {} must be >= 0 (0: drawn, not fitted)", where, weight));
   }
   if (!(ln_p_uncertainty > 0 && psi_sigma_uncertainty > 0 && ln_volume_uncertainty > 0)) {
     throw InputError(fmt::format(
@@ -80,8 +80,11 @@ PathKind DetectKind(const std::vector<PathSample>& samples, PathControl control)
   double max_dv = 0, max_ds = 0;
   const PathSample& first = samples.front();
   for (const PathSample& s : samples) {
-    const double dv = (s.axial_strain - first.axial_strain) + 2 * (s.radial_strain - first.radial_strain);
-    const double ds = 2.0 * ((s.axial_strain - first.axial_strain) - (s.radial_strain - first.radial_strain)) / 3.0;
+    const double dv =
+        (s.axial_strain - first.axial_strain) + 2 * (s.radial_strain - first.radial_strain);
+    const double ds =
+        2.0 * ((s.axial_strain - first.axial_strain) - (s.radial_strain - first.radial_strain)) /
+        3.0;
     max_dv = std::max(max_dv, std::abs(dv));
     max_ds = std::max(max_ds, std::abs(ds));
   }
@@ -131,8 +134,9 @@ std::vector<PathSample> ResampleOnStrain(const std::vector<PathSample>& raw, int
 
 bool PathReadOptions::IsValid(std::string* why) const {
   if (stages.empty()) {
-    *why = "stages is empty: name the stages the path runs through (e.g. stages = [\"unload\", "
-           "\"reload\"])";
+    *why =
+        "stages is empty: name the stages the path runs through (e.g. stages = [\"unload\", "
+        "\"reload\"])";
     return false;
   }
   if (points < 3 || points > 10000) {
@@ -178,8 +182,8 @@ PathDataset ReadPathDem(const std::string& path, const std::string& name,
     }
   }
   if (!file.Exists(record::kStages)) {
-    throw InputError(fmt::format("{}: not a granasym DEM result file (no {})", path,
-                                 record::kStages));
+    throw InputError(
+        fmt::format("{}: not a granasym DEM result file (no {})", path, record::kStages));
   }
   // The stages by name, in file order.
   std::vector<std::string> groups, names;
@@ -210,8 +214,8 @@ PathDataset ReadPathDem(const std::string& path, const std::string& name,
   for (size_t c : chosen) {
     if (file.HasAttribute(groups[c], record::kStageFailed) &&
         file.ReadIntAttribute(groups[c], record::kStageFailed) != 0) {
-      throw InputError(fmt::format("{}: path dataset '{}': the run failed in stage '{}'", path,
-                                   name, names[c]));
+      throw InputError(
+          fmt::format("{}: path dataset '{}': the run failed in stage '{}'", path, name, names[c]));
     }
   }
   const std::vector<double> eps_a = file.ReadDoubles(series + "/" + record::kColumnAxialStrain);
@@ -262,14 +266,14 @@ PathDataset ReadPathDem(const std::string& path, const std::string& name,
     keep.push_back(index);
   }
   if (raw.size() < 3) {
-    throw InputError(fmt::format("{}: path dataset '{}': fewer than 3 rows with strain", path,
-                                 name));
+    throw InputError(
+        fmt::format("{}: path dataset '{}': fewer than 3 rows with strain", path, name));
   }
   PathDataset dataset;
   dataset.name = name;
   dataset.origin = path;
-  dataset.source = fmt::format("{}:{} ({})", path, groups[chosen.front()],
-                               fmt::join(options.stages, ", "));
+  dataset.source =
+      fmt::format("{}:{} ({})", path, groups[chosen.front()], fmt::join(options.stages, ", "));
   dataset.samples = ResampleOnStrain(raw, options.points, keep);
   dataset.control =
       options.control == PathControl::kAuto ? DetectControl(dataset.samples) : options.control;
@@ -314,8 +318,8 @@ bool PredictPath(const ConstitutiveModel& model, const PathDataset& path,
   ModelState start;
   if (!StartState(model, samples[0].axial_stress, samples[0].radial_stress, samples[0].void_ratio,
                   &start, &prediction->start_moved, why)) {
-    *why = fmt::format("path '{}': the DEM's initial state is outside the model: {}", path.name,
-                       *why);
+    *why =
+        fmt::format("path '{}': the DEM's initial state is outside the model: {}", path.name, *why);
     return false;
   }
   std::vector<LoadingStage> stages;

@@ -108,6 +108,24 @@ weight = 0.0
 ncl_min_p_kpa = 20
 max_line_points = 7
 asbs_ln_1_plus_e = [0.55, 0.5812345678901234]
+unloading_weight = 0.25
+[[dataset]]
+name = "cycles"
+dem_path = "runs/ncl_cycles.h5"
+stages = ["unload1", "reload1"]
+control = "strain"
+path_kind = "unload_reload"
+points = 55
+ln_p_uncertainty = 0.03
+weight = 2.0
+[[dataset]]
+name = "oc100"
+study_path = "../study"
+case = "oc100_psi90"
+replicate = 2
+stages = ["psi90"]
+psi_sigma_uncertainty_deg = 0.7
+ln_1_plus_e_uncertainty = 0.004
 [[dataset]]
 name = "table"
 csv = "/abs/states.csv"
@@ -142,6 +160,25 @@ TEST(CalibrationConfig, ItsTextReadsBackAsTheSameConfiguration) {
   // Paths stay relative to the file's folder, so the folder can move.
   EXPECT_NE(text.find("study = \"../study\""), std::string::npos) << text;
   EXPECT_NE(text.find("dem = [\"a.h5\", \"sub/b.h5\"]"), std::string::npos) << text;
+  EXPECT_NE(text.find("dem_path = \"runs/ncl_cycles.h5\""), std::string::npos) << text;
+  EXPECT_NE(text.find("study_path = \"../study\"\ncase = \"oc100_psi90\"\nreplicate = 2"),
+            std::string::npos)
+      << text;
+  // The path datasets as read: a study case's result.h5.
+  ASSERT_GE(c.datasets.size(), 4u);
+  const DatasetConfig& cycles = c.datasets[2];
+  const DatasetConfig& oc = c.datasets[3];
+  EXPECT_TRUE(cycles.is_path && oc.is_path);
+  EXPECT_EQ(cycles.path, "/d/e/runs/ncl_cycles.h5");
+  EXPECT_EQ(cycles.path_read.points, 55);
+  EXPECT_EQ(cycles.path_read.control, PathControl::kStrain);
+  EXPECT_EQ(cycles.path_read.kind, PathKind::kUnloadReload);
+  EXPECT_EQ(cycles.path_read.weight, 2.0);
+  EXPECT_EQ(cycles.path_read.psi_sigma_uncertainty_deg, 1.0);  // the paths' default
+  EXPECT_EQ(oc.path, "/d/study/cases/r2/oc100_psi90/result.h5");
+  EXPECT_EQ(oc.path_read.control, PathControl::kAuto);
+  EXPECT_EQ(oc.path_read.points, 40);
+  EXPECT_EQ(c.datasets[1].dem.unloading_weight, 0.25);
   EXPECT_EQ(CalibrationConfigText(again, "# a header\n"), text);
   // And a configuration at every default.
   const CalibrationConfig plain =
