@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "app/figure_drawing.h"
 #include "calibration/calibration_config.h"
 #include "calibration/calibration_report.h"
 #include "common/error.h"
@@ -53,8 +54,18 @@ void RunCalibrate(const CalibrateFlags& flags) {
   std::printf("status: %s: %s\nrecord: %s\nsummary: %s\nstatus file: %s\n",
               calibration::ToString(run.outcome.status), run.outcome.reason.c_str(),
               config.hdf5_path.c_str(), config.summary_path.c_str(), config.status_path.c_str());
-  if (plotted)
+  if (plotted) {
     std::printf("plot data: %s (see plots/calibration_*.gp)\n", config.plot_data_dir.c_str());
+    // The whole paths against the model, drawn here (the others by hand).
+    if (!run.problem->paths().empty()) {
+      const std::string why = DrawCalibrationPaths(config.plot_data_dir);
+      if (why.empty()) {
+        std::printf("paths figure: %s/paths.png\n", config.plot_data_dir.c_str());
+      } else {
+        std::printf("paths figure not drawn: %s\n", why.c_str());
+      }
+    }
+  }
   const int exit_status = calibration::ExitStatus(run.outcome.status);
   if (exit_status != 0) throw CLI::RuntimeError(exit_status);
 }

@@ -87,6 +87,24 @@ std::string PlotsDirectory() {
   return GRANASYM_PLOTS_DIR;
 }
 
+std::string DrawCalibrationPaths(const std::string& plot_data_dir) {
+  if (!fs::exists(plot_data_dir + "/paths.txt")) return "";
+  const std::string gnuplot = FindOnPath("gnuplot");
+  if (gnuplot.empty()) return "gnuplot is not on PATH (Debian: apt-get install gnuplot-nox)";
+  // plots/calibration_paths.gp beside plots/study/.
+  fs::path study_plots = fs::path(PlotsDirectory()).lexically_normal();
+  if (!study_plots.has_filename()) study_plots = study_plots.parent_path();
+  const std::string chosen = (study_plots.parent_path() / "calibration_paths.gp").string();
+  if (!fs::exists(chosen)) return "no " + chosen;
+  const std::string png = plot_data_dir + "/paths.png";
+  fs::remove(png);
+  std::string output;
+  const int status = RunCapturing({gnuplot, "-e", "dir='" + plot_data_dir + "'", chosen}, &output);
+  if (status != 0) return "gnuplot failed (exit " + std::to_string(status) + "): " + output;
+  if (!fs::exists(png) || fs::file_size(png) == 0) return "gnuplot wrote no " + png;
+  return "";
+}
+
 int DrawFigures(const std::string& out, std::vector<analysis::FigureSpec>* figures,
                 bool data_only) {
   const auto wrappers = analysis::WriteFigureScripts(out, PlotsDirectory(), *figures);

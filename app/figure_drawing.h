@@ -23,4 +23,10 @@ std::string PlotsDirectory();
 // figure; returns the number that failed. `data_only`: wrappers, no drawing.
 int DrawFigures(const std::string& out, std::vector<analysis::FigureSpec>* figures, bool data_only);
 
+// Draws a calibration's whole-path figure, FOLDER/paths.png, from its plot
+// data (paths.txt and path_<k>.csv, calibration/path_report.h) with
+// plots/calibration_paths.gp; "" when drawn or when FOLDER has no paths,
+// else why not (no gnuplot, gnuplot failed).
+std::string DrawCalibrationPaths(const std::string& plot_data_dir);
+
 }  // namespace granasym

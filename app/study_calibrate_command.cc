@@ -17,6 +17,7 @@
 #include "analysis/quasi_static_selection.h"
 #include "analysis/rate_files.h"
 #include "analysis/study_calibration.h"
+#include "app/figure_drawing.h"
 #include "calibration/fit_status.h"
 #include "calibration/model_parameters.h"
 #include "common/error.h"
@@ -125,6 +126,11 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
             analysis::CalibrateStudyModel(directory, kind, selection, bound);
         std::printf("%s\n", done.text.c_str());
         status = done.outcome.status;
+        // The whole-path figure of this model (plot_data/paths.png).
+        const std::string plot_data =
+            fmt::format("{}/calibration/{}/plot_data", directory, calibration::ToString(kind));
+        const std::string why = DrawCalibrationPaths(plot_data);
+        if (!why.empty()) std::printf("  paths figure not drawn: %s\n", why.c_str());
       } catch (const std::exception& error) {
         std::printf("%s: FAILED: %s\n  status: failed\n", calibration::ToString(kind),
                     error.what());

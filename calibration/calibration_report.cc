@@ -13,6 +13,7 @@
 
 #include "calibration/csv_state_reader.h"
 #include "calibration/dem_state_reader.h"
+#include "calibration/path_report.h"
 #include "calibration/study_state_reader.h"
 #include "common/csv_table.h"
 #include "common/error.h"
@@ -554,6 +555,10 @@ std::string SummaryText(const CalibrationRun& run) {
     s += "\n";
     for (const std::string& w : d.warnings) s += "    WARNING: " + w + "\n";
   }
+  for (const PathDataset& path : problem.paths()) {
+    s += fmt::format("  {} ({}): a whole path, {} samples, {} residuals (group 'path')\n",
+                     path.name, path.source, path.samples.size(), path.NumResiduals());
+  }
   s += run.rate.Text() + "\n";
   if (run.rate.MostlyRateAffected()) s += "WARNING rate_affected: " + run.rate.Warning() + "\n";
   s += run.starting_values.Report() + "\n";
@@ -568,6 +573,10 @@ std::string SummaryText(const CalibrationRun& run) {
     s += "\n";
   }
   const FitResult* kept = run.kept_fit();
+  if (kept && !kept->values.empty()) {
+    const std::string paths = PathSummaryText(problem, kept->values);
+    if (!paths.empty()) s += "\nwhole paths (" + kept->summary.fitter + "):\n" + paths;
+  }
   if (!run.diagnosis.empty() || !run.findings.empty()) {
     s += "\nadmissibility and structural misfit (" +
          (kept ? kept->summary.fitter : std::string("-")) + "):\n";
@@ -938,6 +947,7 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
   } else {
     WriteCurvedModelLines(problem, fit, range, folder);
   }
+  WritePathPlotData(problem, fit.values, folder);
 }
 
 namespace {

@@ -98,10 +98,9 @@ inline PathDataset UnloadReloadCycles(const ConstitutiveModel& model) {
 // Fig. 11: isochoric shearing from an isotropic state at p and OCR.
 inline PathDataset IsochoricPath(const ConstitutiveModel& model, double p, double ocr,
                                  double axial_strain) {
-  return ModelPath(model, fmt::format("isochoric p{} ocr{}", p, ocr),
-                   InitialStateFromOcr(model, p, 0.0, ocr),
-                   {LoadingStage::Isochoric(1.0, axial_strain)}, PathControl::kStrain,
-                   PathKind::kIsochoric);
+  return ModelPath(
+      model, fmt::format("isochoric p{} ocr{}", p, ocr), InitialStateFromOcr(model, p, 0.0, ocr),
+      {LoadingStage::Isochoric(1.0, axial_strain)}, PathControl::kStrain, PathKind::kIsochoric);
 }
 
 // Fig. 12: drained triaxial (σ_r held) from an isotropic state at p and OCR.

@@ -12,9 +12,11 @@
 #include <filesystem>
 
 #include "calibration/calibration_problem.h"
+#include "calibration/calibration_report.h"
 #include "calibration/ceres_fitter.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
+#include "common/text_file.h"
 #include "constitutive/hypoplastic_sand.h"
 #include "path_data.h"
 #include "synthetic_data.h"
@@ -80,8 +82,7 @@ TEST(PathDataset, TheModelFollowsItsOwnPathsUnderEitherControl) {
   const PathDataset drained = testing::DrainedPath(*clay, 200, 1, 0.25);
   EXPECT_EQ(DetectControl(drained.samples), PathControl::kDrained);
   const PathDataset isochoric = testing::IsochoricPath(*clay, 100, 4, 0.3);
-  EXPECT_EQ(DetectKind(isochoric.samples, DetectControl(isochoric.samples)),
-            PathKind::kIsochoric);
+  EXPECT_EQ(DetectKind(isochoric.samples, DetectControl(isochoric.samples)), PathKind::kIsochoric);
 }
 
 TEST(PathDataset, AStartBeyondTheModelsNclIsMovedOntoIt) {
@@ -141,10 +142,10 @@ TEST(PathDataset, ReadsADemPathThroughItsStagesAndNamesWhatIsMissing) {
   const std::vector<PathSample> rows = testing::RecordsAsRows(result, &ends);
   ASSERT_EQ(ends.size(), 3u);
   const std::string file = TempPath("granasym_dem_path.h5");
-  WriteDemPathFile(file,
-                   rows, {{"load", {0, static_cast<int>(ends[0])}},
-                          {"unload1", {static_cast<int>(ends[0]) + 1, static_cast<int>(ends[1])}},
-                          {"reload1", {static_cast<int>(ends[1]) + 1, static_cast<int>(ends[2])}}});
+  WriteDemPathFile(file, rows,
+                   {{"load", {0, static_cast<int>(ends[0])}},
+                    {"unload1", {static_cast<int>(ends[0]) + 1, static_cast<int>(ends[1])}},
+                    {"reload1", {static_cast<int>(ends[1]) + 1, static_cast<int>(ends[2])}}});
   PathReadOptions options;
   options.stages = {"unload1", "reload1"};
   options.points = 30;
@@ -179,6 +180,21 @@ TEST(PathDataset, ReadsADemPathThroughItsStagesAndNamesWhatIsMissing) {
   fails_with({"load", "reload1"}, "are not consecutive");
   fails_with({}, "stages is empty");
   std::filesystem::remove(file);
+}
+
+// A model's element test written as a DEM result file, one stage per loading stage.
+void WriteModelRun(const ConstitutiveModel& model, const std::string& file, const ModelState& start,
+                   const std::vector<LoadingStage>& stages, const std::vector<std::string>& names) {
+  const ElementTestResult result = testing::RunRecorded(model, start, stages, 60);
+  std::vector<size_t> ends;
+  const std::vector<PathSample> rows = testing::RecordsAsRows(result, &ends);
+  std::vector<std::pair<std::string, std::pair<int, int>>> ranges;
+  int first = 0;
+  for (size_t k = 0; k < ends.size(); ++k) {
+    ranges.push_back({names[k], {first, static_cast<int>(ends[k])}});
+    first = static_cast<int>(ends[k]) + 1;
+  }
+  WriteDemPathFile(file, rows, ranges);
 }
 
 // Asymptotic states of a clay model nearly without noise (0.01°, 1e-4),
@@ -232,8 +248,8 @@ TEST(PathRecovery, HypoplasticClayEveryParameterFromStatesAndPaths) {
   const auto model = Model(ModelKind::kHypoplasticClay, truth);
   CalibrationProblem problem(
       {ClayStates(ModelKind::kHypoplasticClay, truth)},
-      StartFrom(ModelKind::kHypoplasticClay, {truth[0] * 1.1, truth[1] * 0.85, truth[2] * 1.5,
-                                              truth[3] * 0.98, truth[4] * 1.6}),
+      StartFrom(ModelKind::kHypoplasticClay,
+                {truth[0] * 1.1, truth[1] * 0.85, truth[2] * 1.5, truth[3] * 0.98, truth[4] * 1.6}),
       PredictorOptions(),
       {testing::UnloadReloadCycles(*model), testing::IsochoricPath(*model, 100, 4, 0.3),
        testing::IsochoricPath(*model, 200, 1, 0.3), testing::DrainedPath(*model, 200, 1, 0.25)});
@@ -248,8 +264,8 @@ TEST(PathRecovery, CamClayEveryParameterFromStatesAndPaths) {
   const auto model = Model(ModelKind::kModifiedCamClay, truth);
   CalibrationProblem problem(
       {ClayStates(ModelKind::kModifiedCamClay, truth)},
-      StartFrom(ModelKind::kModifiedCamClay, {truth[0] * 1.1, truth[1] * 0.85, truth[2] * 1.5,
-                                              truth[3] * 0.98, truth[4] * 1.5}),
+      StartFrom(ModelKind::kModifiedCamClay,
+                {truth[0] * 1.1, truth[1] * 0.85, truth[2] * 1.5, truth[3] * 0.98, truth[4] * 1.5}),
       PredictorOptions(),
       {testing::UnloadReloadCycles(*model), testing::IsochoricPath(*model, 100, 4, 0.3),
        testing::IsochoricPath(*model, 200, 1, 0.3), testing::DrainedPath(*model, 200, 1, 0.25)});
@@ -305,12 +321,82 @@ TEST(PathRecovery, UnloadingBranchesDetermineKappa) {
   EXPECT_EQ(r[static_cast<size_t>(problem.Group(ResidualGroup::kPath).begin)], 0.0);
 }
 
+// A calibration file with asymptotic states (CSV) and three DEM paths
+// (dem_path): RunCalibration reads them, recovers κ* and r, and writes the
+// summary lines and the plot data of the path figure.
+TEST(PathCalibration, AFileWithPathDatasetsRunsAndWritesThePathFigureData) {
+  const std::vector<double> truth = testing::LondonClay();
+  const auto model = Model(ModelKind::kHypoplasticClay, truth);
+  const std::filesystem::path dir = TempPath("granasym_path_calibration");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "runs");
+  std::string csv = "psi_epsilon_deg,p_kpa,e,psi_sigma_deg\n";
+  for (const AsymptoticStatePoint& point : ClayStates(ModelKind::kHypoplasticClay, truth).points) {
+    csv += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", point.psi_epsilon / kDegree,
+                       point.mean_stress, point.void_ratio, point.psi_sigma / kDegree);
+  }
+  WriteTextFileAtomically((dir / "states.csv").string(), csv);
+  WriteModelRun(
+      *model, (dir / "runs/ncl_cycles.h5").string(), InitialStateFromOcr(*model, 200, 0, 1),
+      {testing::IsotropicTo(50, false), testing::IsotropicTo(500, true)}, {"unload1", "reload1"});
+  WriteModelRun(*model, (dir / "runs/oc100_psi90.h5").string(),
+                InitialStateFromOcr(*model, 100, 0, 4), {LoadingStage::Isochoric(1.0, 0.3)},
+                {"psi90"});
+  WriteModelRun(*model, (dir / "runs/nc200_triaxial.h5").string(),
+                InitialStateFromOcr(*model, 200, 0, 1),
+                {LoadingStage::ConstantRadialStress(1.0, 0.25)}, {"triaxial"});
+  const std::string config = (dir / "clay.toml").string();
+  WriteTextFileAtomically(config, R"([model]
+kind = "hypoplastic_clay"
+[parameters.kappa_star]
+value = 0.025
+[parameters.r]
+value = 0.6
+[[dataset]]
+name = "states"
+csv = "states.csv"
+[[dataset]]
+name = "cycles"
+dem_path = "runs/ncl_cycles.h5"
+stages = ["unload1", "reload1"]
+[[dataset]]
+name = "oc100 isochoric"
+dem_path = "runs/oc100_psi90.h5"
+stages = ["psi90"]
+[[dataset]]
+name = "nc200 drained"
+dem_path = "runs/nc200_triaxial.h5"
+stages = ["triaxial"]
+points = 30
+)");
+  const CalibrationConfig c = ReadCalibrationConfigFile(config);
+  const CalibrationRun run = RunCalibration(c);
+  ASSERT_EQ(run.problem->paths().size(), 3u);
+  EXPECT_EQ(run.problem->paths()[0].kind, PathKind::kUnloadReload);
+  EXPECT_EQ(run.problem->paths()[1].kind, PathKind::kIsochoric);
+  EXPECT_EQ(run.problem->paths()[2].control, PathControl::kDrained);
+  const FitResult* fit = run.kept_fit();
+  ASSERT_TRUE(fit && fit->summary.success());
+  EXPECT_TRUE(run.undetermined.empty()) << run.undetermined.front();
+  EXPECT_NEAR(fit->values[kKappaStar], truth[kKappaStar], 0.02 * truth[kKappaStar]);
+  EXPECT_NEAR(fit->values[kShearParameter], truth[kShearParameter], 0.02 * truth[kShearParameter]);
+  const std::string summary = SummaryText(run);
+  EXPECT_NE(summary.find("whole paths ("), std::string::npos) << summary;
+  EXPECT_NE(summary.find("path 'nc200 drained' (drained, drained control, "), std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("a whole path"), std::string::npos) << summary;
+  WritePlotData(run, *fit, c.plot_data_dir);
+  EXPECT_TRUE(std::filesystem::exists(c.plot_data_dir + "/path_3.csv"));
+  const std::string list = ReadTextFile(c.plot_data_dir + "/paths.txt");
+  EXPECT_NE(list.find("path_2.csv\toc100 isochoric (isochoric)"), std::string::npos) << list;
+}
+
 // A sand state at p between its densest and critical void ratios:
 // e = e_d + density (e_c − e_d).
 ModelState SandStart(const HypoplasticSand& sand, double p, double density) {
   const HypoplasticSand::LimitVoidRatios limits = sand.LimitVoidRatiosAt(p);
-  return InitialStateFromVoidRatio(
-      sand, p, 0.0, limits.densest + density * (limits.critical - limits.densest));
+  return InitialStateFromVoidRatio(sand, p, 0.0,
+                                   limits.densest + density * (limits.critical - limits.densest));
 }
 
 TEST(PathRecovery, HypoplasticSandEveryParameterFromStatesAndPaths) {
