@@ -22,12 +22,27 @@
 
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "analysis/quasi_static_selection.h"
 #include "calibration/calibration_config.h"
 #include "calibration/fit_status.h"
 
 namespace granasym::analysis {
+
+// The whole-path datasets (issue 36 §3, calibration/path_dataset.h) of a
+// study: the finished cases of replicate r1 whose stages make one of the
+// paper's paths: Fig. 9 (unload and reload stages at psi_epsilon = 180 and
+// 0 deg only: unload_reload), Fig. 11 (one stage at 90 deg: isochoric; from
+// an OC state when the case name starts with "oc") and Fig. 12 (one drained
+// triaxial stage). At most kStudyPathsPerKind of the cycles, of the OC
+// isochoric and of the drained paths, and one NC isochoric path, spread over
+// their starting p, each with the defaults (40 samples, weight 1: a path
+// counts as one state). A case whose path cannot be read is left out with a
+// note. Not for rate studies (their quasi-static selection has no paths).
+inline constexpr size_t kStudyPathsPerKind = 3;
+std::vector<calibration::DatasetConfig> StudyPathDatasets(const std::string& directory,
+                                                          std::vector<std::string>* notes);
 
 // The calibration of `model` to the study in `directory`, as the file
 // DIR/calibration/<model>/calibration.toml would give it; `quasi_static`

@@ -46,10 +46,11 @@ std::string PathSummaryText(const CalibrationProblem& problem, const std::vector
       ss_psi += std::pow((m.psi_sigma[i] - d.PsiSigma()) / kDegree, 2);
       ss_v += std::pow(std::log1p(m.void_ratio[i]) - std::log1p(d.void_ratio), 2);
     }
-    s += fmt::format("  path '{}' ({}, {} control, {} samples, weight {:g}): RMS ln p {:.4g}, "
-                     "psi_sigma {:.3g} deg",
-                     path.name, ToString(path.kind), ToString(path.control), path.samples.size(),
-                     path.weight, std::sqrt(ss_p / n), std::sqrt(ss_psi / n));
+    s += fmt::format(
+        "  path '{}' ({}, {} control, {} samples, weight {:g}): RMS ln p {:.4g}, "
+        "psi_sigma {:.3g} deg",
+        path.name, ToString(path.kind), ToString(path.control), path.samples.size(), path.weight,
+        std::sqrt(ss_p / n), std::sqrt(ss_psi / n));
     if (path.control == PathControl::kDrained) {
       s += fmt::format(", ln(1+e) {:.4g}", std::sqrt(ss_v / n));
     }
@@ -88,8 +89,8 @@ void WritePathPlotData(const CalibrationProblem& problem, const std::vector<doub
     }
     const std::string file = fmt::format("path_{}.csv", k + 1);
     WriteTextFileAtomically(folder + "/" + file, text);
-    list += fmt::format("{}\t{} ({})\t{}\n", file, path.name, ToString(path.kind),
-                        ToString(path.kind));
+    list +=
+        fmt::format("{}\t{} ({})\t{}\n", file, path.name, ToString(path.kind), ToString(path.kind));
   }
   WriteTextFileAtomically(folder + "/paths.txt", list);
 }

@@ -4,11 +4,15 @@
 // the DEM records them and resampled on strain as calibration/path_dataset.h does.
 #pragma once
 
+#include <fmt/format.h>
+
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "calibration/path_dataset.h"
 #include "common/error.h"
+#include "common/hdf5_file.h"
 #include "common/state_measures.h"
 #include "constitutive/element_driver.h"
 
@@ -110,6 +114,73 @@ inline PathDataset DrainedPath(const ConstitutiveModel& model, double p, double 
                    InitialStateFromOcr(model, p, 0.0, ocr),
                    {LoadingStage::ConstantRadialStress(1.0, axial_strain)}, PathControl::kDrained,
                    PathKind::kDrained);
+}
+
+// A stage of a DEM result file written by WriteDemPathFile.
+struct DemStage {
+  std::string name;
+  int first = 0, last = 0;                // rows
+  std::string type = "strain_path";       // or "triaxial"
+  double psi_epsilon_deg = std::nan("");  // attribute written when finite
+};
+
+// A DEM result file (the layout of dem/run_record_names.h) holding `rows` as
+// its series and `stages`.
+inline void WriteDemPathFile(const std::string& file_path, const std::vector<PathSample>& rows,
+                             const std::vector<DemStage>& stages) {
+  std::vector<double> a, r, sa, sr, e, p, psi;
+  for (const PathSample& s : rows) {
+    a.push_back(s.axial_strain);
+    r.push_back(s.radial_strain);
+    sa.push_back(s.axial_stress);
+    sr.push_back(s.radial_stress);
+    e.push_back(s.void_ratio);
+    p.push_back(s.MeanStress());
+    psi.push_back(s.PsiSigma() / kDegree);
+  }
+  Hdf5File file = Hdf5File::CreateAtomic(file_path);
+  file.WriteDoubles("/series/eps_a", a, "1");
+  file.WriteDoubles("/series/eps_r", r, "1");
+  file.WriteDoubles("/series/sigma_a_kpa", sa, "kPa");
+  file.WriteDoubles("/series/sigma_r_kpa", sr, "kPa");
+  file.WriteDoubles("/series/e", e, "1");
+  file.WriteDoubles("/series/p_kpa", p, "kPa");
+  file.WriteDoubles("/series/psi_sigma_deg", psi, "deg");
+  file.CreateGroup("/stages");
+  for (size_t k = 0; k < stages.size(); ++k) {
+    const std::string g = fmt::format("/stages/{:03d}", k);
+    file.CreateGroup(g);
+    file.SetAttribute(g, "name", stages[k].name);
+    file.SetAttribute(g, "type", stages[k].type);
+    file.SetAttribute(g, "first_row", int64_t{stages[k].first});
+    file.SetAttribute(g, "last_row", int64_t{stages[k].last});
+    if (std::isfinite(stages[k].psi_epsilon_deg)) {
+      file.SetAttribute(g, "psi_epsilon_deg", stages[k].psi_epsilon_deg);
+    }
+  }
+  file.Commit();
+}
+
+// A model's element test written as a DEM result file, one stage per
+// loading stage, named `names`, with `types` and ψ_ε (NaN: none) per stage.
+inline void WriteModelRun(const ConstitutiveModel& model, const std::string& file,
+                          const ModelState& start, const std::vector<LoadingStage>& stages,
+                          const std::vector<std::string>& names,
+                          const std::vector<std::string>& types = {},
+                          const std::vector<double>& psi_epsilons_deg = {}) {
+  const ElementTestResult result = RunRecorded(model, start, stages, 60);
+  std::vector<size_t> ends;
+  const std::vector<PathSample> rows = RecordsAsRows(result, &ends);
+  std::vector<DemStage> written;
+  int first = 0;
+  for (size_t k = 0; k < ends.size(); ++k) {
+    DemStage stage{names[k], first, static_cast<int>(ends[k])};
+    if (k < types.size()) stage.type = types[k];
+    if (k < psi_epsilons_deg.size()) stage.psi_epsilon_deg = psi_epsilons_deg[k];
+    written.push_back(stage);
+    first = static_cast<int>(ends[k]) + 1;
+  }
+  WriteDemPathFile(file, rows, written);
 }
 
 }  // namespace granasym::calibration::testing

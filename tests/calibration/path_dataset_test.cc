@@ -98,39 +98,6 @@ TEST(PathDataset, AStartBeyondTheModelsNclIsMovedOntoIt) {
               1e-6);
 }
 
-// A DEM result file holding `rows` as its series, one stage per range.
-void WriteDemPathFile(const std::string& file_path, const std::vector<PathSample>& rows,
-                      const std::vector<std::pair<std::string, std::pair<int, int>>>& stages) {
-  std::vector<double> a, r, sa, sr, e, p, psi;
-  for (const PathSample& s : rows) {
-    a.push_back(s.axial_strain);
-    r.push_back(s.radial_strain);
-    sa.push_back(s.axial_stress);
-    sr.push_back(s.radial_stress);
-    e.push_back(s.void_ratio);
-    p.push_back(s.MeanStress());
-    psi.push_back(s.PsiSigma() / kDegree);
-  }
-  Hdf5File file = Hdf5File::CreateAtomic(file_path);
-  file.WriteDoubles("/series/eps_a", a, "1");
-  file.WriteDoubles("/series/eps_r", r, "1");
-  file.WriteDoubles("/series/sigma_a_kpa", sa, "kPa");
-  file.WriteDoubles("/series/sigma_r_kpa", sr, "kPa");
-  file.WriteDoubles("/series/e", e, "1");
-  file.WriteDoubles("/series/p_kpa", p, "kPa");
-  file.WriteDoubles("/series/psi_sigma_deg", psi, "deg");
-  file.CreateGroup("/stages");
-  for (size_t k = 0; k < stages.size(); ++k) {
-    const std::string g = fmt::format("/stages/{:03d}", k);
-    file.CreateGroup(g);
-    file.SetAttribute(g, "name", stages[k].first);
-    file.SetAttribute(g, "type", "strain_path");
-    file.SetAttribute(g, "first_row", int64_t{stages[k].second.first});
-    file.SetAttribute(g, "last_row", int64_t{stages[k].second.second});
-  }
-  file.Commit();
-}
-
 TEST(PathDataset, ReadsADemPathThroughItsStagesAndNamesWhatIsMissing) {
   const auto clay = Model(ModelKind::kHypoplasticClay, testing::LondonClay());
   std::vector<LoadingStage> stages = {testing::IsotropicTo(200, true),
@@ -142,10 +109,11 @@ TEST(PathDataset, ReadsADemPathThroughItsStagesAndNamesWhatIsMissing) {
   const std::vector<PathSample> rows = testing::RecordsAsRows(result, &ends);
   ASSERT_EQ(ends.size(), 3u);
   const std::string file = TempPath("granasym_dem_path.h5");
-  WriteDemPathFile(file, rows,
-                   {{"load", {0, static_cast<int>(ends[0])}},
-                    {"unload1", {static_cast<int>(ends[0]) + 1, static_cast<int>(ends[1])}},
-                    {"reload1", {static_cast<int>(ends[1]) + 1, static_cast<int>(ends[2])}}});
+  testing::WriteDemPathFile(
+      file, rows,
+      {{"load", 0, static_cast<int>(ends[0])},
+       {"unload1", static_cast<int>(ends[0]) + 1, static_cast<int>(ends[1])},
+       {"reload1", static_cast<int>(ends[1]) + 1, static_cast<int>(ends[2])}});
   PathReadOptions options;
   options.stages = {"unload1", "reload1"};
   options.points = 30;
@@ -180,21 +148,6 @@ TEST(PathDataset, ReadsADemPathThroughItsStagesAndNamesWhatIsMissing) {
   fails_with({"load", "reload1"}, "are not consecutive");
   fails_with({}, "stages is empty");
   std::filesystem::remove(file);
-}
-
-// A model's element test written as a DEM result file, one stage per loading stage.
-void WriteModelRun(const ConstitutiveModel& model, const std::string& file, const ModelState& start,
-                   const std::vector<LoadingStage>& stages, const std::vector<std::string>& names) {
-  const ElementTestResult result = testing::RunRecorded(model, start, stages, 60);
-  std::vector<size_t> ends;
-  const std::vector<PathSample> rows = testing::RecordsAsRows(result, &ends);
-  std::vector<std::pair<std::string, std::pair<int, int>>> ranges;
-  int first = 0;
-  for (size_t k = 0; k < ends.size(); ++k) {
-    ranges.push_back({names[k], {first, static_cast<int>(ends[k])}});
-    first = static_cast<int>(ends[k]) + 1;
-  }
-  WriteDemPathFile(file, rows, ranges);
 }
 
 // Asymptotic states of a clay model nearly without noise (0.01°, 1e-4),
@@ -336,15 +289,15 @@ TEST(PathCalibration, AFileWithPathDatasetsRunsAndWritesThePathFigureData) {
                        point.mean_stress, point.void_ratio, point.psi_sigma / kDegree);
   }
   WriteTextFileAtomically((dir / "states.csv").string(), csv);
-  WriteModelRun(
+  testing::WriteModelRun(
       *model, (dir / "runs/ncl_cycles.h5").string(), InitialStateFromOcr(*model, 200, 0, 1),
       {testing::IsotropicTo(50, false), testing::IsotropicTo(500, true)}, {"unload1", "reload1"});
-  WriteModelRun(*model, (dir / "runs/oc100_psi90.h5").string(),
-                InitialStateFromOcr(*model, 100, 0, 4), {LoadingStage::Isochoric(1.0, 0.3)},
-                {"psi90"});
-  WriteModelRun(*model, (dir / "runs/nc200_triaxial.h5").string(),
-                InitialStateFromOcr(*model, 200, 0, 1),
-                {LoadingStage::ConstantRadialStress(1.0, 0.25)}, {"triaxial"});
+  testing::WriteModelRun(*model, (dir / "runs/oc100_psi90.h5").string(),
+                         InitialStateFromOcr(*model, 100, 0, 4),
+                         {LoadingStage::Isochoric(1.0, 0.3)}, {"psi90"});
+  testing::WriteModelRun(*model, (dir / "runs/nc200_triaxial.h5").string(),
+                         InitialStateFromOcr(*model, 200, 0, 1),
+                         {LoadingStage::ConstantRadialStress(1.0, 0.25)}, {"triaxial"});
   const std::string config = (dir / "clay.toml").string();
   WriteTextFileAtomically(config, R"([model]
 kind = "hypoplastic_clay"
