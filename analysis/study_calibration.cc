@@ -122,8 +122,8 @@ std::optional<CasePath> ClassifyCase(const std::string& folder) {
   }
 }
 
-// At most `count` of `paths`, spread over their starting p (lowest, highest,
-// then between).
+// At most `count` of `paths`, spread over their starting p (one: the
+// median; more: lowest to highest).
 std::vector<CasePath> Spread(std::vector<CasePath> paths, size_t count) {
   std::sort(paths.begin(), paths.end(),
             [](const CasePath& a, const CasePath& b) { return a.start_p < b.start_p; });
@@ -144,7 +144,7 @@ std::vector<calibration::DatasetConfig> StudyPathDatasets(const std::string& dir
   for (const std::string& folder : study::CaseFolders(directory, false)) {
     if (fs::path(folder).parent_path() != replicate) continue;
     const std::optional<CasePath> path = ClassifyCase(folder);
-    if (!path) continue;
+    if (!path || path->start_p < kStudyPathMinStartKpa) continue;
     switch (path->kind) {
       case calibration::PathKind::kUnloadReload:
         cycles.push_back(*path);
@@ -158,8 +158,9 @@ std::vector<calibration::DatasetConfig> StudyPathDatasets(const std::string& dir
     }
   }
   std::vector<CasePath> chosen = Spread(cycles, kStudyPathsPerKind);
-  for (const auto& group : {Spread(oc_isochoric, kStudyPathsPerKind), Spread(nc_isochoric, 1),
-                            Spread(drained, kStudyPathsPerKind)}) {
+  for (const auto& group :
+       {Spread(oc_isochoric, kStudyPathsPerKind), Spread(nc_isochoric, kStudyPathsPerKind),
+        Spread(drained, kStudyPathsPerKind)}) {
     chosen.insert(chosen.end(), group.begin(), group.end());
   }
   std::vector<calibration::DatasetConfig> datasets;
@@ -174,6 +175,10 @@ std::vector<calibration::DatasetConfig> StudyPathDatasets(const std::string& dir
     d.path = d.paths.front();
     d.path_read.stages = path.stages;
     d.path_read.kind = path.kind;
+    // Fig. 12: σ_r held by the DEM, followed by the model.
+    if (path.kind == calibration::PathKind::kDrained) {
+      d.path_read.control = calibration::PathControl::kDrained;
+    }
     try {
       calibration::ReadPathDem(d.path, d.name, d.path_read);
     } catch (const std::exception& error) {

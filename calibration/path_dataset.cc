@@ -275,8 +275,10 @@ PathDataset ReadPathDem(const std::string& path, const std::string& name,
   dataset.source =
       fmt::format("{}:{} ({})", path, groups[chosen.front()], fmt::join(options.stages, ", "));
   dataset.samples = ResampleOnStrain(raw, options.points, keep);
-  dataset.control =
-      options.control == PathControl::kAuto ? DetectControl(dataset.samples) : options.control;
+  // A path said to be drained is under drained control unless said otherwise.
+  dataset.control = options.control != PathControl::kAuto ? options.control
+                    : options.kind == PathKind::kDrained  ? PathControl::kDrained
+                                                          : DetectControl(dataset.samples);
   dataset.kind =
       options.kind == PathKind::kAuto ? DetectKind(dataset.samples, dataset.control) : options.kind;
   dataset.weight = options.weight;

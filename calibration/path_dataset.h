@@ -17,8 +17,9 @@
 //            the stress is compared;
 //   drained  ε_a prescribed and σ_r following the DEM's (held on a drained
 //            triaxial path): stress and e are compared.
-// `auto` takes drained when σ_r varies by less than 2 % of its mean over the
-// path while σ_a varies by more than 10 %, else strain.
+// `auto` takes drained for a path of kind drained, else when σ_r varies by
+// less than 2 % of its mean over the path while σ_a varies by more than 10 %,
+// else strain.
 //
 // Residuals per sample k ≥ 1 (CalibrationProblem), each · √(weight / n)
 // with n the number of samples after the first, so that a path counts as

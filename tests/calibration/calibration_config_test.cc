@@ -7,11 +7,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <sstream>
 
 #include "calibration/calibration_report.h"
 #include "calibration/csv_state_reader.h"
 #include "common/error.h"
 #include "common/hdf5_file.h"
+#include "common/text_file.h"
 #include "synthetic_data.h"
 #include "tests/calibration/same_config.h"
 #include "tests/common/enum_spellings.h"
@@ -429,6 +432,45 @@ TEST(CalibrationConfig, FitsAreComparedOnlyWhenBothConvergedWithStandardErrors) 
   EXPECT_EQ(why_not,
             "ceres reports no standard error of any free parameter (each is undetermined or at a "
             "bound)");
+}
+
+// Every example of calibration/examples/ reads (one per model), and
+// docs/calibration.md lists every key that the writer writes for a file
+// with every kind of dataset and every key the examples use.
+TEST(CalibrationConfig, ExamplesReadAndTheDocumentationListsEveryKey) {
+  const std::string root = GRANASYM_SOURCE_DIR;
+  const std::string docs = ReadTextFile(root + "/docs/calibration.md");
+  std::set<std::string> keys;
+  const auto collect = [&keys](const std::string& text) {
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) {
+      const size_t eq = line.find(" = ");
+      if (line.empty() || line[0] == '#' || eq == std::string::npos) continue;
+      keys.insert(line.substr(0, eq));
+    }
+  };
+  std::set<ModelKind> models;
+  for (const char* name : {"hypoplastic_clay", "modified_cam_clay", "hypoplastic_sand"}) {
+    const std::string file = root + "/calibration/examples/" + name + ".toml";
+    SCOPED_TRACE(file);
+    const CalibrationConfig c = ReadCalibrationConfigFile(file);
+    models.insert(c.model);
+    EXPECT_EQ(ToString(c.model), std::string(name));
+    bool has_path = false;
+    for (const DatasetConfig& d : c.datasets) has_path |= d.is_path;
+    EXPECT_TRUE(has_path) << "each example fits whole paths too";
+    collect(ReadTextFile(file));
+    collect(CalibrationConfigText(c));
+  }
+  EXPECT_EQ(models.size(), 3u);
+  collect(CalibrationConfigText(
+      ReadCalibrationConfig(ConfigTable::ParseString(kEveryKey, "/d/e/calib.toml"))));
+  EXPECT_GT(keys.size(), 40u);
+  for (const std::string& key : keys) {
+    EXPECT_NE(docs.find("\n" + key + " = "), std::string::npos)
+        << "docs/calibration.md does not list the key '" << key << "'";
+  }
 }
 
 }  // namespace
