@@ -175,6 +175,7 @@ std::vector<calibration::DatasetConfig> StudyPathDatasets(const std::string& dir
     d.path = d.paths.front();
     d.path_read.stages = path.stages;
     d.path_read.kind = path.kind;
+    d.path_read.points = kStudyPathPoints;
     // Fig. 12: σ_r held by the DEM, followed by the model.
     if (path.kind == calibration::PathKind::kDrained) {
       d.path_read.control = calibration::PathControl::kDrained;

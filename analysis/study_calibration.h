@@ -38,13 +38,13 @@ namespace granasym::analysis {
 // triaxial stage), starting at p >= kStudyPathMinStartKpa (the paths from
 // 1-5 kPa are stiff to integrate and noisy at small scales). Of each of the
 // four groups (cycles, OC isochoric, NC isochoric, drained) at most
-// kStudyPathsPerKind, the ones of median starting p, each with the defaults
-// (40 samples, weight 1: a path counts as one state), so that the fit's cost
-// stays a few integrations per evaluation. A case whose path cannot be read
-// is left out with a note. Not for rate studies (their quasi-static
-// selection has no paths).
+// kStudyPathsPerKind, the ones of median starting p, each with
+// kStudyPathPoints samples and weight 1 (a path counts as one state), so
+// that the fit's cost stays a few short integrations per evaluation. A case whose path cannot be
+// read is left out with a note. Not for rate studies (their quasi-static selection has no paths).
 inline constexpr size_t kStudyPathsPerKind = 1;
 inline constexpr double kStudyPathMinStartKpa = 10.0;
+inline constexpr int kStudyPathPoints = 30;
 std::vector<calibration::DatasetConfig> StudyPathDatasets(const std::string& directory,
                                                           std::vector<std::string>* notes);
 

@@ -301,14 +301,18 @@ bool StartState(const ConstitutiveModel& model, double axial, double radial, dou
   *moved = false;
   if (model.IsAdmissibleStart(*state, why)) return true;
   const double p = (axial + 2 * radial) / 3.0;
-  const double on_sbs = model.VoidRatioForOcr(p, 1.0);
-  if (!(std::isfinite(on_sbs) && on_sbs > 0)) return false;
-  // Just inside: OCR 1 within rounding.
-  *state = model.MakeState(stress, on_sbs * (1.0 - 1e-9));
-  *moved = true;
-  std::string second;
-  if (model.IsAdmissibleStart(*state, &second)) return true;
-  *why += "; at OCR = 1 too: " + second;
+  // Just inside the SBS: OCR 1 within rounding, or, where the stress is not
+  // isotropic and OCR 1 lies outside a yield surface (Cam clay), the
+  // smallest OCR of these that is inside.
+  std::string last;
+  for (const double ocr : {1.0 + 1e-9, 1.001, 1.01, 1.03, 1.1, 1.3, 2.0}) {
+    const double e = model.VoidRatioForOcr(p, ocr);
+    if (!(std::isfinite(e) && e > 0)) break;
+    *state = model.MakeState(stress, e);
+    *moved = true;
+    if (model.IsAdmissibleStart(*state, &last)) return true;
+  }
+  *why += "; at OCR = 1 to 2 too: " + last;
   return false;
 }
 
