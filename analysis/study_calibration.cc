@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,8 +15,10 @@
 #include "calibration/model_parameters.h"
 #include "common/config.h"
 #include "common/error.h"
+#include "common/hdf5_file.h"
 #include "common/text_file.h"
 #include "constitutive/model_config.h"
+#include "dem/run_record_names.h"
 #include "study/study_folder.h"
 
 namespace granasym::analysis {
@@ -49,7 +53,144 @@ std::string Header(const QuasiStaticSelection* quasi_static, double max_inertial
   return text + "\n";
 }
 
+// A case's result, classified by its stages for a whole-path dataset.
+struct CasePath {
+  std::string name;  // the case
+  std::vector<std::string> stages;
+  calibration::PathKind kind = calibration::PathKind::kGeneral;
+  bool overconsolidated = false;  // an isochoric path from an OC state (case name oc...)
+  double start_p = 0.0;           // kPa, at the path's first row
+};
+
+// The case at `folder` (DIR/cases/r1/<case>) as a path of Fig. 9 (unload and
+// reload stages at psi_epsilon = 180/0 deg), Fig. 11 (one stage at 90 deg)
+// or Fig. 12 (one drained triaxial stage); nullopt for other cases.
+std::optional<CasePath> ClassifyCase(const std::string& folder) {
+  namespace record = dem::record;
+  const std::string result = folder + "/result.h5";
+  if (!fs::exists(result) || !fs::exists(folder + "/done.toml")) return std::nullopt;
+  try {
+    const Hdf5File file = Hdf5File::OpenRead(result);
+    if (!file.Exists(record::kStages)) return std::nullopt;
+    CasePath path;
+    path.name = fs::path(folder).filename().string();
+    int unload = 0, reload = 0, isochoric = 0, triaxial = 0, other = 0;
+    int64_t first_row = -1;
+    for (const std::string& stage : file.List(record::kStages)) {
+      const std::string group = std::string(record::kStages) + "/" + stage;
+      path.stages.push_back(file.ReadStringAttribute(group, record::kStageName));
+      if (first_row < 0) first_row = file.ReadIntAttribute(group, record::kStageFirstRow);
+      const std::string type = file.HasAttribute(group, record::kStageType)
+                                   ? file.ReadStringAttribute(group, record::kStageType)
+                                   : "";
+      if (type == "triaxial") {
+        ++triaxial;
+      } else if (file.HasAttribute(group, record::kStagePsiEpsilonDeg)) {
+        const double psi = file.ReadDoubleAttribute(group, record::kStagePsiEpsilonDeg);
+        if (std::abs(psi - 180.0) < 0.5) {
+          ++unload;
+        } else if (std::abs(psi) < 0.5) {
+          ++reload;
+        } else if (std::abs(psi - 90.0) < 0.5) {
+          ++isochoric;
+        } else {
+          ++other;
+        }
+      } else {
+        ++other;
+      }
+    }
+    const int stages = static_cast<int>(path.stages.size());
+    if (unload > 0 && reload > 0 && unload + reload == stages) {
+      path.kind = calibration::PathKind::kUnloadReload;
+    } else if (stages == 1 && isochoric == 1) {
+      path.kind = calibration::PathKind::kIsochoric;
+      path.overconsolidated = path.name.rfind("oc", 0) == 0;
+    } else if (stages == 1 && triaxial == 1) {
+      path.kind = calibration::PathKind::kDrained;
+    } else {
+      return std::nullopt;
+    }
+    const std::vector<double> p =
+        file.ReadDoubles(std::string(record::kSeries) + "/" + record::kColumnMeanStress);
+    const size_t row = static_cast<size_t>(std::max<int64_t>(0, first_row));
+    if (row >= p.size()) return std::nullopt;
+    path.start_p = p[row];
+    return path;
+  } catch (const std::exception&) {
+    return std::nullopt;  // not a readable result: no path from it
+  }
+}
+
+// At most `count` of `paths`, spread over their starting p (one: the
+// median; more: lowest to highest).
+std::vector<CasePath> Spread(std::vector<CasePath> paths, size_t count) {
+  std::sort(paths.begin(), paths.end(),
+            [](const CasePath& a, const CasePath& b) { return a.start_p < b.start_p; });
+  if (paths.size() <= count) return paths;
+  std::vector<CasePath> chosen;
+  for (size_t k = 0; k < count; ++k) {
+    chosen.push_back(paths[count == 1 ? paths.size() / 2 : k * (paths.size() - 1) / (count - 1)]);
+  }
+  return chosen;
+}
+
 }  // namespace
+
+std::vector<calibration::DatasetConfig> StudyPathDatasets(const std::string& directory,
+                                                          std::vector<std::string>* notes) {
+  std::vector<CasePath> cycles, oc_isochoric, nc_isochoric, drained;
+  const fs::path replicate = fs::path(directory) / "cases" / "r1";
+  for (const std::string& folder : study::CaseFolders(directory, false)) {
+    if (fs::path(folder).parent_path() != replicate) continue;
+    const std::optional<CasePath> path = ClassifyCase(folder);
+    if (!path || path->start_p < kStudyPathMinStartKpa) continue;
+    switch (path->kind) {
+      case calibration::PathKind::kUnloadReload:
+        cycles.push_back(*path);
+        break;
+      case calibration::PathKind::kIsochoric:
+        (path->overconsolidated ? oc_isochoric : nc_isochoric).push_back(*path);
+        break;
+      default:
+        drained.push_back(*path);
+        break;
+    }
+  }
+  std::vector<CasePath> chosen = Spread(cycles, kStudyPathsPerKind);
+  for (const auto& group :
+       {Spread(oc_isochoric, kStudyPathsPerKind), Spread(nc_isochoric, kStudyPathsPerKind),
+        Spread(drained, kStudyPathsPerKind)}) {
+    chosen.insert(chosen.end(), group.begin(), group.end());
+  }
+  std::vector<calibration::DatasetConfig> datasets;
+  for (const CasePath& path : chosen) {
+    calibration::DatasetConfig d;
+    d.name = path.name + " path";
+    d.is_path = true;
+    d.study_path = fs::path(directory).lexically_normal().string();
+    d.path_case = path.name;
+    d.path_replicate = 1;
+    d.paths = {calibration::StudyCaseResult(d.study_path, 1, path.name)};
+    d.path = d.paths.front();
+    d.path_read.stages = path.stages;
+    d.path_read.kind = path.kind;
+    d.path_read.points = kStudyPathPoints;
+    // Fig. 12: σ_r held by the DEM, followed by the model.
+    if (path.kind == calibration::PathKind::kDrained) {
+      d.path_read.control = calibration::PathControl::kDrained;
+    }
+    try {
+      calibration::ReadPathDem(d.path, d.name, d.path_read);
+    } catch (const std::exception& error) {
+      if (notes)
+        notes->push_back(fmt::format("{}: not used as a path: {}", path.name, error.what()));
+      continue;
+    }
+    datasets.push_back(d);
+  }
+  return datasets;
+}
 
 calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directory, ModelKind model,
                                                       const QuasiStaticSelection* quasi_static,
@@ -97,6 +238,13 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
     if (!ncl.empty()) d.study.ncl_references = {ncl};
     d.study.max_inertial_number = max_inertial_number;
     config.datasets = {d};
+    // The DEM's own whole paths (issue 36 §3): cycles, isochoric, drained.
+    for (calibration::DatasetConfig& path : StudyPathDatasets(directory, nullptr)) {
+      path.study_path = resolve("../..");
+      path.paths = {calibration::StudyCaseResult(path.study_path, 1, path.path_case)};
+      path.path = path.paths.front();
+      config.datasets.push_back(path);
+    }
   }
   // A rate study's quasi-static states lie on nearly flat lines (frictional
   // spheres do not crush) where a local fit from the starting values can

@@ -22,12 +22,31 @@
 
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "analysis/quasi_static_selection.h"
 #include "calibration/calibration_config.h"
 #include "calibration/fit_status.h"
 
 namespace granasym::analysis {
+
+// The whole-path datasets (issue 36 §3, calibration/path_dataset.h) of a
+// study: the finished cases of replicate r1 whose stages make one of the
+// paper's paths: Fig. 9 (unload and reload stages at psi_epsilon = 180 and
+// 0 deg only: unload_reload), Fig. 11 (one stage at 90 deg: isochoric; from
+// an OC state when the case name starts with "oc") and Fig. 12 (one drained
+// triaxial stage), starting at p >= kStudyPathMinStartKpa (the paths from
+// 1-5 kPa are stiff to integrate and noisy at small scales). Of each of the
+// four groups (cycles, OC isochoric, NC isochoric, drained) at most
+// kStudyPathsPerKind, the ones of median starting p, each with
+// kStudyPathPoints samples and weight 1 (a path counts as one state), so
+// that the fit's cost stays a few short integrations per evaluation. A case whose path cannot be
+// read is left out with a note. Not for rate studies (their quasi-static selection has no paths).
+inline constexpr size_t kStudyPathsPerKind = 1;
+inline constexpr double kStudyPathMinStartKpa = 10.0;
+inline constexpr int kStudyPathPoints = 30;
+std::vector<calibration::DatasetConfig> StudyPathDatasets(const std::string& directory,
+                                                          std::vector<std::string>* notes);
 
 // The calibration of `model` to the study in `directory`, as the file
 // DIR/calibration/<model>/calibration.toml would give it; `quasi_static`

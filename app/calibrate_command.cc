@@ -7,6 +7,7 @@
 #include "app/calibrate_command.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "app/figure_drawing.h"
@@ -37,7 +38,11 @@ void RunCalibrate(const CalibrateFlags& flags) {
       inputs.push_back({"the data file of [[dataset]] '" + dataset.name + "'", path});
     }
   }
+  // The fitted model as `granasym model run` reads it, beside the record.
+  const std::string model_toml =
+      std::filesystem::path(config.hdf5_path).replace_extension("").string() + "_model.toml";
   CheckOutputs({{"the HDF5 record (--out / [output] hdf5)", config.hdf5_path},
+                {"the fitted model (beside the HDF5 record)", model_toml},
                 {"the summary (--summary / [output] summary)", config.summary_path},
                 {"the status file (--status / [output] status)", config.status_path}},
                inputs);
@@ -50,12 +55,18 @@ void RunCalibrate(const CalibrateFlags& flags) {
   WriteTextFileAtomically(config.status_path, calibration::FitStatusToml(run.outcome));
   const calibration::FitResult* kept = run.kept_fit();
   const bool plotted = kept && kept->summary.success();
-  if (plotted) calibration::WritePlotData(run, *kept, config.plot_data_dir);
+  if (plotted) {
+    calibration::WritePlotData(run, *kept, config.plot_data_dir);
+    WriteTextFileAtomically(model_toml, calibration::ModelToml(run, *kept));
+  } else {
+    std::filesystem::remove(model_toml);  // none of an earlier fit stays
+  }
   if (!flags.quiet) std::printf("%s\n", summary.c_str());
   std::printf("status: %s: %s\nrecord: %s\nsummary: %s\nstatus file: %s\n",
               calibration::ToString(run.outcome.status), run.outcome.reason.c_str(),
               config.hdf5_path.c_str(), config.summary_path.c_str(), config.status_path.c_str());
   if (plotted) {
+    std::printf("model: %s (granasym model run)\n", model_toml.c_str());
     std::printf("plot data: %s (see plots/calibration_*.gp)\n", config.plot_data_dir.c_str());
     for (const std::string& line : DrawCalibrationFigures(config.plot_data_dir)) {
       std::printf("figure: %s\n", line.c_str());

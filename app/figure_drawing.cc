@@ -95,7 +95,8 @@ std::vector<std::string> DrawCalibrationFigures(const std::string& plot_data) {
   for (const auto& [data, script, image] :
        {std::tuple<const char*, const char*, const char*>{"profiles.csv", "calibration_profiles.gp",
                                                           "profiles.png"},
-        {"pareto.csv", "calibration_pareto.gp", "pareto.png"}}) {
+        {"pareto.csv", "calibration_pareto.gp", "pareto.png"},
+        {"paths.txt", "calibration_paths.gp", "paths.png"}}) {
     if (!fs::exists(fs::path(plot_data) / data)) continue;
     const std::string png = (fs::path(plot_data) / image).string();
     fs::remove(png);

@@ -157,6 +157,19 @@ void ReadDemOptions(const ConfigTable& t, DemReadOptions* o) {
       t.Fail("asbs_ln_1_plus_e", "is empty: give at least one ln(1+e) value or leave the key out");
     }
   }
+  o->unloading_weight = t.GetDouble("unloading_weight", o->unloading_weight, Range::NonNegative());
+}
+
+// The keys of a path dataset besides its file (path_dataset.h).
+void ReadPathOptions(const ConfigTable& t, PathReadOptions* o) {
+  o->stages = t.GetStrings("stages");
+  if (o->stages.empty()) {
+    t.Fail("stages", "is empty: name the consecutive stages the path runs through");
+  }
+  o->control = t.GetEnum("control", o->control);
+  o->kind = t.GetEnum("path_kind", o->kind);
+  o->points = static_cast<int>(t.GetInt("points", o->points, Range::Closed(3, 10000)));
+  o->ln_p_uncertainty = t.GetDouble("ln_p_uncertainty", o->ln_p_uncertainty, Range::Positive());
 }
 
 // The keys of a CSV dataset besides its file (csv_state_reader.h).
@@ -174,14 +187,24 @@ DatasetConfig ReadDataset(const ConfigTable& t, size_t k, const std::string& ori
   DatasetConfig d;
   d.name = t.GetString("name", fmt::format("dataset{}", k + 1));
   const bool has_dem = t.Has("dem"), has_csv = t.Has("csv"), has_study = t.Has("study");
-  if (int{has_dem} + int{has_csv} + int{has_study} != 1) {
-    t.Fail(has_dem || has_csv || has_study ? "study" : "dem",
+  const bool has_dem_path = t.Has("dem_path"), has_study_path = t.Has("study_path");
+  if (int{has_dem} + int{has_csv} + int{has_study} + int{has_dem_path} + int{has_study_path} != 1) {
+    t.Fail(has_dem || has_csv || has_study || has_dem_path || has_study_path ? "study" : "dem",
            "give exactly one of study = \"STUDY_DIR\", dem = \"RUN.h5\" (or an array of files "
-           "and globs) and csv = \"FILE.csv\"");
+           "and globs), csv = \"FILE.csv\" (asymptotic states), dem_path = \"RUN.h5\" and "
+           "study_path = \"STUDY_DIR\" (a whole path, with stages = [...])");
   }
   d.is_dem = has_dem;
   d.is_study = has_study;
-  if (has_dem) {
+  d.is_path = has_dem_path || has_study_path;
+  if (has_dem_path) {
+    d.paths.push_back(Resolve(origin, t.GetString("dem_path")));
+  } else if (has_study_path) {
+    d.study_path = Resolve(origin, t.GetString("study_path"));
+    d.path_case = t.GetString("case");
+    d.path_replicate = static_cast<int>(t.GetInt("replicate", 1, Range::AtLeast(1)));
+    d.paths.push_back(StudyCaseResult(d.study_path, d.path_replicate, d.path_case));
+  } else if (has_dem) {
     const std::vector<std::string> given = t.GetStrings("dem");
     if (given.empty()) t.Fail("dem", "is an empty array: give at least one result file");
     for (const std::string& entry : given) {
@@ -194,7 +217,8 @@ DatasetConfig ReadDataset(const ConfigTable& t, size_t k, const std::string& ori
   }
   d.path = d.paths.front();
   const double weight = t.GetDouble("weight", 1.0, Range::NonNegative());
-  const double u_psi = t.GetDouble("psi_sigma_uncertainty_deg", 0.5, Range::Positive());
+  const double u_psi =
+      t.GetDouble("psi_sigma_uncertainty_deg", d.is_path ? 1.0 : 0.5, Range::Positive());
   const double u_v = t.GetDouble("ln_1_plus_e_uncertainty", 0.002, Range::Positive());
   // The keys every kind of dataset has.
   const auto set_weights = [&](auto* o) {
@@ -202,7 +226,10 @@ DatasetConfig ReadDataset(const ConfigTable& t, size_t k, const std::string& ori
     o->psi_sigma_uncertainty_deg = u_psi;
     o->ln_volume_uncertainty = u_v;
   };
-  if (has_study) {
+  if (d.is_path) {
+    set_weights(&d.path_read);
+    ReadPathOptions(t, &d.path_read);
+  } else if (has_study) {
     set_weights(&d.study);
     ReadStudySelections(t, &d.study);
   }
@@ -290,7 +317,8 @@ const KeyTable& CalibrationKeys() {
           std::move(table),    std::move(key),     type,           std::move(unit), range, "",
           std::move(fallback), std::move(meaning), std::move(when)};
     };
-    const std::string study = "study datasets", dem = "dem datasets", csv = "csv datasets";
+    const std::string study = "study datasets", dem = "dem datasets", csv = "csv datasets",
+                      path = "path datasets";
     std::vector<KeySpec> keys = {
         other("", "model", KeyType::kTable, "", "required", "the model to calibrate"),
         other("", "parameters", KeyType::kTable, "", "all free, from the data",
@@ -367,6 +395,26 @@ const KeyTable& CalibrationKeys() {
               "the kind of every state of the file", csv),
         other("dataset[]", "ignore_columns", KeyType::kString, "comma-separated column names",
               "none", "columns to skip", csv),
+        number("dataset[]", "unloading_weight", KeyType::kNumber, "", Range::NonNegative(), "1",
+               "weight of the unload-reload rows (unloading points)", dem),
+        other("dataset[]", "dem_path", KeyType::kString, "a result file", "none",
+              "a whole DEM path (with stages)"),
+        other("dataset[]", "study_path", KeyType::kString, "a study folder", "none",
+              "a whole path of a study's case (with case, replicate and stages)"),
+        other("dataset[]", "case", KeyType::kString, "a case name", "required",
+              "the study case whose path is fitted", path),
+        number("dataset[]", "replicate", KeyType::kInteger, "", Range::AtLeast(1), "1",
+               "the replicate of that case", path),
+        other("dataset[]", "stages", KeyType::kStrings, "stage names", "required",
+              "the consecutive stages the path runs through", path),
+        other("dataset[]", "control", KeyType::kString, AllowedNames<PathControl>(), "auto",
+              "how the model is driven along the path (drained: sigma_r follows the DEM's)", path),
+        other("dataset[]", "path_kind", KeyType::kString, AllowedNames<PathKind>(), "auto",
+              "what the path is (cycles, isochoric, drained, ...)", path),
+        number("dataset[]", "points", KeyType::kInteger, "", Range::Closed(3, 10000), "40",
+               "samples on the path's strain length (plus the stage ends)", path),
+        number("dataset[]", "ln_p_uncertainty", KeyType::kNumber, "", Range::Positive(), "0.02",
+               "uncertainty of ln p per path sample", path),
         other("fitter", "method", KeyType::kString, AllowedNames<FitMethod>(), "ceres",
               "the fitter (both: the two compared)"),
         other("fitter", "fix_undetermined", KeyType::kBool, "true or false", "true",
@@ -410,6 +458,13 @@ const KeyTable& CalibrationKeys() {
                     std::move(keys));
   }();
   return table;
+}
+
+std::string StudyCaseResult(const std::string& study, int replicate, const std::string& case_name) {
+  return (std::filesystem::path(study) / "cases" / fmt::format("r{}", replicate) / case_name /
+          "result.h5")
+      .lexically_normal()
+      .string();
 }
 
 CalibrationConfig ReadCalibrationConfig(const ConfigTable& root) {
@@ -517,14 +572,29 @@ std::string CalibrationConfigText(const CalibrationConfig& config, const std::st
       if (std::isfinite(o.max_inertial_number)) {
         s += "max_inertial_number = " + TomlFloat(o.max_inertial_number) + "\n";
       }
+    } else if (d.is_path) {
+      const PathReadOptions& o = d.path_read;
+      if (!d.study_path.empty()) {
+        s += "study_path = " + rel(d.study_path) + "\n";
+        s += "case = " + TomlQuoted(d.path_case) + "\n";
+        s += fmt::format("replicate = {}\n", d.path_replicate);
+      } else {
+        s += "dem_path = " + rel(d.path) + "\n";
+      }
+      s += "stages = " + TomlStrings(o.stages) + "\n";
+      s += weights(o);
+      s += fmt::format("control = {}\npath_kind = {}\npoints = {}\nln_p_uncertainty = {}\n",
+                       TomlQuoted(ToString(o.control)), TomlQuoted(ToString(o.kind)), o.points,
+                       TomlFloat(o.ln_p_uncertainty));
     } else if (d.is_dem) {
       const DemReadOptions& o = d.dem;
       std::vector<std::string> files;
       for (const std::string& path : d.paths) files.push_back(RelativeTo(config.origin, path));
       s += "dem = " + TomlStrings(files) + "\n";
       s += weights(o);
-      s += fmt::format("ncl_min_p_kpa = {}\nmax_line_points = {}\n", TomlFloat(o.ncl_min_p_kpa),
-                       o.max_line_points);
+      s +=
+          fmt::format("ncl_min_p_kpa = {}\nmax_line_points = {}\nunloading_weight = {}\n",
+                      TomlFloat(o.ncl_min_p_kpa), o.max_line_points, TomlFloat(o.unloading_weight));
       if (!o.asbs_ln_1_plus_e.empty()) {
         s += "asbs_ln_1_plus_e = " + TomlFloats(o.asbs_ln_1_plus_e) + "\n";
       }

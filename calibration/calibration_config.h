@@ -13,7 +13,8 @@
 //   # names: the keys of the model's parameter vector, as in its [model]
 //   # table (ModelTraits::parameters; model.toml of a calibration lists them)
 //
-//   [[dataset]]                   # one or more; exactly one of study, dem, csv
+//   [[dataset]]                   # one or more; exactly one of study, dem, csv,
+//                                 #   dem_path, study_path
 //   name = "dem"
 //   study = "STUDY_DIR"           # a study folder: its asymptotic_states.h5
 //   dem = ["run.h5", "runs/*.h5"] # granasym DEM results: a file or an array of
@@ -41,6 +42,28 @@
 //   # dem datasets:
 //   ncl_min_p_kpa = 50.0          # lowest p of NCL rows
 //   max_line_points = 12          # most NCL/unloading rows per stage
+//   unloading_weight = 1.0        # weight of the unloading and reload rows
+//                                 #   (kind unloading, never NCL rows: a reload
+//                                 #   row lies below the largest p before its
+//                                 #   stage); fitted against the model driven
+//                                 #   isotropically from the branch's start;
+//                                 #   0: read and drawn, not fitted
+//   # whole-path datasets (path_dataset.h): the model integrated along the
+//   # DEM's own strain path from the DEM's own initial state:
+//   dem_path = "run.h5"           # a DEM result file, or
+//   study_path = "STUDY_DIR"      #   a study's case: STUDY_DIR/cases/r<replicate>/<case>/result.h5
+//   case = "ncl_cycles"           #   (study_path only)
+//   replicate = 1                 #   (study_path only; default 1)
+//   stages = ["unload1", "reload1"]  # consecutive stages of the file (required)
+//   control = "auto"              # auto | strain | drained (sigma_r follows the DEM)
+//   path_kind = "auto"            # auto | unload_reload | isochoric | drained |
+//                                 #   cycling | general (reports and figures)
+//   points = 40                   # samples evenly spaced in strain path length,
+//                                 #   plus the stage boundaries
+//   ln_p_uncertainty = 0.02       # of ln p per sample; psi_sigma_uncertainty_deg
+//                                 #   defaults to 1.0 for paths; ln_1_plus_e_uncertainty
+//                                 #   (0.002) enters under drained control only;
+//                                 #   `weight`: the path counts as `weight` states
 //   asbs_ln_1_plus_e = [0.55, 0.58]  # optional: ASBS cross-section points
 //                                 #   at these ln(1+e) (each finite and > 0),
 //                                 #   one per value and detected asymptote,
@@ -87,6 +110,7 @@
 #include "calibration/model_parameters.h"
 #include "calibration/nlopt_fitter.h"
 #include "calibration/pareto.h"
+#include "calibration/path_dataset.h"
 #include "calibration/profile_likelihood.h"
 #include "calibration/study_state_reader.h"
 #include "common/config.h"
@@ -105,10 +129,19 @@ struct DatasetConfig {
                                    // globs expanded (dem); one for csv and study
   bool is_dem = false;
   bool is_study = false;
+  bool is_path = false;  // dem_path or study_path: a whole path (path_read)
+  // study_path datasets: the study folder, case and replicate (`path` is then
+  // the case's result.h5); empty for dem_path.
+  std::string study_path, path_case;
+  int path_replicate = 1;
   CsvReadOptions csv;
   DemReadOptions dem;
   StudyReadOptions study;
+  PathReadOptions path_read;
 };
+
+// A study case's DEM result: STUDY/cases/r<replicate>/<case>/result.h5.
+std::string StudyCaseResult(const std::string& study, int replicate, const std::string& case_name);
 
 // A user's choice for one parameter; unset fields take the defaults.
 struct ParameterChoice {

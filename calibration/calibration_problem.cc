@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <set>
 
 #include "common/error.h"
@@ -14,8 +15,10 @@ namespace granasym::calibration {
 
 CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
                                        ModelParameters parameters,
-                                       const PredictorOptions& predictor_options)
+                                       const PredictorOptions& predictor_options,
+                                       std::vector<PathDataset> paths)
     : datasets_(std::move(datasets)),
+      paths_(std::move(paths)),
       parameters_(std::move(parameters)),
       predictor_(parameters_.kind(), predictor_options),
       free_(parameters_.FreeIndices()) {
@@ -62,7 +65,18 @@ CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
   if (num_residuals_ == 0) {
     throw InputError(
         "calibration: the datasets hold no fitted asymptotic states (only unloading points or "
-        "datasets with weight = 0)");
+        "datasets with weight = 0); path datasets and unloading branches need asymptotic "
+        "states beside them");
+  }
+  num_state_residuals_ = num_residuals_;
+  for (const StateDataset& dataset : datasets_) {
+    for (const AsymptoticStatePoint& point : dataset.points) {
+      num_residuals_ += point.IsFittedUnloading() ? 1 : 0;
+    }
+  }
+  for (const PathDataset& path : paths_) {
+    path.Validate();
+    num_residuals_ += path.NumResiduals();
   }
   if (num_residuals_ <= num_free()) {
     throw InputError(fmt::format(
@@ -71,7 +85,7 @@ CalibrationProblem::CalibrationProblem(std::vector<StateDataset> datasets,
         num_residuals_, num_free()));
   }
   const std::vector<std::pair<int, std::string>> unidentified =
-      Unidentifiable(datasets_, parameters_);
+      Unidentifiable(datasets_, parameters_, paths_);
   if (!unidentified.empty()) {
     throw InputError(fmt::format(
         "calibration: parameter {} cannot be identified by these data: {} (fix it with "
@@ -88,7 +102,23 @@ struct StateCoverage {
   int non_isotropic = 0;                      // points with ψ_ε ≠ 0 or ASBS points
   std::set<double> non_isotropic_directions;  // besides the critical state
 
-  explicit StateCoverage(const std::vector<StateDataset>& datasets) {
+  StateCoverage(const std::vector<StateDataset>& datasets, const std::vector<PathDataset>& paths) {
+    for (size_t k = 0; k < paths.size(); ++k) {
+      const PathDataset& path = paths[k];
+      if (path.NumResiduals() == 0) continue;
+      double lo = path.samples.front().PsiSigma(), hi = lo;
+      for (const PathSample& s : path.samples) {
+        lo = std::min(lo, s.PsiSigma());
+        hi = std::max(hi, s.PsiSigma());
+        ln_p_with_line.insert(std::round(std::log(s.MeanStress()) * 1e6));
+      }
+      // A path with shear passes through many stress directions.
+      if (hi - lo > 1.0 * kDegree) {
+        ++non_isotropic;
+        non_isotropic_directions.insert(100.0 + lo + 0.1 * k);
+        non_isotropic_directions.insert(100.0 + hi + 0.1 * k);
+      }
+    }
     for (const StateDataset& dataset : datasets) {
       for (const AsymptoticStatePoint& point : dataset.points) {
         if (!point.IsFitted()) continue;
@@ -124,9 +154,10 @@ struct StateCoverage {
 }  // namespace
 
 std::vector<std::pair<int, std::string>> Unidentifiable(const std::vector<StateDataset>& datasets,
-                                                        const ModelParameters& parameters) {
+                                                        const ModelParameters& parameters,
+                                                        const std::vector<PathDataset>& paths) {
   std::vector<std::pair<int, std::string>> found;
-  const StateCoverage coverage(datasets);
+  const StateCoverage coverage(datasets, paths);
   const std::vector<FittedParameter>& fitted = parameters.traits().parameters;
   // By requirement first (the most basic data first), then in parameter order.
   for (Identification by : EnumValues<Identification>()) {
@@ -192,7 +223,77 @@ bool CalibrationProblem::Evaluate(const std::vector<double>& values,
       residuals->push_back(r);
     }
   }
+  return EvaluateUnloading(values, residuals, why);
+}
+
+bool CalibrationProblem::EvaluateUnloading(const std::vector<double>& values,
+                                           std::vector<PointResidual>* residuals,
+                                           std::string* why) const {
+  std::unique_ptr<ConstitutiveModel> model;
+  size_t j = 0;
+  for (size_t d = 0; d < datasets_.size(); ++d) {
+    const std::vector<AsymptoticStatePoint>& points = datasets_[d].points;
+    for (size_t k = 0; k < points.size(); ++j) {
+      const AsymptoticStatePoint& first = points[k];
+      if (!(first.kind == StateKind::kUnloading && first.branch_start_p > 0 &&
+            first.branch_start_e > 0)) {
+        ++k;
+        continue;
+      }
+      // The consecutive points of one branch (same start), in file order.
+      std::vector<double> targets;
+      size_t end = k;
+      while (end < points.size() && points[end].kind == StateKind::kUnloading &&
+             points[end].branch_start_p == first.branch_start_p &&
+             points[end].branch_start_e == first.branch_start_e) {
+        targets.push_back(points[end].mean_stress);
+        ++end;
+      }
+      if (!model) {
+        model = MakeModel(parameters_.kind(), values, why);
+        if (!model) return false;
+      }
+      std::vector<double> ln_volume;
+      if (!PredictIsotropicBranch(*model, first.branch_start_p, first.branch_start_e, targets,
+                                  &ln_volume, why)) {
+        *why = fmt::format("{}: {}", first.source, *why);
+        return false;
+      }
+      for (size_t m = 0; m < targets.size(); ++m) {
+        PointResidual& r = (*residuals)[j + m];
+        r.ln_volume_model = ln_volume[m];
+        r.ln_volume_residual = ln_volume[m] - std::log1p(points[k + m].void_ratio);
+      }
+      j += targets.size() - 1;
+      k = end;
+    }
+  }
   return true;
+}
+
+bool CalibrationProblem::EvaluatePaths(const std::vector<double>& values,
+                                       std::vector<PathPrediction>* predictions,
+                                       std::string* why) const {
+  predictions->assign(paths_.size(), PathPrediction());
+  if (paths_.empty()) return true;
+  const std::unique_ptr<ConstitutiveModel> model = MakeModel(parameters_.kind(), values, why);
+  if (!model) return false;
+  for (size_t k = 0; k < paths_.size(); ++k) {
+    if (!PredictPath(*model, paths_[k], &(*predictions)[k], why)) return false;
+  }
+  return true;
+}
+
+ResidualRange CalibrationProblem::Group(ResidualGroup group) const {
+  if (group == ResidualGroup::kAsymptotic) return {0, num_state_residuals_};
+  return {num_state_residuals_, num_residuals_ - num_state_residuals_};
+}
+
+void CalibrationProblem::SetGroupWeights(double asymptotic, double path) {
+  GRANASYM_CHECK(asymptotic >= 0 && path >= 0 && std::isfinite(asymptotic) && std::isfinite(path))
+      << "group weights " << asymptotic << ", " << path << " must be finite and >= 0";
+  group_weight_[0] = asymptotic;
+  group_weight_[1] = path;
 }
 
 bool CalibrationProblem::EvaluateAtOwnPressures(const std::vector<double>& values,
@@ -235,7 +336,7 @@ bool CalibrationProblem::EvaluateAtOwnPressures(const std::vector<double>& value
       residuals->push_back(r);
     }
   }
-  return true;
+  return EvaluateUnloading(values, residuals, why);
 }
 
 bool CalibrationProblem::Residuals(const double* free_values, double* residuals,
@@ -246,16 +347,52 @@ bool CalibrationProblem::Residuals(const double* free_values, double* residuals,
   std::vector<PointResidual> raw;
   if (!Evaluate(values, &raw, why)) return false;
   int j = 0;
+  const double state_scale = std::sqrt(group_weight_[0]);
+  const double path_scale = std::sqrt(group_weight_[1]);
   for (const PointResidual& r : raw) {
     const AsymptoticStatePoint& point = datasets_[r.dataset].points[r.point];
     if (!point.IsFitted()) continue;
-    const double w = std::sqrt(point.weight);
+    const double w = state_scale * std::sqrt(point.weight);
     if (point.HasStretching()) {
       residuals[j++] = w * r.psi_sigma_residual_deg * kDegree / point.psi_sigma_uncertainty;
     }
     residuals[j++] = w * r.ln_volume_residual / point.ln_volume_uncertainty;
   }
+  GRANASYM_CHECK(j == num_state_residuals_) << j << " vs " << num_state_residuals_;
+  for (const PointResidual& r : raw) {
+    const AsymptoticStatePoint& point = datasets_[r.dataset].points[r.point];
+    if (!point.IsFittedUnloading()) continue;
+    residuals[j++] =
+        path_scale * std::sqrt(point.weight) * r.ln_volume_residual / point.ln_volume_uncertainty;
+  }
+  if (!paths_.empty()) {
+    std::vector<PathPrediction> predictions;
+    if (!EvaluatePaths(values, &predictions, why)) return false;
+    for (size_t k = 0; k < paths_.size(); ++k) {
+      const PathDataset& path = paths_[k];
+      if (path.NumResiduals() == 0) continue;
+      const PathPrediction& m = predictions[k];
+      const double w =
+          path_scale * std::sqrt(path.weight / static_cast<double>(path.samples.size() - 1));
+      for (size_t i = 1; i < path.samples.size(); ++i) {
+        const PathSample& s = path.samples[i];
+        residuals[j++] =
+            w * (std::log(m.mean_stress[i]) - std::log(s.MeanStress())) / path.ln_p_uncertainty;
+        residuals[j++] = w * (m.psi_sigma[i] - s.PsiSigma()) / path.psi_sigma_uncertainty;
+        if (path.control == PathControl::kDrained) {
+          residuals[j++] = w * (std::log1p(m.void_ratio[i]) - std::log1p(s.void_ratio)) /
+                           path.ln_volume_uncertainty;
+        }
+      }
+    }
+  }
   GRANASYM_CHECK(j == num_residuals_) << j << " vs " << num_residuals_;
+  for (int i = 0; i < j; ++i) {
+    if (!std::isfinite(residuals[i])) {
+      *why = fmt::format("non-finite residual {} of {}", i, j);
+      return false;
+    }
+  }
   return true;
 }
 
@@ -278,6 +415,21 @@ std::vector<std::string> CalibrationProblem::ResidualLabels() const {
       if (point.HasStretching())
         labels.push_back(dataset.name + ": " + point.source + ": psi_sigma");
       labels.push_back(dataset.name + ": " + point.source + ": ln_1_plus_e");
+    }
+  }
+  for (const StateDataset& dataset : datasets_) {
+    for (const AsymptoticStatePoint& point : dataset.points) {
+      if (point.IsFittedUnloading())
+        labels.push_back(dataset.name + ": " + point.source + ": unloading ln_1_plus_e");
+    }
+  }
+  for (const PathDataset& path : paths_) {
+    if (path.NumResiduals() == 0) continue;
+    for (size_t i = 1; i < path.samples.size(); ++i) {
+      const std::string at = fmt::format("{}: sample {}: ", path.name, i);
+      labels.push_back(at + "ln_p");
+      labels.push_back(at + "psi_sigma");
+      if (path.control == PathControl::kDrained) labels.push_back(at + "ln_1_plus_e");
     }
   }
   return labels;

@@ -13,6 +13,7 @@
 
 #include "calibration/csv_state_reader.h"
 #include "calibration/dem_state_reader.h"
+#include "calibration/path_report.h"
 #include "calibration/study_state_reader.h"
 #include "common/csv_table.h"
 #include "common/error.h"
@@ -235,7 +236,19 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   CalibrationRun run;
   run.config = config;
   std::vector<StateDataset> datasets;
-  for (const DatasetConfig& d : config.datasets) datasets.push_back(ReadDataset(d));
+  std::vector<PathDataset> paths;
+  for (const DatasetConfig& d : config.datasets) {
+    if (d.is_path) {
+      paths.push_back(ReadPathDem(d.path, d.name, d.path_read));
+    } else {
+      datasets.push_back(ReadDataset(d));
+    }
+  }
+  if (datasets.empty()) {
+    throw InputError(
+        "calibration: only path datasets; a calibration needs asymptotic states beside them "
+        "(a [[dataset]] with study, dem or csv)");
+  }
   run.starting_values = EstimateStartingValues(datasets);
   run.rate = DescribeRate(datasets);
   ModelParameters parameters =
@@ -244,7 +257,7 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   if (config.fix_undetermined) {
     // What these data cannot identify whatever the fit (no states in the
     // directions a parameter acts on) is fixed before the first fit.
-    for (const auto& [index, need] : Unidentifiable(datasets, parameters)) {
+    for (const auto& [index, need] : Unidentifiable(datasets, parameters, paths)) {
       ParameterSpec& spec = parameters.mutable_specs()[index];
       spec.free = false;
       undetermined[index] = true;
@@ -253,7 +266,7 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
                       spec.name, spec.value, need));
     }
   }
-  run.problem = std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor);
+  run.problem = std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor, paths);
   if (config.fix_undetermined) {
     // One parameter per round: fixing one of a correlated pair often
     // determines the other.
@@ -273,7 +286,8 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
             "had reached {:.6g})",
             spec.name, spec.value, why, probe.values[index]));
       }
-      run.problem = std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor);
+      run.problem =
+          std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor, paths);
     }
   }
   if (config.method != FitMethod::kNlopt) {
@@ -577,6 +591,10 @@ std::string SummaryText(const CalibrationRun& run) {
     s += "\n";
     for (const std::string& w : d.warnings) s += "    WARNING: " + w + "\n";
   }
+  for (const PathDataset& path : problem.paths()) {
+    s += fmt::format("  {} ({}): a whole path, {} samples, {} residuals (group 'path')\n",
+                     path.name, path.source, path.samples.size(), path.NumResiduals());
+  }
   s += run.rate.Text() + "\n";
   if (run.rate.MostlyRateAffected()) s += "WARNING rate_affected: " + run.rate.Warning() + "\n";
   s += run.starting_values.Report() + "\n";
@@ -591,6 +609,10 @@ std::string SummaryText(const CalibrationRun& run) {
     s += "\n";
   }
   const FitResult* kept = run.kept_fit();
+  if (kept && !kept->values.empty()) {
+    const std::string paths = PathSummaryText(problem, kept->values);
+    if (!paths.empty()) s += "\nwhole paths (" + kept->summary.fitter + "):\n" + paths;
+  }
   if (!run.diagnosis.empty() || !run.findings.empty()) {
     s += "\nadmissibility and structural misfit (" +
          (kept ? kept->summary.fitter : std::string("-")) + "):\n";
@@ -977,6 +999,7 @@ void WritePlotData(const CalibrationRun& run, const FitResult& fit, const std::s
   if (run.pareto.computed()) {
     WriteTextFileAtomically(folder + "/pareto.csv", ParetoCsv(run.pareto, problem.parameters()));
   }
+  WritePathPlotData(problem, fit.values, folder);
 }
 
 namespace {

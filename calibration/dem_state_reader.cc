@@ -43,6 +43,11 @@ bool DemReadOptions::IsValid(std::string* why) const {
                        asbs_max_ln_p_extrapolation);
     return false;
   }
+  if (!(std::isfinite(unloading_weight) && unloading_weight >= 0)) {
+    *why = fmt::format("unloading_weight = {} must be finite and >= 0 (0: read, not fitted)",
+                       unloading_weight);
+    return false;
+  }
   return ValidReaderSettings(kind_tolerance_deg, psi_sigma_uncertainty_deg, ln_volume_uncertainty,
                              weight, why);
 }
@@ -235,11 +240,15 @@ StateDataset ReadStatesDem(const std::string& path, const std::string& name,
     const double min_p = kind == StateKind::kNcl ? options.ncl_min_p_kpa : 0.0;
     const std::vector<size_t> rows =
         LineRows(p, first, last, direction, min_p, options.max_line_points);
-    if (kind == StateKind::kNcl && rows.size() < 2) {
-      dataset.warnings.push_back(
-          fmt::format("{}: fewer than 2 rows with p >= {} kPa; no NCL points taken", where,
-                      options.ncl_min_p_kpa));
+    // The largest p before the stage: rows of a ψ_ε = 0 stage below it are
+    // reloading (an unload–reload cycle), never NCL rows.
+    double p_max_before = 0.0;
+    for (int64_t r = 0; r < first && r < static_cast<int64_t>(p.size()); ++r) {
+      if (p[static_cast<size_t>(r)] > p_max_before) p_max_before = p[static_cast<size_t>(r)];
     }
+    // The branch starts where the stage does (the row before its first).
+    const size_t start_row = static_cast<size_t>(std::max<int64_t>(0, first - 1));
+    size_t ncl_rows = 0, reload_rows = 0;
     for (size_t r : rows) {
       AsymptoticStatePoint point = base;
       point.kind = kind;
@@ -247,7 +256,26 @@ StateDataset ReadStatesDem(const std::string& path, const std::string& name,
       point.void_ratio = e[r];
       point.psi_sigma = psi_sigma[r] * kDegree;
       point.source = fmt::format("{} row {}", where, r);
+      if (kind == StateKind::kNcl && p[r] < p_max_before) {
+        point.kind = StateKind::kUnloading;
+        point.source += " (reloading below the earlier largest p)";
+        ++reload_rows;
+      }
+      if (point.kind == StateKind::kUnloading) {
+        point.weight = options.unloading_weight;
+        if (start_row < p.size() && r != start_row) {
+          point.branch_start_p = p[start_row];
+          point.branch_start_e = e[start_row];
+        }
+      } else {
+        ++ncl_rows;
+      }
       dataset.points.push_back(point);
+    }
+    if (kind == StateKind::kNcl && ncl_rows < 2 && reload_rows == 0) {
+      dataset.warnings.push_back(
+          fmt::format("{}: fewer than 2 rows with p >= {} kPa; no NCL points taken", where,
+                      options.ncl_min_p_kpa));
     }
   }
   // NCL rows of a file's own loading outweigh its asymptotes quickly; say so.

@@ -5,7 +5,12 @@
 //   - when ψ_ε = 0 and no asymptote was detected: NCL points, the stage's rows
 //     with p ≥ ncl_min_p_kpa and p rising, thinned to at most max_line_points
 //     evenly spaced in ln p;
+//     rows of such a stage below the largest p reached before it are
+//     reloading rows (an unload–reload cycle): unloading points, never NCL;
 //   - when ψ_ε = 180°: unloading points (rows with p falling), for κ*;
+//   unloading points start their branch at the row before the stage and
+//     carry unloading_weight (fitted through the model integrated along the
+//     branch, calibration_problem.h);
 //   - with asbs_ln_1_plus_e set: for each detected asymptote (not at 180°) and
 //     each requested value v of ln(1+e), one ASBS cross-section point (paper
 //     Figs. 17–18): the asymptotic line of the stage, ln(1+e) linear in ln p
@@ -40,6 +45,9 @@ struct DemReadOptions {
   double psi_sigma_uncertainty_deg = 0.5;  // one standard deviation, per state
   double ln_volume_uncertainty = 0.002;
   double weight = 1.0;
+  // Weight of the unloading and reloading rows (0: read, for the κ* start
+  // and drawn, not fitted).
+  double unloading_weight = 1.0;
   // Values of ln(1+e) at which ASBS cross-section points are taken (each
   // finite and > 0); empty: none.
   std::vector<double> asbs_ln_1_plus_e;

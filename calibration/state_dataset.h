@@ -4,8 +4,12 @@
 // Kinds: the isotropic NCL (ψ_ε = 0), the CSL (ψ_ε = 90°), compression
 // asymptotic states (0 < ψ_ε < 90°), normal extension lines (ψ_ε > 90°, and
 // the extension side ψ_ε < 0), points of ASBS cross-sections (known ψ_σ, p, e,
-// no ψ_ε), and isotropic unloading branches (used for the starting value of κ*
-// only; they are not asymptotic states of the models).
+// no ψ_ε), and isotropic unloading branches: the rows of ψ_ε = 180° stages and
+// the reload rows of ψ_ε = 0° stages below the largest p reached before them
+// (never NCL rows). Unloading points are not asymptotic states of the models:
+// they give the starting value of κ* and, with weight > 0 and a known branch
+// start (DEM files), a ln(1+e) residual each against the model integrated
+// isotropically from the branch's start (CalibrationProblem).
 #pragma once
 
 #include <limits>
@@ -30,7 +34,8 @@ struct EnumNames<calibration::StateKind> {
       {K::kCompression, "compression", "asymptotic state with 0 < psi_epsilon < 90 deg"},
       {K::kExtension, "extension", "normal extension line (psi_epsilon > 90 deg or < 0)"},
       {K::kAsbs, "asbs", "point of an ASBS cross-section (no psi_epsilon)"},
-      {K::kUnloading, "unloading", "isotropic unloading branch (starting value of kappa* only)"},
+      {K::kUnloading, "unloading",
+       "isotropic unloading or reloading branch below the largest p before it (kappa*)"},
   };
 };
 }  // namespace granasym
@@ -72,11 +77,20 @@ struct AsymptoticStatePoint {
   double inertial_number_dmin = std::numeric_limits<double>::quiet_NaN();
   double inertial_number_dmax = std::numeric_limits<double>::quiet_NaN();
   std::string flags;
+  // Unloading points: the state the branch starts from (p in kPa, e), where
+  // the model is started to predict the point's e; NaN when unknown (CSV).
+  double branch_start_p = std::numeric_limits<double>::quiet_NaN();
+  double branch_start_e = std::numeric_limits<double>::quiet_NaN();
 
-  // Whether the point enters the objective (unloading points do not).
+  // Whether the point is an asymptotic state (unloading points are not).
   bool IsAsymptotic() const { return kind != StateKind::kUnloading; }
   // Whether its residuals enter the objective (asymptotic, weight > 0).
   bool IsFitted() const { return IsAsymptotic() && weight > 0; }
+  // Whether it is an unloading point whose ln(1+e) residual enters the
+  // objective (weight > 0 and a known branch start).
+  bool IsFittedUnloading() const {
+    return kind == StateKind::kUnloading && weight > 0 && branch_start_p > 0 && branch_start_e > 0;
+  }
   // Whether `flags` holds `flag`.
   bool HasFlag(const std::string& flag) const;
   // Whether its ψ_ε is known (all asymptotic kinds except kAsbs).

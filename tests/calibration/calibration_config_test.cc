@@ -8,6 +8,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <sstream>
 
 #include "calibration/calibration_report.h"
 #include "calibration/csv_state_reader.h"
@@ -15,6 +17,7 @@
 #include "common/error.h"
 #include "common/hdf5_file.h"
 #include "common/key_table.h"
+#include "common/text_file.h"
 #include "synthetic_data.h"
 #include "tests/calibration/same_config.h"
 #include "tests/common/enum_spellings.h"
@@ -111,6 +114,24 @@ weight = 0.0
 ncl_min_p_kpa = 20
 max_line_points = 7
 asbs_ln_1_plus_e = [0.55, 0.5812345678901234]
+unloading_weight = 0.25
+[[dataset]]
+name = "cycles"
+dem_path = "runs/ncl_cycles.h5"
+stages = ["unload1", "reload1"]
+control = "strain"
+path_kind = "unload_reload"
+points = 55
+ln_p_uncertainty = 0.03
+weight = 2.0
+[[dataset]]
+name = "oc100"
+study_path = "../study"
+case = "oc100_psi90"
+replicate = 2
+stages = ["psi90"]
+psi_sigma_uncertainty_deg = 0.7
+ln_1_plus_e_uncertainty = 0.004
 [[dataset]]
 name = "table"
 csv = "/abs/states.csv"
@@ -149,6 +170,25 @@ TEST(CalibrationConfig, ItsTextReadsBackAsTheSameConfiguration) {
   // Paths stay relative to the file's folder, so the folder can move.
   EXPECT_NE(text.find("study = \"../study\""), std::string::npos) << text;
   EXPECT_NE(text.find("dem = [\"a.h5\", \"sub/b.h5\"]"), std::string::npos) << text;
+  EXPECT_NE(text.find("dem_path = \"runs/ncl_cycles.h5\""), std::string::npos) << text;
+  EXPECT_NE(text.find("study_path = \"../study\"\ncase = \"oc100_psi90\"\nreplicate = 2"),
+            std::string::npos)
+      << text;
+  // The path datasets as read: a study case's result.h5.
+  ASSERT_GE(c.datasets.size(), 4u);
+  const DatasetConfig& cycles = c.datasets[2];
+  const DatasetConfig& oc = c.datasets[3];
+  EXPECT_TRUE(cycles.is_path && oc.is_path);
+  EXPECT_EQ(cycles.path, "/d/e/runs/ncl_cycles.h5");
+  EXPECT_EQ(cycles.path_read.points, 55);
+  EXPECT_EQ(cycles.path_read.control, PathControl::kStrain);
+  EXPECT_EQ(cycles.path_read.kind, PathKind::kUnloadReload);
+  EXPECT_EQ(cycles.path_read.weight, 2.0);
+  EXPECT_EQ(cycles.path_read.psi_sigma_uncertainty_deg, 1.0);  // the paths' default
+  EXPECT_EQ(oc.path, "/d/study/cases/r2/oc100_psi90/result.h5");
+  EXPECT_EQ(oc.path_read.control, PathControl::kAuto);
+  EXPECT_EQ(oc.path_read.points, 40);
+  EXPECT_EQ(c.datasets[1].dem.unloading_weight, 0.25);
   EXPECT_EQ(CalibrationConfigText(again, "# a header\n"), text);
   // And a configuration at every default.
   const CalibrationConfig plain =
@@ -424,6 +464,45 @@ TEST(CalibrationConfig, FitsAreComparedOnlyWhenBothConvergedWithStandardErrors) 
   EXPECT_EQ(why_not,
             "ceres reports no standard error of any free parameter (each is undetermined or at a "
             "bound)");
+}
+
+// Every example of calibration/examples/ reads (one per model), and
+// docs/guide/calibration-file.md lists every key that the writer writes for a file
+// with every kind of dataset and every key the examples use.
+TEST(CalibrationConfig, ExamplesReadAndTheDocumentationListsEveryKey) {
+  const std::string root = GRANASYM_SOURCE_DIR;
+  const std::string docs = ReadTextFile(root + "/docs/guide/calibration-file.md");
+  std::set<std::string> keys;
+  const auto collect = [&keys](const std::string& text) {
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) {
+      const size_t eq = line.find(" = ");
+      if (line.empty() || line[0] == '#' || eq == std::string::npos) continue;
+      keys.insert(line.substr(0, eq));
+    }
+  };
+  std::set<ModelKind> models;
+  for (const char* name : {"hypoplastic_clay", "modified_cam_clay", "hypoplastic_sand"}) {
+    const std::string file = root + "/calibration/examples/" + name + ".toml";
+    SCOPED_TRACE(file);
+    const CalibrationConfig c = ReadCalibrationConfigFile(file);
+    models.insert(c.model);
+    EXPECT_EQ(ToString(c.model), std::string(name));
+    bool has_path = false;
+    for (const DatasetConfig& d : c.datasets) has_path |= d.is_path;
+    EXPECT_TRUE(has_path) << "each example fits whole paths too";
+    collect(ReadTextFile(file));
+    collect(CalibrationConfigText(c));
+  }
+  EXPECT_EQ(models.size(), 3u);
+  collect(CalibrationConfigText(
+      ReadCalibrationConfig(ConfigTable::ParseString(kEveryKey, "/d/e/calib.toml"))));
+  EXPECT_GT(keys.size(), 40u);
+  for (const std::string& key : keys) {
+    EXPECT_NE(docs.find("\n" + key + " = "), std::string::npos)
+        << "docs/guide/calibration-file.md does not list the key '" << key << "'";
+  }
 }
 
 }  // namespace

@@ -204,6 +204,89 @@ TEST(DemStateReader, AsbsPointsLieOnTheAsymptoticLineOfEachUsableStage) {
   std::filesystem::remove(path);
 }
 
+// An unload–reload cycle from the NCL (paper Fig. 9): loading to 200 kPa,
+// unloading (180°) to 50 kPa, reloading (0°) to 500 kPa. The reload rows
+// below 200 kPa are unloading points, never NCL rows; those above are NCL.
+TEST(DemStateReader, ReloadRowsGoToUnloadingNeverToTheNcl) {
+  const std::string path = TempPath("granasym_dem_cycle.h5");
+  constexpr double kN = 0.8, kLambda = 0.05, kKappa = 0.01;
+  std::vector<double> p, e, psi;
+  const auto add = [&](double pi, double ln_v) {
+    p.push_back(pi);
+    e.push_back(std::expm1(ln_v));
+    psi.push_back(0.0);
+  };
+  for (int i = 0; i <= 20; ++i) {  // rows 0..20: NCL 10 -> 200 kPa
+    const double pi = 10.0 * std::pow(20.0, i / 20.0);
+    add(pi, kN - kLambda * std::log(pi));
+  }
+  const double ln_v_max = kN - kLambda * std::log(200.0);
+  for (int i = 1; i <= 10; ++i) {  // rows 21..30: unloading to 50 kPa
+    const double pi = 200.0 * std::pow(0.25, i / 10.0);
+    add(pi, ln_v_max - kKappa * std::log(pi / 200.0));
+  }
+  for (int i = 1; i <= 20; ++i) {  // rows 31..50: reloading to 500 kPa
+    const double pi = 50.0 * std::pow(10.0, i / 20.0);
+    add(pi, pi <= 200.0 ? ln_v_max - kKappa * std::log(pi / 200.0) : kN - kLambda * std::log(pi));
+  }
+  {
+    Hdf5File file = Hdf5File::CreateAtomic(path);
+    file.WriteDoubles("/series/p_kpa", p, "kPa");
+    file.WriteDoubles("/series/e", e, "1");
+    file.WriteDoubles("/series/psi_sigma_deg", psi, "deg");
+    file.CreateGroup("/stages");
+    const auto stage = [&file](int index, const char* name, double psi_e, int64_t first,
+                               int64_t last) {
+      const std::string g = "/stages/00" + std::to_string(index);
+      file.CreateGroup(g);
+      file.SetAttribute(g, "name", name);
+      file.SetAttribute(g, "type", "strain_path");
+      file.SetAttribute(g, "first_row", first);
+      file.SetAttribute(g, "last_row", last);
+      file.SetAttribute(g, "psi_epsilon_deg", psi_e);
+    };
+    stage(0, "load", 0.0, 0, 20);
+    stage(1, "unload1", 180.0, 21, 30);
+    stage(2, "reload1", 0.0, 31, 50);
+    file.Commit();
+  }
+  DemReadOptions options;
+  options.ncl_min_p_kpa = 5.0;
+  options.max_line_points = 30;
+  options.unloading_weight = 0.7;
+  const StateDataset d = ReadStatesDem(path, "cycle", options);
+  int reload = 0, ncl_above = 0;
+  for (const AsymptoticStatePoint& point : d.points) {
+    const bool in_reload = point.source.find("reload1") != std::string::npos;
+    if (point.kind == StateKind::kNcl) {
+      // Every NCL point lies on the NCL: none is a reload row below 200 kPa.
+      EXPECT_NEAR(std::log1p(point.void_ratio), kN - kLambda * std::log(point.mean_stress), 1e-12)
+          << point.source;
+      EXPECT_DOUBLE_EQ(point.weight, 1.0);
+      ncl_above += in_reload ? 1 : 0;
+      if (in_reload) EXPECT_GE(point.mean_stress, 200.0);
+    } else {
+      ASSERT_EQ(point.kind, StateKind::kUnloading) << point.source;
+      EXPECT_DOUBLE_EQ(point.weight, 0.7);
+      EXPECT_TRUE(point.IsFittedUnloading());
+      EXPECT_FALSE(point.IsFitted());  // not an asymptotic state
+      if (in_reload) {
+        ++reload;
+        EXPECT_LT(point.mean_stress, 200.0);
+        EXPECT_NE(point.source.find("reloading below the earlier largest p"), std::string::npos);
+        // The branch starts at the reversal, the last unloading row.
+        EXPECT_DOUBLE_EQ(point.branch_start_p, p[30]);
+        EXPECT_DOUBLE_EQ(point.branch_start_e, e[30]);
+      } else {
+        EXPECT_DOUBLE_EQ(point.branch_start_p, p[20]);
+      }
+    }
+  }
+  EXPECT_GE(reload, 10);
+  EXPECT_GE(ncl_above, 5);
+  std::filesystem::remove(path);
+}
+
 TEST(DemStateReader, RejectsFilesThatAreNotDemResults) {
   const std::string path = TempPath("granasym_not_dem.h5");
   Hdf5File file = Hdf5File::CreateAtomic(path);
