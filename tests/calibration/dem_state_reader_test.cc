@@ -264,7 +264,9 @@ TEST(DemStateReader, ReloadRowsGoToUnloadingNeverToTheNcl) {
           << point.source;
       EXPECT_DOUBLE_EQ(point.weight, 1.0);
       ncl_above += in_reload ? 1 : 0;
-      if (in_reload) EXPECT_GE(point.mean_stress, 200.0);
+      if (in_reload) {
+        EXPECT_GE(point.mean_stress, 200.0);
+      }
     } else {
       ASSERT_EQ(point.kind, StateKind::kUnloading) << point.source;
       EXPECT_DOUBLE_EQ(point.weight, 0.7);
