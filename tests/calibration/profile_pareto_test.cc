@@ -133,7 +133,9 @@ TEST(ProfileLikelihood, FlagsAParameterTheDataDoNotActOnAsFlat) {
   EXPECT_DOUBLE_EQ(r.flat_high, 3.0);  // the default upper bound
   EXPECT_NE(r.Text().find("to 3 (bound): not determined"), std::string::npos) << r.Text();
   for (const ProfilePoint& point : r.points) {
-    if (point.value >= 0.1) EXPECT_NEAR(point.statistic, 0.0, 1e-6) << point.value;
+    if (point.value >= 0.1) {
+      EXPECT_NEAR(point.statistic, 0.0, 1e-6) << point.value;
+    }
   }
   for (size_t k = 0; k + 1 < set.profiles.size(); ++k) {
     EXPECT_FALSE(set.profiles[k].flat()) << set.profiles[k].Text();
