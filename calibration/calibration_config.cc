@@ -364,7 +364,7 @@ const KeyTable& CalibrationKeys() {
         number("dataset[]", "weight", KeyType::kNumber, "", Range::NonNegative(), "1",
                "multiplies the squared residuals; 0: read and drawn, not fitted"),
         number("dataset[]", "psi_sigma_uncertainty_deg", KeyType::kNumber, "deg", Range::Positive(),
-               "0.5", "uncertainty of psi_sigma per state"),
+               "0.5 (1 for path datasets)", "uncertainty of psi_sigma per state or path sample"),
         number("dataset[]", "ln_1_plus_e_uncertainty", KeyType::kNumber, "", Range::Positive(),
                "0.002", "uncertainty of ln(1+e) per state"),
         other("dataset[]", "kinds", KeyType::kStrings, "ncl, csl, compression, extension, triaxial",

@@ -23,9 +23,14 @@ bool GroupCosts(const CalibrationProblem& problem, const ResidualGroups& groups,
   std::vector<double> r(static_cast<size_t>(problem.num_residuals()));
   std::string why;
   if (!problem.Residuals(x.data(), r.data(), &why)) return false;
+  // The asymptotic states' residuals come first, one run per fitted point
+  // (ResidualPoints); the unloading and path residuals after them belong to
+  // neither group: they keep their weight in every fit of the sweep.
   const std::vector<std::pair<int, int>> owners = problem.ResidualPoints();
+  GRANASYM_CHECK(owners.size() <= r.size())
+      << owners.size() << " grouped residuals, " << r.size() << " residuals";
   *cost = {0, 0};
-  for (size_t j = 0; j < r.size(); ++j) {
+  for (size_t j = 0; j < owners.size(); ++j) {
     const int g = groups.point_group[owners[j].first][owners[j].second];
     if (g >= 0) (*cost)[g] += 0.5 * r[j] * r[j];
   }
@@ -49,7 +54,7 @@ CalibrationProblem Weighted(const CalibrationProblem& problem, const ResidualGro
     spec.value = std::min(std::max(start[i], spec.lower), spec.upper);
   }
   return CalibrationProblem(std::move(datasets), std::move(parameters),
-                            problem.predictor().options());
+                            problem.predictor().options(), problem.paths());
 }
 
 }  // namespace

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <limits>
+#include <map>
 #include <sstream>
 
 #include "common/error.h"
@@ -133,7 +133,7 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
     sample.directory = directory + "/samples/r" + std::to_string(r);
     plan.samples.push_back(sample);
   }
-  std::map<std::string, int> index;  // case id → index in plan.cases
+  std::map<std::string, int> index;              // case id → index in plan.cases
   std::vector<std::vector<double>> stage_end_p;  // per case: the mean stress at its stages' ends
   for (int r = 1; r <= spec.replicates; ++r) {
     const std::string replicate = "r" + std::to_string(r);

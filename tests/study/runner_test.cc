@@ -526,8 +526,8 @@ TEST(StudyRunner, AStopActsWithinASecondAmongFiveThousandCases) {
   // The NCL finished, and some branches did before the stop.
   EXPECT_GT(outcome.Count(CaseStatus::kComputed), 1) << outcome.OneLine();
   EXPECT_GT(outcome.Count(CaseStatus::kInterrupted), 3500) << outcome.OneLine();
-  std::printf("planned 5 001 cases in %.2f s; stopped %.3f s after the request: %s\n",
-              plan_seconds, ended - stopped_at.load(), outcome.OneLine().c_str());
+  std::printf("planned 5 001 cases in %.2f s; stopped %.3f s after the request: %s\n", plan_seconds,
+              ended - stopped_at.load(), outcome.OneLine().c_str());
   fs::remove_all(dir);
 }
 
