@@ -238,8 +238,15 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
     if (!ncl.empty()) d.study.ncl_references = {ncl};
     d.study.max_inertial_number = max_inertial_number;
     config.datasets = {d};
-    // The DEM's own whole paths (issue 36 §3): cycles, isochoric, drained.
-    for (calibration::DatasetConfig& path : StudyPathDatasets(directory, nullptr)) {
+    // The DEM's own whole paths (issue 36 §3): cycles, isochoric, drained;
+    // not at the tiny scale, whose 800-sphere paths check the machinery, not
+    // the physics (their misfit is noise), and whose fits with paths,
+    // profiles and Pareto fronts took over ten minutes for the sand model.
+    const std::string study_toml = directory + "/study.toml";
+    const bool tiny = fs::exists(study_toml) &&
+                      ConfigTable::ParseFile(study_toml).GetString("scale", "") == "tiny";
+    for (calibration::DatasetConfig& path :
+         tiny ? std::vector<calibration::DatasetConfig>{} : StudyPathDatasets(directory, nullptr)) {
       path.study_path = resolve("../..");
       path.paths = {calibration::StudyCaseResult(path.study_path, 1, path.path_case)};
       path.path = path.paths.front();
