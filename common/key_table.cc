@@ -9,6 +9,19 @@
 #include "common/error.h"
 
 namespace granasym {
+
+KeySpec NumberKey(std::string table, std::string key, KeyType type, std::string unit, Range range,
+                  std::string fallback, std::string meaning, std::string when) {
+  return {std::move(table),    std::move(key),     type,           std::move(unit), range, "",
+          std::move(fallback), std::move(meaning), std::move(when)};
+}
+
+KeySpec OtherKey(std::string table, std::string key, KeyType type, std::string valid,
+                 std::string fallback, std::string meaning, std::string when) {
+  return {
+      std::move(table),    std::move(key),     type,           "", Range::Any(), std::move(valid),
+      std::move(fallback), std::move(meaning), std::move(when)};
+}
 namespace {
 
 const char* TypeText(KeyType type) {

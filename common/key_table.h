@@ -50,6 +50,13 @@ struct KeySpec {
   std::string when;  // where the key applies, e.g. "type = triaxial"; "" everywhere
 };
 
+// A key of a number type (kNumber, kInteger, kNumbers): its unit and range.
+KeySpec NumberKey(std::string table, std::string key, KeyType type, std::string unit, Range range,
+                  std::string fallback, std::string meaning, std::string when = "");
+// A key of any other type: what is valid, in words.
+KeySpec OtherKey(std::string table, std::string key, KeyType type, std::string valid,
+                 std::string fallback, std::string meaning, std::string when = "");
+
 class KeyTable {
  public:
   KeyTable(std::string kind, std::string description, std::vector<KeySpec> keys);
