@@ -70,3 +70,18 @@ def test_bad_states_raise_input_error():
     with pytest.raises(granasym.InputError, match="no_such_key"):
         granasym.calibrate("hypoplastic_clay", synthetic_states(),
                            fitter=dict(FAST, no_such_key=1))
+
+
+def test_whole_paths_of_dem_results_as_datasets(scene_run, monkeypatch):
+    """A [[dataset]] of a DEM result's path; relative paths against the working folder."""
+    _, _, out = scene_run
+    monkeypatch.chdir(out.parent)
+    path = {"name": "psi90_path", "dem_path": out.name, "stages": ["psi90"]}
+    fit = granasym.calibrate("hypoplastic_clay", synthetic_states(), parameters=KAPPA_FIXED,
+                             fitter=FAST, datasets=[path], raise_on_failure=False)
+    assert f"psi90_path ({out}:/stages/001 (psi90)): a whole path" in fit.summary
+    assert fit.status != "failed", fit.reason
+    # The NCL stage starts from the generated sample at p = 0: no path to follow.
+    with pytest.raises(granasym.InputError, match="path dataset 'ncl_path'.*p > 0"):
+        granasym.calibrate("hypoplastic_clay", synthetic_states(), parameters=KAPPA_FIXED,
+                           fitter=FAST, datasets=[dict(path, name="ncl_path", stages=["ncl"])])
