@@ -5,12 +5,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <mutex>
-#include <optional>
 #include <string>
 #include <vector>
 
-#include "analysis/findings.h"
-#include "analysis/rate_cases.h"
+#include "analysis/study_tables.h"
 #include "app/enum_option.h"
 #include "app/progress.h"
 #include "app/signals.h"
@@ -52,16 +50,9 @@ bool ParseShard(const std::string& text, int* index, int* count) {
   return *count >= 1 && *index >= 1 && *index <= *count;
 }
 
-// The state table, then the analyses that belong with it: the paper's claims
-// judged from the study (analysis/findings.h), and for a study with rate
-// cases the rate study's files (analysis/rate_cases.h, analysis/rate_files.h).
+// The state table and the analyses that belong with it (analysis/study_tables.h).
 void WriteTables(const std::string& directory) {
-  std::printf("%s", study::WriteStateTable(directory).Text().c_str());
-  std::printf("%s", analysis::FindingsLine(analysis::WriteStudyFindings(directory)).c_str());
-  if (const std::optional<analysis::RateStudy> rate =
-          analysis::WriteRateStudy(directory, study::ReadStateTable(directory))) {
-    std::printf("%s", rate->Text().c_str());
-  }
+  std::printf("%s", analysis::WriteStudyTables(directory).c_str());
 }
 
 }  // namespace

@@ -206,13 +206,15 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
   }
 }
 
-void WriteElementTestCsv(const ElementTestResult& result, const std::string& path) {
-  const std::vector<std::string> columns = {
-      quantity::kTime,        quantity::kAxialStress,  quantity::kRadialStress,
-      quantity::kMeanStress,  quantity::kDeviator,     quantity::kVoidRatio,
-      quantity::kAxialStrain, quantity::kRadialStrain, "strain_path",
-      quantity::kPsiSigma,    quantity::kPsiEpsilon,   quantity::kOverconsolidation};
-  std::vector<std::vector<double>> values(columns.size());
+std::vector<std::string> ElementTestColumnNames() {
+  return {quantity::kTime,        quantity::kAxialStress,  quantity::kRadialStress,
+          quantity::kMeanStress,  quantity::kDeviator,     quantity::kVoidRatio,
+          quantity::kAxialStrain, quantity::kRadialStrain, "strain_path",
+          quantity::kPsiSigma,    quantity::kPsiEpsilon,   quantity::kOverconsolidation};
+}
+
+std::vector<std::vector<double>> ElementTestColumns(const ElementTestResult& result) {
+  std::vector<std::vector<double>> values(ElementTestColumnNames().size());
   for (const ElementTestRecord& r : result.history) {
     const AxisymmetricStress s = RecordStress(r);
     const std::vector<double> row = {r.time,
@@ -229,7 +231,11 @@ void WriteElementTestCsv(const ElementTestResult& result, const std::string& pat
                                      r.ocr};
     for (size_t c = 0; c < row.size(); ++c) values[c].push_back(row[c]);
   }
-  WriteCsv(path, columns, values);
+  return values;
+}
+
+void WriteElementTestCsv(const ElementTestResult& result, const std::string& path) {
+  WriteCsv(path, ElementTestColumnNames(), ElementTestColumns(result));
 }
 
 AsymptoteTable ComputeAsymptotes(const ConstitutiveModel& model, const ConfigTable& root) {
@@ -296,19 +302,25 @@ void WriteAsymptotes(const ConstitutiveModel& model, const AsymptoteTable& table
 
 namespace granasym {
 
-ElementTestResult RunElementTestInput(const ConfigTable& root, const std::string& input,
-                                      const std::string& out, const std::string& csv) {
-  const std::unique_ptr<ConstitutiveModel> model = ReadModel(root.GetTable("model"));
-  const ModelState initial = ReadInitialState(*model, root.GetTable("initial"));
-  const ElementTestOptions options = root.Has("integration")
-                                         ? ReadElementTestOptions(root.GetTable("integration"))
-                                         : ElementTestOptions();
-  if (options.method == DriveMethod::kStressPoint && !HasStressPointMethod(*model)) {
+ElementTestInput ReadElementTestInput(const ConfigTable& root) {
+  ElementTestInput input;
+  input.model = ReadModel(root.GetTable("model"));
+  input.initial = ReadInitialState(*input.model, root.GetTable("initial"));
+  input.options = root.Has("integration") ? ReadElementTestOptions(root.GetTable("integration"))
+                                          : ElementTestOptions();
+  if (input.options.method == DriveMethod::kStressPoint && !HasStressPointMethod(*input.model)) {
     root.GetTable("integration").Fail("method", "stress_point exists for modified_cam_clay only");
   }
-  const std::vector<LoadingStage> stages = ReadStages(root);
+  input.stages = ReadStages(root);
   root.CheckNoUnknownKeys();
-  const ElementTestResult result = ElementTest(*model, options).Run(initial, stages);
+  return input;
+}
+
+ElementTestResult RunElementTestInput(const ConfigTable& root, const std::string& input,
+                                      const std::string& out, const std::string& csv) {
+  const ElementTestInput test = ReadElementTestInput(root);
+  const ConstitutiveModel* model = test.model.get();
+  const ElementTestResult result = ElementTest(*model, test.options).Run(test.initial, test.stages);
   Hdf5File file = Hdf5File::CreateAtomic(out);
   WriteElementTestResult(*model, result, "/element_test", &file);
   file.SetAttribute("/element_test", "input", input);

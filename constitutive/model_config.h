@@ -52,6 +52,16 @@ std::vector<LoadingStage> ReadStages(const ConfigTable& root);
 // [integration] table (optional keys; defaults of ElementTestOptions).
 ElementTestOptions ReadElementTestOptions(const ConfigTable& integration_table);
 
+// An element-test input read and checked (ReadElementTestInput).
+struct ElementTestInput {
+  std::unique_ptr<ConstitutiveModel> model;
+  ModelState initial;
+  ElementTestOptions options;
+  std::vector<LoadingStage> stages;
+};
+// Reads the root of a `granasym model run` file ([model], [initial],
+// optional [integration], [[stage]]) and rejects unknown keys.
+ElementTestInput ReadElementTestInput(const ConfigTable& root);
 // Reads a whole element-test input (the root of a `granasym model run` file:
 // [model], [initial], optional [integration], [[stage]]), rejects unknown
 // keys, runs it and writes the result to `out` (HDF5, atomically) and, when
@@ -70,6 +80,10 @@ void WriteElementTestResult(const ConstitutiveModel& model, const ElementTestRes
 // sigma_r_kpa, p_kpa, q_kpa, e, eps_a, eps_r, strain_path, psi_sigma_deg,
 // psi_epsilon_deg, ocr (common/quantity_names.h).
 void WriteElementTestCsv(const ElementTestResult& result, const std::string& path);
+// The CSV's columns: their names and one vector of values per column (the
+// Python module's arrays).
+std::vector<std::string> ElementTestColumnNames();
+std::vector<std::vector<double>> ElementTestColumns(const ElementTestResult& result);
 
 struct AsymptoteTable {
   std::vector<AsymptoticState> analytic;  // hypoplastic clay only (analytic ASBS)

@@ -22,7 +22,7 @@ cd "$root"
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
   mapfile -t files < <(git ls-files -- '*.cc' '*.h')
 else
-  mapfile -t files < <(find app analysis bench calibration common constitutive dem study tests \
+  mapfile -t files < <(find app analysis bench calibration common constitutive dem python study tests \
                          -name '*.cc' -o -name '*.h' | sort)
 fi
 [[ ${#files[@]} -gt 0 ]] || { echo "check_format.sh: no C++ files found under $root" >&2; exit 2; }

@@ -18,6 +18,9 @@
 # scripts/build.sh (rebuilds after a branch switch or a clean).
 # python3-sphinx and python3-myst-parser build the user guide (docs/guide;
 # the test Docs.guide_builds and the target `docs`).
+# python3-dev and pybind11-dev build the Python module (`import granasym`,
+# python/); python3-numpy and python3-pandas are what it returns, and
+# python3-pytest runs its tests (tests/python).
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config ccache
@@ -26,6 +29,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
   python3-sphinx python3-myst-parser
+  python3-dev pybind11-dev python3-numpy python3-pandas python3-pytest
   clang-format
   chromium
 )

@@ -2,6 +2,7 @@
 """Runs the commands of one tutorial page of the user guide, in order.
 
     run_tutorial.py PAGE.md --granasym BIN --work DIR [--copy NAME=PATH]...
+                    [--module DIR --python BIN]
 
 A tutorial command block is a MyST code block with the class `tutorial`:
 
@@ -11,11 +12,17 @@ A tutorial command block is a MyST code block with the class `tutorial`:
     granasym study run studies/programmes/paper.toml --scale small --out study
     ```
 
+A block of class tutorial in `python` is run by a Python interpreter of its
+own (`--python`, default python3) at its place among the bash blocks: each
+python block is a whole program, as a reader would save and run it.
+
 The blocks are joined into one bash script (`set -euo pipefail`), which runs
 in DIR (emptied first) as a reader's shell would at the repository root: the
 repository's files are linked into DIR, `build/app/granasym` is BIN and BIN's
-folder is first on PATH. The scale is forced to tiny: `--scale X` and
-`SCALE=X` become tiny, so a page may show the scale a reader would choose.
+folder is first on PATH; `--module DIR` (the built Python module's folder)
+is linked as build/python. The scale is forced to tiny: `--scale X`,
+`SCALE=X` and a Python argument `scale="X"` become tiny, so a page may show
+the scale a reader would choose.
 `--copy NAME=PATH` copies a file or folder that a test fixture computed to
 DIR/NAME first: a page's `study run` into a copied study finds its cases done
 and computes nothing, so the page's later commands run on a real study at
@@ -58,8 +65,9 @@ def tutorial_blocks(page):
         if j == len(lines):
             sys.exit(f"error: {page}:{start}: code block without its closing {fence}")
         if "tutorial" in options.get("class", "").split():
-            if language != "bash":
-                sys.exit(f"error: {page}:{start}: a tutorial block is `bash`, not `{language}`")
+            if language not in ("bash", "python"):
+                sys.exit(f"error: {page}:{start}: a tutorial block is `bash` or `python`, "
+                         f"not `{language}`")
             blocks.append((start, language, "\n".join(body).strip("\n")))
         i = j + 1
     return blocks
@@ -67,6 +75,7 @@ def tutorial_blocks(page):
 
 def force_tiny(text):
     forced = re.sub(r"--scale(\s+|=)(small|medium|paper)\b", r"--scale\1tiny", text)
+    forced = re.sub(r"""\bscale\s*=\s*(["'])(small|medium|paper)\1""", r"scale=\1tiny\1", forced)
     return re.sub(r"\bSCALE=(small|medium|paper)\b", "SCALE=tiny", forced)
 
 
@@ -77,6 +86,8 @@ def main():
     parser.add_argument("--work", required=True, help="folder to run in (emptied)")
     parser.add_argument("--copy", action="append", default=[], metavar="NAME=PATH",
                         help="copy a file or folder (a computed study) to WORK/NAME first")
+    parser.add_argument("--module", help="the built Python module's folder (build/python)")
+    parser.add_argument("--python", default="python3", help="the interpreter of python blocks")
     args = parser.parse_args()
 
     page = os.path.abspath(args.page)
@@ -100,6 +111,10 @@ def main():
             continue
         os.symlink(os.path.join(root, entry), os.path.join(work, entry))
     os.symlink(granasym, os.path.join(work, "build", "app", "granasym"))
+    if args.module:
+        if not os.path.isdir(args.module):
+            sys.exit(f"error: --module {args.module}: not a folder")
+        os.symlink(os.path.abspath(args.module), os.path.join(work, "build", "python"))
     for spec in args.copy:
         name, sep, path = spec.partition("=")
         if not sep or not name or "/" in name or not os.path.exists(path):
@@ -110,13 +125,21 @@ def main():
             shutil.copy2(path, os.path.join(work, name))
 
     script = ["set -euo pipefail"]
-    for line, _, text in blocks:
+    for line, language, text in blocks:
         script.append(f"echo '>>> {os.path.basename(page)}:{line}'")
-        script.append(force_tiny(text))
+        if language == "python":
+            if "\nGRANASYM_PYTHON_BLOCK\n" in f"\n{text}\n":
+                sys.exit(f"error: {page}:{line}: a line GRANASYM_PYTHON_BLOCK ends the block early")
+            script.append(f"\"$GRANASYM_TUTORIAL_PYTHON\" - <<'GRANASYM_PYTHON_BLOCK'\n"
+                          f"{force_tiny(text)}\nGRANASYM_PYTHON_BLOCK")
+        else:
+            script.append(force_tiny(text))
     with open(os.path.join(work, "tutorial.sh"), "w", encoding="utf-8") as f:
         f.write("\n".join(script) + "\n")
     env = dict(os.environ)
     env["PATH"] = os.path.join(work, "build", "app") + os.pathsep + env.get("PATH", "")
+    env["GRANASYM_TUTORIAL_PYTHON"] = args.python
+    env["PYTHONDONTWRITEBYTECODE"] = "1"
     start = time.monotonic()
     status = subprocess.call(["bash", "-x", "tutorial.sh"], cwd=work, env=env)
     seconds = time.monotonic() - start

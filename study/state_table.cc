@@ -985,6 +985,35 @@ std::vector<StateRow> ReadStateTable(const std::string& directory) {
   return rows;
 }
 
+std::vector<StateTableColumn> StateTableColumns(const std::vector<StateRow>& rows) {
+  std::vector<StateTableColumn> columns;
+  for (const Column& column : kColumns) {
+    StateTableColumn out;
+    out.name = column.name;
+    std::visit(
+        [&](auto m) {
+          using T = std::decay_t<decltype(StateRow{}.*m)>;
+          if constexpr (std::is_same_v<T, int> || std::is_same_v<T, double>) {
+            if constexpr (std::is_same_v<T, double>) out.units = column.units;
+            out.integer = std::is_same_v<T, int>;
+            for (const StateRow& row : rows) out.numbers.push_back(row.*m);
+          } else {
+            out.text = true;
+            for (const StateRow& row : rows) {
+              if constexpr (std::is_same_v<T, std::string>) {
+                out.texts.push_back(row.*m);
+              } else {
+                out.texts.push_back(ToString(row.*m));
+              }
+            }
+          }
+        },
+        column.member);
+    columns.push_back(std::move(out));
+  }
+  return columns;
+}
+
 std::vector<StateRow> WithoutEnsembleRows(std::vector<StateRow> rows) {
   rows.erase(
       std::remove_if(rows.begin(), rows.end(),

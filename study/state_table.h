@@ -139,6 +139,21 @@ double Smoothed(const std::vector<double>& x, const std::vector<double>& y, doub
 std::string CsvText(const std::string& text);
 std::string CsvNumber(double value);
 
+// One column of the table as its files hold it (the Python module's
+// DataFrame): the name, the units of a number column ("" for text and
+// integer columns), and per row the number (numbers and integers) or the
+// text (text columns and the enumerations' names).
+struct StateTableColumn {
+  std::string name, units;
+  bool text = false;
+  bool integer = false;  // a number column of integers (replicate, held_before_end)
+  std::vector<double> numbers;
+  std::vector<std::string> texts;
+};
+// The columns of `rows` in the order of the CSV file, from the one table of
+// columns that the writers and the reader use.
+std::vector<StateTableColumn> StateTableColumns(const std::vector<StateRow>& rows);
+
 // Builds the tables from the case folders below `directory` and writes them.
 StateTableSummary WriteStateTable(const std::string& directory,
                                   const ConvergenceTolerance& tolerance = {});
