@@ -17,7 +17,7 @@ set ylabel "σ_r / p (–)"
 set xrange [x_min:x_max]
 set yrange [y_min:y_max]
 set arrow 1 from graph 0, first 0 to graph 1, first 0 nohead dt 2 lc rgb "black"
-set label 1 "limit d: σ_r = 0 (ψ_σ = 54.74°)" at graph 0.02, first 0 offset 0, 0.6 font ",8"
+set label 1 "limit d: σ_r = 0 (ψ_σ = 54.74°)" at graph 0.98, first 0 right offset 0, 1.2 font ",8"
 steps = data."/rate_extension_steps.tsv"
 liquefied = data."/rate_extension_liquefied.tsv"
 limits = data."/rate_extension_limits.tsv"
