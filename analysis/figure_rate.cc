@@ -585,6 +585,11 @@ FigureSpec RateAgainstModels(const Context& ctx, const RateStudy& rate) {
   }
   if (!psi_tics.empty()) psi_tics += ")";
   Set(&spec, "psi_tics", psi_tics);
+  if (!swept.empty()) {  // the directions with room for the side-by-side sets
+    const double room = std::max(2.0, 0.05 * (*swept.rbegin() - *swept.begin()));
+    SetNumber(&spec, "psi_x_min", *swept.begin() - room);
+    SetNumber(&spec, "psi_x_max", *swept.rbegin() + room);
+  }
   const char* set_files[2] = {"rate_models_quasi_static.tsv", "rate_models_paper_rate.tsv"};
   for (int set = 0; set < 2; ++set) {
     if (set_rows[set].empty()) continue;

@@ -26,5 +26,5 @@ liquefied_layer = n_liquefied > 0 ? 'for [b=0:n_liquefied-1] liquefied index b u
 limit_layer = n_limits > 0 ? 'for [b=0:n_limits-1] limits index b using "psi_epsilon_deg":"sigma_r_over_p":"psi_epsilon_ci95":"colour" with xerrorbars pt 5 ps 1.1 lc variable lw 1.2,' : ''
 plot @step_layer @liquefied_layer @limit_layer \
      for [s=1:n_sweeps] keyentry with points pt 7 lt s title word(sweep_titles, s), \
-     keyentry with points pt 2 lc rgb "black" title "liquefied (most replicates)", \
-     keyentry with points pt 5 lc rgb "black" title "ψ_ε(d) ± 95 %"
+     for [k=1:(n_liquefied > 0)] keyentry with points pt 2 lc rgb "black" title "liquefied (most replicates)", \
+     for [k=1:(n_limits > 0)] keyentry with points pt 5 lc rgb "black" title "ψ_ε(d) ± 95 %"
