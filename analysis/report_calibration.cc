@@ -365,8 +365,8 @@ std::vector<Section> CalibrationSections(const StudyFolder& study, int* calibrat
         Code("study calibrate --select quasi_static") +
         Plain(fmt::format("): {}, as ", SelectionText(*selection))) +
         Link(kQuasiStaticSelectionFile, UrlPath(kQuasiStaticSelectionFile), true) +
-        Plain(" records. Figures 17 (the ASBS sections) and rate (e) draw those states against "
-              "the models.")));
+        Plain(" records. Figure rate (e) and, where the study draws it, Fig. 17 (the ASBS "
+              "sections) draw those states against the models.")));
   }
   Block table;
   table.type = Block::Type::kTable;

@@ -543,9 +543,10 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
   if (const std::optional<QuasiStaticSelection> selection =
           ReadQuasiStaticSelection(study.directory)) {
     section.blocks.push_back(Paragraph(
-        Plain(fmt::format("The calibrated models (Parameters, and figures 17 and rate (e)) were "
-                          "fitted to the quasi-static states only: {}, from ",
-                          SelectionText(*selection))) +
+        Plain(fmt::format(
+            "The calibrated models (Parameters, figure rate (e) and, where drawn, Fig. 17) were "
+            "fitted to the quasi-static states only: {}, from ",
+            SelectionText(*selection))) +
         Link(kQuasiStaticSelectionFile, UrlPath(kQuasiStaticSelectionFile), true) + Plain(".")));
   }
   struct Table {
