@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -52,6 +53,18 @@ std::string RateTitles(const std::map<std::pair<int, double>, int>& colours) {
   return words;
 }
 
+// The colour of the fixed I* nearest a measured I (the first colour when none).
+int NearestRateColour(const std::map<std::pair<int, double>, int>& colours, double inertial) {
+  int best = 1;
+  double distance = std::numeric_limits<double>::infinity();
+  for (const auto& [key, colour] : colours) {
+    if (key.first != static_cast<int>(dem::RateRule::kInertial) || !(inertial > 0)) continue;
+    const double d = std::abs(std::log(inertial / key.second));
+    if (d < distance) distance = d, best = colour;
+  }
+  return best;
+}
+
 double Zeroed(double v) { return std::isfinite(v) ? v : 0.0; }
 // The half-width of an interval of a positive value on a log axis: at most
 // 0.9 of the value (the lower end stays positive).
@@ -66,9 +79,12 @@ int DirectionPoint(double psi, bool reference_modulus) {
   return reference_modulus ? filled : filled - 1;
 }
 
+// The note on the moduli of the rate groups and the drained groups.
 std::string ModulusNote(const RateStudy& rate, double reference) {
   std::set<double> moduli;
   for (const RateGroup& g : rate.groups) moduli.insert(g.key.youngs_modulus_mpa);
+  for (const DrainedGroup& g : rate.drained.groups) moduli.insert(g.youngs_modulus_mpa);
+  if (!std::isfinite(reference)) return "";
   std::string others;
   for (double e : moduli) {
     if (e != reference) others += (others.empty() ? "" : ", ") + Short(e);
@@ -78,35 +94,115 @@ std::string ModulusNote(const RateStudy& rate, double reference) {
              : fmt::format("filled: E = {} MPa, open: E = {} MPa", Short(reference), others);
 }
 
-// The drained cases' materials (drained_study.h) and a legend text for each:
-// "E = 500 MPa" when the drained cases vary E alone, the whole material
-// otherwise (the study of what sets M, issue 39 §2, varies the damping, the
-// stiffness ratio and the time step).
+// The drained cases' materials (drained_study.h, each read from its case's
+// scene) and a legend label for each. When E alone varies, a material is
+// drawn filled (the reference E) or open and labelled "E = 500 MPa". When
+// more varies (the study of what sets M, issue 39 §2: the damping, the
+// stiffness ratio, the time step), each material is a series of its own: its
+// own colour (from `first_colour`), labelled by the parts in which the
+// materials differ ("χ = 0.05, k_t/k_n = 0.3, f = 0.3"), the shared parts in
+// the figure's note, and drawn side by side in x (Dodge) so that materials
+// measured at one I or p do not hide each other.
 struct DrainedMaterials {
   std::map<DrainedMaterial, int> index;  // in map order, from 0
+  std::array<bool, 4> varies{};          // E, χ, k_t/k_n, f
   bool beyond_modulus = false;           // anything but E varies
-  std::string Text(const DrainedMaterial& m) const {
-    return beyond_modulus ? MaterialText(m) : fmt::format("E = {} MPa", Short(std::get<0>(m)));
+  int first_colour = 1;
+  bool Separate() const { return beyond_modulus; }
+  static std::string Part(const DrainedMaterial& m, int k) {
+    switch (k) {
+      case 0:
+        return fmt::format("E = {} MPa", Short(std::get<0>(m)));
+      case 1:
+        return fmt::format("χ = {:g}", std::get<1>(m));
+      case 2:
+        return fmt::format("k_t/k_n = {:g}", std::get<2>(m));
+      default:
+        return std::get<3>(m) > 0 ? fmt::format("f = {:g}", std::get<3>(m))
+                                  : std::string("a fixed time step");
+    }
   }
-  // A point type per material beyond E: the filled triangle of the
-  // reference, then other open and filled shapes (gnuplot 4, 6, 8, 10, 12, 14).
-  double Point(const DrainedMaterial& m, bool reference) const {
-    if (!beyond_modulus) return reference ? 9.0 : 8.0;
-    static constexpr double kPoints[] = {9, 4, 6, 8, 10, 12, 14, 5, 7, 11, 13, 15};
-    return kPoints[index.at(m) % std::size(kPoints)];
+  // The parts in which the materials differ (E alone when nothing does).
+  std::string Text(const DrainedMaterial& m) const {
+    if (!beyond_modulus) return Part(m, 0);
+    std::string text;
+    for (int k = 0; k < 4; ++k) {
+      if (varies[static_cast<size_t>(k)]) text += (text.empty() ? "" : ", ") + Part(m, k);
+    }
+    return text;
+  }
+  // The parts beyond E that every material shares ("" when none, or when
+  // the materials are not separate series).
+  std::string Shared() const {
+    if (!beyond_modulus || index.empty()) return "";
+    std::string text;
+    for (int k = 1; k < 4; ++k) {
+      if (!varies[static_cast<size_t>(k)]) {
+        text += (text.empty() ? "" : ", ") + Part(index.begin()->first, k);
+      }
+    }
+    return text;
+  }
+  int Colour(const DrainedMaterial& m) const { return first_colour + index.at(m); }
+  // A point type: the filled triangle, open for another E when E alone varies.
+  double Point(bool reference) const { return beyond_modulus || reference ? 9.0 : 8.0; }
+  // The factor by which material m's x is drawn: 4 % apart on a log axis,
+  // centred; 1 when the materials are not separate series.
+  double Dodge(const DrainedMaterial& m) const {
+    if (!beyond_modulus) return 1.0;
+    return std::pow(1.04, index.at(m) - (static_cast<double>(index.size()) - 1) / 2);
+  }
+  // The legend's words: titles and colours in material order.
+  std::string Titles() const {
+    std::string words;
+    for (const auto& [m, k] : index)
+      words += fmt::format("{}\"{}\"", words.empty() ? "" : " ", Text(m));
+    return words;
+  }
+  std::string Colours() const {
+    std::string words;
+    for (const auto& [m, k] : index)
+      words += fmt::format("{}{}", words.empty() ? "" : " ", Colour(m));
+    return words;
+  }
+  // What the caption says of the series.
+  std::string Caption() const {
+    if (!beyond_modulus) return "";
+    std::string shared = Shared();
+    return fmt::format(
+        " The drained cases' {} materials (read from their scenes) are series of their own, one "
+        "colour each, labelled by what differs between them (χ: Cundall's local damping, "
+        "k_t/k_n: the stiffness ratio, f: the time step as a fraction of the critical one, E: "
+        "Young's modulus){}, and drawn side by side, 4 % apart in x, so that materials at one "
+        "rate do not hide each other (the data files keep the measured values).",
+        index.size(), shared.empty() ? "" : "; shared: " + shared);
   }
 };
-DrainedMaterials MaterialsOf(const RateStudy& rate) {
+DrainedMaterials MaterialsOf(const RateStudy& rate, int first_colour = 1) {
   DrainedMaterials m;
-  std::set<std::tuple<double, double, double>> beyond;
+  m.first_colour = first_colour;
+  std::set<double> parts[4];
   for (const DrainedGroup& g : rate.drained.groups) {
-    m.index.emplace(MaterialOf(g), 0);
-    beyond.insert({g.local_damping, g.stiffness_ratio, g.time_step_fraction});
+    const DrainedMaterial material = MaterialOf(g);
+    m.index.emplace(material, 0);
+    parts[0].insert(std::get<0>(material));
+    parts[1].insert(std::get<1>(material));
+    parts[2].insert(std::get<2>(material));
+    parts[3].insert(std::get<3>(material));
   }
   int k = 0;
   for (auto& [material, index] : m.index) index = k++;
-  m.beyond_modulus = beyond.size() > 1;
+  for (size_t p = 0; p < 4; ++p) m.varies[p] = parts[p].size() > 1;
+  m.beyond_modulus = m.varies[1] || m.varies[2] || m.varies[3];
   return m;
+}
+
+// The figure's note: the moduli, and the drained materials' shared parts.
+std::string MaterialNote(const RateStudy& rate, double reference,
+                         const DrainedMaterials& materials) {
+  const std::string modulus = ModulusNote(rate, reference), shared = materials.Shared();
+  if (shared.empty()) return modulus;
+  return modulus.empty() ? shared : modulus + ", " + shared;
 }
 
 }  // namespace
@@ -128,6 +224,9 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
                "effect, the curves flatten and coincide as I* falls. Data: rate_summary.csv.",
            "rate_psi_sigma.gp");
   const auto colours = RateColours(rate);
+  // Materials of their own take the colours after the rates'.
+  const DrainedMaterials materials = MaterialsOf(rate, static_cast<int>(colours.size()) + 1);
+  spec.caption += materials.Caption();
   std::map<double,
            std::map<std::pair<double, std::pair<int, double>>, std::vector<const RateGroup*>>>
       panels;  // ψ_ε → (E, rate) → groups
@@ -138,8 +237,8 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
               .push_back(&g);
   }
   // The drained cases (σ_r = p_0): one curve per (E, rank of the axial rate
-  // at each σ_r, slowest first), coloured as the I* nearest its measured I.
-  const DrainedMaterials materials = MaterialsOf(rate);
+  // at each σ_r, slowest first), coloured as the I* nearest its measured I
+  // (or as its material, DrainedMaterials).
   std::map<std::pair<DrainedMaterial, int>, std::vector<const DrainedGroup*>> drained;
   {
     std::map<std::pair<DrainedMaterial, double>, std::vector<const DrainedGroup*>> by_start;
@@ -158,14 +257,7 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
     }
   }
   auto nearest_colour = [&colours](double inertial) {
-    int best = 1;
-    double distance = std::numeric_limits<double>::infinity();
-    for (const auto& [key, colour] : colours) {
-      if (key.first != static_cast<int>(dem::RateRule::kInertial) || !(inertial > 0)) continue;
-      const double d = std::abs(std::log(inertial / key.second));
-      if (d < distance) distance = d, best = colour;
-    }
-    return best;
+    return NearestRateColour(colours, inertial);
   };
   if (panels.empty() && drained.empty()) {
     return NotDrawn(spec, "no rate case has a usable asymptotic state");
@@ -184,7 +276,8 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
     ++k;
     AxisRange x{}, y{};
     x.log = true;
-    BlockFile file({"p_kpa", "p_ci95", "psi_sigma_deg", "psi_sigma_ci95", "point_type", "colour"});
+    BlockFile file(
+        {"p_kpa", "p_ci95", "psi_sigma_deg", "psi_sigma_ci95", "point_type", "colour", "drawn_at"});
     for (const auto& [curve, groups] : curves) {
       std::vector<const RateGroup*> sorted = groups;
       std::sort(sorted.begin(), sorted.end(), [](const RateGroup* a, const RateGroup* b) {
@@ -197,7 +290,7 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
         rows.push_back({g->p_kpa.mean, LogHalfWidth(g->p_kpa.mean, g->p_kpa.half_width),
                         g->psi_sigma_deg.mean, Zeroed(g->psi_sigma_deg.half_width),
                         static_cast<double>(DirectionPoint(90, curve.first == reference)),
-                        static_cast<double>(colours.at(curve.second))});
+                        static_cast<double>(colours.at(curve.second)), g->p_kpa.mean});
       }
       file.Add(fmt::format("{}, E = {} MPa", RateTitle(curve.second.first, curve.second.second),
                            Short(curve.first)),
@@ -212,19 +305,23 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
     ++k;
     AxisRange x{}, y{};
     x.log = true;
-    BlockFile file({"p_kpa", "p_ci95", "psi_sigma_deg", "psi_sigma_ci95", "point_type", "colour"});
+    BlockFile file(
+        {"p_kpa", "p_ci95", "psi_sigma_deg", "psi_sigma_ci95", "point_type", "colour", "drawn_at"});
     for (const auto& [curve, groups] : drained) {
       std::vector<double> inertial;
       for (const DrainedGroup* g : groups) inertial.push_back(g->inertial_number_dmax.mean);
       const double i_mean = Estimate::Of(inertial).mean;
       std::vector<std::vector<double>> rows;
       for (const DrainedGroup* g : groups) {  // ascending σ_r
-        x.Add(g->p_kpa.mean, LogHalfWidth(g->p_kpa.mean, g->p_kpa.half_width));
+        const double drawn_at = g->p_kpa.mean * materials.Dodge(curve.first);
+        x.Add(drawn_at, LogHalfWidth(g->p_kpa.mean, g->p_kpa.half_width));
         y.Add(g->psi_sigma_deg.mean, g->psi_sigma_deg.half_width);
         rows.push_back({g->p_kpa.mean, LogHalfWidth(g->p_kpa.mean, g->p_kpa.half_width),
                         g->psi_sigma_deg.mean, Zeroed(g->psi_sigma_deg.half_width),
-                        materials.Point(curve.first, std::get<0>(curve.first) == reference),
-                        static_cast<double>(nearest_colour(i_mean))});
+                        materials.Point(std::get<0>(curve.first) == reference),
+                        static_cast<double>(materials.Separate() ? materials.Colour(curve.first)
+                                                                 : nearest_colour(i_mean)),
+                        drawn_at});
       }
       file.Add(fmt::format("drained, I ≈ {:.2g}, {}", i_mean, materials.Text(curve.first)), rows);
     }
@@ -242,7 +339,10 @@ FigureSpec RatePsiSigma(const Context& ctx, const RateStudy& rate) {
   Set(&spec, "panel_blocks", panel_blocks);
   Set(&spec, "n_rates", static_cast<int>(colours.size()));
   Set(&spec, "rate_titles", RateTitles(colours));
-  Set(&spec, "modulus_note", ModulusNote(rate, reference));
+  Set(&spec, "n_materials", materials.Separate() ? static_cast<int>(materials.index.size()) : 0);
+  Set(&spec, "material_titles", materials.Titles());
+  Set(&spec, "material_colours", materials.Colours());
+  Set(&spec, "modulus_note", MaterialNote(rate, reference, materials));
   return spec;
 }
 
@@ -259,32 +359,67 @@ FigureSpec RateLines(const Context& ctx, const RateStudy& rate) {
                "the mean of the paths' own lines past their first unit of ln p: a least-squares "
                "secant of an NCL that steepens with p), drawn over their p range; rate_lines.csv "
                "gives N, λ "
-               "and ln(1+e) at {} kPa with its 95 % interval. Data: rate_states.csv.",
+               "and ln(1+e) at {} kPa with its 95 % interval. Diamonds: the critical states of "
+               "the drained triaxial cases (σ_r = p_0, every replicate), coloured as the I* "
+               "nearest their measured I: the CSL where the isochoric paths liquefy. Data: "
+               "rate_states.csv, rate_drained_states.csv.",
                ModulusNote(rate, reference), Short(rate.options.reference_p_kpa)),
            "rate_lines.gp");
   const auto colours = RateColours(rate);
+  // Rows: p, ln(1+e), point type, colour, p drawn at.
   std::map<std::tuple<double, double, int, double>, std::vector<std::vector<double>>> blocks;
+  int directions[3] = {0, 0, 0};  // states at ψ_ε = 0°, 90° and others
   for (const RateState& s : rate.states) {
     if (!rate.Usable(s)) continue;
+    ++directions[std::abs(s.psi_epsilon_deg) < 1e-6        ? 0
+                 : std::abs(s.psi_epsilon_deg - 90) < 1e-6 ? 1
+                                                           : 2];
     blocks[{s.psi_epsilon_deg, s.youngs_modulus_mpa, static_cast<int>(s.rule), s.rate()}].push_back(
         {s.p_kpa, s.ln_1_plus_e,
          static_cast<double>(DirectionPoint(s.psi_epsilon_deg, s.youngs_modulus_mpa == reference)),
-         static_cast<double>(colours.at({static_cast<int>(s.rule), s.rate()}))});
+         static_cast<double>(colours.at({static_cast<int>(s.rule), s.rate()})), s.p_kpa});
   }
-  if (blocks.empty()) return NotDrawn(spec, "no rate case has a usable asymptotic state");
+  // The drained cases' critical states (σ_r = p_0): diamonds, one block
+  // per material and σ_r, coloured as the I* nearest their measured I (or
+  // as their material, DrainedMaterials).
+  const DrainedMaterials materials = MaterialsOf(rate, static_cast<int>(colours.size()) + 1);
+  std::map<std::pair<DrainedMaterial, double>, std::vector<std::vector<double>>> drained;
+  for (const DrainedState& s : rate.drained.states) {
+    if (!rate.Usable(s)) continue;
+    const DrainedMaterial m = MaterialOf(s);
+    drained[{m, s.radial_stress_kpa}].push_back(
+        {s.p_kpa, s.ln_1_plus_e, s.youngs_modulus_mpa == reference ? 13.0 : 12.0,
+         static_cast<double>(materials.Separate()
+                                 ? materials.Colour(m)
+                                 : NearestRateColour(colours, s.inertial_number_dmax)),
+         s.p_kpa * materials.Dodge(m)});
+  }
+  spec.caption += materials.Caption();
+  if (blocks.empty() && drained.empty()) {
+    return NotDrawn(spec, "no rate case has a usable asymptotic state");
+  }
   AxisRange x{}, y{};
   x.log = true;
-  for (const auto& [key, rows] : blocks) {
-    for (const std::vector<double>& row : rows) {
-      x.Add(row[0]);
-      y.Add(row[1]);
+  auto add_range = [&x, &y](const auto& all) {
+    for (const auto& [key, rows] : all) {
+      for (const std::vector<double>& row : rows) {
+        x.Add(row[4]);
+        y.Add(row[1]);
+      }
     }
-  }
-  BlockFile states({"p_kpa", "ln_1_plus_e", "point_type", "colour"});
+  };
+  add_range(blocks);
+  add_range(drained);
+  BlockFile states({"p_kpa", "ln_1_plus_e", "point_type", "colour", "drawn_at"});
   for (const auto& [key, rows] : blocks) {
     states.Add(fmt::format("ψ_ε = {}°, E = {} MPa, {}", Short(std::get<0>(key)),
                            Short(std::get<1>(key)), RateTitle(std::get<2>(key), std::get<3>(key))),
                rows);
+  }
+  for (const auto& [key, rows] : drained) {
+    states.Add(
+        fmt::format("drained, σ_r = {} kPa, {}", Short(key.second), materials.Text(key.first)),
+        rows);
   }
   states.Write(ctx.File("rate_lines_states.tsv"));
   BlockFile lines({"p_kpa", "ln_1_plus_e", "colour"});
@@ -306,9 +441,16 @@ FigureSpec RateLines(const Context& ctx, const RateStudy& rate) {
   SetRange(&spec, "y", y);
   Set(&spec, "n_states", states.blocks());
   Set(&spec, "n_lines", lines.blocks());
+  Set(&spec, "n_drained", drained.empty() ? 0 : 1);
+  Set(&spec, "n_ncl", directions[0] > 0 ? 1 : 0);
+  Set(&spec, "n_csl", directions[1] > 0 ? 1 : 0);
+  Set(&spec, "n_other", directions[2] > 0 ? 1 : 0);
   Set(&spec, "n_rates", static_cast<int>(colours.size()));
   Set(&spec, "rate_titles", RateTitles(colours));
-  Set(&spec, "modulus_note", ModulusNote(rate, reference));
+  Set(&spec, "n_materials", materials.Separate() ? static_cast<int>(materials.index.size()) : 0);
+  Set(&spec, "material_titles", materials.Titles());
+  Set(&spec, "material_colours", materials.Colours());
+  Set(&spec, "modulus_note", MaterialNote(rate, reference, materials));
   return spec;
 }
 
@@ -431,6 +573,23 @@ FigureSpec RateAgainstModels(const Context& ctx, const RateStudy& rate) {
     set_rows[set].push_back({g.key.psi_epsilon_deg + (set == 0 ? -0.6 : 0.6), g.psi_sigma_deg.mean,
                              Zeroed(g.psi_sigma_deg.half_width)});
   }
+  // Tics at the swept directions, so that the sets drawn side by side read
+  // as one ψ_ε each, also on a narrow sweep (91° and 95°).
+  std::set<double> swept;
+  for (const RateGroup& g : rate.groups) {
+    if (g.key.youngs_modulus_mpa == e_mpa && g.used > 0) swept.insert(g.key.psi_epsilon_deg);
+  }
+  std::string psi_tics;
+  for (double psi : swept) {
+    psi_tics += fmt::format("{}\"{}\" {}", psi_tics.empty() ? "(" : ", ", Short(psi), Short(psi));
+  }
+  if (!psi_tics.empty()) psi_tics += ")";
+  Set(&spec, "psi_tics", psi_tics);
+  if (!swept.empty()) {  // the directions with room for the side-by-side sets
+    const double room = std::max(2.0, 0.05 * (*swept.rbegin() - *swept.begin()));
+    SetNumber(&spec, "psi_x_min", *swept.begin() - room);
+    SetNumber(&spec, "psi_x_max", *swept.rbegin() + room);
+  }
   const char* set_files[2] = {"rate_models_quasi_static.tsv", "rate_models_paper_rate.tsv"};
   for (int set = 0; set < 2; ++set) {
     if (set_rows[set].empty()) continue;
@@ -541,13 +700,15 @@ struct CriticalStatePoints {
 };
 
 CriticalStatePoints CriticalStateGroups(const RateStudy& rate, double reference,
-                                        const std::map<double, int>& colour_of) {
+                                        const std::map<double, int>& colour_of,
+                                        const DrainedMaterials& materials) {
   CriticalStatePoints points;
-  auto row = [&](const Estimate& i, const Estimate& m, double point, double start) {
+  // Columns: I, its interval, M, its interval, point type, colour, drawn at.
+  auto row = [&](const Estimate& i, const Estimate& m, double point, int colour, double dodge) {
     points.i_min = std::min(points.i_min, i.mean);
-    return std::vector<double>{i.mean, LogHalfWidth(i.mean, i.half_width),
-                               m.mean, Zeroed(m.half_width),
-                               point,  static_cast<double>(colour_of.at(start))};
+    return std::vector<double>{
+        i.mean, LogHalfWidth(i.mean, i.half_width), m.mean,        Zeroed(m.half_width),
+        point,  static_cast<double>(colour),        i.mean * dodge};
   };
   for (const RateGroup& g : rate.groups) {
     if (std::abs(g.key.psi_epsilon_deg - 90) > 1e-6 || g.used == 0) continue;
@@ -555,18 +716,21 @@ CriticalStatePoints CriticalStateGroups(const RateStudy& rate, double reference,
     const bool ref = g.key.youngs_modulus_mpa == reference;
     const int point = g.key.rule == dem::RateRule::kInertial ? (ref ? 7 : 6) : (ref ? 13 : 12);
     points.isochoric[{g.key.youngs_modulus_mpa, g.key.start_p_kpa}].push_back(
-        row(g.inertial_number_dmax, g.q_over_p, point, g.key.start_p_kpa));
+        row(g.inertial_number_dmax, g.q_over_p, point, colour_of.at(g.key.start_p_kpa), 1.0));
   }
-  // The drained cases (constant σ_r = p_0): triangles (other shapes for
-  // other materials), one block per (material, σ_r).
-  const DrainedMaterials materials = MaterialsOf(rate);
+  // The drained cases (constant σ_r = p_0): triangles, one block per
+  // (material, σ_r), coloured as their σ_r, or as their material when the
+  // materials are series of their own.
   for (const DrainedGroup& g : rate.drained.groups) {
     if (g.used == 0 || !(g.inertial_number_dmax.mean > 0) || !std::isfinite(g.q_over_p.mean)) {
       continue;
     }
-    const double point = materials.Point(MaterialOf(g), g.youngs_modulus_mpa == reference);
-    points.drained[{MaterialOf(g), g.radial_stress_kpa}].push_back(
-        row(g.inertial_number_dmax, g.q_over_p, point, g.radial_stress_kpa));
+    const DrainedMaterial m = MaterialOf(g);
+    const int colour =
+        materials.Separate() ? materials.Colour(m) : colour_of.at(g.radial_stress_kpa);
+    points.drained[{m, g.radial_stress_kpa}].push_back(
+        row(g.inertial_number_dmax, g.q_over_p, materials.Point(g.youngs_modulus_mpa == reference),
+            colour, materials.Dodge(m)));
   }
   return points;
 }
@@ -575,18 +739,21 @@ CriticalStatePoints CriticalStateGroups(const RateStudy& rate, double reference,
 // to the largest I fitted, and their limits M_0 at the edge; returns the
 // number of lines.
 int WriteCriticalStateFits(const Context& ctx, const RateStudy& rate, double reference,
-                           const std::map<double, int>& colour_of, double i_left, AxisRange* y) {
+                           const std::map<double, int>& colour_of,
+                           const DrainedMaterials& materials, double i_left, AxisRange* y) {
   BlockFile fits({"inertial_number", "q_over_p", "q_over_p_ci95", "point_type", "colour"});
   BlockFile limits({"inertial_number", "q_over_p", "q_over_p_ci95", "point_type", "colour"});
   auto add_fit = [&](const std::string& title, double m0, double half_width, double slope,
-                     double i_max, double line_point, double limit_point, int colour) {
+                     double i_max, double line_point, double limit_point, int colour,
+                     double dodge) {
     std::vector<std::vector<double>> rows;
     for (int k = 0; k <= 20; ++k) {
       const double i = std::exp(std::log(i_left) + (std::log(i_max) - std::log(i_left)) * k / 20);
       rows.push_back({i, m0 + slope * i, 0.0, line_point, static_cast<double>(colour)});
     }
     fits.Add(title, rows);
-    limits.Add(title, {{i_left, m0, Zeroed(half_width), limit_point, static_cast<double>(colour)}});
+    limits.Add(title, {{i_left * dodge, m0, Zeroed(half_width), limit_point,
+                        static_cast<double>(colour)}});
     y->Add(m0, half_width);
     y->Add(rows.back()[1]);
   };
@@ -598,17 +765,24 @@ int WriteCriticalStateFits(const Context& ctx, const RateStudy& rate, double ref
     add_fit(fmt::format("E = {} MPa, NC {} kPa: M_0 = {:.3f}", Short(f.youngs_modulus_mpa),
                         Short(f.start_p_kpa), f.limit.mean),
             f.limit.mean, f.limit.half_width, f.slope.mean, f.i_max, ref ? 7.0 : 6.0,
-            ref ? 5.0 : 4.0, colour->second);
+            ref ? 5.0 : 4.0, colour->second, 1.0);
   }
-  const DrainedMaterials materials = MaterialsOf(rate);
   for (const DrainedLimit& l : rate.drained.limits) {
     if (!l.valid()) continue;
-    const auto colour = colour_of.find(l.radial_stress_kpa);
-    if (colour == colour_of.end()) continue;
-    const double point = materials.Point(MaterialOf(l), l.youngs_modulus_mpa == reference);
-    add_fit(fmt::format("{}, drained at sigma_r = {} kPa: M_0 = {:.3f}",
-                        materials.Text(MaterialOf(l)), Short(l.radial_stress_kpa), l.m.mean),
-            l.m.mean, l.m.half_width, l.m_slope.mean, l.i_max, point, point, colour->second);
+    const DrainedMaterial m = MaterialOf(l);
+    int colour = 0;
+    if (materials.Separate()) {
+      colour = materials.Colour(m);
+    } else if (const auto start = colour_of.find(l.radial_stress_kpa); start != colour_of.end()) {
+      colour = start->second;
+    } else {
+      continue;
+    }
+    const double point = materials.Point(l.youngs_modulus_mpa == reference);
+    add_fit(fmt::format("{}, drained at sigma_r = {} kPa: M_0 = {:.3f}", materials.Text(m),
+                        Short(l.radial_stress_kpa), l.m.mean),
+            l.m.mean, l.m.half_width, l.m_slope.mean, l.i_max, point, point, colour,
+            materials.Dodge(m));
   }
   if (fits.blocks() > 0) {
     fits.Write(ctx.File("rate_critical_state_fits.tsv"));
@@ -624,14 +798,19 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   const LiteratureBand& band = rate.options.literature_m;
   FigureSpec spec = CriticalStateSpec(rate, reference);
   // Colours by start; point types by modulus (filled reference) and rule.
+  // Drained materials that are series of their own take the colours after
+  // the starts' (DrainedMaterials).
+  const bool separate = MaterialsOf(rate).Separate();
   std::set<double> starts;
+  bool any_drained = false;
   for (const RateGroup& g : rate.groups) {
     if (std::abs(g.key.psi_epsilon_deg - 90) < 1e-6 && g.used > 0) starts.insert(g.key.start_p_kpa);
   }
   for (const DrainedGroup& g : rate.drained.groups) {
-    if (g.used > 0) starts.insert(g.radial_stress_kpa);
+    if (g.used > 0 && !separate) starts.insert(g.radial_stress_kpa);
+    any_drained = any_drained || g.used > 0;
   }
-  if (starts.empty()) {
+  if (starts.empty() && !any_drained) {
     return NotDrawn(spec, "no ψ_ε = 90° or drained rate case has a usable asymptotic state");
   }
   std::map<double, int> colour_of;
@@ -640,7 +819,9 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
     colour_of[p] = static_cast<int>(colour_of.size()) + 1;
     start_titles += fmt::format("{}\"NC {} kPa\"", start_titles.empty() ? "" : " ", Short(p));
   }
-  CriticalStatePoints points = CriticalStateGroups(rate, reference, colour_of);
+  const DrainedMaterials materials = MaterialsOf(rate, static_cast<int>(colour_of.size()) + 1);
+  spec.caption += materials.Caption();
+  CriticalStatePoints points = CriticalStateGroups(rate, reference, colour_of, materials);
   if (points.isochoric.empty() && points.drained.empty()) {
     return NotDrawn(spec, "no ψ_ε = 90° or drained rate state has a measured I");
   }
@@ -651,7 +832,7 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   auto add_ranges = [&x, &y](const auto& curves) {
     for (const auto& [curve, rows] : curves) {
       for (const std::vector<double>& row : rows) {
-        x.Add(row[0], row[1]);
+        x.Add(row[6], row[1]);
         y.Add(row[2], row[3]);
       }
     }
@@ -659,12 +840,11 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   add_ranges(points.isochoric);
   add_ranges(points.drained);
   BlockFile groups({"inertial_number", "inertial_number_ci95", "q_over_p", "q_over_p_ci95",
-                    "point_type", "colour"});
+                    "point_type", "colour", "drawn_at"});
   for (auto& [curve, rows] : points.isochoric) {
     std::sort(rows.begin(), rows.end());
     groups.Add(fmt::format("E = {} MPa, NC {} kPa", Short(curve.first), Short(curve.second)), rows);
   }
-  const DrainedMaterials materials = MaterialsOf(rate);
   for (auto& [curve, rows] : points.drained) {
     std::sort(rows.begin(), rows.end());
     groups.Add(fmt::format("{}, drained at sigma_r = {} kPa", materials.Text(curve.first),
@@ -673,17 +853,33 @@ FigureSpec RateCriticalState(const Context& ctx, const RateStudy& rate) {
   }
   groups.Write(ctx.File("rate_critical_state_groups.tsv"));
   // The quasi-static lines and limits, drawn from a left edge a third of
-  // the smallest measured I.
+  // the smallest measured I (the axis reaches it only when there are some).
   const double i_left = points.i_min / 3;
-  x.Add(i_left);
-  const int fits = WriteCriticalStateFits(ctx, rate, reference, colour_of, i_left, &y);
+  const int fits = WriteCriticalStateFits(ctx, rate, reference, colour_of, materials, i_left, &y);
+  if (fits > 0) {
+    x.Add(i_left);
+    if (materials.Separate()) x.Add(i_left * materials.Dodge(materials.index.begin()->first));
+  }
   SetRange(&spec, "x", x);
   SetRange(&spec, "y", y);
   Set(&spec, "n_groups", groups.blocks());
   Set(&spec, "n_fits", fits);
   Set(&spec, "n_starts", static_cast<int>(colour_of.size()));
   Set(&spec, "start_titles", start_titles);
-  Set(&spec, "modulus_note", ModulusNote(rate, reference));
+  Set(&spec, "n_materials", materials.Separate() ? static_cast<int>(materials.index.size()) : 0);
+  Set(&spec, "material_titles", materials.Titles());
+  Set(&spec, "material_colours", materials.Colours());
+  Set(&spec, "n_isochoric", static_cast<int>(points.isochoric.size()));
+  Set(&spec, "n_drained", static_cast<int>(points.drained.size()));
+  // The note: the moduli, what the materials share and, with separate
+  // materials at one σ_r, that σ_r.
+  std::string note = MaterialNote(rate, reference, materials);
+  std::set<double> radial;
+  for (const auto& [curve, rows] : points.drained) radial.insert(curve.second);
+  if (materials.Separate() && radial.size() == 1) {
+    note += fmt::format(", σ_r = {} kPa", Short(*radial.begin()));
+  }
+  Set(&spec, "modulus_note", note);
   spec.variables.emplace_back("band_low", fmt::format("{:g}", band.low));
   spec.variables.emplace_back("band_high", fmt::format("{:g}", band.high));
   SetNumber(&spec, "i_left", i_left);

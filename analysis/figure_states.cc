@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "analysis/figure_families.h"
+#include "analysis/quasi_static_selection.h"
 #include "common/statistics.h"
 
 namespace granasym::analysis::figures {
@@ -21,6 +23,29 @@ bool ConstantDirectionKind(TableKind kind) {
 
 // Every usable state of the study's own sample (detected and drifting).
 StateSelection MainStates() { return StateSelection{}; }
+
+// The states of the ASBS sections (Fig. 17): those of the constant-ψ_ε
+// paths; in a rate study whose models were fitted to its quasi-static set
+// (calibration/quasi_static.toml, issue 39 §3) only the cases of that set,
+// with its drained triaxial critical states (ψ_ε ≈ 90° there), so that the
+// sections are those of the states the models were calibrated to.
+struct SectionStates {
+  StateSelection selection;
+  std::optional<QuasiStaticSelection> quasi_static;
+  bool Takes(TableKind kind) const {
+    return ConstantDirectionKind(kind) || (quasi_static && kind == TableKind::kTriaxial);
+  }
+};
+SectionStates SectionStatesOf(const Context& ctx) {
+  SectionStates states;
+  states.quasi_static = ReadQuasiStaticSelection(ctx.directory);
+  if (states.quasi_static) {
+    for (const std::string& name : states.quasi_static->AllCases()) {
+      states.selection.cases.insert(name);
+    }
+  }
+  return states;
+}
 
 // One colour (gnuplot linetype) per nominal ψ_ε of the study's states, in
 // ascending order: Figs. 16 and 19 colour a direction alike.
@@ -41,14 +66,15 @@ struct Sections {
   std::vector<std::vector<std::string>> labels;        // per level: hover labels
 };
 
-Sections Project(const Context& ctx, std::vector<double> levels) {
+Sections Project(const Context& ctx, std::vector<double> levels,
+                 const SectionStates& states = SectionStates{}) {
   Sections s;
   s.levels = levels;
   s.rows.resize(levels.size());
   s.labels.resize(levels.size());
-  for (const StateRow* state : ctx.Select(MainStates())) {
+  for (const StateRow* state : ctx.Select(states.selection)) {
     const StateRow& row = *state;
-    if (!ConstantDirectionKind(row.kind)) continue;
+    if (!states.Takes(row.kind)) continue;
     const NclLine ncl = ctx.StudyNcl(row.replicate);
     for (size_t l = 0; l < levels.size(); ++l) {
       SectionPoint point;
@@ -64,10 +90,10 @@ Sections Project(const Context& ctx, std::vector<double> levels) {
   return s;
 }
 
-std::vector<double> StateLevels(const Context& ctx) {
+std::vector<double> StateLevels(const Context& ctx, const SectionStates& states = SectionStates{}) {
   std::vector<double> ln_v;
-  for (const StateRow* row : ctx.Select(MainStates())) {
-    if (ConstantDirectionKind(row->kind)) ln_v.push_back(row->ln_1_plus_e);
+  for (const StateRow* row : ctx.Select(states.selection)) {
+    if (states.Takes(row->kind)) ln_v.push_back(row->ln_1_plus_e);
   }
   return ln_v;
 }
@@ -182,13 +208,25 @@ FigureSpec Fig17(const Context& ctx) {
            "--level`, or `levels` in the programme's [figures]). " +
                ProjectionMethod(ctx.options),
            "asbs_sections.gp");
+  const SectionStates states = SectionStatesOf(ctx);
+  if (states.quasi_static) {
+    spec.caption += fmt::format(
+        " The states: the quasi-static set that the models were calibrated to ({}: {}), the "
+        "drained triaxial critical states (triaxial) with them; the other states of the study "
+        "(other rates) are left out.",
+        kQuasiStaticSelectionFile, SelectionText(*states.quasi_static));
+  }
   const NclLine ncl = ctx.StudyNcl(1);
   if (!ncl.valid()) return NotDrawn(spec, "the study's NCL could not be fitted");
   std::vector<double> levels = ctx.options.settings.levels;
-  if (levels.empty()) levels = SectionLevels(StateLevels(ctx), 3);
-  if (levels.empty()) return NotDrawn(spec, "the state table has no usable asymptotic states");
+  if (levels.empty()) levels = SectionLevels(StateLevels(ctx, states), 3);
+  if (levels.empty()) {
+    return NotDrawn(spec, states.quasi_static
+                              ? "the quasi-static set has no usable asymptotic states"
+                              : "the state table has no usable asymptotic states");
+  }
   std::sort(levels.begin(), levels.end());
-  const Sections sections = Project(ctx, levels);
+  const Sections sections = Project(ctx, levels, states);
   BlockFile dem_file({"p_over_pe", "q_over_pe", "psi_epsilon_deg", "point_type", "label"});
   std::vector<double> drawn;
   double x_hi = 0, y_lo = 0, y_hi = 0;

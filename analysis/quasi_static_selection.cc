@@ -46,6 +46,16 @@ QuasiStaticSelection SelectQuasiStatic(const RateStudy& study,
         break;
       }
     }
+    // No ψ_ε = 90° rate case at all, and drained cases: the critical state
+    // is theirs, and the smallest I* of the rate cases sets the set.
+    bool isochoric = false;
+    for (const RateState& s : study.states) {
+      isochoric = isochoric || std::abs(s.psi_epsilon_deg - 90) < 1e-6;
+    }
+    if (std::isnan(selection.inertial_number) && !isochoric && !rates.empty() &&
+        !study.drained.states.empty()) {
+      selection.inertial_number = *rates.begin();
+    }
     if (std::isnan(selection.inertial_number)) {
       selection.reason = fmt::format(
           "no I* has usable psi_epsilon = 90 deg states from two starts at E = {:g} MPa", e_mpa);
@@ -89,6 +99,12 @@ void WriteQuasiStaticSelection(const std::string& directory, const QuasiStaticSe
   for (size_t k = 0; k < s.drained_cases.size(); ++k) {
     text += (k ? ", " : "") + TomlQuoted(s.drained_cases[k]);
   }
+  text +=
+      "]\n# the study's other cases of the set: not rate cases, but run at I* or slower, and the "
+      "study's NCL where no rate case at I* is a psi_epsilon = 0 deg path\nother_cases = [";
+  for (size_t k = 0; k < s.other_cases.size(); ++k) {
+    text += (k ? ", " : "") + TomlQuoted(s.other_cases[k]);
+  }
   fs::create_directories(fs::path(directory) / "calibration");
   WriteTextFileAtomically((fs::path(directory) / kQuasiStaticSelectionFile).string(), text + "]\n");
 }
@@ -103,7 +119,29 @@ std::optional<QuasiStaticSelection> ReadQuasiStaticSelection(const std::string& 
   s.cases = table.GetStrings("cases");
   if (s.cases.empty()) table.Fail("cases", "is empty: expected the calibrated case names");
   if (table.Has("drained_cases")) s.drained_cases = table.GetStrings("drained_cases");
+  if (table.Has("other_cases")) s.other_cases = table.GetStrings("other_cases");
   return s;
+}
+
+std::string SelectionText(const QuasiStaticSelection& s) {
+  std::string others;
+  for (const std::string& name : s.other_cases) others += (others.empty() ? "" : ", ") + name;
+  return fmt::format(
+      "the {} rate cases at I* = {:g}, the {} drained triaxial cases at the slowest axial rate of "
+      "each σ_r{}, E = {:g} MPa",
+      s.cases.size(), s.inertial_number, s.drained_cases.size(),
+      others.empty()
+          ? std::string()
+          : fmt::format(" and {} other case{} at I* or slower ({})", s.other_cases.size(),
+                        s.other_cases.size() == 1 ? "" : "s", others),
+      s.youngs_modulus_mpa);
+}
+
+std::vector<std::string> QuasiStaticSelection::AllCases() const {
+  std::vector<std::string> all = cases;
+  all.insert(all.end(), drained_cases.begin(), drained_cases.end());
+  all.insert(all.end(), other_cases.begin(), other_cases.end());
+  return all;
 }
 
 }  // namespace granasym::analysis

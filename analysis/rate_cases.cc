@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "analysis/rate_files.h"
@@ -16,6 +17,7 @@
 #include "dem/run_record.h"
 #include "dem/run_record_names.h"
 #include "study/case_record.h"
+#include "study/study_folder.h"
 
 namespace granasym::analysis {
 using study::CaseRecord;
@@ -193,6 +195,59 @@ RateCases ReadRateCases(const std::string& directory, const std::vector<StateRow
     ReadRateCase(directory, row, &cases);
   }
   return cases;
+}
+
+std::vector<std::string> QuasiStaticCompanions(const std::string& directory,
+                                               const std::vector<StateRow>& rows,
+                                               const RateStudy& study,
+                                               const QuasiStaticSelection& selection) {
+  std::vector<std::string> companions;
+  std::set<std::string> seen(selection.cases.begin(), selection.cases.end());
+  seen.insert(selection.drained_cases.begin(), selection.drained_cases.end());
+  auto add = [&](const std::string& name) {
+    if (seen.insert(name).second) companions.push_back(name);
+  };
+  bool isotropic = false;  // a rate case of the selection is a ψ_ε = 0° path
+  for (const RateState& s : study.states) {
+    if (std::abs(s.psi_epsilon_deg) < 1e-6 &&
+        std::find(selection.cases.begin(), selection.cases.end(), s.case_name) !=
+            selection.cases.end()) {
+      isotropic = true;
+    }
+  }
+  const std::optional<std::string> ncl = study::StudyNclCase(directory);
+  for (const StateRow& row : study::WithoutEnsembleRows(rows)) {
+    if (ServesRateStudy(row.figures) || row.status == TableStatus::kNoResult || row.stage.empty() ||
+        seen.count(row.case_name)) {
+      continue;
+    }
+    if (!isotropic && ncl && row.case_name == *ncl) {
+      add(row.case_name);
+      continue;
+    }
+    const fs::path result = fs::path(directory) / "cases" / row.case_id / "result.h5";
+    if (!fs::exists(result)) continue;
+    const Hdf5File file = Hdf5File::OpenRead(result.string());
+    const std::vector<dem::StageRecord> stages = dem::ReadStageRecords(file);
+    for (size_t k = 0; k < stages.size(); ++k) {
+      if (stages[k].name != row.stage) continue;
+      const std::string group = dem::StageGroup(k);
+      const auto canonical = CanonicalLines(dem::ReadProvenance(file).scene_canonical);
+      const double modulus =
+          CanonicalNumber(canonical, "material.youngs_modulus_mpa").value_or(kNaN);
+      if (modulus != selection.youngs_modulus_mpa ||
+          !file.HasAttribute(group, dem::record::kStageRateRule) ||
+          FromString<dem::RateRule>(file.ReadStringAttribute(group, dem::record::kStageRateRule)) !=
+              dem::RateRule::kInertial) {
+        break;
+      }
+      const double inertial =
+          file.ReadDoubleAttribute(group, dem::record::kStageRateInertialNumber);
+      if (inertial <= selection.inertial_number * (1 + 1e-9)) add(row.case_name);
+      break;
+    }
+  }
+  return companions;
 }
 
 std::optional<RateStudy> WriteRateStudy(const std::string& directory,

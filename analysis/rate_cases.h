@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/quasi_static_selection.h"
 #include "analysis/rate_study.h"
 
 namespace granasym::analysis {
@@ -26,6 +27,19 @@ struct RateCases {
 // Reads the case folders of the rows of the state table that serve the rate
 // study (a row without a result or stage, and an ensemble row, is left out).
 RateCases ReadRateCases(const std::string& directory, const std::vector<StateRow>& rows);
+
+// The quasi-static set's other cases (QuasiStaticSelection::other_cases,
+// issue 39 §3): the cases of the state table's rows that do not serve the
+// rate study, have a result, and whose detector stage runs at the
+// selection's E under the inertial rule at I* at most the selection's (e.g.
+// quasi_static_extension.toml's compression paths at I* = 1e-3, which give
+// the compression side of the quasi-static ASBS); and the study's NCL case
+// (study.toml `ncl`) where no rate case of the selection is a ψ_ε = 0° path,
+// the isotropic state the set then has. Each case once, in the rows' order.
+std::vector<std::string> QuasiStaticCompanions(const std::string& directory,
+                                               const std::vector<StateRow>& rows,
+                                               const RateStudy& study,
+                                               const QuasiStaticSelection& selection);
 
 // Reads the rate cases of the study folder against the rows of its state
 // table, analyses them and writes the rate files; returns nullopt, and

@@ -421,6 +421,10 @@ const RateGroup* RateStudy::Find(const RateKey& key) const {
 double RateStudy::ReferenceModulus() const {
   std::map<double, int> count;
   for (const RateGroup& g : groups) ++count[g.key.youngs_modulus_mpa];
+  // A study of drained cases alone (e.g. what sets M, issue 39 §2): theirs.
+  if (count.empty()) {
+    for (const DrainedGroup& g : drained.groups) ++count[g.youngs_modulus_mpa];
+  }
   double best = kNaN;
   int most = 0;
   for (const auto& [modulus, n] : count) {

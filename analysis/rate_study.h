@@ -206,7 +206,8 @@ struct RateStudy {
   bool Usable(const DrainedState& state) const;  // the same rule for drained states
   const RateGroup* Find(const RateKey& key) const;
   // The Young's modulus of most groups (ties: the largest), the study's main
-  // material; the others are its stiffness variants. NaN without groups.
+  // material; the others are its stiffness variants. Without rate groups,
+  // that of most drained groups; NaN without either.
   double ReferenceModulus() const;
   std::string Text() const;  // a few lines for the console
   // The study's answers to issue 10's questions, one sentence each, with

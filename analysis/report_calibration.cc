@@ -9,6 +9,7 @@
 #include <map>
 #include <tuple>
 
+#include "analysis/quasi_static_selection.h"
 #include "analysis/report.h"
 #include "analysis/report_images.h"
 #include "analysis/report_sections.h"
@@ -355,6 +356,18 @@ std::vector<Section> CalibrationSections(const StudyFolder& study, int* calibrat
       "failed (no convergence, or the fit failed); then each model's values, standard errors, "
       "95 % intervals and the status of each parameter (fitted, fixed, at_bound, "
       "undetermined), with the fit's warnings and summary.")));
+  // Which states the models were fitted to, where `study calibrate
+  // --select quasi_static` chose a rate study's quasi-static set.
+  if (const std::optional<QuasiStaticSelection> selection =
+          ReadQuasiStaticSelection(study.directory)) {
+    top.blocks.push_back(Paragraph(
+        Plain("Fitted to the quasi-static set only (") +
+        Code("study calibrate --select quasi_static") +
+        Plain(fmt::format("): {}, as ", SelectionText(*selection))) +
+        Link(kQuasiStaticSelectionFile, UrlPath(kQuasiStaticSelectionFile), true) +
+        Plain(" records. Figure rate (e) and, where the study draws it, Fig. 17 (the ASBS "
+              "sections) draw those states against the models.")));
+  }
   Block table;
   table.type = Block::Type::kTable;
   table.header = {"model", "outcome", "why"};

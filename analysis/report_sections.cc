@@ -543,12 +543,10 @@ std::optional<Section> RateSection(const StudyFolder& study, std::vector<std::st
   if (const std::optional<QuasiStaticSelection> selection =
           ReadQuasiStaticSelection(study.directory)) {
     section.blocks.push_back(Paragraph(
-        Plain(fmt::format("The calibrated models (Parameters, and figure rate (e)) were fitted to "
-                          "the quasi-static states only: the {} rate cases at I* = {:g} and "
-                          "the {} drained triaxial cases at the slowest axial rate of each "
-                          "σ_r, E = {:g} MPa, from ",
-                          selection->cases.size(), selection->inertial_number,
-                          selection->drained_cases.size(), selection->youngs_modulus_mpa)) +
+        Plain(fmt::format(
+            "The calibrated models (Parameters, figure rate (e) and, where drawn, Fig. 17) were "
+            "fitted to the quasi-static states only: {}, from ",
+            SelectionText(*selection))) +
         Link(kQuasiStaticSelectionFile, UrlPath(kQuasiStaticSelectionFile), true) + Plain(".")));
   }
   struct Table {

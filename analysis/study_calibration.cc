@@ -35,9 +35,13 @@ std::string Header(const QuasiStaticSelection* quasi_static, double max_inertial
     text += fmt::format(
         "# A rate study: only its quasi-static states (calibration/quasi_static.toml; `study "
         "calibrate --inertial-number` chooses I*): the rate cases at I* = {:g} and E = {:g} MPa "
-        "(their psi_epsilon = 0 deg states also when drifting), and the drained triaxial cases "
-        "at the slowest axial rate of each sigma_r.\n",
-        quasi_static->inertial_number, quasi_static->youngs_modulus_mpa);
+        "(their psi_epsilon = 0 deg states also when drifting), the drained triaxial cases "
+        "at the slowest axial rate of each sigma_r{}.\n",
+        quasi_static->inertial_number, quasi_static->youngs_modulus_mpa,
+        quasi_static->other_cases.empty()
+            ? std::string()
+            : fmt::format(" and {} other cases at I* or slower (other_cases)",
+                          quasi_static->other_cases.size()));
   } else {
     text +=
         "# The study's detected states whose OCR refers to the study's NCL (other samples, "
@@ -223,14 +227,14 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
     using study::TableStatus;
     ncl.study.kinds = {ToString(TableKind::kNcl)};
     ncl.study.statuses = {ToString(TableStatus::kDetected), ToString(TableStatus::kDrifting)};
-    ncl.study.cases = quasi_static->cases;
+    ncl.study.cases = quasi_static->cases;  // with the other cases (e.g. the study's NCL)
+    ncl.study.cases.insert(ncl.study.cases.end(), quasi_static->other_cases.begin(),
+                           quasi_static->other_cases.end());
     calibration::DatasetConfig other = study_dataset("quasi_static");
     other.study.kinds = {ToString(TableKind::kCsl), ToString(TableKind::kCompression),
                          ToString(TableKind::kExtension), ToString(TableKind::kTriaxial)};
     other.study.statuses = {ToString(TableStatus::kDetected)};
-    other.study.cases = quasi_static->cases;
-    other.study.cases.insert(other.study.cases.end(), quasi_static->drained_cases.begin(),
-                             quasi_static->drained_cases.end());
+    other.study.cases = quasi_static->AllCases();
     config.datasets = {ncl, other};
   } else {
     calibration::DatasetConfig d = study_dataset("study");

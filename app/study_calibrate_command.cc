@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "analysis/quasi_static_selection.h"
+#include "analysis/rate_cases.h"
 #include "analysis/rate_files.h"
 #include "analysis/study_calibration.h"
 #include "app/figure_drawing.h"
@@ -123,12 +124,22 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
         throw InputError(directory + ": a rate study, but " + quasi_static->reason +
                          (inertial_number > 0 ? "" : "; choose one with --inertial-number"));
       }
+      quasi_static->other_cases = analysis::QuasiStaticCompanions(
+          directory, analysis::ReadStateTable(directory), *rate, *quasi_static);
       analysis::WriteQuasiStaticSelection(directory, *quasi_static);
+      std::string others;
+      for (const std::string& name : quasi_static->other_cases) {
+        others += (others.empty() ? "" : ", ") + name;
+      }
       std::printf(
           "rate study: fitting the %zu rate cases at I* = %g and the %zu drained cases at the "
-          "slowest axial rates, E = %g MPa\n",
+          "slowest axial rates, E = %g MPa%s\n",
           quasi_static->cases.size(), quasi_static->inertial_number,
-          quasi_static->drained_cases.size(), quasi_static->youngs_modulus_mpa);
+          quasi_static->drained_cases.size(), quasi_static->youngs_modulus_mpa,
+          others.empty() ? ""
+                         : fmt::format(", and {} other cases at I* or slower ({})",
+                                       quasi_static->other_cases.size(), others)
+                               .c_str());
     } else {
       // The calibrations are no longer those of a rate study's quasi-static set.
       fs::remove(fs::path(directory) / analysis::kQuasiStaticSelectionFile);

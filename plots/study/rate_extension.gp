@@ -17,7 +17,7 @@ set ylabel "σ_r / p (–)"
 set xrange [x_min:x_max]
 set yrange [y_min:y_max]
 set arrow 1 from graph 0, first 0 to graph 1, first 0 nohead dt 2 lc rgb "black"
-set label 1 "limit d: σ_r = 0 (ψ_σ = 54.74°)" at graph 0.02, first 0 offset 0, 0.6 font ",8"
+set label 1 "limit d: σ_r = 0 (ψ_σ = 54.74°)" at graph 0.98, first 0 right offset 0, 1.2 font ",8"
 steps = data."/rate_extension_steps.tsv"
 liquefied = data."/rate_extension_liquefied.tsv"
 limits = data."/rate_extension_limits.tsv"
@@ -26,5 +26,5 @@ liquefied_layer = n_liquefied > 0 ? 'for [b=0:n_liquefied-1] liquefied index b u
 limit_layer = n_limits > 0 ? 'for [b=0:n_limits-1] limits index b using "psi_epsilon_deg":"sigma_r_over_p":"psi_epsilon_ci95":"colour" with xerrorbars pt 5 ps 1.1 lc variable lw 1.2,' : ''
 plot @step_layer @liquefied_layer @limit_layer \
      for [s=1:n_sweeps] keyentry with points pt 7 lt s title word(sweep_titles, s), \
-     keyentry with points pt 2 lc rgb "black" title "liquefied (most replicates)", \
-     keyentry with points pt 5 lc rgb "black" title "ψ_ε(d) ± 95 %"
+     for [k=1:(n_liquefied > 0)] keyentry with points pt 2 lc rgb "black" title "liquefied (most replicates)", \
+     for [k=1:(n_limits > 0)] keyentry with points pt 5 lc rgb "black" title "ψ_ε(d) ± 95 %"

@@ -7,7 +7,8 @@
 # (one block per psi_epsilon, then the drained states of the quasi-static set,
 # point_type 9) and the models' lines (data/rate_models_lines.tsv).
 # Variables: n_models, n_psi, psi_titles (words), quasi_title, n_quasi_static,
-# n_paper_rate.
+# n_paper_rate, psi_tics (the tics of (a) at the swept directions, a gnuplot
+# tic list; empty: automatic) and with them psi_x_min, psi_x_max (the axis of (a)).
 width = 11.0; height = 4.8
 panels_right = 0.76
 load scripts."/common.gp"
@@ -26,10 +27,13 @@ set key at screen panels_right + 0.015, 0.92 left top Left reverse samplen 3 spa
 set xlabel label_psi_epsilon
 set ylabel label_psi_sigma
 set title "(a)"
+if (strlen(psi_tics) > 0) eval "set xtics ".psi_tics; set xrange [psi_x_min:psi_x_max]
 plot @models_a @quasi_a @paper_a \
      keyentry with points pt 7 lc rgb "black" title "(b): filled, the quasi-static set", \
      keyentry with points pt 12 lc rgb "black" title "(b): open, the paper rate"
 set key at screen panels_right + 0.015, 0.55 left top Left reverse samplen 3 spacing 1.05 font ",8"
+set xtics autofreq
+set xrange [*:*]
 set logscale x
 set format x "10^{%T}"
 set xlabel label_p

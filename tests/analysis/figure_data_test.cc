@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <set>
+#include <sstream>
 
 #include "analysis/quasi_static_selection.h"
 #include "analysis/rate_files.h"
@@ -330,6 +332,86 @@ TEST(WriteFigureData, TheDrainedCriticalStatesJoinTheMFigure) {
   // Drained cases alone still make the rate figures.
   fs::remove(dir / kRateStatesFile);
   EXPECT_FALSE(WriteFigureData(dir.string()).empty());
+}
+
+// A study whose drained cases differ by material and not by rate (what sets
+// M, issue 39 §2: studies/programmes/critical_state_friction.toml): each
+// material is a series of its own, with its own colour and a legend label
+// of what differs (here the damping χ and the stiffness ratio), drawn side
+// by side in I and p; what the materials share is the figure's note. No
+// label says "?" or "nan" (the study has no rate group to take E from).
+TEST(WriteFigureData, DrainedMaterialsAreSeriesOfTheirOwn) {
+  const fs::path dir = BareStudy("rate_materials");
+  std::vector<DrainedState> states;
+  for (const DrainedState& s : rate_fixture::DrainedStates(0.0)) {
+    if (s.radial_stress_kpa != 100 || s.inertial_number_dmax != 1e-3) continue;
+    for (const auto& [damping, ratio] :
+         {std::pair{0.5, 0.3}, std::pair{0.05, 0.3}, std::pair{0.5, 1.0}}) {
+      DrainedState m = s;
+      m.case_name = fmt::format("nc100_drained_chi{:g}_kr{:g}", damping, ratio);
+      m.local_damping = damping;
+      m.stiffness_ratio = ratio;
+      m.q_over_p += damping / 10;  // the materials' M differ
+      states.push_back(m);
+    }
+  }
+  RateStudy rate = RateStudy::Analyse({});
+  rate.drained = DrainedStudy::Analyse(states, rate.options);
+  ASSERT_EQ(rate.drained.groups.size(), 3u);
+  EXPECT_EQ(rate.ReferenceModulus(), 500);  // from the drained groups
+  WriteRateFiles(dir.string(), rate);
+  const std::vector<FigureSpec> figures = WriteFigureData(dir.string());
+  const FigureSpec* a = nullptr;
+  const FigureSpec* c = nullptr;
+  for (const FigureSpec& f : figures) {
+    if (f.stem == "rate_psi_sigma_p") a = &f;
+    if (f.stem == "rate_critical_state_ratio") c = &f;
+    for (const auto& [key, value] : f.variables) {
+      EXPECT_EQ(value.find('?'), std::string::npos) << f.stem << " " << key << " = " << value;
+      EXPECT_EQ(value.find("nan"), std::string::npos) << f.stem << " " << key << " = " << value;
+    }
+    EXPECT_EQ(f.caption.find("nan"), std::string::npos) << f.stem << ": " << f.caption;
+    EXPECT_EQ(f.not_drawn.find("nan"), std::string::npos) << f.stem << ": " << f.not_drawn;
+  }
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(c, nullptr);
+  EXPECT_TRUE(c->not_drawn.empty()) << c->not_drawn;
+  std::map<std::string, std::string> v(c->variables.begin(), c->variables.end());
+  // No start of an isochoric path: the three materials are the series, in
+  // the colours 1-3, labelled by χ and k_t/k_n (E and f are shared).
+  EXPECT_EQ(v["n_starts"], "0");
+  EXPECT_EQ(v["n_materials"], "3");
+  EXPECT_EQ(v["material_titles"],
+            "'\"χ = 0.05, k_t/k_n = 0.3\" \"χ = 0.5, k_t/k_n = 0.3\" \"χ = 0.5, k_t/k_n = 1\"'");
+  EXPECT_EQ(v["material_colours"], "'1 2 3'");
+  EXPECT_EQ(v["modulus_note"], "'E = 500 MPa, f = 0.3, σ_r = 100 kPa'");
+  EXPECT_EQ(v["n_isochoric"], "0");
+  EXPECT_EQ(v["n_drained"], "3");
+  EXPECT_NE(c->caption.find("labelled by what differs"), std::string::npos) << c->caption;
+  // The groups: one block per material, its own colour, the measured I kept
+  // and the drawn I 4 % apart.
+  const std::string groups =
+      ReadTextFile((dir / "figures/data/rate_critical_state_groups.tsv").string());
+  EXPECT_EQ(Count(groups, "drained at sigma_r = 100 kPa"), 3) << groups;
+  std::set<std::string> drawn, colours;
+  std::istringstream lines(groups);
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<std::string> fields;
+    std::istringstream in(line);
+    for (std::string f; std::getline(in, f, '\t');) fields.push_back(f);
+    if (fields.size() != 7 || fields[0] == "inertial_number") continue;
+    EXPECT_NEAR(std::stod(fields[0]), 1e-3, 1e-12) << line;
+    colours.insert(fields[5]);
+    drawn.insert(fields[6]);
+  }
+  EXPECT_EQ(colours, (std::set<std::string>{"1", "2", "3"})) << groups;
+  EXPECT_EQ(drawn.size(), 3u) << groups;
+  // (a): the drained panel's curves, one colour per material, with the legend.
+  std::map<std::string, std::string> va(a->variables.begin(), a->variables.end());
+  EXPECT_EQ(va["n_materials"], "3");
+  EXPECT_EQ(va["material_titles"], v["material_titles"]);
+  const std::string panel = ReadTextFile((dir / "figures/data/rate_psi_sigma_1.tsv").string());
+  EXPECT_NE(panel.find("drained, I ≈ 0.001, χ = 0.05, k_t/k_n = 0.3"), std::string::npos) << panel;
 }
 
 TEST(WriteFigureData, TheQuasiStaticSetStandsBesideThePaperRate) {

@@ -65,6 +65,60 @@ TEST(QuasiStatic, TheSmallestRateWithACslFromTwoStartsIsTheCalibratedSet) {
   EXPECT_EQ(back->inertial_number, 1e-3);
   EXPECT_EQ(back->cases, chosen.cases);
   EXPECT_EQ(back->drained_cases, chosen.drained_cases);
+  EXPECT_TRUE(back->other_cases.empty());
+}
+
+// A study without ψ_ε = 90° rate cases whose critical state comes from its
+// drained cases (studies/programmes/quasi_static_extension.toml, issue 39
+// §3): the smallest I* of its rate cases is the set, with the drained cases;
+// the other cases of the set are written and read back. Without drained
+// cases there is no critical state and no set.
+TEST(QuasiStatic, AStudyOfExtensionSweepsTakesItsSmallestRateWithTheDrainedCases) {
+  std::vector<RateState> states;
+  for (RateState s : rate_fixture::ExtensionSweep()) {
+    if (s.psi_epsilon_deg == 90) continue;
+    s.case_name = fmt::format("nc{:g}_psi{:g}_I0.003", s.start_p_kpa, s.psi_epsilon_deg);
+    states.push_back(s);
+    s.inertial_number = 1e-3;  // and a slower sweep
+    s.case_name = fmt::format("nc{:g}_psi{:g}_I0.001", s.start_p_kpa, s.psi_epsilon_deg);
+    states.push_back(s);
+  }
+  RateStudy study = RateStudy::Analyse(states);
+  const QuasiStaticSelection without = SelectQuasiStatic(study);
+  EXPECT_FALSE(without.valid());
+  EXPECT_NE(without.reason.find("from two starts at E = 500 MPa"), std::string::npos)
+      << without.reason;
+  study.drained = DrainedStudy::Analyse(DrainedStates(0.0), study.options);
+  QuasiStaticSelection chosen = SelectQuasiStatic(study);
+  ASSERT_TRUE(chosen.valid()) << chosen.reason;
+  EXPECT_EQ(chosen.inertial_number, 1e-3);
+  EXPECT_EQ(chosen.cases.size(), 7u);  // 100, 110, 120, 130° from 100 kPa, 100-120° from 20
+  for (const std::string& name : chosen.cases) {
+    EXPECT_NE(name.find("_I0.001"), std::string::npos) << name;
+  }
+  EXPECT_EQ(chosen.drained_cases.size(), 4u);  // the slowest rate of each σ_r
+  chosen.other_cases = {"ncl_qs", "nc100_psi70_I0.001"};
+  EXPECT_EQ(chosen.AllCases().size(), 13u);
+  EXPECT_NE(SelectionText(chosen).find("and 2 other cases at I* or slower (ncl_qs, "
+                                       "nc100_psi70_I0.001), E = 500 MPa"),
+            std::string::npos)
+      << SelectionText(chosen);
+  const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "rate_study" / "others";
+  fs::remove_all(dir);
+  WriteQuasiStaticSelection(dir.string(), chosen);
+  const std::optional<QuasiStaticSelection> back = ReadQuasiStaticSelection(dir.string());
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->other_cases, chosen.other_cases);
+  EXPECT_EQ(back->AllCases(), chosen.AllCases());
+  // A study with ψ_ε = 90° rate cases keeps the rule of a CSL from two starts.
+  std::vector<RateState> with_csl = states;
+  RateState isochoric = states.front();
+  isochoric.psi_epsilon_deg = 90;
+  isochoric.flags = "gas";
+  with_csl.push_back(isochoric);
+  RateStudy csl = RateStudy::Analyse(with_csl);
+  csl.drained = study.drained;
+  EXPECT_FALSE(SelectQuasiStatic(csl).valid());
 }
 
 }  // namespace
