@@ -198,10 +198,11 @@ void RegisterStudyCommands(CLI::App& app) {
       ->check(CLI::Range(1, 100000));
   plan_command->add_flag("--stages", plan_stages,
                          "each stage's estimated strain norm, steps and the stop that ends it");
-  plan_command->add_flag("--tsv", plan_tsv,
-                         "print only the cases as tab-separated values with a header (id, depth, "
-                         "time step, steps, loose and stress-summing steps, particle-steps, "
-                         "seconds, at_most) for scripts");
+  plan_command->add_flag(
+      "--tsv", plan_tsv,
+      "print only the cases as tab-separated values with a header (id, depth, "
+      "time step, steps, loose (still) and stress-summing steps, particle-steps, "
+      "seconds, at_most) for scripts");
   plan_command->callback([] {
     const study::Programme programme = study::Programme::Load(plan_programme, plan_scale);
     const int64_t spheres = programme.At(plan_scale).count;
@@ -226,24 +227,27 @@ void RegisterStudyCommands(CLI::App& app) {
     if (plan_tsv) {
       const study::PlanCost cost = study::EstimateCost(plan, rate, parallelism.jobs, 0);
       std::printf(
-          "case\tdepth\ttime_step_s\tsteps\tloose_steps\tstress_steps\tparticle_steps\tseconds\t"
-          "at_most\n");
+          "case\tdepth\ttime_step_s\tsteps\tloose_steps\tstill_steps\tstress_steps\t"
+          "particle_steps\tseconds\tat_most\n");
       for (const study::CaseCost& c : cost.cases) {
         const study::PlannedCase& planned = plan.cases[static_cast<size_t>(c.index)];
-        std::printf("%s\t%d\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%d\n", planned.id.c_str(), c.depth,
-                    planned.time_step, c.steps, planned.estimated_loose_steps,
-                    planned.estimated_stress_steps, c.particle_steps, c.seconds, c.at_most ? 1 : 0);
+        std::printf("%s\t%d\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%d\n", planned.id.c_str(),
+                    c.depth, planned.time_step, c.steps, planned.estimated_loose_steps,
+                    planned.estimated_still_steps, planned.estimated_stress_steps, c.particle_steps,
+                    c.seconds, c.at_most ? 1 : 0);
       }
       return;
     }
     const std::string cache = study::RateCachePath();
     std::printf(
         "rate: %.3g particle-steps/s per case at %lld spheres on %d thread(s) (jammed; loose "
-        "%.3g, stress on every step %.3g), sample generation %.2g s (%s %s on %s)\n",
+        "%.3g at 167 1/s, %.3g at 1 1/s; stress on every step %.3g), sample generation %.2g s "
+        "(%s %s on %s)\n",
         rate.particle_steps_per_second, static_cast<long long>(spheres), rate.threads,
-        rate.loose_particle_steps_per_second, rate.controlled_particle_steps_per_second,
-        rate.generation_seconds, rate.cached ? "cached, measured" : "measured now",
-        rate.measured_at.c_str(), rate.cpu_model.c_str());
+        rate.loose_particle_steps_per_second, rate.still_particle_steps_per_second,
+        rate.controlled_particle_steps_per_second, rate.generation_seconds,
+        rate.cached ? "cached, measured" : "measured now", rate.measured_at.c_str(),
+        rate.cpu_model.c_str());
     if (!rate.cached) {
       std::printf("  (%s)\n", cache.empty() ? "not cached: neither XDG_CACHE_HOME nor HOME is set"
                                             : ("cached in " + cache).c_str());

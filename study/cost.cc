@@ -43,12 +43,13 @@ std::string EntryText(const MeasuredRate& rate) {
   return fmt::format(
       "[[rate]]\ncpu = {}\nthreads = {}\nspheres = {}\nresults_key = {}\n"
       "particle_steps_per_second = {:.6g}\nloose_particle_steps_per_second = {:.6g}\n"
+      "still_particle_steps_per_second = {:.6g}\n"
       "controlled_particle_steps_per_second = {:.6g}\ngeneration_seconds = {:.6g}\n"
       "measured = {}\n",
       TomlQuoted(rate.cpu_model), rate.threads, rate.spheres, TomlQuoted(rate.results_key),
       rate.particle_steps_per_second, rate.loose_particle_steps_per_second,
-      rate.controlled_particle_steps_per_second, rate.generation_seconds,
-      TomlQuoted(rate.measured_at));
+      rate.still_particle_steps_per_second, rate.controlled_particle_steps_per_second,
+      rate.generation_seconds, TomlQuoted(rate.measured_at));
 }
 
 std::vector<MeasuredRate> ReadCache(const std::string& path) {
@@ -66,15 +67,18 @@ std::vector<MeasuredRate> ReadCache(const std::string& path) {
     rate.generation_seconds = entry.GetDouble("generation_seconds", Range::NonNegative());
     rate.measured_at = entry.GetString("measured");
     rate.cached = true;
-    // An entry of an older granasym measured a single rate (of a loose
+    // An entry of an older granasym measured fewer rates (one, of a loose
     // packing, which jammed cases run two to three times slower than): it
     // is measured again and replaced.
-    if (!entry.Has("loose_particle_steps_per_second") ||
-        !entry.Has("controlled_particle_steps_per_second")) {
-      continue;
-    }
+    // (Has marks each key as known: every one is asked for.)
+    const bool loose = entry.Has("loose_particle_steps_per_second");
+    const bool still = entry.Has("still_particle_steps_per_second");
+    const bool controlled = entry.Has("controlled_particle_steps_per_second");
+    if (!loose || !still || !controlled) continue;
     rate.loose_particle_steps_per_second =
         entry.GetDouble("loose_particle_steps_per_second", Range::Positive());
+    rate.still_particle_steps_per_second =
+        entry.GetDouble("still_particle_steps_per_second", Range::Positive());
     rate.controlled_particle_steps_per_second =
         entry.GetDouble("controlled_particle_steps_per_second", Range::Positive());
     rates.push_back(rate);
@@ -188,6 +192,15 @@ MeasuredRate MeasureRate(const Programme& programme, int64_t spheres, int thread
       "[stage.stop]\nmean_stress_kpa = 100.0\nstrain_norm = 0.6\n",
       spheres, programme.sample.CellSizeMm(spheres), programme.sample.seed,
       programme.sample.max_attempts, gsd, numerics);
+  // The same sample at 1 1/s: grains that barely move and do not collide
+  // (the loose steps of a quasi-static stage, e.g. under the inertial rule
+  // at its floor of p).
+  const std::string still = fmt::format(
+      "[sample.generate]\ncount = {}\ncell_size_mm = {:.17g}\nseed = {}\nmax_attempts = {}\n{}"
+      "{}[[stage]]\nname = \"still\"\npsi_epsilon_deg = 0.0\nstretching_rate = 1.0\n"
+      "[stage.stop]\nsteps = {}\n",
+      spheres, programme.sample.CellSizeMm(spheres), programme.sample.seed,
+      programme.sample.max_attempts, gsd, numerics, steps);
   std::string folder_template = (fs::temp_directory_path() / "granasym-rate-XXXXXX").string();
   if (!mkdtemp(folder_template.data())) {
     throw FileError("cannot create a temporary folder for the rate measurement in " +
@@ -211,10 +224,11 @@ MeasuredRate MeasureRate(const Programme& programme, int64_t spheres, int thread
                             "axial_strain_rate = 136.355\nradial_stress_kpa = 100.0\n"
                             "[stage.stop]\nsteps = {}\n",
                             steps);
-  TimedRun loose, jammed, controlled;
+  TimedRun loose, still_run, jammed, controlled;
   const std::string what = "the rate measurement (" + std::to_string(spheres) + " spheres): ";
   try {
     loose = RunTimed(compress, what + "compression", folder, "compress.h5", threads);
+    still_run = RunTimed(still, what + "still compression", folder, "still.h5", threads);
     RunTimed(rest, what + "rest", folder, "rest.h5", threads);
     jammed = RunTimed(shear, what + "isochoric shear", folder, "shear.h5", threads);
     controlled = RunTimed(triaxial, what + "triaxial", folder, "triaxial.h5", threads);
@@ -232,6 +246,7 @@ MeasuredRate MeasureRate(const Programme& programme, int64_t spheres, int thread
   rate.results_key = ResultsKey();
   rate.particle_steps_per_second = jammed.rate;
   rate.loose_particle_steps_per_second = loose.rate;
+  rate.still_particle_steps_per_second = still_run.rate;
   rate.controlled_particle_steps_per_second = controlled.rate;
   rate.generation_seconds = std::max(0.0, loose.summary.wall_seconds - loose.summary.loop_seconds);
   rate.measured_at = UtcNow();
@@ -307,15 +322,18 @@ double Schedule(const Plan& plan, const std::vector<CaseCost>& costs,
 }  // namespace
 
 double CaseSeconds(const MeasuredRate& rate, double particles, double steps, double loose,
-                   double stress) {
+                   double still, double stress) {
   const double jammed = std::max(0.0, steps - loose - stress);
-  return particles *
-         (jammed / rate.particle_steps_per_second + loose / rate.loose_particle_steps_per_second +
-          stress / rate.controlled_particle_steps_per_second);
+  const double colliding = std::max(0.0, loose - still);
+  return particles * (jammed / rate.particle_steps_per_second +
+                      colliding / rate.loose_particle_steps_per_second +
+                      still / rate.still_particle_steps_per_second +
+                      stress / rate.controlled_particle_steps_per_second);
 }
 
 PlanCost EstimateCost(const Plan& plan, const MeasuredRate& rate, int jobs, int shards) {
   GRANASYM_CHECK(rate.particle_steps_per_second > 0 && rate.loose_particle_steps_per_second > 0 &&
+                 rate.still_particle_steps_per_second > 0 &&
                  rate.controlled_particle_steps_per_second > 0 && jobs >= 1 && shards >= 0)
       << rate.particle_steps_per_second << " particle-steps/s, " << jobs << " jobs, " << shards
       << " shards";
@@ -330,7 +348,8 @@ PlanCost EstimateCost(const Plan& plan, const MeasuredRate& rate, int jobs, int 
     c.steps = planned.estimated_steps;
     c.particle_steps = c.steps * static_cast<double>(planned.particles);
     c.seconds = CaseSeconds(rate, static_cast<double>(planned.particles), c.steps,
-                            planned.estimated_loose_steps, planned.estimated_stress_steps);
+                            planned.estimated_loose_steps, planned.estimated_still_steps,
+                            planned.estimated_stress_steps);
     c.at_most = planned.steps_at_most;
     if (c.at_most) {
       cost.at_most_seconds += c.seconds;

@@ -9,12 +9,11 @@
 //
 // The rates are measured, not assumed: short runs of the default material
 // on this machine (the generated sample of the programme's GSD at the
-// scale's sphere count and cell compressed at 167 1/s to 100 kPa: the rate
-// of a loose packing; brought to rest there, so that the grains form a
-// jammed network; then sheared isochorically at 167 1/s: the rate of a
-// jammed packing; and loaded in drained triaxial compression: the rate of
-// a step that sums the stress), cached per machine in
-// $XDG_CACHE_HOME/granasym/rates.toml (~/.cache without it), keyed by CPU
+// scale's sphere count and cell compressed at 1 1/s, grains that do not
+// collide, and at 167 1/s to 100 kPa: the rates of a loose packing; brought to rest there, so that
+// the grains form a jammed network; then sheared isochorically at 167 1/s: the rate of a jammed
+// packing; and loaded in drained triaxial compression: the rate of a step that sums the stress),
+// cached per machine in $XDG_CACHE_HOME/granasym/rates.toml (~/.cache without it), keyed by CPU
 // model, threads, sphere count and results key. A jammed step costs two to
 // three times a loose one (more neighbours and contacts per sphere).
 #pragma once
@@ -36,7 +35,8 @@ struct MeasuredRate {
   int64_t spheres = 0;
   std::string results_key;
   double particle_steps_per_second = 0;             // jammed, the stress on output rows only
-  double loose_particle_steps_per_second = 0;       // before the generated sample jams
+  double loose_particle_steps_per_second = 0;       // before the generated sample jams, at 167 1/s
+  double still_particle_steps_per_second = 0;       // loose, at 1 1/s: grains that do not collide
   double controlled_particle_steps_per_second = 0;  // jammed, the stress on every step
   double generation_seconds = 0;
   std::string measured_at;  // UTC, ISO 8601
@@ -107,9 +107,10 @@ struct PlanCost {
 inline constexpr double kTimeLimitMargin = 1.5;
 
 // The seconds of `steps` steps of `particles` spheres of which `loose` come
-// before the sample jams and `stress` sum the stress on every step.
+// before the sample jams (`still` of them too slow for its grains to
+// collide) and `stress` sum the stress on every step.
 double CaseSeconds(const MeasuredRate& rate, double particles, double steps, double loose,
-                   double stress);
+                   double still, double stress);
 
 // The cost of `plan` at `rate` with `jobs` cases at once; with `shards` > 0
 // also each shard's (Plan::Shard, run with `jobs` cases at once per task).

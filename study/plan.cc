@@ -174,6 +174,7 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
         const StageSteps steps = EstimateStageSteps(stage, scales, p_kpa);
         c.estimated_steps += steps.steps;
         c.estimated_loose_steps += steps.loose_steps;
+        c.estimated_still_steps += steps.still_steps;
         if (steps.stress_every_step) c.estimated_stress_steps += steps.steps - steps.loose_steps;
         c.steps_at_most = c.steps_at_most || steps.at_most;
         c.stage_steps.push_back(steps);

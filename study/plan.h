@@ -60,6 +60,7 @@ struct PlannedCase {
   // may end earlier on liquefaction).
   double estimated_steps = 0;
   double estimated_loose_steps = 0;
+  double estimated_still_steps = 0;  // of the loose ones, those whose grains do not collide
   double estimated_stress_steps = 0;
   bool steps_at_most = false;
   std::vector<StageSteps> stage_steps;  // per stage, in order

@@ -270,6 +270,7 @@ StageSteps EstimateStageSteps(const dem::Stage& stage, const StageSampleScales& 
   const double jam = p0 <= 0 ? std::min(stress.jam_strain, end) : 0.0;
   const Integral after = Integrate(stress, jam, end, inertial && stop.liquefied, floor_rate);
   double loose = jam / (floor_rate * dt) + after.loose_seconds / dt;
+  const double still_share = 1 - std::min(1.0, floor_rate / kCollisionalStrainRate);
   double steps = jam / (floor_rate * dt) + after.seconds / dt;
   if (steps > step_cap) {
     steps = step_cap;
@@ -278,6 +279,7 @@ StageSteps EstimateStageSteps(const dem::Stage& stage, const StageSampleScales& 
   }
   result.steps = steps;
   result.loose_steps = loose;
+  result.still_steps = loose * still_share;
   result.end_p_kpa = after.end_p_kpa;
   if (triaxial) result.end_p_kpa = triaxial->radial_stress_kpa;
   if (stop.mean_stress_kpa && reason == "mean_stress_kpa") result.end_p_kpa = *stop.mean_stress_kpa;

@@ -61,6 +61,10 @@ inline constexpr double kJammedMeanStressKpa = 1.0;   // p the packing bears whe
 inline constexpr double kDilatancyCoefficient = 0.3;  // a of φ = φ_J − a I of a dense flow
 inline constexpr double kContactCompliance = 25.0;    // C = dε_v/d(p/E) of loading
 inline constexpr double kIsostaticCoordination = 4;   // Z of a jammed frictional packing
+// The ‖D‖ at which the loose rate is measured (MeasuredRate): the loose
+// steps of a slower stage cost less, down to those of grains that do not
+// collide (a granular gas collides at a frequency ∝ ‖D‖).
+inline constexpr double kCollisionalStrainRate = 167.0;
 // Strain norm to the critical state: a shear strain ε_q of about 0.25
 // (‖D‖ = √1.5 |ε̇_q| on an isochoric path).
 inline constexpr double kShearTransientStrain = 0.3;
@@ -82,6 +86,10 @@ struct StageSteps {
   // Steps taken before the generated sample jams (a loose packing: cheaper
   // steps, MeasuredRate::loose_particle_steps_per_second), included in steps.
   double loose_steps = 0;  // (and those after an unloading has taken p to zero)
+  // Of them, the share whose grains do not collide: loose_steps ·
+  // (1 − min(1, ‖D‖/kCollisionalStrainRate)), ‖D‖ their rate
+  // (MeasuredRate::still_particle_steps_per_second).
+  double still_steps = 0;
   // The stage sums the stress on every step (a mean-stress stop, a
   // stress-controlled type): MeasuredRate::controlled_particle_steps_per_second.
   bool stress_every_step = false;

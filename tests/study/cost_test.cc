@@ -27,6 +27,7 @@ MeasuredRate SomeRate() {
   rate.results_key = "key";
   rate.particle_steps_per_second = 4e6;
   rate.loose_particle_steps_per_second = 9e6;
+  rate.still_particle_steps_per_second = 2e7;
   rate.controlled_particle_steps_per_second = 3e6;
   rate.generation_seconds = 0.5;
   rate.measured_at = "2026-12-06T00:00:00Z";
@@ -51,7 +52,9 @@ TEST(StudyCost, TinyPaperPlanListsEveryCaseWithDepthAndStepsAndTheTotalsAddUp) {
     // sample jams, those that sum the stress on every step, the others.
     const double n = static_cast<double>(planned.particles);
     EXPECT_NEAR(c.seconds,
-                n * planned.estimated_loose_steps / rate.loose_particle_steps_per_second +
+                n * (planned.estimated_loose_steps - planned.estimated_still_steps) /
+                        rate.loose_particle_steps_per_second +
+                    n * planned.estimated_still_steps / rate.still_particle_steps_per_second +
                     n * planned.estimated_stress_steps / rate.controlled_particle_steps_per_second +
                     n *
                         (planned.estimated_steps - planned.estimated_loose_steps -
@@ -59,6 +62,7 @@ TEST(StudyCost, TinyPaperPlanListsEveryCaseWithDepthAndStepsAndTheTotalsAddUp) {
                         rate.particle_steps_per_second,
                 1e-9 * c.seconds)
         << planned.id;
+    EXPECT_LE(planned.estimated_still_steps, planned.estimated_loose_steps) << planned.id;
     EXPECT_LE(planned.estimated_loose_steps + planned.estimated_stress_steps,
               planned.estimated_steps * (1 + 1e-12))
         << planned.id;
@@ -191,10 +195,18 @@ TEST_F(RateCacheTest, AnEntryWithoutTheLooseAndControlledRatesIsMeasuredAgain) {
                           "results_key = \"key\"\nparticle_steps_per_second = 4.7e7\n"
                           "generation_seconds = 0\nmeasured = \"t\"\n";
   EXPECT_FALSE(ReadCachedRate(path_, "test CPU", 1, 800, "key"));
+  // One with some of the rates only, likewise.
+  std::ofstream(path_, std::ios::app)
+      << "[[rate]]\ncpu = \"test CPU\"\nthreads = 1\nspheres = 3000\n"
+         "results_key = \"key\"\nparticle_steps_per_second = 4.7e7\n"
+         "loose_particle_steps_per_second = 5e7\ncontrolled_particle_steps_per_second = 2e7\n"
+         "generation_seconds = 0\nmeasured = \"t\"\n";
+  EXPECT_FALSE(ReadCachedRate(path_, "test CPU", 1, 3000, "key"));
   StoreRate(path_, SomeRate());
   const std::optional<MeasuredRate> found = ReadCachedRate(path_, "test CPU", 1, 800, "key");
   ASSERT_TRUE(found);
   EXPECT_DOUBLE_EQ(found->loose_particle_steps_per_second, 9e6);
+  EXPECT_DOUBLE_EQ(found->still_particle_steps_per_second, 2e7);
   EXPECT_DOUBLE_EQ(found->controlled_particle_steps_per_second, 3e6);
   const std::string text = ReadTextFile(path_);
   EXPECT_EQ(text.find("4.7e"), std::string::npos) << text;

@@ -46,10 +46,10 @@ grep -qE "^  [0-9]+ case\(s\) marked 'at most'" "$work/first.txt" || fail "no co
 grep -qE '^    stage 1: strain [0-9.e+-]+, [0-9.e+-]+ steps .*: mean_stress_kpa$' "$work/stages.txt" ||
   fail "no stage estimates with --stages"
 "$granasym" study plan "$programme" --scale tiny --jobs 1 --threads 1 --tsv > "$work/plan.tsv"
-head -1 "$work/plan.tsv" | grep -qP '^case\tdepth\ttime_step_s\tsteps\tloose_steps\tstress_steps\tparticle_steps\tseconds\tat_most$' ||
+head -1 "$work/plan.tsv" | grep -qP '^case\tdepth\ttime_step_s\tsteps\tloose_steps\tstill_steps\tstress_steps\tparticle_steps\tseconds\tat_most$' ||
   fail "no TSV header"
 [ "$(tail -n +2 "$work/plan.tsv" | wc -l)" = "$cases" ] || fail "TSV rows are not the $cases cases"
-awk -F'\t' 'NR > 1 && !($4 > 0 && $8 > 0 && $5 + $6 <= $4 * 1.000001) { print "FAIL: TSV row " $0; bad = 1 }
+awk -F'\t' 'NR > 1 && !($4 > 0 && $9 > 0 && $6 <= $5 && $5 + $7 <= $4 * 1.000001) { print "FAIL: TSV row " $0; bad = 1 }
              END { exit bad }' "$work/plan.tsv"
 
 "$granasym" study plan "$programme" --scale tiny --jobs 1 --threads 1 > "$work/second.txt"

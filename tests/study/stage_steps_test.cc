@@ -128,6 +128,14 @@ TEST(StageSteps, AGeneratedSampleJamsFirstAtItsLooseRate) {
       std::sqrt(3.0);
   EXPECT_GT(jam, 0);
   EXPECT_NEAR(steps.loose_steps, jam / (167 * kDt), 1e-6);
+  EXPECT_DOUBLE_EQ(steps.still_steps, 0);  // at 167 1/s the grains collide
+  // Under the inertial rule the generated sample jams at the floor's rate,
+  // too slow for its grains to collide: still steps, almost all of them.
+  const StageSteps slow = EstimateStageSteps(PathStage(0, 5000, stop, 1e-3), Scales(), 0);
+  const double floor_rate = 1e-3 * std::sqrt(1e3 / (2 * 2650.0)) / 1e-3;
+  EXPECT_GT(slow.loose_steps, 0);
+  EXPECT_NEAR(slow.still_steps, slow.loose_steps * (1 - floor_rate / kCollisionalStrainRate),
+              1e-9 * slow.loose_steps);
   EXPECT_NEAR(
       steps.strain,
       jam + (Compression(100, 167) - Compression(kJammedMeanStressKpa, 167)) / std::sqrt(3.0),
