@@ -167,6 +167,7 @@ void RegisterStudyCommands(CLI::App& app) {
   static std::string plan_programme;
   static study::Scale plan_scale = study::Scale::kSmall;
   static int plan_jobs = 0, plan_threads = 0, plan_shards = 0;
+  static bool plan_stages = false, plan_tsv = false;
   plan_command
       ->add_option("programme", plan_programme,
                    "programme file (TOML), e.g. studies/programmes/paper.toml")
@@ -186,6 +187,13 @@ void RegisterStudyCommands(CLI::App& app) {
                    "Slurm array tasks (`study run --shard K/N`): each shard's time and a time "
                    "limit per task")
       ->check(CLI::Range(1, 100000));
+  plan_command->add_flag("--stages", plan_stages,
+                         "each stage's estimated strain norm, steps and the stop that ends it");
+  plan_command->add_flag(
+      "--tsv", plan_tsv,
+      "print only the cases as tab-separated values with a header (id, depth, "
+      "time step, steps, loose (still) and stress-summing steps, particle-steps, "
+      "seconds, at_most) for scripts");
   plan_command->callback([] {
     const study::Programme programme = study::Programme::Load(plan_programme, plan_scale);
     const int64_t spheres = programme.At(plan_scale).count;
@@ -198,20 +206,39 @@ void RegisterStudyCommands(CLI::App& app) {
                       "most {} shards",
                       plan_shards, plan.cases.size(), ToString(plan_scale), plan.cases.size()));
     }
-    std::printf(
-        "study plan of '%s' at scale %s: %zu cases (%zu replicates of %zu) of %lld "
-        "spheres, %zu model element tests\n",
-        programme.name.c_str(), ToString(plan_scale), plan.cases.size(), plan.samples.size(),
-        programme.cases.size(), static_cast<long long>(spheres), plan.model_cases.size());
-    std::fflush(stdout);
+    if (!plan_tsv) {
+      std::printf(
+          "study plan of '%s' at scale %s: %zu cases (%zu replicates of %zu) of %lld "
+          "spheres, %zu model element tests\n",
+          programme.name.c_str(), ToString(plan_scale), plan.cases.size(), plan.samples.size(),
+          programme.cases.size(), static_cast<long long>(spheres), plan.model_cases.size());
+      std::fflush(stdout);
+    }
     const study::MeasuredRate rate = study::RateFor(programme, spheres, parallelism.threads);
+    if (plan_tsv) {
+      const study::PlanCost cost = study::EstimateCost(plan, rate, parallelism.jobs, 0);
+      std::printf(
+          "case\tdepth\ttime_step_s\tsteps\tloose_steps\tstill_steps\tstress_steps\t"
+          "particle_steps\tseconds\tat_most\n");
+      for (const study::CaseCost& c : cost.cases) {
+        const study::PlannedCase& planned = plan.cases[static_cast<size_t>(c.index)];
+        std::printf("%s\t%d\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%d\n", planned.id.c_str(),
+                    c.depth, planned.time_step, c.steps, planned.estimated_loose_steps,
+                    planned.estimated_still_steps, planned.estimated_stress_steps, c.particle_steps,
+                    c.seconds, c.at_most ? 1 : 0);
+      }
+      return;
+    }
     const std::string cache = study::RateCachePath();
     std::printf(
-        "rate: %.3g particle-steps/s per case at %lld spheres on %d thread(s), sample "
-        "generation %.2g s (%s %s on %s)\n",
+        "rate: %.3g particle-steps/s per case at %lld spheres on %d thread(s) (jammed; loose "
+        "%.3g at 167 1/s, %.3g at 1 1/s; stress on every step %.3g), sample generation %.2g s "
+        "(%s %s on %s)\n",
         rate.particle_steps_per_second, static_cast<long long>(spheres), rate.threads,
-        rate.generation_seconds, rate.cached ? "cached, measured" : "measured now",
-        rate.measured_at.c_str(), rate.cpu_model.c_str());
+        rate.loose_particle_steps_per_second, rate.still_particle_steps_per_second,
+        rate.controlled_particle_steps_per_second, rate.generation_seconds,
+        rate.cached ? "cached, measured" : "measured now", rate.measured_at.c_str(),
+        rate.cpu_model.c_str());
     if (!rate.cached) {
       std::printf("  (%s)\n", cache.empty() ? "not cached: neither XDG_CACHE_HOME nor HOME is set"
                                             : ("cached in " + cache).c_str());
@@ -223,9 +250,20 @@ void RegisterStudyCommands(CLI::App& app) {
                 "time step", "steps", "particle-steps", "time");
     for (const study::CaseCost& c : cost.cases) {
       const study::PlannedCase& planned = plan.cases[static_cast<size_t>(c.index)];
-      std::printf("%-*s  %5d  %10.3g  %10.3g  %14.3g  %10s\n", static_cast<int>(width),
+      std::printf("%-*s  %5d  %10.3g  %10.3g  %14.3g  %10s%s\n", static_cast<int>(width),
                   planned.id.c_str(), c.depth, planned.time_step, c.steps, c.particle_steps,
-                  study::DurationText(c.seconds).c_str());
+                  study::DurationText(c.seconds).c_str(), c.at_most ? "  at most" : "");
+      if (plan_stages) {
+        for (size_t k = 0; k < planned.stage_steps.size(); ++k) {
+          const study::StageSteps& stage = planned.stage_steps[k];
+          std::printf("    stage %zu: strain %.3g, %.3g steps%s: %s\n", k + 1, stage.strain,
+                      stage.steps,
+                      stage.loose_steps > 0
+                          ? fmt::format(" ({:.3g} before it jams)", stage.loose_steps).c_str()
+                          : "",
+                      stage.reason.c_str());
+        }
+      }
     }
     std::printf(
         "\ntotal: %zu cases, depth up to %d, %.3g steps, %.3g particle-steps, %s of case "
@@ -238,6 +276,15 @@ void RegisterStudyCommands(CLI::App& app) {
         }(),
         cost.particle_steps, study::DurationText(cost.case_seconds).c_str(), plan.samples.size(),
         study::DurationText(cost.generation_seconds).c_str());
+    if (cost.at_most_cases > 0) {
+      std::printf(
+          "  %d case(s) marked 'at most' may end earlier (a stage that stops when the sample "
+          "liquefies, which the model does not predict: it is bounded by the stage's strain cap, "
+          "under the inertial rule at its floor of p): %s of the case time is such a bound, %s "
+          "the rest\n",
+          cost.at_most_cases, study::DurationText(cost.at_most_seconds).c_str(),
+          study::DurationText(cost.case_seconds - cost.at_most_seconds).c_str());
+    }
     std::printf(
         "wall time on this machine: %s with %d jobs x %d thread(s) (the longest chain of "
         "cases: %s)\n",

@@ -42,9 +42,14 @@ std::string UtcNow() {
 std::string EntryText(const MeasuredRate& rate) {
   return fmt::format(
       "[[rate]]\ncpu = {}\nthreads = {}\nspheres = {}\nresults_key = {}\n"
-      "particle_steps_per_second = {:.6g}\ngeneration_seconds = {:.6g}\nmeasured = {}\n",
+      "particle_steps_per_second = {:.6g}\nloose_particle_steps_per_second = {:.6g}\n"
+      "still_particle_steps_per_second = {:.6g}\n"
+      "controlled_particle_steps_per_second = {:.6g}\ngeneration_seconds = {:.6g}\n"
+      "measured = {}\n",
       TomlQuoted(rate.cpu_model), rate.threads, rate.spheres, TomlQuoted(rate.results_key),
-      rate.particle_steps_per_second, rate.generation_seconds, TomlQuoted(rate.measured_at));
+      rate.particle_steps_per_second, rate.loose_particle_steps_per_second,
+      rate.still_particle_steps_per_second, rate.controlled_particle_steps_per_second,
+      rate.generation_seconds, TomlQuoted(rate.measured_at));
 }
 
 std::vector<MeasuredRate> ReadCache(const std::string& path) {
@@ -62,6 +67,20 @@ std::vector<MeasuredRate> ReadCache(const std::string& path) {
     rate.generation_seconds = entry.GetDouble("generation_seconds", Range::NonNegative());
     rate.measured_at = entry.GetString("measured");
     rate.cached = true;
+    // An entry of an older granasym measured fewer rates (one, of a loose
+    // packing, which jammed cases run two to three times slower than): it
+    // is measured again and replaced.
+    // (Has marks each key as known: every one is asked for.)
+    const bool loose = entry.Has("loose_particle_steps_per_second");
+    const bool still = entry.Has("still_particle_steps_per_second");
+    const bool controlled = entry.Has("controlled_particle_steps_per_second");
+    if (!loose || !still || !controlled) continue;
+    rate.loose_particle_steps_per_second =
+        entry.GetDouble("loose_particle_steps_per_second", Range::Positive());
+    rate.still_particle_steps_per_second =
+        entry.GetDouble("still_particle_steps_per_second", Range::Positive());
+    rate.controlled_particle_steps_per_second =
+        entry.GetDouble("controlled_particle_steps_per_second", Range::Positive());
     rates.push_back(rate);
   }
   root.CheckNoUnknownKeys();
@@ -114,6 +133,41 @@ void StoreRate(const std::string& cache_path, const MeasuredRate& rate) {
   WriteTextFileAtomically(cache_path, text);
 }
 
+namespace {
+
+// One timed DEM run: its particle-steps per second of processor time per
+// thread (the wall-clock rate where that is higher), and its summary.
+struct TimedRun {
+  dem::RunSummary summary;
+  double rate = 0;
+};
+
+TimedRun RunTimed(const std::string& scene_text, const std::string& what, const std::string& folder,
+                  const std::string& output, int threads) {
+  dem::RunOptions options;
+  options.threads = threads;
+  options.output_path = folder + "/" + output;
+  const dem::Scene scene = dem::Scene::Parse(scene_text, what, folder);
+  const std::clock_t start = std::clock();
+  TimedRun run;
+  run.summary = dem::RunScene(scene, options);
+  const double cpu_seconds = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+  if (run.summary.termination != dem::Termination::kCompleted ||
+      !(run.summary.particle_steps_per_second > 0)) {
+    throw RuntimeError(what + " did not complete: " + run.summary.message);
+  }
+  // The machine's rate when it runs the study alone: the processor time per
+  // thread, not the wall time, which other programs on a shared machine
+  // stretch (the wall-clock rate where that is higher).
+  const double particle_steps = run.summary.particle_steps_per_second * run.summary.loop_seconds;
+  const double busy = cpu_seconds / threads;
+  run.rate = run.summary.particle_steps_per_second;
+  if (busy > 0) run.rate = std::max(run.rate, particle_steps / busy);
+  return run;
+}
+
+}  // namespace
+
 MeasuredRate MeasureRate(const Programme& programme, int64_t spheres, int threads) {
   GRANASYM_CHECK(spheres >= 2 && threads >= 1) << spheres << " spheres, " << threads << " threads";
   const int64_t steps =
@@ -123,47 +177,61 @@ MeasuredRate MeasureRate(const Programme& programme, int64_t spheres, int thread
   if (!programme.sample.gsd_path.empty()) {
     gsd = "gsd = " + TomlQuoted(fs::absolute(programme.sample.gsd_path).string()) + "\n";
   }
+  const std::string numerics =
+      fmt::format("[numerics]\ntime_step_s = {:g}\nthreads = {}\n[output]\ninterval_strain = 1.0\n",
+                  kCalibrationTimeStep, threads);
   // The default scene (studies/scenes/ncl_default.toml: default material,
   // Δt = 1.2e-7 s, isotropic compression at 167 1/s) at this sample size, to
-  // 100 kPa: the grains jam, as in the states a study's cases run through
-  // (a loose sample's steps cost less: few contacts). Its rate: a second run
-  // from that state, isochoric shear at 167 1/s for the measured steps.
-  const std::string prepare = fmt::format(
+  // 100 kPa: the loose rate (the generated sample's steps until it jams:
+  // few neighbours, few contacts). At 167 1/s the grains reach 100 kPa
+  // dynamically, with few contacts; a rest at 100 kPa lets them form the
+  // jammed network the cases' stages run in.
+  const std::string compress = fmt::format(
       "[sample.generate]\ncount = {}\ncell_size_mm = {:.17g}\nseed = {}\nmax_attempts = {}\n{}"
-      "[numerics]\ntime_step_s = {:g}\nthreads = {}\n"
-      "[output]\ninterval_strain = 1.0\n"
-      "[[stage]]\nname = \"compress\"\npsi_epsilon_deg = 0.0\nstretching_rate = 167.0\n"
+      "{}[[stage]]\nname = \"compress\"\npsi_epsilon_deg = 0.0\nstretching_rate = 167.0\n"
       "[stage.stop]\nmean_stress_kpa = 100.0\nstrain_norm = 0.6\n",
       spheres, programme.sample.CellSizeMm(spheres), programme.sample.seed,
-      programme.sample.max_attempts, gsd, kCalibrationTimeStep, threads);
+      programme.sample.max_attempts, gsd, numerics);
+  // The same sample at 1 1/s: grains that barely move and do not collide
+  // (the loose steps of a quasi-static stage, e.g. under the inertial rule
+  // at its floor of p).
+  const std::string still = fmt::format(
+      "[sample.generate]\ncount = {}\ncell_size_mm = {:.17g}\nseed = {}\nmax_attempts = {}\n{}"
+      "{}[[stage]]\nname = \"still\"\npsi_epsilon_deg = 0.0\nstretching_rate = 1.0\n"
+      "[stage.stop]\nsteps = {}\n",
+      spheres, programme.sample.CellSizeMm(spheres), programme.sample.seed,
+      programme.sample.max_attempts, gsd, numerics, steps);
   std::string folder_template = (fs::temp_directory_path() / "granasym-rate-XXXXXX").string();
   if (!mkdtemp(folder_template.data())) {
     throw FileError("cannot create a temporary folder for the rate measurement in " +
                     fs::temp_directory_path().string());
   }
   const std::string folder = folder_template;
-  const std::string measure = fmt::format(
-      "[sample]\nstate = {}\n[numerics]\ntime_step_s = {:g}\nthreads = {}\n"
-      "[output]\ninterval_strain = 1.0\n"
-      "[[stage]]\nname = \"rate\"\npsi_epsilon_deg = 90.0\nstretching_rate = 167.0\n"
-      "[stage.stop]\nsteps = {}\n",
-      TomlQuoted(folder + "/prepare.h5"), kCalibrationTimeStep, threads, steps);
-  dem::RunSummary prepared, summary;
-  double cpu_seconds = 0;  // of the measured run, all threads
+  auto from = [&](const std::string& state) {
+    return "[sample]\nstate = " + TomlQuoted(folder + "/" + state) + "\n" + numerics;
+  };
+  const std::string rest = from("compress.h5") +
+                           "[[stage]]\nname = \"rest\"\ntype = \"rest\"\nmean_stress_kpa = "
+                           "100.0\n[stage.stop]\nsteps = 5000\n";
+  const std::string shear = from("rest.h5") + fmt::format(
+                                                  "[[stage]]\nname = \"shear\"\npsi_epsilon_deg "
+                                                  "= 90.0\nstretching_rate = 167.0\n"
+                                                  "[stage.stop]\nsteps = {}\n",
+                                                  steps);
+  const std::string triaxial =
+      from("rest.h5") + fmt::format(
+                            "[[stage]]\nname = \"triaxial\"\ntype = \"triaxial\"\n"
+                            "axial_strain_rate = 136.355\nradial_stress_kpa = 100.0\n"
+                            "[stage.stop]\nsteps = {}\n",
+                            steps);
+  TimedRun loose, still_run, jammed, controlled;
+  const std::string what = "the rate measurement (" + std::to_string(spheres) + " spheres): ";
   try {
-    dem::RunOptions options;
-    options.threads = threads;
-    options.output_path = folder + "/prepare.h5";
-    prepared = dem::RunScene(
-        dem::Scene::Parse(prepare, "the rate measurement's preparation", folder), options);
-    if (prepared.termination == dem::Termination::kCompleted) {
-      options.output_path = folder + "/rate.h5";
-      const std::clock_t start = std::clock();
-      summary = dem::RunScene(dem::Scene::Parse(measure, "the rate measurement", folder), options);
-      cpu_seconds = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-    } else {
-      summary = prepared;
-    }
+    loose = RunTimed(compress, what + "compression", folder, "compress.h5", threads);
+    still_run = RunTimed(still, what + "still compression", folder, "still.h5", threads);
+    RunTimed(rest, what + "rest", folder, "rest.h5", threads);
+    jammed = RunTimed(shear, what + "isochoric shear", folder, "shear.h5", threads);
+    controlled = RunTimed(triaxial, what + "triaxial", folder, "triaxial.h5", threads);
   } catch (...) {
     std::error_code ignored;
     fs::remove_all(folder, ignored);
@@ -171,27 +239,16 @@ MeasuredRate MeasureRate(const Programme& programme, int64_t spheres, int thread
   }
   std::error_code ignored;
   fs::remove_all(folder, ignored);
-  if (summary.termination != dem::Termination::kCompleted ||
-      !(summary.particle_steps_per_second > 0)) {
-    throw RuntimeError("the rate measurement (" + std::to_string(spheres) +
-                       " spheres) did not complete: " + summary.message);
-  }
   MeasuredRate rate;
   rate.cpu_model = HostCpuModel();
   rate.threads = threads;
   rate.spheres = spheres;
   rate.results_key = ResultsKey();
-  // The machine's rate when it runs the study alone: the processor time of
-  // the measured run per thread, not its wall time, which other programs
-  // on a shared machine stretch (the wall-clock rate where that is higher).
-  const double particle_steps = summary.particle_steps_per_second * summary.loop_seconds;
-  const double busy = cpu_seconds / threads;
-  rate.particle_steps_per_second = summary.particle_steps_per_second;
-  if (busy > 0) {
-    rate.particle_steps_per_second =
-        std::max(rate.particle_steps_per_second, particle_steps / busy);
-  }
-  rate.generation_seconds = std::max(0.0, prepared.wall_seconds - prepared.loop_seconds);
+  rate.particle_steps_per_second = jammed.rate;
+  rate.loose_particle_steps_per_second = loose.rate;
+  rate.still_particle_steps_per_second = still_run.rate;
+  rate.controlled_particle_steps_per_second = controlled.rate;
+  rate.generation_seconds = std::max(0.0, loose.summary.wall_seconds - loose.summary.loop_seconds);
   rate.measured_at = UtcNow();
   return rate;
 }
@@ -264,8 +321,20 @@ double Schedule(const Plan& plan, const std::vector<CaseCost>& costs,
 
 }  // namespace
 
+double CaseSeconds(const MeasuredRate& rate, double particles, double steps, double loose,
+                   double still, double stress) {
+  const double jammed = std::max(0.0, steps - loose - stress);
+  const double colliding = std::max(0.0, loose - still);
+  return particles * (jammed / rate.particle_steps_per_second +
+                      colliding / rate.loose_particle_steps_per_second +
+                      still / rate.still_particle_steps_per_second +
+                      stress / rate.controlled_particle_steps_per_second);
+}
+
 PlanCost EstimateCost(const Plan& plan, const MeasuredRate& rate, int jobs, int shards) {
-  GRANASYM_CHECK(rate.particle_steps_per_second > 0 && jobs >= 1 && shards >= 0)
+  GRANASYM_CHECK(rate.particle_steps_per_second > 0 && rate.loose_particle_steps_per_second > 0 &&
+                 rate.still_particle_steps_per_second > 0 &&
+                 rate.controlled_particle_steps_per_second > 0 && jobs >= 1 && shards >= 0)
       << rate.particle_steps_per_second << " particle-steps/s, " << jobs << " jobs, " << shards
       << " shards";
   PlanCost cost;
@@ -278,7 +347,14 @@ PlanCost EstimateCost(const Plan& plan, const MeasuredRate& rate, int jobs, int 
     c.depth = planned.parent < 0 ? 1 : cost.cases[static_cast<size_t>(planned.parent)].depth + 1;
     c.steps = planned.estimated_steps;
     c.particle_steps = c.steps * static_cast<double>(planned.particles);
-    c.seconds = c.particle_steps / rate.particle_steps_per_second;
+    c.seconds = CaseSeconds(rate, static_cast<double>(planned.particles), c.steps,
+                            planned.estimated_loose_steps, planned.estimated_still_steps,
+                            planned.estimated_stress_steps);
+    c.at_most = planned.steps_at_most;
+    if (c.at_most) {
+      cost.at_most_seconds += c.seconds;
+      ++cost.at_most_cases;
+    }
     chain[k] = c.seconds + (planned.parent < 0 ? 0.0 : chain[static_cast<size_t>(planned.parent)]);
     cost.critical_seconds = std::max(cost.critical_seconds, chain[k]);
     cost.particle_steps += c.particle_steps;

@@ -26,29 +26,6 @@ void AddField(Sha256& hash, const std::string& name, const std::string& value) {
   hash.Update("\n");
 }
 
-// Steps a stage is expected to take, from its stop conditions at the
-// stage's typical rate (dem::StageSpec::TypicalStrainRate): a rough figure
-// for the ETA, the shards' balance and `study plan`; measured steps of
-// finished cases replace it. `p_kpa` is the mean stress the stage starts at
-// (0: the unloaded generated sample; NaN: unknown) and becomes the one it
-// ends at. A rate rule that follows p (the inertial rule) runs most of a
-// compression at its start: from the generated sample the strain until the
-// grains jam is taken at the rule's floor of p (the critical-state-friction
-// study's 5000-sphere NCLs to 100 kPa: 0.3 of strain at 5 kPa is within
-// 30 % of their steps, at 100 kPa 3.4 times too few).
-double EstimateSteps(const dem::Stage& stage, double time_step, double density, double* p_kpa) {
-  const double start = *p_kpa;
-  if (stage.stop.mean_stress_kpa) *p_kpa = *stage.stop.mean_stress_kpa;
-  if (const std::optional<double> steps = stage.spec->TypicalSteps()) return *steps;
-  if (stage.stop.steps) return static_cast<double>(*stage.stop.steps);
-  double strain = 0.3;
-  if (stage.stop.strain_norm) strain = std::min(strain, *stage.stop.strain_norm);
-  if (stage.stop.time_s) return *stage.stop.time_s / time_step;
-  const double at = !std::isnan(start) ? start : stage.stop.mean_stress_kpa.value_or(100.0);
-  const double rate = stage.spec->TypicalStrainRate(density, at);
-  return strain / (rate * time_step);
-}
-
 // A case's key and its inputs (done.toml) from its canonical scene and its
 // parent's (or sample's) key.
 void KeyCase(const std::string& canonical, const std::string& parent_key,
@@ -104,6 +81,7 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
            ? dem::GrainSizeDistribution::Default()
            : dem::GrainSizeDistribution::ReadCsv(programme.sample.gsd_path))
           .QuantileRadii(static_cast<size_t>(spec.count));
+  const double cell_m = programme.sample.CellSizeMm(spec.count) * 1e-3;
   const std::string gsd_text =
       programme.sample.gsd_path.empty() ? "default" : ReadTextFile(programme.sample.gsd_path);
   for (int r = 1; r <= spec.replicates; ++r) {
@@ -191,8 +169,16 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
         }
       }
       std::vector<double> ends;
+      const StageSampleScales scales = SampleScalesOf(radii, cell_m, scene.material, time_step);
       for (const dem::Stage& stage : scene.stages) {
-        c.estimated_steps += EstimateSteps(stage, time_step, scene.material.density, &p_kpa);
+        const StageSteps steps = EstimateStageSteps(stage, scales, p_kpa);
+        c.estimated_steps += steps.steps;
+        c.estimated_loose_steps += steps.loose_steps;
+        c.estimated_still_steps += steps.still_steps;
+        if (steps.stress_every_step) c.estimated_stress_steps += steps.steps - steps.loose_steps;
+        c.steps_at_most = c.steps_at_most || steps.at_most;
+        c.stage_steps.push_back(steps);
+        p_kpa = steps.end_p_kpa;
         ends.push_back(p_kpa);
       }
       stage_end_p.push_back(ends);

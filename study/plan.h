@@ -25,6 +25,7 @@
 #include "common/results_version.h"
 #include "dem/packing.h"
 #include "study/programme.h"
+#include "study/stage_steps.h"
 #include "study/study_folder.h"
 
 namespace granasym::study {
@@ -51,8 +52,18 @@ struct PlannedCase {
   std::string key;         // SHA-256 of the canonical scene, the parent's key, results key, threads
   KeyInputs inputs;        // what the key is made of (recorded in done.toml)
   int64_t particles = 0;
-  double time_step = 0;        // (s): the scene's fixed step, or its adaptive rule's upper bound
-  double estimated_steps = 0;  // from the stop conditions at that step (ETA, shards, study plan)
+  double time_step = 0;  // (s): the scene's fixed step, or its adaptive rule's upper bound
+  // The steps its stages' stop conditions imply at that step (ETA, shards,
+  // study plan: study/stage_steps.h), of them those before the generated
+  // sample jams and those that sum the stress on every step (their rates
+  // differ: study/cost.h), and whether the figure is a bound (a stage that
+  // may end earlier on liquefaction).
+  double estimated_steps = 0;
+  double estimated_loose_steps = 0;
+  double estimated_still_steps = 0;  // of the loose ones, those whose grains do not collide
+  double estimated_stress_steps = 0;
+  bool steps_at_most = false;
+  std::vector<StageSteps> stage_steps;  // per stage, in order
   std::string result_path() const { return directory + "/result.h5"; }
 };
 

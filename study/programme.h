@@ -1,6 +1,6 @@
 // A study programme: one TOML file that declares the sample, the shared
 // preparation states and the cases that branch from them, with lists that
-// expand into cases. Layout (shown to users in docs/guide/reference.md):
+// expand into cases. Layout (every key with its meaning: `granasym keys programme`):
 //
 //   [study]
 //   name = "paper"

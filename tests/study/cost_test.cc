@@ -26,6 +26,9 @@ MeasuredRate SomeRate() {
   rate.spheres = 800;
   rate.results_key = "key";
   rate.particle_steps_per_second = 4e6;
+  rate.loose_particle_steps_per_second = 9e6;
+  rate.still_particle_steps_per_second = 2e7;
+  rate.controlled_particle_steps_per_second = 3e6;
   rate.generation_seconds = 0.5;
   rate.measured_at = "2026-12-06T00:00:00Z";
   return rate;
@@ -45,7 +48,37 @@ TEST(StudyCost, TinyPaperPlanListsEveryCaseWithDepthAndStepsAndTheTotalsAddUp) {
     EXPECT_GT(planned.time_step, 0) << planned.id;
     EXPECT_GT(c.steps, 0) << planned.id;
     EXPECT_DOUBLE_EQ(c.particle_steps, c.steps * static_cast<double>(planned.particles));
-    EXPECT_DOUBLE_EQ(c.seconds, c.particle_steps / rate.particle_steps_per_second);
+    // Each kind of step at its own rate: loose ones before the generated
+    // sample jams, those that sum the stress on every step, the others.
+    const double n = static_cast<double>(planned.particles);
+    EXPECT_NEAR(c.seconds,
+                n * (planned.estimated_loose_steps - planned.estimated_still_steps) /
+                        rate.loose_particle_steps_per_second +
+                    n * planned.estimated_still_steps / rate.still_particle_steps_per_second +
+                    n * planned.estimated_stress_steps / rate.controlled_particle_steps_per_second +
+                    n *
+                        (planned.estimated_steps - planned.estimated_loose_steps -
+                         planned.estimated_stress_steps) /
+                        rate.particle_steps_per_second,
+                1e-9 * c.seconds)
+        << planned.id;
+    EXPECT_LE(planned.estimated_still_steps, planned.estimated_loose_steps) << planned.id;
+    EXPECT_LE(planned.estimated_loose_steps + planned.estimated_stress_steps,
+              planned.estimated_steps * (1 + 1e-12))
+        << planned.id;
+    EXPECT_EQ(c.at_most, planned.steps_at_most) << planned.id;
+    if (planned.id == "r1/ncl") {
+      EXPECT_GT(planned.estimated_loose_steps, 0);
+    }
+    if (planned.id == "r1/nc50_triaxial") {
+      EXPECT_DOUBLE_EQ(planned.estimated_stress_steps, planned.estimated_steps);
+    }
+    if (planned.id == "r1/nc100_psi120") {
+      EXPECT_TRUE(c.at_most);  // may liquefy
+    }
+    if (planned.id == "r1/nc100_psi90") {
+      EXPECT_FALSE(c.at_most);
+    }
     if (planned.parent < 0) {
       EXPECT_EQ(c.depth, 1) << planned.id;
     } else {
@@ -57,6 +90,9 @@ TEST(StudyCost, TinyPaperPlanListsEveryCaseWithDepthAndStepsAndTheTotalsAddUp) {
   EXPECT_GE(cost.max_depth(), 2);  // the paper's cases fork from the NCL
   EXPECT_NEAR(cost.particle_steps, particle_steps, 1e-9 * particle_steps);
   EXPECT_NEAR(cost.case_seconds, seconds, 1e-9 * seconds);
+  EXPECT_GT(cost.at_most_cases, 0);
+  EXPECT_GT(cost.at_most_seconds, 0);
+  EXPECT_LT(cost.at_most_seconds, cost.case_seconds);
   EXPECT_DOUBLE_EQ(cost.generation_seconds,
                    rate.generation_seconds * static_cast<double>(plan.samples.size()));
   // One job runs the cases one after another.
@@ -149,6 +185,31 @@ TEST_F(RateCacheTest, StoredRatesAreFoundByTheirWholeKeyAndReplaced) {
                    3e6);
   const std::string text = ReadTextFile(path_);
   EXPECT_EQ(text.find("spheres = 800"), text.rfind("spheres = 800"));
+}
+
+TEST_F(RateCacheTest, AnEntryWithoutTheLooseAndControlledRatesIsMeasuredAgain) {
+  // An older granasym's entry (one rate, of a loose packing) is not used
+  // and is replaced when the new measurement is stored.
+  std::filesystem::create_directories(std::filesystem::path(path_).parent_path());
+  std::ofstream(path_) << "[[rate]]\ncpu = \"test CPU\"\nthreads = 1\nspheres = 800\n"
+                          "results_key = \"key\"\nparticle_steps_per_second = 4.7e7\n"
+                          "generation_seconds = 0\nmeasured = \"t\"\n";
+  EXPECT_FALSE(ReadCachedRate(path_, "test CPU", 1, 800, "key"));
+  // One with some of the rates only, likewise.
+  std::ofstream(path_, std::ios::app)
+      << "[[rate]]\ncpu = \"test CPU\"\nthreads = 1\nspheres = 3000\n"
+         "results_key = \"key\"\nparticle_steps_per_second = 4.7e7\n"
+         "loose_particle_steps_per_second = 5e7\ncontrolled_particle_steps_per_second = 2e7\n"
+         "generation_seconds = 0\nmeasured = \"t\"\n";
+  EXPECT_FALSE(ReadCachedRate(path_, "test CPU", 1, 3000, "key"));
+  StoreRate(path_, SomeRate());
+  const std::optional<MeasuredRate> found = ReadCachedRate(path_, "test CPU", 1, 800, "key");
+  ASSERT_TRUE(found);
+  EXPECT_DOUBLE_EQ(found->loose_particle_steps_per_second, 9e6);
+  EXPECT_DOUBLE_EQ(found->still_particle_steps_per_second, 2e7);
+  EXPECT_DOUBLE_EQ(found->controlled_particle_steps_per_second, 3e6);
+  const std::string text = ReadTextFile(path_);
+  EXPECT_EQ(text.find("4.7e"), std::string::npos) << text;
 }
 
 TEST_F(RateCacheTest, AMalformedCacheIsRefusedNamingTheFileAndKey) {

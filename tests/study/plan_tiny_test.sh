@@ -37,6 +37,21 @@ grep -q "^jobs x threads: 1 x 1" "$work/first.txt" || fail "no jobs x threads"
 grep -qE '^time limit per array task: --time=[0-9]+-[0-9]{2}:[0-9]{2}:00 ' "$work/first.txt" ||
   fail "no Slurm time limit"
 
+# The paper's extension paths stop when they liquefy: bounds, marked and counted.
+grep -qE '^r1/nc100_psi120 .*  at most$' "$work/first.txt" || fail "no 'at most' on a liquefying case"
+grep -qE "^  [0-9]+ case\(s\) marked 'at most'" "$work/first.txt" || fail "no count of the bounds"
+
+# --stages: every stage's estimate under its case; --tsv: the cases for scripts.
+"$granasym" study plan "$programme" --scale tiny --jobs 1 --threads 1 --stages > "$work/stages.txt"
+grep -qE '^    stage 1: strain [0-9.e+-]+, [0-9.e+-]+ steps .*: mean_stress_kpa$' "$work/stages.txt" ||
+  fail "no stage estimates with --stages"
+"$granasym" study plan "$programme" --scale tiny --jobs 1 --threads 1 --tsv > "$work/plan.tsv"
+head -1 "$work/plan.tsv" | grep -qP '^case\tdepth\ttime_step_s\tsteps\tloose_steps\tstill_steps\tstress_steps\tparticle_steps\tseconds\tat_most$' ||
+  fail "no TSV header"
+[ "$(tail -n +2 "$work/plan.tsv" | wc -l)" = "$cases" ] || fail "TSV rows are not the $cases cases"
+awk -F'\t' 'NR > 1 && !($4 > 0 && $9 > 0 && $6 <= $5 && $5 + $7 <= $4 * 1.000001) { print "FAIL: TSV row " $0; bad = 1 }
+             END { exit bad }' "$work/plan.tsv"
+
 "$granasym" study plan "$programme" --scale tiny --jobs 1 --threads 1 > "$work/second.txt"
 grep -q "cached, measured" "$work/second.txt" || fail "the second plan measured again"
 [ "$(grep -c '^\[\[rate\]\]' "$XDG_CACHE_HOME/granasym/rates.toml")" = 1 ] || fail "cache entries"
