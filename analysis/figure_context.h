@@ -168,7 +168,7 @@ std::string StateLabel(const StateRow& row);
 // The mean of the replicates' paths of the case `name` (replicates with a
 // finished path, aligned as the state table's ensemble rows are: at the
 // ends for a case whose last stage stops at its asymptote, else at the
-// starts), with the 95 % band; `paths` 0 when fewer than two replicates.
+// starts), with the 95 % half-widths; `paths` 0 when fewer than two replicates.
 struct MeanCasePath {
   std::vector<double> p, ln_v, psi_sigma, psi_sigma_band, ln_v_band, ln_p_band;
   int paths = 0;

@@ -88,8 +88,10 @@ FigureSpec Fig09(const Context& ctx) {
 }
 
 // A figure of path families (Figs. 10, 11, 13-15): ψ_σ–p, ln(1+e)–p,
-// ψ_σ–ln(1+e). Each case is drawn as the mean of its replicates with the
-// 95 % band (one replicate: its own path), one colour per direction (per
+// ψ_σ–ln(1+e). Each case is drawn as the mean of its replicates with a band
+// of ± one standard error of that mean (one replicate: its own path; the
+// 95 % interval, t(n−1) standard errors, is 12.7 of them for two replicates
+// and would cover the figure), one colour per direction (per
 // start when all share one direction) and one dash per start; its
 // asymptotic states (all replicates) are marked with hover labels.
 FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
@@ -102,7 +104,8 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
                " Paths: the mean of the replicates of each case (cases whose "
                "`figures` include " +
                figure +
-               ") with its 95 % band, aligned on the accumulated strain as the ensemble rows "
+               ") with a band of ± one standard error of that mean (for two replicates, their "
+               "half-range), aligned on the accumulated strain as the ensemble rows "
                "of the state table (a path that stops at its asymptote is aligned at its end, "
                "so its mean starts where the shortest replicate's does; `study figures "
                "--replicates` draws every replicate); rows below p = 0.5 kPa (a gas's tail) are "
@@ -190,8 +193,8 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
     return static_cast<int>(std::find(list.begin(), list.end(), item) - list.begin()) + 1;
   };
   BlockFile paths({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
-  // Each mean path's 95 % band as a closed outline: the upper edge forward,
-  // the lower edge back.
+  // Each mean path's band (± one standard error) as a closed outline: the
+  // upper edge forward, the lower edge back.
   BlockFile bands({"p_kpa", "psi_sigma_edge", "ln_1_plus_e_edge"});
   std::string band_colours;
   BlockFile tails({"p_kpa", "ln_1_plus_e", "psi_sigma_deg"});
@@ -211,7 +214,14 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
     std::vector<double> psi_band(p.size(), 0.0), lnv_band(p.size(), 0.0);
     if (mean.paths >= 2) {
       p = mean.p, ln_v = mean.ln_v, psi = mean.psi_sigma;
-      psi_band = mean.psi_sigma_band, lnv_band = mean.ln_v_band;
+      // The mean path's bands are 95 % half-widths: one standard error is
+      // that over Student's t for n − 1 degrees of freedom.
+      const double t = StudentT95(mean.paths - 1);
+      psi_band.assign(p.size(), 0.0), lnv_band.assign(p.size(), 0.0);
+      for (size_t k = 0; k < p.size(); ++k) {
+        psi_band[k] = mean.psi_sigma_band[k] / t;
+        lnv_band[k] = mean.ln_v_band[k] / t;
+      }
       ++mean_paths;
     } else {
       ++single_paths;

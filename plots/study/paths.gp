@@ -1,7 +1,7 @@
 # Path families (paper Figs. 10, 11, 13, 14, 15): (a) psi_sigma-p,
 # (b) ln(1+e)-p, (c) psi_sigma-ln(1+e). Data (DIR/figures/data/<stem>_*.tsv):
 #   _paths      one block per case: the replicates' mean path (p >= 0.5 kPa)
-#   _bands      the mean paths' 95 % bands as closed outlines (band_colours)
+#   _bands      the mean paths' bands (± one standard error) as closed outlines (band_colours)
 #   _tails      the rows below 0.5 kPa (a gas's tail), drawn faint
 #   _unloading  the unloading paths to the OC starts (grey; n_unloading)
 #   _replicates every replicate's path (when the figure settings ask for them)
