@@ -301,6 +301,29 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
         FitAgreementInStandardErrors(run.fits[0], run.fits[1], &run.agreement_not_compared);
   }
   run.kept = KeptFitIndex(run.fits);
+  if (run.kept_fit() && run.kept_fit()->summary.success() && config.profiles.enabled) {
+    std::vector<int> also;
+    for (size_t i = 0; i < undetermined.size(); ++i) {
+      if (undetermined[i]) also.push_back(static_cast<int>(i));
+    }
+    RefittedProfiles profiled =
+        ProfileAndRefit(*run.problem, *run.kept_fit(), also, config.ceres, config.profiles);
+    run.profiles = std::move(profiled.profiles);
+    run.restarts = std::move(profiled.restarts);
+    if (!run.restarts.empty() && run.restarts.front().kept) {
+      // A profile found a better minimum: its refit (Ceres) replaces the
+      // kept fit, named apart where that was another fitter's (the record
+      // keeps one group per fitter name).
+      if (run.fits[run.kept].summary.fitter != profiled.fit.summary.fitter) {
+        profiled.fit.summary.fitter += "_refit";
+      }
+      run.fits[run.kept] = std::move(profiled.fit);
+      if (run.fits.size() == 2) {
+        run.agreement_in_standard_errors =
+            FitAgreementInStandardErrors(run.fits[0], run.fits[1], &run.agreement_not_compared);
+      }
+    }
+  }
   const std::vector<ParameterSpec>& specs = run.problem->parameters().specs();
   const double tolerance = config.ceres.uncertainty.bound_tolerance;
   const FitResult* kept = run.kept_fit();
@@ -317,15 +340,8 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   }
   if (kept && kept->summary.success()) {
     run.findings = CheckAdmissibility(run, *kept, &run.diagnosis);
-    if (config.profiles.enabled) {
-      std::vector<int> also;
-      for (size_t i = 0; i < undetermined.size(); ++i) {
-        if (undetermined[i]) also.push_back(static_cast<int>(i));
-      }
-      run.profiles = ProfileLikelihood(*run.problem, *kept, also, config.ceres, config.profiles);
-    }
     if (config.pareto.enabled) {
-      run.pareto = ComputeParetoFront(*run.problem, *kept, DefaultResidualGroups(*run.problem),
+      run.pareto = ComputeParetoFront(*run.problem, *kept, ChooseResidualGroups(*run.problem),
                                       config.ceres, config.pareto);
     }
   }
@@ -600,6 +616,13 @@ std::string SummaryText(const CalibrationRun& run) {
   s += run.starting_values.Report() + "\n";
   for (const std::string& u : run.undetermined) s += "UNDETERMINED: " + u + "\n";
   for (const FitResult& fit : run.fits) s += "\n" + FitText(run, fit);
+  if (!run.restarts.empty()) {
+    s += "\nrefits from the profiles (a profile reached a lower cost than the fit):\n";
+    for (const ProfileRestart& restart : run.restarts) s += "  " + restart.Text() + "\n";
+    if (run.restarts.front().kept) {
+      s += "  the fit above is the last refit; the profiles below are of it\n";
+    }
+  }
   if (!run.status.empty()) {
     s += "\nparameter status:";
     const std::vector<ParameterSpec>& specs = problem.parameters().specs();
@@ -1314,6 +1337,7 @@ std::string WarningsText(const CalibrationRun& run) {
   for (const ParameterProfile& p : run.profiles.profiles) {
     if (p.flat()) add("profile_flat", p.Text() + " (its profile likelihood, profiles.csv)");
   }
+  for (const ProfileRestart& restart : run.restarts) add("profile_refit", restart.Text());
   for (const std::string& w : run.profiles.warnings) {
     const size_t colon = w.find(": ");
     add(w.substr(0, colon), w.substr(colon + 2));

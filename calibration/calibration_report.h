@@ -98,6 +98,9 @@ struct CalibrationRun {
   // profile likelihood of every free and every undetermined parameter, and
   // the Pareto front of the default residual groups (empty otherwise).
   ProfileSet profiles;
+  // Refits from a profile's point of least cost (ProfileAndRefit); where the
+  // first was kept, the kept fit is the last kept refit.
+  std::vector<ProfileRestart> restarts;
   ParetoFront pareto;
 
   // The kept fit; nullptr without one.
