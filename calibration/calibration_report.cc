@@ -267,14 +267,26 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
     }
   }
   run.problem = std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor, paths);
+  // The last probe when it is the Ceres fit of the final problem (the loop
+  // ended without changing the problem): the fit itself, not rerun.
+  std::unique_ptr<FitResult> final_probe;
   if (config.fix_undetermined) {
     // One parameter per round: fixing one of a correlated pair often
     // determines the other.
     for (int round = 0; round < kMaxUndeterminedRounds; ++round) {
-      const FitResult probe = CeresFitter(config.ceres).Fit(*run.problem);
-      if (!probe.summary.success() || run.problem->num_free() <= 1) break;
+      FitResult probe = CeresFitter(config.ceres).Fit(*run.problem);
+      ++run.probe_fits;
+      run.probe_evaluations += probe.summary.evaluations;
+      run.probe_seconds += probe.summary.wall_seconds;
+      if (!probe.summary.success() || run.problem->num_free() <= 1) {
+        final_probe = std::make_unique<FitResult>(std::move(probe));
+        break;
+      }
       const std::pair<int, std::string> found = LeastDetermined(*run.problem, probe);
-      if (found.first < 0) break;
+      if (found.first < 0) {
+        final_probe = std::make_unique<FitResult>(std::move(probe));
+        break;
+      }
       {
         const int index = found.first;
         const std::string& why = found.second;
@@ -291,7 +303,16 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
     }
   }
   if (config.method != FitMethod::kNlopt) {
-    run.fits.push_back(CeresFitter(config.ceres).Fit(*run.problem));
+    // The Ceres fit is deterministic: the last probe, where it fitted this
+    // very problem with these options, is it.
+    if (final_probe) {
+      --run.probe_fits;
+      run.probe_evaluations -= final_probe->summary.evaluations;
+      run.probe_seconds -= final_probe->summary.wall_seconds;
+      run.fits.push_back(std::move(*final_probe));
+    } else {
+      run.fits.push_back(CeresFitter(config.ceres).Fit(*run.problem));
+    }
   }
   if (config.method != FitMethod::kCeres) {
     run.fits.push_back(NloptFitter(config.nlopt).Fit(*run.problem));
@@ -615,6 +636,12 @@ std::string SummaryText(const CalibrationRun& run) {
   if (run.rate.MostlyRateAffected()) s += "WARNING rate_affected: " + run.rate.Warning() + "\n";
   s += run.starting_values.Report() + "\n";
   for (const std::string& u : run.undetermined) s += "UNDETERMINED: " + u + "\n";
+  if (run.probe_fits > 0) {
+    s += fmt::format(
+        "undetermined search: {} Ceres fit{} before the reported one ({} evaluations, {:.2f} "
+        "s)\n",
+        run.probe_fits, run.probe_fits == 1 ? "" : "s", run.probe_evaluations, run.probe_seconds);
+  }
   for (const FitResult& fit : run.fits) s += "\n" + FitText(run, fit);
   if (!run.restarts.empty()) {
     s += "\nrefits from the profiles (a profile reached a lower cost than the fit):\n";

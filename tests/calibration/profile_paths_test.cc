@@ -191,10 +191,9 @@ TEST(ProfileAndRefit, RefitsFromTheProfileThatFindsTheBetterMinimum) {
   }
   parameters.mutable_specs()[kShearParameter].value = 0.45;
   parameters.mutable_specs()[kCriticalFrictionAngle].value = 1.02 * truth[kCriticalFrictionAngle];
-  const CalibrationProblem problem(
-      {states}, parameters, PredictorOptions(),
-      {testing::IsochoricPath(*Model(kind, soft), 100, 4, 0.05),
-       testing::DrainedPath(*Model(kind, stiff), 100, 4, 0.05)});
+  const CalibrationProblem problem({states}, parameters, PredictorOptions(),
+                                   {testing::IsochoricPath(*Model(kind, soft), 100, 4, 0.05),
+                                    testing::DrainedPath(*Model(kind, stiff), 100, 4, 0.05)});
   const CeresFitter::Options ceres;
   const FitResult fit = CeresFitter(ceres).Fit(problem);
   ASSERT_EQ(fit.summary.termination, FitTermination::kConverged) << fit.summary.Report();
