@@ -419,7 +419,8 @@ const KeyTable& CalibrationKeys() {
         NumberKey("fitter", "profile_restarts", KeyType::kInteger, "", Range::Closed(0, 10), "3",
                   "refits from a profile's point of least cost where it lies below the fit's"),
         OtherKey("fitter", "fast_refits", KeyType::kBool, "true or false", "true",
-                 "profile and Pareto refits by forward differences to a cost tolerance of 1e-8"),
+                 "the undetermined search's, profiles' and Pareto front's fits by forward "
+                 "differences to a cost tolerance of 1e-8"),
         OtherKey("fitter", "pareto", KeyType::kBool, "true or false", "true",
                  "the Pareto front of the two groups of residuals"),
         NumberKey("fitter", "pareto_points", KeyType::kInteger, "", Range::Closed(5, 101), "11",

@@ -270,21 +270,29 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   // The last probe when it is the Ceres fit of the final problem (the loop
   // ended without changing the problem): the fit itself, not rerun.
   std::unique_ptr<FitResult> final_probe;
+  // The probes need the fit's standard errors and null directions, which
+  // ComputeUncertainty takes from its own central-difference Jacobian at the
+  // probe's optimum; with fast_refits their iterations use forward
+  // differences to a cost tolerance of 1e-8 (CostRefitOptions), and the
+  // reported fit is then run with the exact options.
+  const bool fast_probes = config.profiles.fast_refits;
+  CeresFitter::Options probe_options = CeresFitter::CostRefitOptions(config.ceres, fast_probes);
+  probe_options.compute_uncertainty = true;
   if (config.fix_undetermined) {
     // One parameter per round: fixing one of a correlated pair often
     // determines the other.
     for (int round = 0; round < kMaxUndeterminedRounds; ++round) {
-      FitResult probe = CeresFitter(config.ceres).Fit(*run.problem);
+      FitResult probe = CeresFitter(probe_options).Fit(*run.problem);
       ++run.probe_fits;
       run.probe_evaluations += probe.summary.evaluations;
       run.probe_seconds += probe.summary.wall_seconds;
       if (!probe.summary.success() || run.problem->num_free() <= 1) {
-        final_probe = std::make_unique<FitResult>(std::move(probe));
+        if (!fast_probes) final_probe = std::make_unique<FitResult>(std::move(probe));
         break;
       }
       const std::pair<int, std::string> found = LeastDetermined(*run.problem, probe);
       if (found.first < 0) {
-        final_probe = std::make_unique<FitResult>(std::move(probe));
+        if (!fast_probes) final_probe = std::make_unique<FitResult>(std::move(probe));
         break;
       }
       {
@@ -304,7 +312,7 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   }
   if (config.method != FitMethod::kNlopt) {
     // The Ceres fit is deterministic: the last probe, where it fitted this
-    // very problem with these options, is it.
+    // very problem with these options (exact probes), is it.
     if (final_probe) {
       --run.probe_fits;
       run.probe_evaluations -= final_probe->summary.evaluations;
