@@ -254,6 +254,10 @@ void ReadFitter(const ConfigTable& f, CalibrationConfig* config) {
   config->profiles.enabled = f.GetBool("profiles", config->profiles.enabled);
   config->profiles.points_per_side = static_cast<int>(
       f.GetInt("profile_points_per_side", config->profiles.points_per_side, Range::Closed(2, 50)));
+  config->profiles.max_restarts = static_cast<int>(
+      f.GetInt("profile_restarts", config->profiles.max_restarts, Range::Closed(0, 10)));
+  config->profiles.fast_refits = f.GetBool("fast_refits", config->profiles.fast_refits);
+  config->pareto.fast_refits = config->profiles.fast_refits;
   config->pareto.enabled = f.GetBool("pareto", config->pareto.enabled);
   config->pareto.points =
       static_cast<int>(f.GetInt("pareto_points", config->pareto.points, Range::Closed(5, 101)));
@@ -412,6 +416,11 @@ const KeyTable& CalibrationKeys() {
                  "profile likelihood of every parameter (intervals, flat parameters)"),
         NumberKey("fitter", "profile_points_per_side", KeyType::kInteger, "", Range::Closed(2, 50),
                   "8", "grid points on each side of the optimum of a profile"),
+        NumberKey("fitter", "profile_restarts", KeyType::kInteger, "", Range::Closed(0, 10), "3",
+                  "refits from a profile's point of least cost where it lies below the fit's"),
+        OtherKey("fitter", "fast_refits", KeyType::kBool, "true or false", "true",
+                 "the undetermined search's, profiles' and Pareto front's fits by forward "
+                 "differences to a cost tolerance of 1e-8"),
         OtherKey("fitter", "pareto", KeyType::kBool, "true or false", "true",
                  "the Pareto front of the two groups of residuals"),
         NumberKey("fitter", "pareto_points", KeyType::kInteger, "", Range::Closed(5, 101), "11",
@@ -596,11 +605,12 @@ std::string CalibrationConfigText(const CalibrationConfig& config, const std::st
   s += fmt::format(
       "\n[fitter]\nmethod = {}\nfix_undetermined = {}\nmax_iterations = {}\n"
       "scale_by_residual_variance = {}\nprofiles = {}\nprofile_points_per_side = {}\n"
-      "pareto = {}\npareto_points = {}\n",
+      "profile_restarts = {}\nfast_refits = {}\npareto = {}\npareto_points = {}\n",
       TomlQuoted(ToString(config.method)), config.fix_undetermined ? "true" : "false",
       config.ceres.max_iterations,
       config.ceres.uncertainty.scale_by_residual_variance ? "true" : "false",
       config.profiles.enabled ? "true" : "false", config.profiles.points_per_side,
+      config.profiles.max_restarts, config.profiles.fast_refits ? "true" : "false",
       config.pareto.enabled ? "true" : "false", config.pareto.points);
   s += fmt::format(
       "[fitter.nlopt]\nalgorithm = {}\nstarts = {}\nmax_evaluations = {}\nseed = {}\n"

@@ -296,6 +296,12 @@ void CalibrationProblem::SetGroupWeights(double asymptotic, double path) {
   group_weight_[1] = path;
 }
 
+CalibrationProblem CalibrationProblem::WithParameters(ModelParameters parameters) const {
+  CalibrationProblem problem(datasets_, std::move(parameters), predictor_.options(), paths_);
+  problem.SetGroupWeights(group_weight_[0], group_weight_[1]);
+  return problem;
+}
+
 bool CalibrationProblem::EvaluateAtOwnPressures(const std::vector<double>& values,
                                                 std::vector<PointResidual>* residuals,
                                                 std::string* why) const {

@@ -84,6 +84,13 @@ class CalibrationProblem {
   ResidualRange Group(ResidualGroup group) const;
   // Multiplies the squared residuals of each group (default 1, 1; each ≥ 0).
   void SetGroupWeights(double asymptotic, double path);
+  double group_weight(ResidualGroup group) const {
+    return group_weight_[group == ResidualGroup::kAsymptotic ? 0 : 1];
+  }
+  // The same data (datasets, paths, predictor options, group weights) with
+  // other parameters: which are free, their values and bounds (profile
+  // refits, the Pareto sweep's weighted fits).
+  CalibrationProblem WithParameters(ModelParameters parameters) const;
   const ModelParameters& parameters() const { return parameters_; }
   const AsymptotePredictor& predictor() const { return predictor_; }
   int num_residuals() const { return num_residuals_; }

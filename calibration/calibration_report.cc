@@ -267,14 +267,34 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
     }
   }
   run.problem = std::make_unique<CalibrationProblem>(datasets, parameters, config.predictor, paths);
+  // The last probe when it is the Ceres fit of the final problem (the loop
+  // ended without changing the problem): the fit itself, not rerun.
+  std::unique_ptr<FitResult> final_probe;
+  // The probes need the fit's standard errors and null directions, which
+  // ComputeUncertainty takes from its own central-difference Jacobian at the
+  // probe's optimum; with fast_refits their iterations use forward
+  // differences to a cost tolerance of 1e-8 (CostRefitOptions), and the
+  // reported fit is then run with the exact options.
+  const bool fast_probes = config.profiles.fast_refits;
+  CeresFitter::Options probe_options = CeresFitter::CostRefitOptions(config.ceres, fast_probes);
+  probe_options.compute_uncertainty = true;
   if (config.fix_undetermined) {
     // One parameter per round: fixing one of a correlated pair often
     // determines the other.
     for (int round = 0; round < kMaxUndeterminedRounds; ++round) {
-      const FitResult probe = CeresFitter(config.ceres).Fit(*run.problem);
-      if (!probe.summary.success() || run.problem->num_free() <= 1) break;
+      FitResult probe = CeresFitter(probe_options).Fit(*run.problem);
+      ++run.probe_fits;
+      run.probe_evaluations += probe.summary.evaluations;
+      run.probe_seconds += probe.summary.wall_seconds;
+      if (!probe.summary.success() || run.problem->num_free() <= 1) {
+        if (!fast_probes) final_probe = std::make_unique<FitResult>(std::move(probe));
+        break;
+      }
       const std::pair<int, std::string> found = LeastDetermined(*run.problem, probe);
-      if (found.first < 0) break;
+      if (found.first < 0) {
+        if (!fast_probes) final_probe = std::make_unique<FitResult>(std::move(probe));
+        break;
+      }
       {
         const int index = found.first;
         const std::string& why = found.second;
@@ -291,7 +311,16 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
     }
   }
   if (config.method != FitMethod::kNlopt) {
-    run.fits.push_back(CeresFitter(config.ceres).Fit(*run.problem));
+    // The Ceres fit is deterministic: the last probe, where it fitted this
+    // very problem with these options (exact probes), is it.
+    if (final_probe) {
+      --run.probe_fits;
+      run.probe_evaluations -= final_probe->summary.evaluations;
+      run.probe_seconds -= final_probe->summary.wall_seconds;
+      run.fits.push_back(std::move(*final_probe));
+    } else {
+      run.fits.push_back(CeresFitter(config.ceres).Fit(*run.problem));
+    }
   }
   if (config.method != FitMethod::kCeres) {
     run.fits.push_back(NloptFitter(config.nlopt).Fit(*run.problem));
@@ -301,6 +330,29 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
         FitAgreementInStandardErrors(run.fits[0], run.fits[1], &run.agreement_not_compared);
   }
   run.kept = KeptFitIndex(run.fits);
+  if (run.kept_fit() && run.kept_fit()->summary.success() && config.profiles.enabled) {
+    std::vector<int> also;
+    for (size_t i = 0; i < undetermined.size(); ++i) {
+      if (undetermined[i]) also.push_back(static_cast<int>(i));
+    }
+    RefittedProfiles profiled =
+        ProfileAndRefit(*run.problem, *run.kept_fit(), also, config.ceres, config.profiles);
+    run.profiles = std::move(profiled.profiles);
+    run.restarts = std::move(profiled.restarts);
+    if (!run.restarts.empty() && run.restarts.front().kept) {
+      // A profile found a better minimum: its refit (Ceres) replaces the
+      // kept fit, named apart where that was another fitter's (the record
+      // keeps one group per fitter name).
+      if (run.fits[run.kept].summary.fitter != profiled.fit.summary.fitter) {
+        profiled.fit.summary.fitter += "_refit";
+      }
+      run.fits[run.kept] = std::move(profiled.fit);
+      if (run.fits.size() == 2) {
+        run.agreement_in_standard_errors =
+            FitAgreementInStandardErrors(run.fits[0], run.fits[1], &run.agreement_not_compared);
+      }
+    }
+  }
   const std::vector<ParameterSpec>& specs = run.problem->parameters().specs();
   const double tolerance = config.ceres.uncertainty.bound_tolerance;
   const FitResult* kept = run.kept_fit();
@@ -317,15 +369,8 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   }
   if (kept && kept->summary.success()) {
     run.findings = CheckAdmissibility(run, *kept, &run.diagnosis);
-    if (config.profiles.enabled) {
-      std::vector<int> also;
-      for (size_t i = 0; i < undetermined.size(); ++i) {
-        if (undetermined[i]) also.push_back(static_cast<int>(i));
-      }
-      run.profiles = ProfileLikelihood(*run.problem, *kept, also, config.ceres, config.profiles);
-    }
     if (config.pareto.enabled) {
-      run.pareto = ComputeParetoFront(*run.problem, *kept, DefaultResidualGroups(*run.problem),
+      run.pareto = ComputeParetoFront(*run.problem, *kept, ChooseResidualGroups(*run.problem),
                                       config.ceres, config.pareto);
     }
   }
@@ -599,7 +644,20 @@ std::string SummaryText(const CalibrationRun& run) {
   if (run.rate.MostlyRateAffected()) s += "WARNING rate_affected: " + run.rate.Warning() + "\n";
   s += run.starting_values.Report() + "\n";
   for (const std::string& u : run.undetermined) s += "UNDETERMINED: " + u + "\n";
+  if (run.probe_fits > 0) {
+    s += fmt::format(
+        "undetermined search: {} Ceres fit{} before the reported one ({} evaluations, {:.2f} "
+        "s)\n",
+        run.probe_fits, run.probe_fits == 1 ? "" : "s", run.probe_evaluations, run.probe_seconds);
+  }
   for (const FitResult& fit : run.fits) s += "\n" + FitText(run, fit);
+  if (!run.restarts.empty()) {
+    s += "\nrefits from the profiles (a profile reached a lower cost than the fit):\n";
+    for (const ProfileRestart& restart : run.restarts) s += "  " + restart.Text() + "\n";
+    if (run.restarts.front().kept) {
+      s += "  the fit above is the last refit; the profiles below are of it\n";
+    }
+  }
   if (!run.status.empty()) {
     s += "\nparameter status:";
     const std::vector<ParameterSpec>& specs = problem.parameters().specs();
@@ -1314,6 +1372,7 @@ std::string WarningsText(const CalibrationRun& run) {
   for (const ParameterProfile& p : run.profiles.profiles) {
     if (p.flat()) add("profile_flat", p.Text() + " (its profile likelihood, profiles.csv)");
   }
+  for (const ProfileRestart& restart : run.restarts) add("profile_refit", restart.Text());
   for (const std::string& w : run.profiles.warnings) {
     const size_t colon = w.find(": ");
     add(w.substr(0, colon), w.substr(colon + 2));

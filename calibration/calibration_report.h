@@ -87,6 +87,11 @@ struct CalibrationRun {
   std::vector<ParameterStatus> status;
   // Parameters fixed because the data do not determine them, each with why.
   std::vector<std::string> undetermined;
+  // The Ceres fits of the search for undetermined parameters besides the
+  // reported fit (the last probe, of the final problem, is that fit itself).
+  int probe_fits = 0;
+  long probe_evaluations = 0;
+  double probe_seconds = 0.0;
   // Admissibility checks and the diagnosis of structural misfit (kept fit).
   std::vector<Finding> findings;
   std::vector<std::string> diagnosis;  // per-kind residual lines (always)
@@ -98,6 +103,9 @@ struct CalibrationRun {
   // profile likelihood of every free and every undetermined parameter, and
   // the Pareto front of the default residual groups (empty otherwise).
   ProfileSet profiles;
+  // Refits from a profile's point of least cost (ProfileAndRefit); where the
+  // first was kept, the kept fit is the last kept refit.
+  std::vector<ProfileRestart> restarts;
   ParetoFront pareto;
 
   // The kept fit; nullptr without one.

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <glog/logging.h>
 
+#include <algorithm>
 #include <chrono>
 #include <mutex>
 
@@ -68,6 +69,16 @@ bool CeresFitter::Options::IsValid(std::string* why) const {
   return uncertainty.IsValid(why);
 }
 
+CeresFitter::Options CeresFitter::CostRefitOptions(const Options& options, bool fast) {
+  Options refit = options;
+  refit.compute_uncertainty = false;
+  if (fast) {
+    refit.forward_differences = true;
+    refit.function_tolerance = std::max(refit.function_tolerance, kFastRefitTolerance);
+  }
+  return refit;
+}
+
 CeresFitter::CeresFitter(const Options& options) : options_(options) {
   std::string why;
   GRANASYM_CHECK(options_.IsValid(&why)) << why;
@@ -97,8 +108,15 @@ FitResult CeresFitter::Fit(const CalibrationProblem& problem,
 
   ceres::NumericDiffOptions numeric;
   numeric.relative_step_size = options_.relative_step;
-  auto* cost = new ceres::DynamicNumericDiffCostFunction<ResidualFunctor, ceres::CENTRAL>(
-      new ResidualFunctor{&problem}, ceres::TAKE_OWNERSHIP, numeric);
+  ceres::DynamicCostFunction* cost = nullptr;
+  if (options_.forward_differences) {
+    auto* forward = new ceres::DynamicNumericDiffCostFunction<ResidualFunctor, ceres::FORWARD>(
+        new ResidualFunctor{&problem}, ceres::TAKE_OWNERSHIP, numeric);
+    cost = forward;
+  } else {
+    cost = new ceres::DynamicNumericDiffCostFunction<ResidualFunctor, ceres::CENTRAL>(
+        new ResidualFunctor{&problem}, ceres::TAKE_OWNERSHIP, numeric);
+  }
   cost->AddParameterBlock(problem.num_free());
   cost->SetNumResiduals(problem.num_residuals());
   ceres::Problem ceres_problem;

@@ -20,6 +20,12 @@ class CeresFitter {
     double gradient_tolerance = 1e-14;
     // Central-difference step, relative to the parameter value.
     double relative_step = 1e-6;
+    // Forward differences instead of central ones: half the residual
+    // evaluations per Jacobian (n + 1 instead of 2n), an O(step) error in the
+    // Jacobian; for refits that need only the cost (profiles, Pareto sweep),
+    // where the step moves the optimum's cost by far less than the
+    // tolerances they are compared at.
+    bool forward_differences = false;
     UncertaintyOptions uncertainty;
     // The covariance, intervals and residuals at the optimum
     // (ComputeUncertainty); false for refits that need only the cost
@@ -27,6 +33,14 @@ class CeresFitter {
     bool compute_uncertainty = true;
     bool IsValid(std::string* why) const;
   };
+
+  // The options of refits that need only the cost (profiles, the Pareto
+  // sweep): no uncertainty; with `fast`, forward differences and a function
+  // tolerance of at least kFastRefitTolerance (the refit's cost within about
+  // that fraction of its optimum: a profile's D within ~1e-8 × the number of
+  // residuals, far below its threshold of about 4).
+  static constexpr double kFastRefitTolerance = 1e-8;
+  static Options CostRefitOptions(const Options& options, bool fast);
 
   explicit CeresFitter(const Options& options);
   // Starts from `start` (free values; empty: the parameters' starting values).

@@ -4,8 +4,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <mutex>
+#include <thread>
 
 #include "common/error.h"
 
@@ -34,6 +38,12 @@ bool GroupCosts(const CalibrationProblem& problem, const ResidualGroups& groups,
     const int g = groups.point_group[owners[j].first][owners[j].second];
     if (g >= 0) (*cost)[g] += 0.5 * r[j] * r[j];
   }
+  if (groups.path_group >= 0) {
+    const ResidualRange paths = problem.Group(ResidualGroup::kPath);
+    for (int j = paths.begin; j < paths.begin + paths.count; ++j) {
+      (*cost)[groups.path_group] += 0.5 * r[j] * r[j];
+    }
+  }
   return std::isfinite((*cost)[0]) && std::isfinite((*cost)[1]);
 }
 
@@ -53,8 +63,12 @@ CalibrationProblem Weighted(const CalibrationProblem& problem, const ResidualGro
     ParameterSpec& spec = parameters.mutable_specs()[i];
     spec.value = std::min(std::max(start[i], spec.lower), spec.upper);
   }
-  return CalibrationProblem(std::move(datasets), std::move(parameters),
-                            problem.predictor().options(), problem.paths());
+  CalibrationProblem weighted(std::move(datasets), std::move(parameters),
+                              problem.predictor().options(), problem.paths());
+  double path_weight = problem.group_weight(ResidualGroup::kPath);
+  if (groups.path_group >= 0) path_weight *= 2.0 * (groups.path_group == 0 ? w : 1.0 - w);
+  weighted.SetGroupWeights(problem.group_weight(ResidualGroup::kAsymptotic), path_weight);
+  return weighted;
 }
 
 }  // namespace
@@ -62,6 +76,7 @@ CalibrationProblem Weighted(const CalibrationProblem& problem, const ResidualGro
 int ResidualGroups::Residuals(const CalibrationProblem& problem, int g) const {
   int count = 0;
   for (const auto& [d, k] : problem.ResidualPoints()) count += point_group[d][k] == g ? 1 : 0;
+  if (path_group == g) count += problem.Group(ResidualGroup::kPath).count;
   return count;
 }
 
@@ -89,6 +104,38 @@ ResidualGroups DefaultResidualGroups(const CalibrationProblem& problem) {
     }
     groups.point_group.push_back(std::move(row));
   }
+  return groups;
+}
+
+ResidualGroups AsymptoticPathGroups(const CalibrationProblem& problem) {
+  const int paths = problem.Group(ResidualGroup::kPath).count;
+  GRANASYM_CHECK(paths > 0) << "asymptotic states against whole paths: the problem has no paths";
+  ResidualGroups groups;
+  groups.names = {"asymptotic_states", "whole_paths"};
+  groups.descriptions = {"asymptotic states (NCL, CSL, compression, extension, ASBS)",
+                         "whole paths (unloading branches and path datasets)"};
+  for (const StateDataset& dataset : problem.datasets()) {
+    std::vector<int> row;
+    for (const AsymptoticStatePoint& point : dataset.points) {
+      // An unloading point's residual (a branch) is a path residual.
+      row.push_back(point.kind == StateKind::kUnloading ? -1 : 0);
+    }
+    groups.point_group.push_back(std::move(row));
+  }
+  groups.path_group = 1;
+  groups.choice = fmt::format(
+      "asymptotic states against whole paths ({} path residuals: unloading branches and path "
+      "datasets): the two kinds of data the model cannot match at once",
+      paths);
+  return groups;
+}
+
+ResidualGroups ChooseResidualGroups(const CalibrationProblem& problem) {
+  if (problem.Group(ResidualGroup::kPath).count > 0) return AsymptoticPathGroups(problem);
+  ResidualGroups groups = DefaultResidualGroups(problem);
+  groups.choice =
+      "the compression side against the critical and extension states: the data hold no "
+      "whole paths or fitted unloading branches to trade against the asymptotic states";
   return groups;
 }
 
@@ -138,13 +185,18 @@ ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResul
     front.not_computed = "no successful fit to start the sweep from";
     return front;
   }
-  CeresFitter::Options refit_options = ceres;
-  refit_options.compute_uncertainty = false;
+  const CeresFitter::Options refit_options =
+      CeresFitter::CostRefitOptions(ceres, options.fast_refits);
   const int n = options.points, mid = n / 2;
   const double span = std::log10(options.max_weight_ratio);
   front.points.resize(static_cast<size_t>(n));
-  std::vector<bool> done(static_cast<size_t>(n), false);
+  // Written by both sides of the sweep at distinct indices: not vector<bool>.
+  std::vector<char> done(static_cast<size_t>(n), 0);
+  std::vector<std::string> side_warnings[2];
+  std::mutex shared_problem;  // GroupCosts evaluates `problem` (its evaluation counter)
+  std::atomic<long> evaluations{0};
   const auto solve = [&](int j, const std::vector<double>& start) {
+    std::vector<std::string>& warnings = side_warnings[j < mid ? 1 : 0];
     ParetoPoint& point = front.points[j];
     const double ratio = std::pow(10.0, -span + 2.0 * span * j / (n - 1));
     point.weight = j == mid ? 0.5 : ratio / (1.0 + ratio);
@@ -155,34 +207,68 @@ ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResul
       try {
         const CalibrationProblem weighted = Weighted(problem, groups, point.weight, start);
         const FitResult result = CeresFitter(refit_options).Fit(weighted);
+        evaluations += result.summary.evaluations;
         if (!result.summary.success()) {
-          front.warnings.push_back(fmt::format("pareto: the fit at w = {:.4g} failed: {}",
-                                               point.weight, result.summary.message));
+          warnings.push_back(fmt::format("pareto: the fit at w = {:.4g} failed: {}", point.weight,
+                                         result.summary.message));
           return false;
         }
         point.values = result.values;
         point.converged = result.summary.termination == FitTermination::kConverged;
       } catch (const std::exception& error) {
-        front.warnings.push_back(
+        warnings.push_back(
             fmt::format("pareto: the fit at w = {:.4g} failed: {}", point.weight, error.what()));
         return false;
       }
     }
-    if (!GroupCosts(problem, groups, point.values, &point.cost)) {
-      front.warnings.push_back(
+    bool defined;
+    {
+      const std::lock_guard<std::mutex> lock(shared_problem);
+      defined = GroupCosts(problem, groups, point.values, &point.cost);
+    }
+    if (!defined) {
+      warnings.push_back(
           fmt::format("pareto: the model is undefined at the fit for w = {:.4g}", point.weight));
       return false;
     }
     for (int g = 0; g < 2; ++g) point.rms[g] = std::sqrt(2.0 * point.cost[g] / front.residuals[g]);
-    done[j] = true;
+    done[j] = 1;
     return true;
   };
   solve(mid, fit.values);
-  for (int step : {+1, -1}) {
+  // The two sides of the sweep, each warm-started outwards from the ordinary
+  // fit, are independent: the lower side on a second thread where there is
+  // one (the points do not depend on it).
+  const auto side = [&](int step) {
     std::vector<double> start = fit.values;
     for (int j = mid + step; j >= 0 && j < n; j += step) {
       if (solve(j, start)) start = front.points[j].values;
     }
+  };
+  if (std::thread::hardware_concurrency() >= 2) {
+    std::exception_ptr lower_error;
+    std::thread lower([&] {
+      try {
+        side(-1);
+      } catch (...) {
+        lower_error = std::current_exception();
+      }
+    });
+    try {
+      side(+1);
+    } catch (...) {
+      lower.join();
+      throw;
+    }
+    lower.join();
+    if (lower_error) std::rethrow_exception(lower_error);
+  } else {
+    side(+1);
+    side(-1);
+  }
+  front.evaluations = evaluations;
+  for (int k : {0, 1}) {
+    front.warnings.insert(front.warnings.end(), side_warnings[k].begin(), side_warnings[k].end());
   }
   std::vector<ParetoPoint> kept;
   for (int j = 0; j < n; ++j) {
@@ -265,11 +351,12 @@ std::string ParetoText(const ParetoFront& front, const ModelParameters& paramete
   if (!front.computed()) return "pareto front: not computed: " + front.not_computed + "\n";
   std::string s = fmt::format(
       "pareto front: {} (group 0, {} residuals) against {} (group 1, {} residuals), "
-      "weighted-sum sweep of {} points, {:.2f} s\n"
+      "weighted-sum sweep of {} points, {} evaluations, {:.2f} s\n"
       "  (w weights group 0; cost_g = 1/2 sum r^2 over group g, rms_g its RMS weighted "
       "residual)\n",
       front.groups.names[0], front.residuals[0], front.groups.names[1], front.residuals[1],
-      front.points.size(), front.wall_seconds);
+      front.points.size(), front.evaluations, front.wall_seconds);
+  if (!front.groups.choice.empty()) s += "  groups traded: " + front.groups.choice + "\n";
   s += fmt::format("  {:>10} {:>12} {:>12} {:>10} {:>10}", "w", "cost_0", "cost_1", "rms_0",
                    "rms_1");
   for (const ParameterSpec& spec : parameters.specs()) {

@@ -2,12 +2,18 @@
 // front by a weighted-sum sweep.
 //
 // A ResidualGroups assigns each data point (dataset, point) to group 0, 1 or
-// neither (−1); a point's residuals belong to its group. The default split
-// (DefaultResidualGroups) is the compression side — NCL, compression and
-// ASBS states — against the critical and extension states (CSL,
-// extension): the two sides of the paper's point about the CSL's position
-// against the NCL. Whole-path datasets slot in as another split (asymptotic
-// states against paths) through the same interface.
+// neither (−1); a point's residuals belong to its group, and the path
+// residuals (fitted unloading branches and whole-path datasets:
+// CalibrationProblem::Group(kPath)) to `path_group`. Two splits:
+//  - AsymptoticPathGroups: every asymptotic state against every whole path —
+//    the trade-off (asymptotic states and whole paths do not agree
+//    perfectly for any of the models: the paper's point about the CSL's
+//    position), chosen by ChooseResidualGroups whenever the problem has path
+//    residuals;
+//  - DefaultResidualGroups: the compression side — NCL, compression and ASBS
+//    states — against the critical and extension states (CSL, extension),
+//    the path residuals in neither group (kept at their weight): chosen when
+//    there are no path residuals.
 //
 // The sweep minimises, for weights w of group 0,
 //
@@ -43,17 +49,30 @@ struct ResidualGroups {
   std::array<std::string, 2> descriptions;
   // Per dataset and point: 0, 1 or −1 (neither: kept at its own weight).
   std::vector<std::vector<int>> point_group;
+  // The group of the path residuals (unloading branches and whole paths):
+  // 0, 1 or −1 (neither: kept at their own weight in every fit).
+  int path_group = -1;
+  // Which groups are traded and why, in words (the summary's line).
+  std::string choice;
   // The number of weighted residuals of group g in `problem`.
   int Residuals(const CalibrationProblem& problem, int g) const;
 };
 
 // The default split (see above).
 ResidualGroups DefaultResidualGroups(const CalibrationProblem& problem);
+// Asymptotic states (group 0, "asymptotic_states") against whole paths
+// (group 1, "whole_paths"); the problem must have path residuals.
+ResidualGroups AsymptoticPathGroups(const CalibrationProblem& problem);
+// AsymptoticPathGroups when the problem has path residuals, else
+// DefaultResidualGroups; `choice` says which and why.
+ResidualGroups ChooseResidualGroups(const CalibrationProblem& problem);
 
 struct ParetoOptions {
   bool enabled = true;
   int points = 11;                // odd, >= 5
   double max_weight_ratio = 1e3;  // the ends' w/(1 − w) and its inverse
+  // The sweep's fits by CeresFitter::CostRefitOptions(ceres, fast_refits).
+  bool fast_refits = true;
   bool IsValid(std::string* why) const;
 };
 
@@ -77,6 +96,7 @@ struct ParetoFront {
   std::string not_computed;               // non-empty: why there is no front
   std::vector<std::string> warnings;
   double wall_seconds = 0.0;
+  long evaluations = 0;  // residual-vector evaluations of the sweep's fits
   bool computed() const { return not_computed.empty() && !points.empty(); }
   // Whether C_0 does not increase and C_1 does not decrease with w (each
   // step within `tolerance` of the larger cost).

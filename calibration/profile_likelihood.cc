@@ -35,7 +35,7 @@ class Profiler {
         options_(options),
         threshold_(threshold),
         residual_variance_(residual_variance) {
-    ceres_.compute_uncertainty = false;
+    ceres_ = CeresFitter::CostRefitOptions(ceres, options.fast_refits);
   }
 
   ParameterProfile Run(int parameter) const {
@@ -130,6 +130,7 @@ class Profiler {
         profile->failure = fmt::format("{} = {:.6g}: {}", spec.name, point.value, why);
         break;
       }
+      profile->evaluations += point.evaluations;
       warm = point.values;
       points->push_back(point);
       const double statistic = 2.0 * (point.cost - fit_.summary.final_cost) / residual_variance_;
@@ -157,15 +158,17 @@ class Profiler {
         specs[i].value = std::min(std::max(warm[i], specs[i].lower), specs[i].upper);
     }
     try {
-      const CalibrationProblem sub(problem_.datasets(), parameters, problem_.predictor().options());
+      // The whole problem (paths and group weights included) with one parameter fixed.
+      const CalibrationProblem sub = problem_.WithParameters(std::move(parameters));
       if (sub.num_free() == 0) {
         point->cost = sub.Cost({});
-        point->values = parameters.Values();
+        point->values = sub.parameters().Values();
         point->converged = std::isfinite(point->cost);
         if (!point->converged) *why = "the model is undefined there";
         return point->converged;
       }
       const FitResult refit = CeresFitter(ceres_).Fit(sub);
+      point->evaluations = refit.summary.evaluations;
       if (!refit.summary.success() || !std::isfinite(refit.summary.final_cost)) {
         *why = refit.summary.message;
         return false;
@@ -235,6 +238,14 @@ bool ProfileOptions::IsValid(std::string* why) const {
   if (max_extension_points < 1 || max_extension_points > 20) {
     *why =
         fmt::format("profile max_extension_points = {} must be in [1, 20]", max_extension_points);
+    return false;
+  }
+  if (max_restarts < 0 || max_restarts > 10) {
+    *why = fmt::format("profile_restarts = {} must be in [0, 10]", max_restarts);
+    return false;
+  }
+  if (!(restart_drop > 0 && restart_drop <= 10)) {
+    *why = fmt::format("profile restart_drop = {} must be in (0, 10]", restart_drop);
     return false;
   }
   if (threads < 0) {
@@ -358,6 +369,67 @@ ProfileSet ProfileLikelihood(const CalibrationProblem& problem, const FitResult&
   return set;
 }
 
+std::string ProfileRestart::Text() const {
+  return fmt::format(
+      "refitted from the {} profile ({} = {:.6g}, profile cost {:.6g}): cost {:.6g} "
+      "-> {:.6g}{}",
+      parameter, parameter, value, profile_cost, cost_before, cost_after,
+      kept ? "" : " (not lower: the fit is kept)");
+}
+
+RefittedProfiles ProfileAndRefit(const CalibrationProblem& problem, const FitResult& fit,
+                                 const std::vector<int>& also, const CeresFitter::Options& ceres,
+                                 const ProfileOptions& options) {
+  RefittedProfiles out;
+  out.fit = fit;
+  for (int round = 0;; ++round) {
+    out.profiles = ProfileLikelihood(problem, out.fit, also, ceres, options);
+    if (round >= options.max_restarts) break;
+    // The least cost over the fitted parameters' profiles (an undetermined
+    // parameter's profile moves a fixed parameter: not this problem's fit).
+    const ParameterProfile* best = nullptr;
+    const ProfilePoint* best_point = nullptr;
+    for (const ParameterProfile& profile : out.profiles.profiles) {
+      if (!profile.fitted) continue;
+      for (const ProfilePoint& point : profile.points) {
+        if (!std::isfinite(point.cost)) continue;
+        if (best_point == nullptr || point.cost < best_point->cost) {
+          best = &profile;
+          best_point = &point;
+        }
+      }
+    }
+    const double fit_cost = out.fit.summary.final_cost;
+    if (best_point == nullptr ||
+        2.0 * (fit_cost - best_point->cost) / out.profiles.residual_variance <=
+            options.restart_drop * out.profiles.threshold) {
+      break;
+    }
+    ProfileRestart restart;
+    restart.parameter = best->name;
+    restart.value = best_point->value;
+    restart.profile_cost = best_point->cost;
+    restart.cost_before = fit_cost;
+    std::vector<double> start;
+    for (int i : problem.free_indices()) start.push_back(best_point->values[i]);
+    FitResult refit;
+    try {
+      refit = CeresFitter(ceres).Fit(problem, start);
+    } catch (const std::exception&) {
+      refit.summary.termination = FitTermination::kFailure;
+    }
+    const bool lower = refit.summary.success() && std::isfinite(refit.summary.final_cost) &&
+                       refit.summary.final_cost < fit_cost;
+    restart.cost_after = refit.summary.success() ? refit.summary.final_cost
+                                                 : std::numeric_limits<double>::infinity();
+    restart.kept = lower;
+    out.restarts.push_back(restart);
+    if (!lower) break;
+    out.fit = std::move(refit);
+  }
+  return out;
+}
+
 std::string ProfilesCsv(const ProfileSet& set) {
   std::string csv =
       "parameter,value,cost,statistic,threshold,converged,log_scale,optimum,ci95_low,ci95_high,"
@@ -391,15 +463,17 @@ std::string ProfileParametersCsv(const ProfileSet& set) {
 
 std::string ProfilesText(const ProfileSet& set) {
   int refits = 0, flat = 0;
+  long evaluations = 0;
   for (const ParameterProfile& profile : set.profiles) {
     refits += profile.refits;
+    evaluations += profile.evaluations;
     flat += profile.flat() ? 1 : 0;
   }
   std::string s = fmt::format(
-      "profile likelihood: {} parameters, {} refits, {:.2f} s on {} thread{}; {} flat (not "
-      "determined)\n  {}\n",
-      set.profiles.size(), refits, set.wall_seconds, set.threads, set.threads == 1 ? "" : "s", flat,
-      set.statistic);
+      "profile likelihood: {} parameters, {} refits ({} evaluations), {:.2f} s on {} thread{}; {} "
+      "flat (not determined)\n  {}\n",
+      set.profiles.size(), refits, evaluations, set.wall_seconds, set.threads,
+      set.threads == 1 ? "" : "s", flat, set.statistic);
   s += fmt::format("  {:<14} {:>12} {:>28}  {:>6}  {}\n", "parameter", "value",
                    "profile 95 % interval", "points", "profile");
   for (const ParameterProfile& profile : set.profiles) {

@@ -1,7 +1,9 @@
 # The Pareto front of a calibration: the RMS weighted residual of one group of
-# data (the compression side: NCL, compression and ASBS states) against the
-# other's (critical and extension states) over a weighted-sum sweep
-# (pareto.csv), with the ordinary fit (equal weights) and the chosen
+# data against the other's (the asymptotic states against the whole paths
+# where the calibration has paths, else the compression side — NCL,
+# compression and ASBS states — against the critical and extension states;
+# the groups' names from pareto.csv label the axes) over a weighted-sum
+# sweep (pareto.csv), with the ordinary fit (equal weights) and the chosen
 # compromise (the knee) marked. Data written by `granasym calibrate` and
 # `granasym study calibrate` into the plot-data folder.
 # Usage: gnuplot -e "dir='CONFIG_plots'" plots/calibration_pareto.gp   (writes dir/pareto.png)
