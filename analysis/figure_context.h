@@ -120,6 +120,9 @@ struct CaseData {
   std::vector<dem::StageRecord> stages;
   std::vector<double> stage_psi_epsilon;  // nominal ψ_ε per stage (NaN: not a strain path)
   std::vector<double> stage_radial_stress;
+  // The rate of its last strain-path stage: "I* = 0.001" (inertial rule) or
+  // "‖D‖ = 167 1/s"; empty for none (a drained or stress-controlled stage).
+  std::string rate_label;
   double time_step = 0;
   double friction = std::numeric_limits<double>::quiet_NaN();  // rad
   Sample sample = Sample::kMain;

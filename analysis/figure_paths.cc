@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <tuple>
 
 #include "analysis/figure_families.h"
 #include "common/statistics.h"
@@ -139,17 +140,27 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
   };
   auto start_key = [&](const CaseData* c) {
     const Start s = StartOf(ctx.cases, c ? *c : CaseData{});
-    return std::make_pair(s.kind == "OC" ? 1 : 0, Rounded(s.p_kpa));
+    return std::make_tuple(s.kind == "OC" ? 1 : 0, Rounded(s.p_kpa), c ? c->rate_label : "");
   };
   std::stable_sort(cases.begin(), cases.end(), [&](const CaseData* a, const CaseData* b) {
     const double da = direction_of(a), db = direction_of(b);
     if (da != db) return da < db;
     return start_key(a) < start_key(b);
   });
+  // Paths at more than one rate (a rate sweep's cases that share a
+  // direction and a start) are told apart by their start's label with the
+  // rate: "NC 1000 kPa, I* = 0.001".
+  std::set<std::string> rates;
+  for (const CaseData* c : cases) rates.insert(c->rate_label);
+  const bool by_rate = rates.size() > 1;
+  auto start_label = [&](const CaseData& c) {
+    const std::string s = StartLabel(ctx.cases, c);
+    return by_rate && !c.rate_label.empty() ? s + ", " + c.rate_label : s;
+  };
   // Colour groups and dash groups, in numeric order.
   std::vector<std::string> directions, starts;
   for (const CaseData* c : cases) {
-    const std::string d = DirectionLabel(*c), s = StartLabel(ctx.cases, *c);
+    const std::string d = DirectionLabel(*c), s = start_label(*c);
     if (std::find(directions.begin(), directions.end(), d) == directions.end()) {
       directions.push_back(d);
     }
@@ -159,7 +170,7 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
     return start_key(a) < start_key(b);
   });
   for (const CaseData* c : by_start) {
-    const std::string s = StartLabel(ctx.cases, *c);
+    const std::string s = start_label(*c);
     if (std::find(starts.begin(), starts.end(), s) == starts.end()) starts.push_back(s);
   }
   const bool colour_by_start = directions.size() == 1;
@@ -181,7 +192,7 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
     });
   }
   auto dash_group = [&](const CaseData& c) {
-    return dash_by_kind ? StartOf(ctx.cases, c).kind + " states" : StartLabel(ctx.cases, c);
+    return dash_by_kind ? StartOf(ctx.cases, c).kind + " states" : start_label(c);
   };
   std::vector<std::string> dash_groups;
   if (dash_by_kind) {
@@ -206,7 +217,7 @@ FigureSpec PathFamily(const Context& ctx, const FamilySpec& family) {
   for (const CaseData* c : cases) {
     all_isochoric = all_isochoric && std::abs(c->NominalPsiEpsilon() - 90) < 0.5;
     names.insert(c->name);
-    const std::string d = DirectionLabel(*c), s = StartLabel(ctx.cases, *c);
+    const std::string d = DirectionLabel(*c), s = start_label(*c);
     const int colour = colour_by_start ? index_in(starts, s) : index_in(directions, d);
     const int dash = colour_by_start ? 1 : index_in(dash_groups, dash_group(*c));
     const MeanCasePath mean = MeanPathOf(ctx.cases, c->name);

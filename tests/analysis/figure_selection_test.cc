@@ -1,6 +1,7 @@
 // Which states and paths the figures take (issue 35 §1–§2): samples by the
 // cases' own results, statuses, the legends' numeric order, axes from the
 // valid rows, hover labels; and the figure settings (study/figure_settings.h).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -182,6 +183,34 @@ TEST(FigureSelection, LegendsAreInNumericOrderWithRoundedStarts) {
   EXPECT_EQ(Rounded(0.99), 1.0);
   EXPECT_EQ(Rounded(1001), 1000.0);
   EXPECT_EQ(Rounded(47), 47.0);  // not within 5 % of 50
+}
+
+TEST(FigureSelection, PathsAtTwoRatesFromOneStartAreToldApart) {
+  // A rate sweep: the same direction from the same starts at two inertial
+  // numbers. Without the rate in the start's label both rates of a start
+  // would share a colour and a legend entry.
+  Context ctx;
+  ctx.data = TempDir("rates").string();
+  ctx.study_ncl = "ncl";
+  ctx.cases.push_back(Ncl("ncl", 0.5, {100, 1000}));
+  for (const auto& [start, rate] : std::vector<std::pair<double, std::string>>{
+           {1000, "0.003"}, {100, "0.001"}, {1000, "0.001"}, {100, "0.003"}}) {
+    CaseData c = Path90(fmt::format("nc{}_psi90_I{}", start, rate), 0.5, start, start / 10);
+    c.rate_label = "I* = " + rate;
+    ctx.cases.push_back(c);
+  }
+  ClassifySamples(&ctx);
+  const FigureSpec spec = PathFamily(ctx, {"10", "fig10_csl_nc", "t", "w", {}, true});
+  ASSERT_TRUE(spec.not_drawn.empty()) << spec.not_drawn;
+  EXPECT_EQ(Variable(spec, "colour_titles"),
+            "'\"NC 100 kPa, I* = 0.001\" \"NC 100 kPa, I* = 0.003\" "
+            "\"NC 1000 kPa, I* = 0.001\" \"NC 1000 kPa, I* = 0.003\"'");
+  // One rate: the start's label alone.
+  Context one = Study(TempDir("one_rate"));
+  for (CaseData& c : one.cases) c.rate_label = "I* = 0.001";
+  const FigureSpec plain = PathFamily(one, {"10", "fig10_csl_nc", "t", "w", {}, true});
+  EXPECT_EQ(Variable(plain, "colour_titles"),
+            "'\"NC 20 kPa\" \"NC 100 kPa\" \"NC 200 kPa\" \"NC 1000 kPa\"'");
 }
 
 TEST(FigureSelection, AxesComeFromTheValidRowsNotFromAGasTail) {
