@@ -666,8 +666,37 @@ struct ConvergencePath {
   double inertial_number_dmin = kNaN, inertial_number_dmax = kNaN;
   std::string flags;
 };
-// Paths by (replicate, kind, ψ_ε).
-using PathGroups = std::map<std::tuple<int, TableKind, double>, std::vector<ConvergencePath>>;
+// Paths by (replicate, kind, ψ_ε, material and rate): only paths of one
+// material at one rate can join (a rate sweep's paths from one start at two
+// rates agree during their first, elastic unloading: no normal line).
+using PathGroups =
+    std::map<std::tuple<int, TableKind, double, std::string>, std::vector<ConvergencePath>>;
+
+// What a path's group needs besides its direction: the contact material and
+// the stage's rate ("E 5e+08 ... | inertial 0.001").
+// A result without provenance (older than the run layer) names no material:
+// its paths group by rate alone.
+std::string MaterialAndRate(const Hdf5File& file, size_t stage) {
+  const std::string group = dem::StageGroup(stage);
+  std::string rate = "none";
+  if (file.HasAttribute(group, dem::record::kStageStretchingRate)) {
+    const std::string rule = file.HasAttribute(group, dem::record::kStageRateRule)
+                                 ? file.ReadStringAttribute(group, dem::record::kStageRateRule)
+                                 : "constant";
+    rate = rule + " " +
+           fmt::format("{:g}",
+                       file.HasAttribute(group, dem::record::kStageRateInertialNumber)
+                           ? file.ReadDoubleAttribute(group, dem::record::kStageRateInertialNumber)
+                           : file.ReadDoubleAttribute(group, dem::record::kStageStretchingRate));
+  }
+  if (!file.HasAttribute(dem::record::kProvenance, dem::record::kSceneSha256)) {
+    return "material not recorded | " + rate;
+  }
+  const dem::Material m = dem::ReadMaterial(file);
+  return fmt::format("E {:g} s {:g} kt/kn {:g} nu {:g} phi {:g} mu_r {:g} rho {:g} chi {:g} | {}",
+                     m.youngs_modulus, m.stiffness_scaling, m.stiffness_ratio, m.poissons_ratio,
+                     m.friction_angle, m.rolling_friction, m.density, m.local_damping, rate);
+}
 
 // The replicates of one (case name, stage) for its ensemble-mean path: the
 // row's case fields and each replicate's stage.
@@ -690,7 +719,8 @@ struct CaseTables {
 
 // A compression or extension stage's path for the convergence check.
 void AddConvergencePath(const CaseFolder& c, const dem::StageRecord& stage, const StateRow& row,
-                        const TimeSeries& series, PathGroups* paths) {
+                        const TimeSeries& series, const std::string& material_and_rate,
+                        PathGroups* paths) {
   if (row.kind != TableKind::kCompression && row.kind != TableKind::kExtension) return;
   const bool rising = row.kind == TableKind::kCompression;
   ConvergencePath path;
@@ -704,7 +734,7 @@ void AddConvergencePath(const CaseFolder& c, const dem::StageRecord& stage, cons
   path.inertial_number_dmax = row.inertial_number_dmax;
   path.flags = row.flags;
   const double psi = std::round(row.psi_epsilon_deg * 1e6) / 1e6;
-  (*paths)[{c.record.replicate, row.kind, psi}].push_back(std::move(path));
+  (*paths)[{c.record.replicate, row.kind, psi, material_and_rate}].push_back(std::move(path));
 }
 
 // Stage `index` of a replicate's result, with the path its detector sampled,
@@ -744,7 +774,7 @@ void ReadResult(const CaseFolder& c, CaseTables* tables) {
     if (c.termination != "completed" && row.message.empty()) row.message = c.message;
     tables->rows.push_back(row);
     if (!series) series = TimeSeries::Read(file, dem::record::kSeries);
-    AddConvergencePath(c, stage, row, *series, &tables->paths);
+    AddConvergencePath(c, stage, row, *series, MaterialAndRate(file, k), &tables->paths);
     AddToEnsemble(c, file, stages, k, *series, tables);
   }
   if (!any && c.termination != "completed") tables->rows.push_back(MissingRow(c));
@@ -804,7 +834,7 @@ std::vector<ConvergenceRow> JoinGroups(PathGroups* paths, const ConvergenceToler
                                        std::vector<StateRow>* rows, StateTableSummary* summary) {
   std::vector<ConvergenceRow> convergence;
   for (auto& [key, group] : *paths) {
-    const auto& [replicate, kind, psi] = key;
+    const auto& [replicate, kind, psi, material_and_rate] = key;
     const bool rising = kind == TableKind::kCompression;
     std::sort(group.begin(), group.end(), [](const ConvergencePath& a, const ConvergencePath& b) {
       return a.start_p < b.start_p;

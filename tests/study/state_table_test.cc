@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <set>
+#include <sstream>
 
 #include "common/hdf5_file.h"
 #include "common/state_measures.h"
@@ -170,8 +171,11 @@ dem::StageRecord AddStage(const SyntheticStage& stage, TimeSeries* series) {
   return record;
 }
 
+// `inertial_number` > 0: each stage is a strain path at that inertial
+// number (the rate attributes of dem::record); 0: no rate recorded.
 void WriteCase(const std::string& study, int replicate, const std::string& name,
-               const std::string& parent, const std::vector<SyntheticStage>& stages) {
+               const std::string& parent, const std::vector<SyntheticStage>& stages,
+               double inertial_number = 0) {
   CaseRecord record;
   record.id = "r" + std::to_string(replicate) + "/" + name;
   record.name = name;
@@ -195,13 +199,22 @@ void WriteCase(const std::string& study, int replicate, const std::string& name,
   dem::WriteSummary(file, summary, {});
   series.Write(file, dem::record::kSeries);
   dem::WriteStageRecords(file, records, {}, 1);
+  for (size_t k = 0; inertial_number > 0 && k < stages.size(); ++k) {
+    const std::string group = dem::StageGroup(k);
+    file.SetAttribute(group, dem::record::kStageStretchingRate, 5000.0);
+    file.SetAttribute(group, dem::record::kStageRateRule, "inertial");
+    file.SetAttribute(group, dem::record::kStageRateInertialNumber, inertial_number);
+  }
   file.Commit();
 }
 
 // `with_rate`: the path from 20 kPa at I(d_min) 0.002, I(d_max) 0.02 and
 // flagged rate_affected, the one from 100 kPa at 0.0005, 0.005 with an
 // overlap above 2 %.
-std::string SyntheticStudy(const std::string& name, bool with_rate = false) {
+// `two_rates`: the two starts' paths at different inertial numbers (1e-3
+// from 20 kPa, 3e-3 from 100 kPa), so that they are no pair.
+std::string SyntheticStudy(const std::string& name, bool with_rate = false,
+                           bool two_rates = false) {
   const fs::path dir = fs::temp_directory_path() / "granasym_tests" / "state_table" / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -237,7 +250,7 @@ std::string SyntheticStudy(const std::string& name, bool with_rate = false) {
                            : dem::ValidityFlag::kRateAffected};
       }
       WriteCase(dir.string(), k, "nc" + std::to_string(static_cast<int>(start)) + "_psi30", "ncl",
-                {path});
+                {path}, two_rates ? (start < 50 ? 1e-3 : 3e-3) : 0.0);
     }
   }
   return dir.string();
@@ -404,6 +417,24 @@ TEST(JoinedRows, CarryTheLargerInertialNumbersAndTheFlagsOfThePathsTheyJoin) {
   EXPECT_EQ(joined, 3);
   const std::string csv = ReadTextFile(dir + "/asymptotic_states.csv");
   EXPECT_NE(csv.find("rate_affected;overlap_above_2pct"), std::string::npos);
+}
+
+// Paths of one ψ_ε join only at one rate (and of one material): a rate
+// sweep's paths are no pair, however close they run.
+TEST(JoinedRows, PathsAtTwoRatesAreNoPair) {
+  // The control: the same paths at one rate join, once per replicate.
+  EXPECT_EQ(WriteStateTable(SyntheticStudy("one_rate", false, false)).joined, 3);
+  const std::string dir = SyntheticStudy("two_rates", false, true);
+  const StateTableSummary summary = WriteStateTable(dir);
+  EXPECT_EQ(summary.joined + summary.not_joined, 0);
+  for (const StateRow& row : ReadStateTable(dir)) EXPECT_NE(row.source, TableSource::kJoined);
+  // path_convergence.csv: its comments and header, no pair.
+  std::istringstream csv(ReadTextFile(dir + "/path_convergence.csv"));
+  int data_lines = 0;
+  for (std::string line; std::getline(csv, line);) {
+    data_lines += !line.empty() && line[0] != '#' && line.rfind("replicate,", 0) != 0;
+  }
+  EXPECT_EQ(data_lines, 0);
 }
 
 }  // namespace
