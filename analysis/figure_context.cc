@@ -5,12 +5,10 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "common/enum_names.h"
 #include "common/hdf5_file.h"
 #include "common/text_file.h"
 #include "common/time_series.h"
 #include "dem/run_record_names.h"
-#include "dem/strain_path_stage.h"
 #include "study/ensemble_path.h"
 #include "study/study_folder.h"
 
@@ -88,18 +86,8 @@ std::vector<CaseData> LoadCases(const std::string& directory, int half_rows) {
                                                   std::numeric_limits<double>::quiet_NaN()));
         c.stage_radial_stress.push_back(AttributeOr(file, group, dem::record::kStageRadialStressKpa,
                                                     std::numeric_limits<double>::quiet_NaN()));
-        if (file.HasAttribute(group, dem::record::kStagePsiEpsilonDeg) &&
-            file.HasAttribute(group, dem::record::kStageStretchingRate)) {
-          const bool inertial =
-              file.HasAttribute(group, dem::record::kStageRateRule) &&
-              FromString<dem::RateRule>(file.ReadStringAttribute(
-                  group, dem::record::kStageRateRule)) == dem::RateRule::kInertial;
-          c.rate_label =
-              inertial
-                  ? fmt::format("I* = {:g}", file.ReadDoubleAttribute(
-                                                 group, dem::record::kStageRateInertialNumber))
-                  : fmt::format("‖D‖ = {:g} 1/s",
-                                file.ReadDoubleAttribute(group, dem::record::kStageStretchingRate));
+        if (file.HasAttribute(group, dem::record::kStagePsiEpsilonDeg)) {
+          c.rate_label = dem::StageRateLabel(file, k);
         }
       }
       c.time_step = dem::ReadSummary(file).time_step;

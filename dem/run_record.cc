@@ -14,6 +14,7 @@
 #include "common/hdf5_file.h"
 #include "common/state_measures.h"
 #include "dem/run_record_names.h"
+#include "dem/strain_path_stage.h"
 
 namespace granasym::dem {
 
@@ -808,6 +809,18 @@ Provenance ReadProvenance(const Hdf5File& file) {
   p.cpu_model = file.ReadStringAttribute(g, kCpuModel);
   if (file.HasAttribute(g, kCaseKey)) p.case_key = file.ReadStringAttribute(g, kCaseKey);
   return p;
+}
+
+std::string StageRateLabel(const Hdf5File& file, size_t index) {
+  using namespace record;
+  const std::string group = StageGroup(index);
+  if (!file.HasAttribute(group, kStageStretchingRate)) return {};
+  const bool inertial =
+      file.HasAttribute(group, kStageRateRule) &&
+      file.ReadStringAttribute(group, kStageRateRule) == ToString(RateRule::kInertial);
+  return inertial
+             ? fmt::format("I* = {:g}", file.ReadDoubleAttribute(group, kStageRateInertialNumber))
+             : fmt::format("‖D‖ = {:g} 1/s", file.ReadDoubleAttribute(group, kStageStretchingRate));
 }
 
 Material ReadMaterial(const Hdf5File& file) {

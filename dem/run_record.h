@@ -195,6 +195,9 @@ void WriteProvenance(Hdf5File& file, const Provenance& provenance);
 Provenance ReadProvenance(const Hdf5File& file);
 // The material the run used, from its provenance's canonical scene.
 Material ReadMaterial(const Hdf5File& file);
+// The rate of strain-path stage `index` as a label: "I* = 0.001" (inertial
+// rule) or "‖D‖ = 167 1/s"; empty for a stage without a stretching rate.
+std::string StageRateLabel(const Hdf5File& file, size_t index);
 
 // A result file in one line per item (`granasym export --info`): the program
 // version, the scene and its origin, the start, the termination and its

@@ -677,18 +677,7 @@ using PathGroups =
 // A result without provenance (older than the run layer) names no material:
 // its paths group by rate alone.
 std::string MaterialAndRate(const Hdf5File& file, size_t stage) {
-  const std::string group = dem::StageGroup(stage);
-  std::string rate = "none";
-  if (file.HasAttribute(group, dem::record::kStageStretchingRate)) {
-    const std::string rule = file.HasAttribute(group, dem::record::kStageRateRule)
-                                 ? file.ReadStringAttribute(group, dem::record::kStageRateRule)
-                                 : "constant";
-    rate = rule + " " +
-           fmt::format("{:g}",
-                       file.HasAttribute(group, dem::record::kStageRateInertialNumber)
-                           ? file.ReadDoubleAttribute(group, dem::record::kStageRateInertialNumber)
-                           : file.ReadDoubleAttribute(group, dem::record::kStageStretchingRate));
-  }
+  const std::string rate = dem::StageRateLabel(file, stage);
   if (!file.HasAttribute(dem::record::kProvenance, dem::record::kSceneSha256)) {
     return "material not recorded | " + rate;
   }
