@@ -22,8 +22,8 @@ void ProgressMeter::StartStage(int64_t step) {
 }
 
 void ProgressMeter::Report(int64_t index, const Stage& stage, const StageClock& clock,
-                           const Engine& engine) {
-  if (!sink_ || since_progress_.Seconds() < period_s_) return;
+                           const Engine& engine, bool stage_end) {
+  if (!sink_ || (!stage_end && since_progress_.Seconds() < period_s_)) return;
   since_progress_ = Stopwatch();
   const StopConditions& stop = stage.stop;
   // Fraction of the stage done, from the stop condition closest to completion.
@@ -51,7 +51,11 @@ void ProgressMeter::Report(int64_t index, const Stage& stage, const StageClock& 
   const double seconds = stage_clock_.Seconds();
   progress.steps_per_second =
       static_cast<double>(engine.step() - stage_clock_start_step_) / std::max(1e-9, seconds);
-  if (fraction > 1e-3 && fraction < 1) progress.eta_seconds = seconds * (1 - fraction) / fraction;
+  if (stage_end) {
+    progress.eta_seconds = 0;
+  } else if (fraction > 1e-3 && fraction < 1) {
+    progress.eta_seconds = seconds * (1 - fraction) / fraction;
+  }
   progress.mean_stress_kpa = last_p_kpa_;
   progress.void_ratio = engine.void_ratio();
   progress.psi_sigma_deg = last_psi_deg_;

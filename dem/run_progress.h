@@ -27,7 +27,8 @@ struct RunProgress {
 };
 
 // Measures a run's progress and hands it to `sink` at most every `period_s`
-// of wall-clock time. Not part of the run's state.
+// of wall-clock time, and once at the end of every stage (so that a caller
+// hears of a stage shorter than the period). Not part of the run's state.
 class ProgressMeter {
  public:
   ProgressMeter(std::function<void(const RunProgress&)> sink, double period_s, int64_t stages)
@@ -41,8 +42,10 @@ class ProgressMeter {
     last_psi_deg_ = psi_sigma_deg;
   }
   // Hands the progress of stage `index` to the sink when the period since
-  // the last has passed.
-  void Report(int64_t index, const Stage& stage, const StageClock& clock, const Engine& engine);
+  // the last has passed, or always when `stage_end` (the stage has just
+  // ended: its ETA is 0).
+  void Report(int64_t index, const Stage& stage, const StageClock& clock, const Engine& engine,
+              bool stage_end = false);
 
  private:
   std::function<void(const RunProgress&)> sink_;

@@ -33,7 +33,8 @@ struct RunOptions {
   std::function<bool(int64_t step)> stop_requested;
   // Whole lines of the run's report (sample, time step, stage ends, warnings).
   std::function<void(const std::string& line)> log;
-  // Progress, at most every progress_period_s of wall-clock time.
+  // Progress, at most every progress_period_s of wall-clock time and at the
+  // end of every stage.
   std::function<void(const RunProgress& progress)> progress;
   double progress_period_s = 0.25;
   // What the caller calls this run (a study case's key, study/plan.h):

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <vector>
 
 #include "common/error.h"
 #include "common/hdf5_file.h"
@@ -451,6 +452,30 @@ TEST(RunRecord, TheDescriptionOfAResultSaysWhetherItIsFinal) {
         << info.substr(start, end - start);
     start = end + 1;
   }
+}
+
+// A caller hears of every stage's end, however short the stage against the
+// progress period (a scene that ends in 0.1 s still reports), with ETA 0.
+TEST(RunProgress, EveryStageEndIsReportedWhateverThePeriod) {
+  const std::string text = SampleToml(300, 3.9, 6) + kOutput + kStageA + kStageB;
+  RunOptions options;
+  options.output_path = TempPath("record_progress.h5");
+  options.progress_period_s = 1e9;
+  std::vector<RunProgress> reports;
+  options.progress = [&reports](const RunProgress& progress) { reports.push_back(progress); };
+  ASSERT_EQ(RunScene(Scene::Parse(text, "progress.toml", ""), options).termination,
+            Termination::kCompleted);
+  ASSERT_EQ(reports.size(), 2u);
+  for (int64_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(reports[k].stage, k);
+    EXPECT_EQ(reports[k].stages, 2);
+    EXPECT_EQ(reports[k].eta_seconds, 0);
+    EXPECT_GT(reports[k].step, 0);
+    EXPECT_GT(reports[k].mean_stress_kpa, 0);
+  }
+  EXPECT_EQ(reports[0].stage_name, "ncl");
+  EXPECT_EQ(reports[1].stage_name, "triaxial");
+  EXPECT_GT(reports[1].step, reports[0].step);
 }
 
 }  // namespace
