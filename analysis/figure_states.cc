@@ -120,24 +120,38 @@ FigureSpec Fig16(const Context& ctx) {
            "against ψ_ε with the models' ψ_σ(ψ_ε). ",
            "asymptotic_states.gp");
   const std::map<double, int> colours = DirectionColours(ctx);
-  std::map<double, std::vector<std::vector<double>>> by_direction;
-  std::map<double, std::vector<std::string>> labels;
+  // The states of the ASBS sections: in a study whose models were fitted to
+  // its quasi-static set, that set (Fig. 17's), not the other rates' states.
+  const SectionStates section = SectionStatesOf(ctx);
+  // One block per nominal ψ_ε; the drained triaxial critical states (whose
+  // measured ψ_ε scatters about 90°) in one block after them.
+  using Block = std::pair<bool, double>;  // (triaxial, nominal ψ_ε)
+  std::map<Block, std::vector<std::vector<double>>> by_direction;
+  std::map<Block, std::vector<std::string>> labels;
   AxisRange p_range, lnv_range;
-  for (const StateRow* row : ctx.Select(MainStates())) {
-    if (!ConstantDirectionKind(row->kind)) continue;
-    by_direction[NominalOf(*row)].push_back({row->p_kpa, row->ln_1_plus_e, row->psi_sigma_deg,
-                                             row->psi_epsilon_deg,
-                                             row->status == TableStatus::kDetected ? 7.0 : 6.0});
-    labels[NominalOf(*row)].push_back(StateLabel(*row));
+  for (const StateRow* row : ctx.Select(section.selection)) {
+    if (!section.Takes(row->kind)) continue;
+    const bool triaxial = row->kind == TableKind::kTriaxial;
+    const Block block{triaxial, triaxial ? 90.0 : NominalOf(*row)};
+    by_direction[block].push_back({row->p_kpa, row->ln_1_plus_e, row->psi_sigma_deg,
+                                   row->psi_epsilon_deg,
+                                   row->status == TableStatus::kDetected ? 7.0 : 6.0});
+    labels[block].push_back(StateLabel(*row));
     p_range.Add(row->p_kpa);
     lnv_range.Add(row->ln_1_plus_e);
   }
   BlockFile states(
       {"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "psi_epsilon_deg", "point_type", "label"});
   std::string state_colours;
-  for (const auto& [psi, rows] : by_direction) {
-    states.AddLabelled(fmt::format("ψ_ε = {}°", Short(psi)), rows, labels[psi]);
-    state_colours += fmt::format("{} ", colours.at(psi));
+  const int other_colour = static_cast<int>(colours.size()) % 10 + 1;
+  for (const auto& [block, rows] : by_direction) {
+    const auto [triaxial, psi] = block;
+    const auto colour = colours.find(psi);
+    states.AddLabelled(triaxial ? std::string("drained triaxial (critical state)")
+                                : fmt::format("ψ_ε = {}°", Short(psi)),
+                       rows, labels[block]);
+    state_colours +=
+        fmt::format("{} ", !triaxial && colour != colours.end() ? colour->second : other_colour);
   }
   if (states.blocks() == 0)
     return NotDrawn(spec, "the state table has no usable asymptotic states");
@@ -178,7 +192,15 @@ FigureSpec Fig16(const Context& ctx) {
   }
   lines.Write(ctx.File("fig16_model_lines.tsv"));
   curves.Write(ctx.File("fig16_model_curves.tsv"));
-  spec.caption += MainStates().Describe(ctx) + " " + ctx.models_note;
+  spec.caption += MainStates().Describe(ctx);
+  if (section.quasi_static) {
+    spec.caption += fmt::format(
+        " Only the quasi-static set that the models were calibrated to ({}: {}), with its drained "
+        "triaxial critical states (triaxial, ψ_ε ≈ 90°); the other rates' states are left out "
+        "(figure rate).",
+        kQuasiStaticSelectionFile, SelectionText(*section.quasi_static));
+  }
+  spec.caption += " " + ctx.models_note;
   std::string styles;
   for (const std::string& st : line_styles) styles += st + " ";
   Set(&spec, "n_states", states.blocks());

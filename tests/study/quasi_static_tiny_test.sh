@@ -64,6 +64,14 @@ if grep -q "_D167" "$sections"; then fail "Fig. 17 draws a paper-rate state"; fi
 grep -q "nc500_drained_ea27.6 (replicate 1), stage drained.ntriaxial, detected" "$sections" ||
   fail "Fig. 17 lacks the drained critical state"
 grep -q "ncl_qs (replicate 1), stage p500" "$sections" || fail "Fig. 17 lacks the NCL's states"
+# Fig. 16 shows the same set: the drained critical states in a block of
+# their own, no paper-rate state.
+summary="$out/figures/data/fig16_states.tsv"
+[ -s "$summary" ] || fail "no $summary"
+if grep -q "_D167" "$summary"; then fail "Fig. 16 draws a paper-rate state"; fi
+grep -q "drained triaxial (critical state)" "$summary" ||
+  fail "Fig. 16 lacks the drained critical states"
+grep -q "ncl_qs (replicate 1), stage p500" "$summary" || fail "Fig. 16 lacks the NCL's states"
 # Each fitted model's section at every level drawn.
 lines="$out/figures/data/fig17_models.tsv"
 levels=$(grep -c "^p_over_pe.*ln(1+e) = " "$sections" || true)
