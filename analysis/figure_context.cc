@@ -433,6 +433,16 @@ Context ReadContext(const std::string& directory, const FigureDataOptions& optio
   return ctx;
 }
 
+namespace {
+// A case of `cases`; a joined row ("a+b", the path convergence's) when both
+// of the paths it joins are.
+bool InCases(const std::set<std::string>& cases, const std::string& name) {
+  const size_t plus = name.find('+');
+  if (plus == std::string::npos) return cases.count(name) > 0;
+  return cases.count(name.substr(0, plus)) > 0 && InCases(cases, name.substr(plus + 1));
+}
+}  // namespace
+
 std::vector<const StateRow*> Context::Select(const StateSelection& selection) const {
   std::vector<const StateRow*> out;
   for (const StateRow& row : states) {
@@ -442,7 +452,7 @@ std::vector<const StateRow*> Context::Select(const StateSelection& selection) co
                                               row.kind) == selection.kinds.end()) {
       continue;
     }
-    if (!selection.cases.empty() && !selection.cases.count(row.case_name)) continue;
+    if (!selection.cases.empty() && !InCases(selection.cases, row.case_name)) continue;
     if (!options.settings.IncludesCase(row.case_name)) continue;
     out.push_back(&row);
   }

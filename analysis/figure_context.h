@@ -190,7 +190,8 @@ struct StateSelection {
   Sample sample = Sample::kMain;
   std::vector<TableKind> kinds;  // empty: every kind
   bool drifting = true;          // drifting states too (drawn open)
-  std::set<std::string> cases;   // empty: every case of the sample
+  std::set<std::string> cases;   // empty: every case of the sample; a joined row
+                                 // ("a+b") when both paths are among them
   // "states of the study's sample (φ = 0.5 rad, Δt = 2.1e-06 s); kinds csl;
   // detected and drifting; gas, invalid and unfinished stages left out".
   std::string Describe(const Context& ctx) const;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "analysis/figure_families.h"
 #include "analysis/quasi_static_selection.h"
@@ -64,7 +65,14 @@ struct Sections {
   std::vector<double> levels;
   std::vector<std::vector<std::vector<double>>> rows;  // per level: p/pe, q/pe, ψ_ε, point type
   std::vector<std::vector<std::string>> labels;        // per level: hover labels
+  int beyond_ncl = 0;  // projections left out past kMaxSectionPOverPe
 };
+
+// A state projected past the NCL (p/p_e* = 1) by more than this is left out
+// of the sections: no asymptotic state lies beyond the NCL, so such a point
+// measures the projection's error (a curved NCL fitted by a line, a state
+// still drifting), not the ASBS.
+constexpr double kMaxSectionPOverPe = 1.25;
 
 Sections Project(const Context& ctx, std::vector<double> levels,
                  const SectionStates& states = SectionStates{}) {
@@ -79,6 +87,10 @@ Sections Project(const Context& ctx, std::vector<double> levels,
     for (size_t l = 0; l < levels.size(); ++l) {
       SectionPoint point;
       if (ProjectToLevel(row, levels[l], ncl, ctx.options.max_projection_lnp, &point)) {
+        if (point.p_over_pe > kMaxSectionPOverPe) {
+          ++s.beyond_ncl;
+          continue;
+        }
         s.rows[l].push_back({point.p_over_pe, point.q_over_pe, point.psi_epsilon_deg,
                              row.status == TableStatus::kDetected ? 7.0 : 6.0});
         s.labels[l].push_back(StateLabel(row) + fmt::format("\\nmoved to ln(1+e) = {:.3f} by "
@@ -143,7 +155,14 @@ FigureSpec Fig16(const Context& ctx) {
   BlockFile states(
       {"p_kpa", "ln_1_plus_e", "psi_sigma_deg", "psi_epsilon_deg", "point_type", "label"});
   std::string state_colours;
-  const int other_colour = static_cast<int>(colours.size()) % 10 + 1;
+  // The drained block's colour: the first that no direction of this figure has.
+  std::set<int> used;
+  for (const auto& [block, rows] : by_direction) {
+    const auto colour = colours.find(block.second);
+    if (!block.first && colour != colours.end()) used.insert(colour->second);
+  }
+  int other_colour = 1;
+  while (used.count(other_colour) && other_colour < 10) ++other_colour;
   for (const auto& [block, rows] : by_direction) {
     const auto [triaxial, psi] = block;
     const auto colour = colours.find(psi);
@@ -267,6 +286,12 @@ FigureSpec Fig17(const Context& ctx) {
     return NotDrawn(spec, "no asymptotic state lies within the projection distance of a level");
   }
   dem_file.Write(ctx.File("fig17_dem.tsv"));
+  if (sections.beyond_ncl > 0) {
+    spec.caption += fmt::format(
+        " {} projection(s) past p/p_e* = {:g} (beyond the NCL, where no asymptotic state lies: "
+        "the projection's error) are left out.",
+        sections.beyond_ncl, kMaxSectionPOverPe);
+  }
   // Each model's sections, model-major; also the data of every model's
   // section at each level (the export: DIR/figures/data/fig17_models.tsv).
   BlockFile model_file({"p_over_pe", "q_over_pe"});
@@ -344,6 +369,10 @@ FigureSpec Fig18(const Context& ctx) {
     return NotDrawn(spec, "no asymptotic state lies within the projection distance of the level");
   }
   dem_file.Write(ctx.File("fig18_dem.tsv"));
+  if (sections.beyond_ncl > 0) {
+    spec.caption += fmt::format(" {} projection(s) past p/p_e* = {:g} are left out.",
+                                sections.beyond_ncl, kMaxSectionPOverPe);
+  }
   double x_lo = 1e300, x_hi = 0, y_lo = 0, y_hi = 0;
   for (const std::vector<double>& r : sections.rows[0]) {
     x_lo = std::min(x_lo, r[0]), x_hi = std::max(x_hi, r[0]);

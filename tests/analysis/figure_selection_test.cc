@@ -282,5 +282,24 @@ TEST(FigureSettings, TheProgrammesTableIsReadAndChecked) {
                InputError);
 }
 
+// A joined row (the path convergence's "a+b") belongs to a selection of
+// cases when both paths it joins do.
+TEST(FigureSelection, AJoinedStateBelongsToTheCasesOfBothItsPaths) {
+  Context ctx = Study(TempDir("joined"));
+  ctx.states.push_back(
+      Row("nc100_psi90+nc1000_psi90", TableKind::kCsl, TableStatus::kDetected, 100));
+  StateSelection both;
+  both.cases = {"nc100_psi90", "nc1000_psi90"};
+  std::vector<std::string> names;
+  for (const StateRow* row : ctx.Select(both)) names.push_back(row->case_name);
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"nc100_psi90", "nc1000_psi90", "nc100_psi90+nc1000_psi90"}));
+  StateSelection one;
+  one.cases = {"nc100_psi90"};
+  names.clear();
+  for (const StateRow* row : ctx.Select(one)) names.push_back(row->case_name);
+  EXPECT_EQ(names, (std::vector<std::string>{"nc100_psi90"}));
+}
+
 }  // namespace
 }  // namespace granasym::analysis::figures
