@@ -36,6 +36,15 @@ struct SectionStates {
   bool Takes(TableKind kind) const {
     return ConstantDirectionKind(kind) || (quasi_static && kind == TableKind::kTriaxial);
   }
+  // The captions' sentence on the states ("" without a quasi-static set).
+  std::string Describe() const {
+    if (!quasi_static) return "";
+    return fmt::format(
+        " The states: the quasi-static set that the models were calibrated to ({}: {}), the "
+        "drained triaxial critical states (triaxial) with them; the other states of the study "
+        "(other rates) are left out.",
+        kQuasiStaticSelectionFile, SelectionText(*quasi_static));
+  }
 };
 SectionStates SectionStatesOf(const Context& ctx) {
   SectionStates states;
@@ -211,15 +220,7 @@ FigureSpec Fig16(const Context& ctx) {
   }
   lines.Write(ctx.File("fig16_model_lines.tsv"));
   curves.Write(ctx.File("fig16_model_curves.tsv"));
-  spec.caption += MainStates().Describe(ctx);
-  if (section.quasi_static) {
-    spec.caption += fmt::format(
-        " Only the quasi-static set that the models were calibrated to ({}: {}), with its drained "
-        "triaxial critical states (triaxial, ψ_ε ≈ 90°); the other rates' states are left out "
-        "(figure rate).",
-        kQuasiStaticSelectionFile, SelectionText(*section.quasi_static));
-  }
-  spec.caption += " " + ctx.models_note;
+  spec.caption += MainStates().Describe(ctx) + section.Describe() + " " + ctx.models_note;
   std::string styles;
   for (const std::string& st : line_styles) styles += st + " ";
   Set(&spec, "n_states", states.blocks());
@@ -250,13 +251,7 @@ FigureSpec Fig17(const Context& ctx) {
                ProjectionMethod(ctx.options),
            "asbs_sections.gp");
   const SectionStates states = SectionStatesOf(ctx);
-  if (states.quasi_static) {
-    spec.caption += fmt::format(
-        " The states: the quasi-static set that the models were calibrated to ({}: {}), the "
-        "drained triaxial critical states (triaxial) with them; the other states of the study "
-        "(other rates) are left out.",
-        kQuasiStaticSelectionFile, SelectionText(*states.quasi_static));
-  }
+  spec.caption += states.Describe();
   const NclLine ncl = ctx.StudyNcl(1);
   if (!ncl.valid()) return NotDrawn(spec, "the study's NCL could not be fitted");
   std::vector<double> levels = ctx.options.settings.levels;

@@ -55,23 +55,22 @@ index="$out/figures/index.tsv"
 [ -s "$out/figures/fig17_asbs_sections.png" ] || fail "Fig. 17 was not drawn: $(grep '^fig17' "$index")"
 grep -P "^fig17_asbs_sections\t.*the quasi-static set that the models were calibrated to \(calibration/quasi_static.toml: the 4 rate cases at I\* = 0.003" \
   "$index" > /dev/null || fail "Fig. 17's caption does not say which states it draws"
-sections="$out/figures/data/fig17_dem.tsv"
-[ -s "$sections" ] || fail "no $sections"
-# The states of the set only: no paper-rate sweep (…_D167) or paper-rate NCL.
-if grep -q "_D167" "$sections"; then fail "Fig. 17 draws a paper-rate state"; fi
+# Figs. 17 and 16 draw the states of the set only: the NCL's, no paper-rate
+# sweep (…_D167) or paper-rate NCL.
+for data in fig17_dem fig16_states; do
+  file="$out/figures/data/$data.tsv"
+  [ -s "$file" ] || fail "no $file"
+  if grep -q "_D167" "$file"; then fail "$data draws a paper-rate state"; fi
+  grep -q "ncl_qs (replicate 1), stage p500" "$file" || fail "$data lacks the NCL's states"
+done
 # The drained critical states of the set are there (the only critical
-# states of this study: it has no ψ_ε = 90° path), and the NCL's.
+# states of this study: it has no ψ_ε = 90° path), in Fig. 16 as a block of
+# their own.
+sections="$out/figures/data/fig17_dem.tsv"
 grep -q "nc500_drained_ea27.6 (replicate 1), stage drained.ntriaxial, detected" "$sections" ||
   fail "Fig. 17 lacks the drained critical state"
-grep -q "ncl_qs (replicate 1), stage p500" "$sections" || fail "Fig. 17 lacks the NCL's states"
-# Fig. 16 shows the same set: the drained critical states in a block of
-# their own, no paper-rate state.
-summary="$out/figures/data/fig16_states.tsv"
-[ -s "$summary" ] || fail "no $summary"
-if grep -q "_D167" "$summary"; then fail "Fig. 16 draws a paper-rate state"; fi
-grep -q "drained triaxial (critical state)" "$summary" ||
+grep -q "drained triaxial (critical state)" "$out/figures/data/fig16_states.tsv" ||
   fail "Fig. 16 lacks the drained critical states"
-grep -q "ncl_qs (replicate 1), stage p500" "$summary" || fail "Fig. 16 lacks the NCL's states"
 # Each fitted model's section at every level drawn.
 lines="$out/figures/data/fig17_models.tsv"
 levels=$(grep -c "^p_over_pe.*ln(1+e) = " "$sections" || true)
