@@ -7,6 +7,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <limits>
+#include <optional>
 #include <thread>
 
 #include "common/error.h"
@@ -38,7 +41,10 @@ class Profiler {
     ceres_ = CeresFitter::CostRefitOptions(ceres, options.fast_refits);
   }
 
-  ParameterProfile Run(int parameter) const {
+  // `first`: the first points of the sides below and above where already
+  // computed (Probe), else null.
+  ParameterProfile Run(int parameter, const ProfilePoint* first_below = nullptr,
+                       const ProfilePoint* first_above = nullptr) const {
     const auto t0 = std::chrono::steady_clock::now();
     const ParameterSpec& spec = problem_.parameters().specs()[parameter];
     ParameterProfile profile;
@@ -54,8 +60,8 @@ class Profiler {
     center.converged = true;
     center.values = fit_.values;
     std::vector<ProfilePoint> below, above;
-    Side(parameter, -1, &profile, &below);
-    Side(parameter, +1, &profile, &above);
+    Side(parameter, -1, &profile, &below, first_below);
+    Side(parameter, +1, &profile, &above, first_above);
     std::reverse(below.begin(), below.end());
     profile.points = std::move(below);
     profile.points.push_back(center);
@@ -63,6 +69,21 @@ class Profiler {
     profile.wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return profile;
+  }
+
+  // The first grid point of one side of `parameter`'s profile, exactly as
+  // Run computes it (warm-started from the fit); false where the side has
+  // no point (the fit at its bound) or its refit failed.
+  bool FirstPoint(int parameter, int sign, ProfilePoint* point) const {
+    const ParameterSpec& spec = problem_.parameters().specs()[parameter];
+    ParameterProfile profile;
+    profile.log_scale = ProfiledOnLogScale(spec);
+    profile.optimum = fit_.values[parameter];
+    std::vector<ProfilePoint> points;
+    Side(parameter, sign, &profile, &points, nullptr, 1);
+    if (points.empty()) return false;
+    *point = points.front();
+    return true;
   }
 
  private:
@@ -85,8 +106,11 @@ class Profiler {
   }
 
   // One side (`sign` −1 below, +1 above) of the profile, walking outwards.
-  void Side(int parameter, int sign, ParameterProfile* profile,
-            std::vector<ProfilePoint>* points) const {
+  // `probed`: its first point where already computed (FirstPoint); at most
+  // `max_points` points.
+  void Side(int parameter, int sign, ParameterProfile* profile, std::vector<ProfilePoint>* points,
+            const ProfilePoint* probed = nullptr,
+            size_t max_points = std::numeric_limits<size_t>::max()) const {
     const ParameterSpec& spec = problem_.parameters().specs()[parameter];
     const bool log_scale = profile->log_scale;
     const double u0 = U(log_scale, profile->optimum);
@@ -117,6 +141,7 @@ class Profiler {
     for (size_t j = 0; j < distances.size(); ++j) {
       // Beyond the grid only while the profile has not crossed the threshold.
       if (j >= grid && crossed) break;
+      if (j >= max_points) return;
       ProfilePoint point;
       point.value = X(log_scale, u0 + sign * distances[j]);
       if (j + 1 == distances.size() && !decade_limited && distances[j] == reach_max) {
@@ -124,8 +149,11 @@ class Profiler {
       }
       std::string why;
       ++profile->refits;
-      if (!Refit(parameter, point.value, warm, &point, &why) &&
-          (warm == fit_.values || !Refit(parameter, point.value, fit_.values, &point, &why))) {
+      if (j == 0 && probed != nullptr && probed->value == point.value) {
+        point = *probed;  // computed by the probe, from the same start
+      } else if (!Refit(parameter, point.value, warm, &point, &why) &&
+                 (warm == fit_.values ||
+                  !Refit(parameter, point.value, fit_.values, &point, &why))) {
         failed = true;
         profile->failure = fmt::format("{} = {:.6g}: {}", spec.name, point.value, why);
         break;
@@ -287,9 +315,104 @@ std::string ParameterProfile::Text() const {
                      upper_end == ProfileEnd::kCrossed ? upper : flat_high, end_text(upper_end));
 }
 
+namespace {
+
+// The first grid points of both sides of each fitted parameter's profile
+// (index: parameter × 2 + side, side 0 below), computed before the profiles
+// so that a fit short of its optimum is refitted before the whole profiles
+// are spent on it (ProfileAndRefit).
+struct Probes {
+  std::vector<ProfilePoint> points;
+  std::vector<char> found;
+  long evaluations = 0;
+  const ProfilePoint* At(int parameter, int side) const {
+    const size_t k = static_cast<size_t>(parameter) * 2 + static_cast<size_t>(side);
+    return k < found.size() && found[k] ? &points[k] : nullptr;
+  }
+};
+
+// s² and the threshold of D for `fit` (see the header).
+void StatisticOf(const CalibrationProblem& problem, const FitResult& fit,
+                 const CeresFitter::Options& ceres, double* residual_variance, double* threshold) {
+  const bool scaled = ceres.uncertainty.scale_by_residual_variance;
+  const int dof = problem.num_residuals() - problem.num_free();
+  *residual_variance = scaled ? 2.0 * fit.summary.final_cost / std::max(1, dof) : 1.0;
+  if (!(*residual_variance > 0)) *residual_variance = 1.0;  // an exact fit
+  *threshold = scaled ? std::pow(StudentQuantile(0.975, std::max(1, dof)), 2) : kChiSquare1;
+}
+
+// Runs task(0) … task(count − 1) on up to `threads` threads; the results do
+// not depend on the threads (each task writes its own slot).
+void Parallel(size_t count, int threads, const std::function<void(size_t)>& task) {
+  std::atomic<size_t> next{0};
+  std::vector<std::string> errors(count);
+  const auto work = [&] {
+    for (size_t j = next++; j < count; j = next++) {
+      try {
+        task(j);
+      } catch (const std::exception& error) {
+        errors[j] = error.what();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& thread : pool) thread.join();
+  for (const std::string& error : errors) {
+    if (!error.empty()) throw RuntimeError("profile likelihood: " + error);
+  }
+}
+
+int Threads(const ProfileOptions& options, size_t tasks) {
+  const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return std::max(
+      1, std::min(static_cast<int>(tasks), options.threads > 0 ? options.threads : hardware));
+}
+
+Probes Probe(const CalibrationProblem& problem, const FitResult& fit,
+             const CeresFitter::Options& ceres, const ProfileOptions& options) {
+  double residual_variance, threshold;
+  StatisticOf(problem, fit, ceres, &residual_variance, &threshold);
+  const Profiler profiler(problem, fit, ceres, options, threshold, residual_variance);
+  const size_t n = problem.parameters().specs().size();
+  Probes probes;
+  probes.points.resize(2 * n);
+  probes.found.assign(2 * n, 0);
+  std::vector<size_t> tasks;
+  for (int i : problem.free_indices()) {
+    tasks.push_back(2 * static_cast<size_t>(i));
+    tasks.push_back(2 * static_cast<size_t>(i) + 1);
+  }
+  Parallel(tasks.size(), Threads(options, tasks.size()), [&](size_t t) {
+    const size_t k = tasks[t];
+    probes.found[k] =
+        profiler.FirstPoint(static_cast<int>(k / 2), k % 2 == 0 ? -1 : +1, &probes.points[k]) ? 1
+                                                                                              : 0;
+  });
+  for (size_t k = 0; k < probes.points.size(); ++k) {
+    if (probes.found[k]) probes.evaluations += probes.points[k].evaluations;
+  }
+  return probes;
+}
+
+ProfileSet ProfileLikelihoodFrom(const CalibrationProblem& problem, const FitResult& fit,
+                                 const std::vector<int>& also, const CeresFitter::Options& ceres,
+                                 const ProfileOptions& options, const Probes* probes);
+
+}  // namespace
+
 ProfileSet ProfileLikelihood(const CalibrationProblem& problem, const FitResult& fit,
                              const std::vector<int>& also, const CeresFitter::Options& ceres,
                              const ProfileOptions& options) {
+  return ProfileLikelihoodFrom(problem, fit, also, ceres, options, nullptr);
+}
+
+namespace {
+
+ProfileSet ProfileLikelihoodFrom(const CalibrationProblem& problem, const FitResult& fit,
+                                 const std::vector<int>& also, const CeresFitter::Options& ceres,
+                                 const ProfileOptions& options, const Probes* probes) {
   std::string why;
   GRANASYM_CHECK(options.IsValid(&why)) << why;
   GRANASYM_CHECK(fit.summary.success() && fit.values.size() == problem.parameters().specs().size())
@@ -319,27 +442,12 @@ ProfileSet ProfileLikelihood(const CalibrationProblem& problem, const FitResult&
   std::sort(parameters.begin(), parameters.end());
   const Profiler profiler(problem, fit, ceres, options, set.threshold, set.residual_variance);
   set.profiles.resize(parameters.size());
-  const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  set.threads = std::max(1, std::min(static_cast<int>(parameters.size()),
-                                     options.threads > 0 ? options.threads : hardware));
-  std::atomic<size_t> next{0};
-  std::vector<std::string> errors(parameters.size());
-  const auto work = [&] {
-    for (size_t j = next++; j < parameters.size(); j = next++) {
-      try {
-        set.profiles[j] = profiler.Run(parameters[j]);
-      } catch (const std::exception& error) {
-        errors[j] = error.what();
-      }
-    }
-  };
-  std::vector<std::thread> threads;
-  for (int t = 1; t < set.threads; ++t) threads.emplace_back(work);
-  work();
-  for (std::thread& thread : threads) thread.join();
-  for (const std::string& error : errors) {
-    if (!error.empty()) throw RuntimeError("profile likelihood: " + error);
-  }
+  set.threads = Threads(options, parameters.size());
+  Parallel(parameters.size(), set.threads, [&](size_t j) {
+    const int i = parameters[j];
+    set.profiles[j] =
+        profiler.Run(i, probes ? probes->At(i, 0) : nullptr, probes ? probes->At(i, 1) : nullptr);
+  });
   for (ParameterProfile& profile : set.profiles) {
     // cost_min: the fit's, or the profile's own least cost where lower.
     profile.reference_cost = set.fit_cost;
@@ -369,12 +477,20 @@ ProfileSet ProfileLikelihood(const CalibrationProblem& problem, const FitResult&
   return set;
 }
 
+}  // namespace
+
 std::string ProfileRestart::Text() const {
   return fmt::format(
-      "refitted from the {} profile ({} = {:.6g}, profile cost {:.6g}): cost {:.6g} "
-      "-> {:.6g}{}",
-      parameter, parameter, value, profile_cost, cost_before, cost_after,
-      kept ? "" : " (not lower: the fit is kept)");
+             "refitted from the {} profile ({} = {:.6g}, profile cost {:.6g}): cost {:.6g} "
+             "-> {:.6g}{}",
+             parameter, parameter, value, profile_cost, cost_before, cost_after,
+             kept ? "" : " (not lower: the fit is kept)") +
+         (probe_evaluations > 0
+              ? fmt::format(
+                    "; found by the profiles' first grid points ({} evaluations), before the "
+                    "whole profiles",
+                    probe_evaluations)
+              : std::string());
 }
 
 RefittedProfiles ProfileAndRefit(const CalibrationProblem& problem, const FitResult& fit,
@@ -382,8 +498,69 @@ RefittedProfiles ProfileAndRefit(const CalibrationProblem& problem, const FitRes
                                  const ProfileOptions& options) {
   RefittedProfiles out;
   out.fit = fit;
+  // A refit from `point` of `parameter`'s profile (a full vector) where its
+  // cost lies below the fit's by more than the margin; false when there is
+  // none or the refit does not lower the cost (the restarts end).
+  const auto restart_from = [&](const std::string& parameter, const ProfilePoint* point,
+                                long probe_evaluations, bool* restarted, bool* attempted) {
+    *restarted = *attempted = false;
+    double residual_variance, threshold;
+    StatisticOf(problem, out.fit, ceres, &residual_variance, &threshold);
+    const double fit_cost = out.fit.summary.final_cost;
+    if (point == nullptr ||
+        2.0 * (fit_cost - point->cost) / residual_variance <= options.restart_drop * threshold) {
+      return;
+    }
+    ProfileRestart restart;
+    restart.parameter = parameter;
+    restart.value = point->value;
+    restart.profile_cost = point->cost;
+    restart.cost_before = fit_cost;
+    restart.probe_evaluations = probe_evaluations;
+    std::vector<double> start;
+    for (int i : problem.free_indices()) start.push_back(point->values[i]);
+    FitResult refit;
+    try {
+      refit = CeresFitter(ceres).Fit(problem, start);
+    } catch (const std::exception&) {
+      refit.summary.termination = FitTermination::kFailure;
+    }
+    const bool lower = refit.summary.success() && std::isfinite(refit.summary.final_cost) &&
+                       refit.summary.final_cost < fit_cost;
+    restart.cost_after = refit.summary.success() ? refit.summary.final_cost
+                                                 : std::numeric_limits<double>::infinity();
+    restart.kept = lower;
+    out.restarts.push_back(restart);
+    *attempted = true;
+    if (!lower) return;
+    out.fit = std::move(refit);
+    *restarted = true;
+  };
   for (int round = 0;; ++round) {
-    out.profiles = ProfileLikelihood(problem, out.fit, also, ceres, options);
+    // The first grid point of each side of every fitted parameter first: a fit
+    // short of its optimum shows there (its neighbours refit lower), and is
+    // refitted before the whole profiles are spent on it; the profiles reuse
+    // those points, so a round without a restart costs no more.
+    std::optional<Probes> probes;
+    if (round < options.max_restarts) {
+      probes = Probe(problem, out.fit, ceres, options);
+      const ProfilePoint* best = nullptr;
+      std::string name;
+      for (size_t k = 0; k < probes->points.size(); ++k) {
+        if (!probes->found[k] || !std::isfinite(probes->points[k].cost)) continue;
+        if (best == nullptr || probes->points[k].cost < best->cost) {
+          best = &probes->points[k];
+          name = problem.parameters().specs()[k / 2].name;
+        }
+      }
+      bool restarted = false, attempted = false;
+      restart_from(name, best, probes->evaluations, &restarted, &attempted);
+      if (restarted) continue;
+      // A refit that did not lower the cost ends the restarts: these profiles are the last.
+      if (attempted) round = options.max_restarts;
+    }
+    out.profiles =
+        ProfileLikelihoodFrom(problem, out.fit, also, ceres, options, probes ? &*probes : nullptr);
     if (round >= options.max_restarts) break;
     // The least cost over the fitted parameters' profiles (an undetermined
     // parameter's profile moves a fixed parameter: not this problem's fit).
@@ -399,33 +576,9 @@ RefittedProfiles ProfileAndRefit(const CalibrationProblem& problem, const FitRes
         }
       }
     }
-    const double fit_cost = out.fit.summary.final_cost;
-    if (best_point == nullptr ||
-        2.0 * (fit_cost - best_point->cost) / out.profiles.residual_variance <=
-            options.restart_drop * out.profiles.threshold) {
-      break;
-    }
-    ProfileRestart restart;
-    restart.parameter = best->name;
-    restart.value = best_point->value;
-    restart.profile_cost = best_point->cost;
-    restart.cost_before = fit_cost;
-    std::vector<double> start;
-    for (int i : problem.free_indices()) start.push_back(best_point->values[i]);
-    FitResult refit;
-    try {
-      refit = CeresFitter(ceres).Fit(problem, start);
-    } catch (const std::exception&) {
-      refit.summary.termination = FitTermination::kFailure;
-    }
-    const bool lower = refit.summary.success() && std::isfinite(refit.summary.final_cost) &&
-                       refit.summary.final_cost < fit_cost;
-    restart.cost_after = refit.summary.success() ? refit.summary.final_cost
-                                                 : std::numeric_limits<double>::infinity();
-    restart.kept = lower;
-    out.restarts.push_back(restart);
-    if (!lower) break;
-    out.fit = std::move(refit);
+    bool restarted = false, attempted = false;
+    restart_from(best ? best->name : "", best_point, 0, &restarted, &attempted);
+    if (!restarted) break;
   }
   return out;
 }

@@ -158,6 +158,9 @@ struct ProfileRestart {
   double cost_before = 0.0;   // the fit's
   double cost_after = 0.0;    // the refit's; +∞ when it failed
   bool kept = false;          // the refit succeeded with a lower cost and replaced the fit
+  // > 0: found by the probe (the first grid point of each side of every
+  // fitted parameter, computed before the whole profiles), its evaluations.
+  long probe_evaluations = 0;
   // "refitted from the kappa_star profile (kappa_star = 0.0101): cost 5976.16 -> 645.03".
   std::string Text() const;
 };
@@ -171,7 +174,12 @@ struct RefittedProfiles {
 // ProfileLikelihood, then, while a fitted parameter's profile reaches a cost
 // below the fit's by more than options.restart_drop × threshold in D (and at
 // most options.max_restarts times), a full Ceres refit (`ceres`) from the
-// profile point of least cost over all profiles; a refit with a lower cost
+// profile point of least cost over all profiles. Each round first computes
+// the first grid point of both sides of every fitted parameter (the probe,
+// in parallel); where one of them already lies below the fit's cost by that
+// margin, the refit starts from the lowest of them at once, before the
+// whole profiles (which otherwise reuse the probe's points: a round without
+// a restart costs no more); a refit with a lower cost
 // replaces the fit and the profiles are recomputed from it. A refit that does
 // not lower the cost ends the restarts (recorded, not kept; the profiles'
 // profile_lower_cost warning stays).
