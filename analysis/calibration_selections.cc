@@ -154,9 +154,10 @@ SelectionComparison CompareSelections(const std::string& directory,
     const std::string all =
         (fs::path(directory) / SelectionFolder(directory, model, CalibrationSelection::kAll))
             .string();
-    const std::string quasi = (fs::path(directory) /
-                               SelectionFolder(directory, model, CalibrationSelection::kQuasiStatic))
-                                  .string();
+    const std::string quasi =
+        (fs::path(directory) /
+         SelectionFolder(directory, model, CalibrationSelection::kQuasiStatic))
+            .string();
     if (!fs::exists(all + "/parameters.csv") || !fs::exists(quasi + "/parameters.csv")) continue;
     std::vector<std::string> units_all, units_quasi;
     const auto a = ReadParameters(all + "/parameters.csv", &units_all);
@@ -188,8 +189,8 @@ SelectionComparison CompareSelections(const std::string& directory,
 std::string ParametersBySelectionCsv(const SelectionComparison& comparison) {
   std::string csv = "model,parameter,units";
   for (const char* s : {"all", "quasi_static"}) {
-    csv += fmt::format(",{0}_value,{0}_low,{0}_high,{0}_interval,{0}_status,{0}_profile,{0}_verdict",
-                       s);
+    csv += fmt::format(
+        ",{0}_value,{0}_low,{0}_high,{0}_interval,{0}_status,{0}_profile,{0}_verdict", s);
   }
   csv += ",fit_status_all,fit_status_quasi_static\n";
   for (const SelectionComparisonRow& row : comparison.rows) {

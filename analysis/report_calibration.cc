@@ -428,13 +428,13 @@ std::vector<Section> CalibrationSections(const StudyFolder& study, int* calibrat
     const bool both = selections.size() > 1;
     bool any = false;  // a calibrated model counts once, whatever its selections
     for (const SelectionCalibration& selection : selections) {
-      const std::string id =
-          "calibration-" + Slug(model) +
-          (selection.is_default ? "" : "-" + Slug(SelectionName(selection.selection)));
-      const std::string title = "Calibration: " + std::string(model) +
-                                (both || !selection.is_default
-                                     ? " (" + SelectionTitle(directory, selection.selection) + ")"
-                                     : std::string());
+      // The default's section keeps its title (and so its anchor); the
+      // other's names its selection.
+      const std::string title =
+          "Calibration: " + std::string(model) +
+          (selection.is_default ? std::string()
+                                : " (" + SelectionTitle(directory, selection.selection) + ")");
+      const std::string id = Slug(title);
       const std::optional<FitOutcome> outcome = ReadFitOutcomeIn(study, selection.folder);
       if (outcome) any = true;
       const Inline name =

@@ -202,7 +202,7 @@ TEST(FitStatus, ACslTheModelCannotReachEndsAtABoundWithoutItsStandardError) {
   // No standard error or interval at a bound.
   const std::string csv = ParametersCsv(run, *run.kept_fit());
   // Its profile stays below the threshold down to the bound: flat.
-  EXPECT_NE(csv.find("\nkappa_star,0.0001,,,,at_bound,,,flat\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nkappa_star,0.0001,,,,at_bound,,,flat,1\n"), std::string::npos) << csv;
   EXPECT_NE(SummaryText(run).find("at bound"), std::string::npos) << SummaryText(run);
   // Nor in a near-null direction of the Jacobian (its standard error NaN).
   FitResult& fit = run.fits[run.kept];

@@ -126,7 +126,7 @@ grep -q "both selections side by side: " "$work/quasi_static.txt" ||
   { echo "FAIL: study calibrate does not name $by_selection"; exit 1; }
 "$granasym" study report "$out" > "$work/report_both.txt"
 for text in "paper rate (all detected states): value \[95 % interval\]" \
-            "quasi-static: value \[95 % interval\]" 'id="calibration-modified_cam_clay-quasi_static"'; do
+            "quasi-static: value \[95 % interval\]" 'id="calibration-modified_cam_clay-quasi-static"'; do
   grep -q "$text" "$out/index.html" ||
     { echo "FAIL: the report does not show '$text'"; exit 1; }
 done
