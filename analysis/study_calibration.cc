@@ -214,9 +214,8 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
   const std::string folder = (fs::path(directory) / relative).string();
   // The study folder from the calibration's: "../.." or "../../..".
   std::string up;
-  for (auto part = fs::path(relative).begin(); part != fs::path(relative).end(); ++part) {
-    up += up.empty() ? ".." : "/..";
-  }
+  const fs::path parts(relative);
+  for (auto part = parts.begin(); part != parts.end(); ++part) up += up.empty() ? ".." : "/..";
   config.origin = folder + "/calibration.toml";
   config.model = model;
   // Paths as the file's reader resolves them (against the file's folder).
