@@ -209,8 +209,11 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
                                                       double max_inertial_number) {
   calibration::CalibrationConfig config;
   // Each selection in its own folder (analysis/calibration_selections.h).
-  const std::string relative = SelectionFolder(directory, calibration::ToString(model),
-                                               SelectionOf(quasi_static, max_inertial_number));
+  // A rate study's quasi-static set is that study's default selection.
+  const std::string relative =
+      quasi_static ? "calibration/" + std::string(calibration::ToString(model))
+                   : SelectionFolder(directory, calibration::ToString(model),
+                                     SelectionOf(quasi_static, max_inertial_number));
   const std::string folder = (fs::path(directory) / relative).string();
   // The study folder from the calibration's: "../.." or "../../..".
   std::string up;

@@ -187,7 +187,8 @@ void Simulation::FinishStage(const std::string& reason, bool failed) {
   StageRecord record = RecordStage(stage(), contents_.series, runner_.clock.first_row,
                                    detection_.detector(), detection_.first_row(), reason, failed);
   const bool last = runner_.stage + 1 == static_cast<int64_t>(scene_.stages.size());
-  if (!failed) progress_.Report(runner_.stage, stage(), runner_.clock, *engine_, /*stage_end=*/true);
+  if (!failed)
+    progress_.Report(runner_.stage, stage(), runner_.clock, *engine_, /*stage_end=*/true);
   if (scene_.output.stage_states && !last && !failed) record.end_state = engine_->Save();
   for (const std::string& line :
        StageEndLines(record, runner_.stage, runner_.clock.steps(*engine_))) {
