@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "analysis/calibration_selections.h"
 #include "common/hdf5_file.h"
 #include "common/text_file.h"
 #include "common/time_series.h"
@@ -409,15 +410,31 @@ Context ReadContext(const std::string& directory, const FigureDataOptions& optio
   ctx.study_ncl = StudyNclName(directory);
   ClassifySamples(&ctx);
   std::vector<std::string> overlaid, absent;
+  bool other = false;  // an overlay of the study's other selection
   for (const std::string& name : study::kFigureModels) {
     if (!options.settings.Overlays(name)) continue;
-    const std::string folder = directory + "/calibration/" + name + "/plot_data";
-    if (fs::exists(folder + "/model_curve.csv") && fs::exists(folder + "/model_lines.dat")) {
+    // The study's default selection (calibration/<model>/), then the other
+    // one where calibrated too, titled by its selection
+    // (analysis/calibration_selections.h).
+    bool any = false;
+    const CalibrationSelection first = DefaultSelection(directory);
+    for (CalibrationSelection selection :
+         {first, first == CalibrationSelection::kAll ? CalibrationSelection::kQuasiStatic
+                                                     : CalibrationSelection::kAll}) {
+      const std::string folder =
+          directory + "/" + SelectionFolder(directory, name, selection) + "/plot_data";
+      if (!fs::exists(folder + "/model_curve.csv") || !fs::exists(folder + "/model_lines.dat")) {
+        continue;
+      }
       ctx.models.push_back(ReadModelOverlay(folder, name));
-      overlaid.push_back(ModelTitle(name));
-    } else {
-      absent.push_back(ModelTitle(name));
+      if (selection != first) {
+        ctx.models.back().title += " (" + SelectionTitle(directory, selection) + ")";
+        other = true;
+      }
+      overlaid.push_back(ctx.models.back().title);
+      any = true;
     }
+    if (!any) absent.push_back(ModelTitle(name));
   }
   auto join = [](const std::vector<std::string>& v) {
     std::string s;
@@ -426,7 +443,11 @@ Context ReadContext(const std::string& directory, const FigureDataOptions& optio
   };
   ctx.models_note = overlaid.empty()
                         ? "No calibrated model is overlaid"
-                        : "Models overlaid (DIR/calibration/<model>/plot_data): " + join(overlaid);
+                        : "Models overlaid (DIR/calibration/<model>/plot_data" +
+                              std::string(other ? ", the other selection's from "
+                                                  "DIR/calibration/<selection>/<model>/plot_data"
+                                                : "") +
+                              "): " + join(overlaid);
   if (!absent.empty())
     ctx.models_note += "; not calibrated in this study, so not shown: " + join(absent);
   ctx.models_note += ".";

@@ -9,6 +9,7 @@
 #include <map>
 #include <tuple>
 
+#include "analysis/calibration_selections.h"
 #include "analysis/quasi_static_selection.h"
 #include "analysis/report.h"
 #include "analysis/report_images.h"
@@ -152,7 +153,10 @@ std::string FitOutcome::Css() const {
 }
 
 std::optional<FitOutcome> ReadFitOutcome(const StudyFolder& study, const std::string& model) {
-  const std::string folder = "calibration/" + model;
+  return ReadFitOutcomeIn(study, "calibration/" + model);
+}
+
+std::optional<FitOutcome> ReadFitOutcomeIn(const StudyFolder& study, const std::string& folder) {
   if (!study.Exists(folder + "/parameters.csv")) return std::nullopt;
   const std::string file = folder + "/fit_status.toml";
   if (!study.Exists(file)) {
@@ -171,10 +175,12 @@ namespace {
 
 // One calibrated model: its outcome, parameters with intervals and statuses,
 // the warnings and the summary (folded) and model.toml.
-Section ModelSection(const StudyFolder& study, const std::string& model,
+Section ModelSection(const StudyFolder& study, const std::string& model, const std::string& folder,
+                     const std::string& id, const std::string& title,
                      const std::optional<FitOutcome>& outcome, std::vector<std::string>* absent) {
-  Section section{"calibration-" + Slug(model), "Calibration: " + model, 3, {}};
-  const std::string folder = "calibration/" + model;
+  Section section{id, title, 3, {}};
+  // The figures' labels: the model, and the selection where not the default.
+  const std::string label = model + title.substr(title.find(model) + model.size());
   if (!study.Exists(folder)) {
     absent->push_back(folder + "/");
     section.blocks.push_back(Note(Plain("Not calibrated: ") + Code(folder + "/") +
@@ -265,12 +271,12 @@ Section ModelSection(const StudyFolder& study, const std::string& model,
   for (const auto& [data, png, label, caption] :
        {std::tuple<std::string, std::string, std::string, std::string>{
             folder + "/plot_data/profiles.csv", folder + "/plot_data/profiles.png",
-            "Profile likelihoods: " + model,
+            "Profile likelihoods: " + label,
             "Each parameter's profile: D = 2 (cost - cost_min)/s^2 with the other parameters "
             "refitted, against its 95 % threshold (dashed); the interval where D stays below it "
             "is shaded, red where the profile stays flat to a bound or over a decade."},
         {folder + "/plot_data/pareto.csv", folder + "/plot_data/pareto.png",
-         "Pareto front: " + model,
+         "Pareto front: " + label,
          "The trade-off between two groups of states over a weighted-sum sweep, with the "
          "ordinary fit (equal weights) and the compromise (the knee: closest to each group's "
          "least cost in normalised costs) marked; summary.txt lists each point's parameters."}}) {
@@ -343,6 +349,41 @@ Section ModelSection(const StudyFolder& study, const std::string& model,
   return section;
 }
 
+// The parameters of both selections of `model` side by side (columns:
+// parameter, unit, each selection's value ± interval and its verdict);
+// nullopt when the model lacks one of them.
+std::optional<Block> SideBySide(const StudyFolder& study, const std::string& model) {
+  const SelectionComparison comparison = CompareSelections(study.directory, {model});
+  if (comparison.empty()) return std::nullopt;
+  Block block;
+  block.type = Block::Type::kTable;
+  const std::string all = SelectionTitle(study.directory, CalibrationSelection::kAll),
+                    quasi = SelectionTitle(study.directory, CalibrationSelection::kQuasiStatic);
+  block.header = {"parameter",
+                  "unit",
+                  all + ": value [95 % interval]",
+                  all + ": status",
+                  quasi + ": value [95 % interval]",
+                  quasi + ": status"};
+  for (const SelectionComparisonRow& row : comparison.rows) {
+    std::vector<Cell> cells = {Cell{Code(row.parameter), ""}, Cell{Plain(row.units), ""}};
+    for (const std::optional<SelectionParameter>& p : {row.all, row.quasi_static}) {
+      if (!p) {
+        cells.push_back(Cell{Plain("—"), "num"});
+        cells.push_back(Cell{Plain("not in this calibration"), ""});
+        continue;
+      }
+      cells.push_back(Cell{Plain(p->ValueText()), "num"});
+      const std::string verdict = p->Verdict();
+      cells.push_back(Cell{Plain(verdict), verdict.rfind("undetermined", 0) == 0
+                                               ? StatusCss("undetermined")
+                                               : StatusCss(p->status)});
+    }
+    block.rows.push_back(std::move(cells));
+  }
+  return block;
+}
+
 }  // namespace
 
 std::vector<Section> CalibrationSections(const StudyFolder& study, int* calibrated,
@@ -361,7 +402,8 @@ std::vector<Section> CalibrationSections(const StudyFolder& study, int* calibrat
   if (const std::optional<QuasiStaticSelection> selection =
           ReadQuasiStaticSelection(study.directory)) {
     top.blocks.push_back(Paragraph(
-        Plain("Fitted to the quasi-static set only (") +
+        Plain("The default calibrations (calibration/<model>/) fitted to the quasi-static set only "
+              "(") +
         Code("study calibrate --select quasi_static") +
         Plain(fmt::format("): {}, as ", SelectionText(*selection))) +
         Link(kQuasiStaticSelectionFile, UrlPath(kQuasiStaticSelectionFile), true) +
@@ -373,19 +415,60 @@ std::vector<Section> CalibrationSections(const StudyFolder& study, int* calibrat
   table.header = {"model", "outcome", "why"};
   std::vector<Section> models;
   *calibrated = 0;
+  const std::string directory = study.directory;
+  const CalibrationSelection default_selection = DefaultSelection(directory);
   for (const char* model : kReportModels) {
-    const std::optional<FitOutcome> outcome = ReadFitOutcome(study, model);
-    if (outcome) {
-      ++*calibrated;
-      table.rows.push_back({Cell{Link(model, "#calibration-" + Slug(model), true), ""},
-                            Cell{Plain(outcome->Label()), outcome->Css()},
-                            Cell{Plain(outcome->reason), "text"}});
-    } else {
-      table.rows.push_back({Cell{Link(model, "#calibration-" + Slug(model), true), ""},
-                            Cell{Plain("not calibrated"), "status-not_run"},
-                            Cell{Plain("no parameters.csv"), "text"}});
+    // The study's default selection's folder, then the other selection's
+    // where calibrated (analysis/calibration_selections.h).
+    std::vector<SelectionCalibration> selections = CalibratedSelections(directory, model);
+    if (selections.empty() || !selections.front().is_default) {
+      selections.insert(selections.begin(),
+                        {default_selection, "calibration/" + std::string(model), true});
     }
-    models.push_back(ModelSection(study, model, outcome, absent));
+    const bool both = selections.size() > 1;
+    bool any = false;  // a calibrated model counts once, whatever its selections
+    for (const SelectionCalibration& selection : selections) {
+      // The default's section keeps its title (and so its anchor); the
+      // other's names its selection.
+      const std::string title =
+          "Calibration: " + std::string(model) +
+          (selection.is_default ? std::string()
+                                : " (" + SelectionTitle(directory, selection.selection) + ")");
+      const std::string id = Slug(title);
+      const std::optional<FitOutcome> outcome = ReadFitOutcomeIn(study, selection.folder);
+      if (outcome) any = true;
+      const Inline name =
+          Link(model + (both ? " (" + SelectionTitle(directory, selection.selection) + ")"
+                             : std::string()),
+               "#" + id, true);
+      if (outcome) {
+        table.rows.push_back({Cell{name, ""}, Cell{Plain(outcome->Label()), outcome->Css()},
+                              Cell{Plain(outcome->reason), "text"}});
+      } else {
+        table.rows.push_back({Cell{name, ""}, Cell{Plain("not calibrated"), "status-not_run"},
+                              Cell{Plain("no parameters.csv"), "text"}});
+      }
+      models.push_back(ModelSection(study, model, selection.folder, id, title, outcome, absent));
+      // Both selections' parameters side by side, in the default's section.
+      if (both && selection.is_default) {
+        std::optional<Block> side = SideBySide(study, model);
+        if (side) {
+          Section& section = models.back();
+          section.blocks.insert(section.blocks.begin(), std::move(*side));
+          const Inline source =
+              study.Exists(kParametersBySelectionFile)
+                  ? Link(kParametersBySelectionFile, UrlPath(kParametersBySelectionFile), true)
+                  : Plain("from both parameters.csv");
+          section.blocks.insert(
+              section.blocks.begin(),
+              Paragraph(Plain("Both selections, side by side (") + source +
+                        Plain("): the value with its 95 % interval (the profile likelihood's where "
+                              "it crosses on both sides, else the Jacobian's) and the verdict. " +
+                              SelectionAdvice(directory))));
+        }
+      }
+    }
+    if (any) ++*calibrated;
   }
   top.blocks.push_back(std::move(table));
   sections.push_back(std::move(top));

@@ -47,9 +47,14 @@ struct FitOutcome {
 // nullopt when the model has no parameters.csv (not calibrated); InputError
 // naming the file for a fit_status.toml without a valid status or a reason.
 std::optional<FitOutcome> ReadFitOutcome(const StudyFolder& study, const std::string& model);
+// The same for a calibration's folder relative to the study (e.g.
+// calibration/quasi_static/<model>: analysis/calibration_selections.h).
+std::optional<FitOutcome> ReadFitOutcomeIn(const StudyFolder& study, const std::string& folder);
 
 // "Fitted parameters": each model's outcome in one table, then one section
-// per model (kReportModels) with its parameters, intervals and statuses
+// per model (kReportModels) and selection (the default's first; where a
+// model has both, the default's section opens with both selections'
+// parameters side by side) with its parameters, intervals and statuses
 // (a parameter's "fitted" is green only when its model converged), its
 // warnings and summary folded, and model.toml; counts the calibrated models.
 std::vector<Section> CalibrationSections(const StudyFolder& study, int* calibrated,

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,13 @@
 
 namespace granasym::analysis {
 namespace fs = std::filesystem;
+
+CalibrationSelection SelectionOf(const QuasiStaticSelection* quasi_static,
+                                 double max_inertial_number) {
+  return quasi_static || std::isfinite(max_inertial_number) ? CalibrationSelection::kQuasiStatic
+                                                            : CalibrationSelection::kAll;
+}
+
 namespace {
 
 // What the file says of its data, above the keys.
@@ -200,8 +208,17 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
                                                       const QuasiStaticSelection* quasi_static,
                                                       double max_inertial_number) {
   calibration::CalibrationConfig config;
-  const std::string folder =
-      (fs::path(directory) / "calibration" / calibration::ToString(model)).string();
+  // Each selection in its own folder (analysis/calibration_selections.h).
+  // A rate study's quasi-static set is that study's default selection.
+  const std::string relative =
+      quasi_static ? "calibration/" + std::string(calibration::ToString(model))
+                   : SelectionFolder(directory, calibration::ToString(model),
+                                     SelectionOf(quasi_static, max_inertial_number));
+  const std::string folder = (fs::path(directory) / relative).string();
+  // The study folder from the calibration's: "../.." or "../../..".
+  std::string up;
+  const fs::path parts(relative);
+  for (auto part = parts.begin(); part != parts.end(); ++part) up += up.empty() ? ".." : "/..";
   config.origin = folder + "/calibration.toml";
   config.model = model;
   // Paths as the file's reader resolves them (against the file's folder).
@@ -212,7 +229,7 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
     calibration::DatasetConfig d;
     d.name = name;
     d.is_study = true;
-    d.paths = {resolve("../..")};
+    d.paths = {resolve(up)};
     d.path = d.paths.front();
     return d;
   };
@@ -251,7 +268,7 @@ calibration::CalibrationConfig StudyCalibrationConfig(const std::string& directo
                       ConfigTable::ParseFile(study_toml).GetString("scale", "") == "tiny";
     for (calibration::DatasetConfig& path :
          tiny ? std::vector<calibration::DatasetConfig>{} : StudyPathDatasets(directory, nullptr)) {
-      path.study_path = resolve("../..");
+      path.study_path = resolve(up);
       path.paths = {calibration::StudyCaseResult(path.study_path, 1, path.path_case)};
       path.path = path.paths.front();
       config.datasets.push_back(path);
@@ -328,6 +345,19 @@ StudyModelCalibration CalibrateStudyModel(const std::string& directory, ModelKin
   const std::string name = calibration::ToString(model);
   const std::string folder = fs::path(config.origin).parent_path().string();
   fs::create_directories(folder);
+  {
+    std::istringstream header(Header(quasi_static, max_inertial_number));
+    std::string description;
+    for (std::string line; std::getline(header, line);) {
+      if (line.rfind("# ", 0) == 0 && line.find("granasym") == std::string::npos &&
+          line.find("calibration_config.h") == std::string::npos) {
+        description += (description.empty() ? "" : " ") + line.substr(2);
+      }
+    }
+    WriteTextFileAtomically(
+        folder + "/selection.toml",
+        SelectionToml(SelectionOf(quasi_static, max_inertial_number), description));
+  }
   WriteTextFileAtomically(config.origin, calibration::CalibrationConfigText(
                                              config, Header(quasi_static, max_inertial_number)));
   // A failed calibration leaves no parameters of an earlier one behind.
@@ -345,7 +375,21 @@ StudyModelCalibration CalibrateStudyModel(const std::string& directory, ModelKin
     throw;
   }
   calibration::WriteCalibrationHdf5(run, config.hdf5_path);
-  WriteTextFileAtomically(config.summary_path, calibration::SummaryText(run));
+  // The selection, after the status and reason lines: which data, and which
+  // selection a paper uses.
+  const CalibrationSelection selection = SelectionOf(quasi_static, max_inertial_number);
+  const std::string selection_line = fmt::format(
+      "selection: {} ({}; `study calibrate --select {}`, in {}). {}", SelectionName(selection),
+      SelectionTitle(directory, selection), SelectionName(selection),
+      SelectionFolder(directory, name, selection), SelectionAdvice(directory));
+  std::string summary = calibration::SummaryText(run);
+  size_t after = 0;
+  for (int line = 0; line < 3 && after != std::string::npos; ++line) {
+    after = summary.find('\n', after);
+    if (after != std::string::npos) ++after;
+  }
+  summary.insert(after == std::string::npos ? summary.size() : after, selection_line + "\n");
+  WriteTextFileAtomically(config.summary_path, summary);
   const std::string warnings = calibration::WarningsText(run);
   WriteTextFileAtomically(folder + "/warnings.txt", warnings);
   const calibration::FitResult* kept = run.kept_fit();

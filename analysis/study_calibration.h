@@ -1,7 +1,9 @@
 // The calibration of the constitutive models to a study's asymptotic states
 // (`granasym study calibrate`): the calibration built in code from the study
 // folder, run through the calibration library, and its outputs in
-// DIR/calibration/<model>/, whose names the figures and the report read:
+// DIR/calibration/<model>/ (the study's default selection; the other
+// selection in DIR/calibration/<selection>/<model>/:
+// analysis/calibration_selections.h), whose names the figures and the report read:
 //   calibration.toml  the calibration as a file (calibration/calibration_config.h),
 //                     to edit and rerun with `granasym calibrate`
 //   calibration.h5, summary.txt, warnings.txt, parameters.csv, model.toml,
@@ -10,6 +12,7 @@
 //                     `status` and `reason`), also when the fit failed (then
 //                     without parameters.csv, model.toml and plot_data/)
 //   paths/psi<ψ>_ocr<k>/  Fig. 5 for the fitted model (WriteModelPaths)
+//   selection.toml    the selection (all or quasi_static) and what it fits
 //
 // The data: a study's detected states whose OCR refers to the study's NCL
 // (other samples, e.g. φ = 0, stay out), or a quasi-static selection (issue 36
@@ -24,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/calibration_selections.h"
 #include "analysis/quasi_static_selection.h"
 #include "calibration/calibration_config.h"
 #include "calibration/fit_status.h"
@@ -48,8 +52,15 @@ inline constexpr int kStudyPathPoints = 30;
 std::vector<calibration::DatasetConfig> StudyPathDatasets(const std::string& directory,
                                                           std::vector<std::string>* notes);
 
+// The selection of a calibration: quasi_static with a rate study's
+// quasi-static set or a finite bound on I(d_max), else all.
+CalibrationSelection SelectionOf(const QuasiStaticSelection* quasi_static,
+                                 double max_inertial_number);
+
 // The calibration of `model` to the study in `directory`, as the file
-// DIR/calibration/<model>/calibration.toml would give it; `quasi_static`
+// calibration.toml in its selection's folder (SelectionFolder:
+// DIR/calibration/<model>/ for the study's default selection,
+// DIR/calibration/<selection>/<model>/ for the other) would give it; `quasi_static`
 // (null for other studies) selects a rate study's quasi-static cases, and a
 // finite `max_inertial_number` only the states with I(d_max) below it.
 calibration::CalibrationConfig StudyCalibrationConfig(

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/calibration_selections.h"
 #include "analysis/quasi_static_selection.h"
 #include "analysis/rate_cases.h"
 #include "analysis/rate_files.h"
@@ -38,8 +39,11 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
   CLI::App* calibrate = study->add_subcommand(
       "calibrate",
       "fit the constitutive models to the study's asymptotic states; writes "
-      "DIR/calibration/<model>/ (calibration.toml, calibration.h5, summary.txt, parameters.csv, "
-      "warnings.txt, model.toml, fit_status.toml, plot_data/ with profiles.png and pareto.png); "
+      "DIR/calibration/<model>/ for the study's default selection (quasi_static for a rate study, "
+      "all otherwise), DIR/calibration/<selection>/<model>/ for the other (calibration.toml, "
+      "calibration.h5, summary.txt, parameters.csv, warnings.txt, model.toml, fit_status.toml, "
+      "selection.toml, plot_data/ with profiles.png and pareto.png), and "
+      "DIR/calibration/parameters_by_selection.csv when a model has both; "
       "exits 0 when every model "
       "converged, else with the worst model's status (3 failed, 5 at_bound, 6 "
       "converged_inadmissible, 7 no_convergence)");
@@ -141,8 +145,9 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
                                        quasi_static->other_cases.size(), others)
                                .c_str());
     } else {
-      // The calibrations are no longer those of a rate study's quasi-static set.
-      fs::remove(fs::path(directory) / analysis::kQuasiStaticSelectionFile);
+      // Not a rate study: no quasi-static set of one (a rate study's --select
+      // all leaves its quasi-static calibrations, and their record, in place).
+      if (!rate) fs::remove(fs::path(directory) / analysis::kQuasiStaticSelectionFile);
       if (quasi_static_set) {
         bound =
             max_inertial_number > 0 ? max_inertial_number : analysis::kQuasiStaticInertialNumber;
@@ -161,7 +166,10 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
         std::printf("%s\n", done.text.c_str());
         status = done.outcome.status;
         const std::string plot_data =
-            (fs::path(directory) / "calibration" / calibration::ToString(kind) / "plot_data")
+            (fs::path(directory) /
+             analysis::SelectionFolder(directory, calibration::ToString(kind),
+                                       analysis::SelectionOf(selection, bound)) /
+             "plot_data")
                 .string();
         for (const std::string& line : DrawCalibrationFigures(plot_data)) {
           std::printf("  figure: %s\n", line.c_str());
@@ -180,6 +188,13 @@ void RegisterStudyCalibrateCommand(CLI::App* study) {
       worst = calibration::Worst(worst, status);
       std::fflush(stdout);
     }
+    // Both selections side by side, where some model has both.
+    const std::string by_selection = analysis::WriteParametersBySelection(
+        directory, {"hypoplastic_clay", "modified_cam_clay", "hypoplastic_sand"});
+    if (!by_selection.empty()) {
+      std::printf("both selections side by side: %s\n", by_selection.c_str());
+    }
+    std::printf("%s\n", analysis::SelectionAdvice(directory).c_str());
     const int exit_status = calibration::ExitStatus(worst);
     std::printf("study calibrate: %s; exit status %d (%s)\n", statuses.c_str(), exit_status,
                 worst == calibration::FitStatus::kConverged

@@ -1324,7 +1324,8 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
 
 std::string ParametersCsv(const CalibrationRun& run, const FitResult& fit) {
   std::string csv =
-      "parameter,value,std_error,ci95_low,ci95_high,status,profile_low,profile_high,profile\n";
+      "parameter,value,std_error,ci95_low,ci95_high,status,profile_low,profile_high,profile,"
+      "units\n";
   const std::vector<ParameterSpec>& specs = run.problem->parameters().specs();
   auto number = [](double x) {
     return std::isfinite(x) ? fmt::format("{:.10g}", x) : std::string();
@@ -1346,9 +1347,9 @@ std::string ParametersCsv(const CalibrationRun& run, const FitResult& fit) {
       profile_high = number(p.upper);
       profile = p.flat() ? "flat" : "determined";
     }
-    csv += fmt::format("{},{},{},{},{},{},{},{},{}\n", specs[i].name, number(fit.values[i]),
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", specs[i].name, number(fit.values[i]),
                        number(se), number(lo), number(hi), ToString(status), profile_low,
-                       profile_high, profile);
+                       profile_high, profile, specs[i].units);
   }
   return csv;
 }

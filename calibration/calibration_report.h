@@ -170,10 +170,10 @@ std::vector<Finding> CheckAdmissibility(const CalibrationRun& run, const FitResu
                                         std::vector<std::string>* diagnosis);
 
 // parameters.csv: parameter,value,std_error,ci95_low,ci95_high,status,
-// profile_low,profile_high,profile; the standard error and interval empty
+// profile_low,profile_high,profile,units; the standard error and interval empty
 // where not FitResult::Reported; profile_low/high the profile's 95 %
-// interval (empty where it does not cross the threshold) and profile
-// "determined" or "flat" (empty when not profiled).
+// interval (empty where it does not cross the threshold), profile
+// "determined" or "flat" (empty when not profiled) and units ParameterSpec::units.
 std::string ParametersCsv(const CalibrationRun& run, const FitResult& fit);
 // warnings.txt: one "code: message" per line (findings, the rate_affected
 // warning, fit warnings of the kept fit, dataset warnings, undetermined

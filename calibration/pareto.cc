@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <thread>
 
@@ -151,7 +152,95 @@ bool ParetoOptions::IsValid(std::string* why) const {
     *why = fmt::format("pareto max_weight_ratio = {} must be in (1, 1e8]", max_weight_ratio);
     return false;
   }
+  if (min_distinct < 0 || max_refinements < 0 || !(min_refine_decades > 0) ||
+      !(merge_tolerance >= 0 && merge_tolerance < 1)) {
+    *why = fmt::format(
+        "pareto refinement: min_distinct = {} and max_refinements = {} must be >= 0, "
+        "min_refine_decades = {} > 0 and merge_tolerance = {} in [0, 1)",
+        min_distinct, max_refinements, min_refine_decades, merge_tolerance);
+    return false;
+  }
   return true;
+}
+
+std::string ParetoPoint::Label() const {
+  if (weight_low == weight_high) return fmt::format("w = {:.3g}", weight_low);
+  return fmt::format("w = {:.3g} to {:.3g}", weight_low, weight_high);
+}
+
+void MergeDistinctPoints(ParetoFront* front, double merge_tolerance, double label_spacing) {
+  std::vector<ParetoPoint>& points = front->points;
+  front->distinct = 0;
+  if (points.empty()) return;
+  std::array<double, 2> low, high, rms_low, rms_high;
+  for (int g = 0; g < 2; ++g) {
+    low[g] = high[g] = points.front().cost[g];
+    rms_low[g] = rms_high[g] = points.front().rms[g];
+    for (const ParetoPoint& p : points) {
+      low[g] = std::min(low[g], p.cost[g]), high[g] = std::max(high[g], p.cost[g]);
+      rms_low[g] = std::min(rms_low[g], p.rms[g]), rms_high[g] = std::max(rms_high[g], p.rms[g]);
+    }
+  }
+  // Neighbours within the tolerance of the distinct point's first one.
+  size_t first = 0;
+  for (size_t j = 0; j < points.size(); ++j) {
+    bool same = j > 0;
+    for (int g = 0; g < 2 && same; ++g) {
+      const double scale = std::max(high[g] - low[g], 1e-12 * std::max(std::abs(high[g]), 1e-300));
+      same = std::abs(points[j].cost[g] - points[first].cost[g]) <= merge_tolerance * scale;
+    }
+    if (!same) {
+      first = j;
+      ++front->distinct;
+    }
+    points[j].distinct = front->distinct - 1;
+  }
+  for (ParetoPoint& p : points) {
+    p.weight_low = p.weight_high = p.weight;
+    p.labelled = false;
+  }
+  std::vector<size_t> firsts;  // the first point of each distinct point
+  for (size_t j = 0; j < points.size(); ++j) {
+    if (j == 0 || points[j].distinct != points[j - 1].distinct) firsts.push_back(j);
+  }
+  for (size_t d = 0; d < firsts.size(); ++d) {
+    const size_t end = d + 1 < firsts.size() ? firsts[d + 1] : points.size();
+    for (size_t j = firsts[d]; j < end; ++j) {
+      points[j].weight_low = points[firsts[d]].weight;
+      points[j].weight_high = points[end - 1].weight;
+    }
+  }
+  // Labels: the compromise's, the ordinary fit's and the ends' first, then
+  // any far enough from every label drawn.
+  std::vector<size_t> order;
+  const auto first_of = [&](int j) { return firsts[static_cast<size_t>(points[j].distinct)]; };
+  if (front->compromise >= 0 && front->compromise < static_cast<int>(points.size())) {
+    order.push_back(first_of(front->compromise));
+  }
+  if (front->ordinary >= 0 && front->ordinary < static_cast<int>(points.size())) {
+    order.push_back(first_of(front->ordinary));
+  }
+  order.push_back(firsts.front());
+  order.push_back(firsts.back());
+  const size_t always = order.size();
+  order.insert(order.end(), firsts.begin(), firsts.end());
+  std::vector<std::array<double, 2>> drawn;
+  for (size_t k = 0; k < order.size(); ++k) {
+    ParetoPoint& p = points[order[k]];
+    if (p.labelled) continue;
+    std::array<double, 2> at;
+    for (int g = 0; g < 2; ++g) {
+      at[g] = rms_high[g] > rms_low[g] ? (p.rms[g] - rms_low[g]) / (rms_high[g] - rms_low[g]) : 0;
+    }
+    bool apart = true;
+    for (const auto& other : drawn) {
+      apart = apart && std::hypot(at[0] - other[0], at[1] - other[1]) >= label_spacing;
+    }
+    if (k < always || apart) {
+      p.labelled = true;
+      drawn.push_back(at);
+    }
+  }
 }
 
 bool ParetoFront::Monotone(double tolerance) const {
@@ -195,6 +284,44 @@ ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResul
   std::vector<std::string> side_warnings[2];
   std::mutex shared_problem;  // GroupCosts evaluates `problem` (its evaluation counter)
   std::atomic<long> evaluations{0};
+  // The fit at point->weight from `start` (a full vector), with its group
+  // costs; false, with a warning, when it fails or the model is undefined there.
+  const auto fit_at = [&](ParetoPoint* point, const std::vector<double>& start,
+                          std::vector<std::string>* warnings) {
+    try {
+      const CalibrationProblem weighted = Weighted(problem, groups, point->weight, start);
+      const FitResult result = CeresFitter(refit_options).Fit(weighted);
+      evaluations += result.summary.evaluations;
+      if (!result.summary.success()) {
+        warnings->push_back(fmt::format("pareto: the fit at w = {:.4g} failed: {}", point->weight,
+                                        result.summary.message));
+        return false;
+      }
+      point->values = result.values;
+      point->converged = result.summary.termination == FitTermination::kConverged;
+    } catch (const std::exception& error) {
+      warnings->push_back(
+          fmt::format("pareto: the fit at w = {:.4g} failed: {}", point->weight, error.what()));
+      return false;
+    }
+    return true;
+  };
+  const auto costs_at = [&](ParetoPoint* point, std::vector<std::string>* warnings) {
+    bool defined;
+    {
+      const std::lock_guard<std::mutex> lock(shared_problem);
+      defined = GroupCosts(problem, groups, point->values, &point->cost);
+    }
+    if (!defined) {
+      warnings->push_back(
+          fmt::format("pareto: the model is undefined at the fit for w = {:.4g}", point->weight));
+      return false;
+    }
+    for (int g = 0; g < 2; ++g) {
+      point->rms[g] = std::sqrt(2.0 * point->cost[g] / front.residuals[g]);
+    }
+    return true;
+  };
   const auto solve = [&](int j, const std::vector<double>& start) {
     std::vector<std::string>& warnings = side_warnings[j < mid ? 1 : 0];
     ParetoPoint& point = front.points[j];
@@ -203,35 +330,10 @@ ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResul
     if (j == mid) {
       point.values = fit.values;  // the ordinary fit itself
       point.converged = fit.summary.termination == FitTermination::kConverged;
-    } else {
-      try {
-        const CalibrationProblem weighted = Weighted(problem, groups, point.weight, start);
-        const FitResult result = CeresFitter(refit_options).Fit(weighted);
-        evaluations += result.summary.evaluations;
-        if (!result.summary.success()) {
-          warnings.push_back(fmt::format("pareto: the fit at w = {:.4g} failed: {}", point.weight,
-                                         result.summary.message));
-          return false;
-        }
-        point.values = result.values;
-        point.converged = result.summary.termination == FitTermination::kConverged;
-      } catch (const std::exception& error) {
-        warnings.push_back(
-            fmt::format("pareto: the fit at w = {:.4g} failed: {}", point.weight, error.what()));
-        return false;
-      }
-    }
-    bool defined;
-    {
-      const std::lock_guard<std::mutex> lock(shared_problem);
-      defined = GroupCosts(problem, groups, point.values, &point.cost);
-    }
-    if (!defined) {
-      warnings.push_back(
-          fmt::format("pareto: the model is undefined at the fit for w = {:.4g}", point.weight));
+    } else if (!fit_at(&point, start, &warnings)) {
       return false;
     }
-    for (int g = 0; g < 2; ++g) point.rms[g] = std::sqrt(2.0 * point.cost[g] / front.residuals[g]);
+    if (!costs_at(&point, &warnings)) return false;
     done[j] = 1;
     return true;
   };
@@ -245,37 +347,153 @@ ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResul
       if (solve(j, start)) start = front.points[j].values;
     }
   };
-  if (std::thread::hardware_concurrency() >= 2) {
-    std::exception_ptr lower_error;
-    std::thread lower([&] {
+  // Runs a and b, on two threads where there are two; rethrows what either threw.
+  const auto both = [](const std::function<void()>& a, const std::function<void()>& b) {
+    if (std::thread::hardware_concurrency() < 2) {
+      a();
+      b();
+      return;
+    }
+    std::exception_ptr b_error;
+    std::thread second([&] {
       try {
-        side(-1);
+        b();
       } catch (...) {
-        lower_error = std::current_exception();
+        b_error = std::current_exception();
       }
     });
     try {
-      side(+1);
+      a();
     } catch (...) {
-      lower.join();
+      second.join();
       throw;
     }
-    lower.join();
-    if (lower_error) std::rethrow_exception(lower_error);
-  } else {
-    side(+1);
-    side(-1);
-  }
-  front.evaluations = evaluations;
+    second.join();
+    if (b_error) std::rethrow_exception(b_error);
+  };
+  both([&] { side(+1); }, [&] { side(-1); });
   for (int k : {0, 1}) {
     front.warnings.insert(front.warnings.end(), side_warnings[k].begin(), side_warnings[k].end());
   }
   std::vector<ParetoPoint> kept;
   for (int j = 0; j < n; ++j) {
     if (done[j]) kept.push_back(front.points[j]);
-    if (j == mid) front.ordinary = static_cast<int>(kept.size()) - 1;
   }
   front.points = std::move(kept);
+  const auto find_ordinary = [&] {
+    front.ordinary = -1;
+    for (size_t j = 0; j < front.points.size(); ++j) {
+      if (!front.points[j].refined && front.points[j].weight == 0.5)
+        front.ordinary = static_cast<int>(j);
+    }
+  };
+  find_ordinary();
+  if (front.points.empty() || front.ordinary < 0) {
+    front.evaluations = evaluations;
+    front.not_computed = "no point of the sweep could be computed (its warnings say why)";
+    front.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return front;
+  }
+  // Refinement where the front moves, while it has too few distinct points.
+  const auto x_of = [](double w) { return std::log10(w / (1.0 - w)); };
+  std::vector<double> failed_x;
+  for (;;) {
+    MergeDistinctPoints(&front, options.merge_tolerance);
+    if (front.distinct >= options.min_distinct) {
+      if (front.refinements > 0) {
+        front.refinement = fmt::format(
+            "the uniform sweep gave fewer than {} distinct points: {} fits added where the front "
+            "moves (bisecting w/(1 - w) between neighbouring distinct points)",
+            options.min_distinct, front.refinements);
+      }
+      break;
+    }
+    if (front.refinements >= options.max_refinements) {
+      front.refinement = fmt::format(
+          "{} distinct points, fewer than {}: the refinement stopped at its limit of {} added "
+          "fits",
+          front.distinct, options.min_distinct, options.max_refinements);
+      break;
+    }
+    std::array<double, 2> low, high;
+    for (int g = 0; g < 2; ++g) {
+      low[g] = high[g] = front.points.front().cost[g];
+      for (const ParetoPoint& p : front.points) {
+        low[g] = std::min(low[g], p.cost[g]), high[g] = std::max(high[g], p.cost[g]);
+      }
+    }
+    struct Gap {
+      size_t j;
+      double distance, x;
+    };
+    std::vector<Gap> gaps;
+    for (size_t j = 0; j + 1 < front.points.size(); ++j) {
+      const ParetoPoint &a = front.points[j], &b = front.points[j + 1];
+      if (a.distinct == b.distinct) continue;
+      const double xa = x_of(a.weight), xb = x_of(b.weight), x = 0.5 * (xa + xb);
+      if (xb - xa < 2 * options.min_refine_decades) continue;
+      if (std::any_of(failed_x.begin(), failed_x.end(),
+                      [&](double f) { return std::abs(f - x) < 1e-12; })) {
+        continue;
+      }
+      double distance = 0;
+      for (int g = 0; g < 2; ++g) {
+        const double range = high[g] > low[g] ? high[g] - low[g] : 1.0;
+        distance = std::hypot(distance, (b.cost[g] - a.cost[g]) / range);
+      }
+      gaps.push_back({j, distance, x});
+    }
+    if (gaps.empty()) {
+      front.refinement = fmt::format(
+          "{} distinct points, fewer than {}: no two neighbouring distinct points lie more than "
+          "{:g} decades of w/(1 - w) apart, so the refinement stopped after {} added fits (the "
+          "front jumps there: a weighted sum finds no point in between)",
+          front.distinct, options.min_distinct, 2 * options.min_refine_decades, front.refinements);
+      break;
+    }
+    std::stable_sort(gaps.begin(), gaps.end(),
+                     [](const Gap& a, const Gap& b) { return a.distance > b.distance; });
+    const size_t count = std::min<size_t>(
+        {gaps.size(), 2, static_cast<size_t>(options.max_refinements - front.refinements)});
+    std::vector<ParetoPoint> added(count);
+    std::vector<std::vector<double>> starts(count);
+    std::vector<std::vector<std::string>> refine_warnings(count);
+    std::vector<char> ok(count, 0);
+    for (size_t k = 0; k < count; ++k) {
+      const double ratio = std::pow(10.0, gaps[k].x);
+      added[k].weight = ratio / (1.0 + ratio);
+      added[k].refined = true;
+      // From the neighbour of lower weighted cost at the new weight.
+      const ParetoPoint &a = front.points[gaps[k].j], &b = front.points[gaps[k].j + 1];
+      const double w = added[k].weight;
+      const auto weighted = [w](const ParetoPoint& p) {
+        return w * p.cost[0] + (1 - w) * p.cost[1];
+      };
+      starts[k] = weighted(a) <= weighted(b) ? a.values : b.values;
+    }
+    const auto refine = [&](size_t k) {
+      if (k >= count) return;
+      ok[k] = fit_at(&added[k], starts[k], &refine_warnings[k]) &&
+              costs_at(&added[k], &refine_warnings[k]);
+    };
+    both([&] { refine(0); }, [&] { refine(1); });
+    front.refinements += static_cast<int>(count);
+    for (size_t k = 0; k < count; ++k) {
+      front.warnings.insert(front.warnings.end(), refine_warnings[k].begin(),
+                            refine_warnings[k].end());
+      if (ok[k]) {
+        front.points.push_back(added[k]);
+      } else {
+        failed_x.push_back(gaps[k].x);
+      }
+    }
+    std::stable_sort(
+        front.points.begin(), front.points.end(),
+        [](const ParetoPoint& a, const ParetoPoint& b) { return a.weight < b.weight; });
+    find_ordinary();
+  }
+  front.evaluations = evaluations;
   for (const ParetoPoint& point : front.points) {
     if (!point.converged) {
       front.warnings.push_back(
@@ -322,6 +540,7 @@ ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResul
         c.weight, c.normalised[0], c.normalised[1],
         front.compromise == front.ordinary ? "; it is the ordinary fit (w = 0.5)" : "");
   }
+  MergeDistinctPoints(&front, options.merge_tolerance);  // the labels, with the compromise's
   front.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return front;
 }
@@ -330,7 +549,8 @@ std::string ParetoCsv(const ParetoFront& front, const ModelParameters& parameter
   const std::string &a = front.groups.names[0], &b = front.groups.names[1];
   std::string csv = fmt::format(
       "weight,cost_{0},cost_{1},rms_{0},rms_{1},normalised_{0},normalised_{1},converged,"
-      "compromise,ordinary,group_0,group_1",
+      "compromise,ordinary,distinct,weight_low,weight_high,label,labelled,refined,group_0,"
+      "group_1",
       a, b);
   for (const ParameterSpec& spec : parameters.specs()) csv += "," + spec.name;
   csv += "\n";
@@ -340,6 +560,8 @@ std::string ParetoCsv(const ParetoFront& front, const ModelParameters& parameter
                        p.cost[0], p.cost[1], p.rms[0], p.rms[1], p.normalised[0], p.normalised[1],
                        p.converged ? 1 : 0, static_cast<int>(j) == front.compromise ? 1 : 0,
                        static_cast<int>(j) == front.ordinary ? 1 : 0);
+    csv += fmt::format(",{},{:.10g},{:.10g},{},{},{}", p.distinct, p.weight_low, p.weight_high,
+                       p.Label(), p.labelled ? 1 : 0, p.refined ? 1 : 0);
     csv += "," + a + "," + b;
     for (double v : p.values) csv += fmt::format(",{:.10g}", v);
     csv += "\n";
@@ -351,12 +573,26 @@ std::string ParetoText(const ParetoFront& front, const ModelParameters& paramete
   if (!front.computed()) return "pareto front: not computed: " + front.not_computed + "\n";
   std::string s = fmt::format(
       "pareto front: {} (group 0, {} residuals) against {} (group 1, {} residuals), "
-      "weighted-sum sweep of {} points, {} evaluations, {:.2f} s\n"
+      "weighted-sum sweep of {} points ({} refined), {} evaluations, {:.2f} s\n"
       "  (w weights group 0; cost_g = 1/2 sum r^2 over group g, rms_g its RMS weighted "
       "residual)\n",
       front.groups.names[0], front.residuals[0], front.groups.names[1], front.residuals[1],
-      front.points.size(), front.evaluations, front.wall_seconds);
+      front.points.size(), front.refinements, front.evaluations, front.wall_seconds);
   if (!front.groups.choice.empty()) s += "  groups traded: " + front.groups.choice + "\n";
+  // The distinct points, and the weight ranges that gave one point.
+  std::string merged;
+  for (size_t j = 0; j < front.points.size(); ++j) {
+    const ParetoPoint& p = front.points[j];
+    if (p.weight_low != p.weight_high && p.weight == p.weight_low) {
+      merged += (merged.empty() ? "" : "; ") + p.Label();
+    }
+  }
+  s += fmt::format("  distinct points: {} of {}{}\n", front.distinct, front.points.size(),
+                   merged.empty() ? std::string()
+                                  : " (one point each, the fits being the same within the "
+                                    "merging tolerance: " +
+                                        merged + ")");
+  if (!front.refinement.empty()) s += "  refinement: " + front.refinement + "\n";
   s += fmt::format("  {:>10} {:>12} {:>12} {:>10} {:>10}", "w", "cost_0", "cost_1", "rms_0",
                    "rms_1");
   for (const ParameterSpec& spec : parameters.specs()) {
@@ -373,6 +609,7 @@ std::string ParetoText(const ParetoFront& front, const ModelParameters& paramete
     const bool c = static_cast<int>(j) == front.compromise,
                o = static_cast<int>(j) == front.ordinary;
     s += c && o ? "  compromise, ordinary fit" : c ? "  compromise" : o ? "  ordinary fit" : "";
+    s += p.refined ? "  (refined)" : "";
     s += "\n";
   }
   s += "  compromise: " + front.rule + "\n";

@@ -25,6 +25,18 @@
 // ordinary fit), each fit warm-started from its neighbour towards the ends.
 // A weighted sum finds the convex part of the front only.
 //
+// Distinct points: neighbours (in weight) whose costs differ by at most
+// merge_tolerance of each group's range on the front in both groups are one
+// point of the front (a weighted sum returns the same fit over a range of
+// weights where a bound holds or the front jumps); each point carries the
+// index of its distinct point and that point's weight range. While the front
+// has fewer than min_distinct distinct points, it is refined where it
+// moves: the weights between the two neighbouring distinct points farthest
+// apart (in normalised costs) are bisected in ln(w/(1 − w)) — two at a time,
+// on two threads, each fit warm-started from the neighbour of lower weighted
+// cost, so that the result does not depend on the threads — at most
+// max_refinements fits, never closer than min_refine_decades.
+//
 // The compromise: the knee, the point closest to the utopia point (each
 // group's least cost on the front) in costs normalised by their range on the
 // front, f_g = (C_g − min C_g)/(max C_g − min C_g): it gives up equal
@@ -73,6 +85,12 @@ struct ParetoOptions {
   double max_weight_ratio = 1e3;  // the ends' w/(1 − w) and its inverse
   // The sweep's fits by CeresFitter::CostRefitOptions(ceres, fast_refits).
   bool fast_refits = true;
+  // Refinement (see above): the distinct points sought, the fits it may add,
+  // the least step in log10(w/(1 − w)) it bisects, and the merging tolerance.
+  int min_distinct = 10;
+  int max_refinements = 12;
+  double min_refine_decades = 0.01;
+  double merge_tolerance = 1e-3;
   bool IsValid(std::string* why) const;
 };
 
@@ -83,6 +101,13 @@ struct ParetoPoint {
   std::array<double, 2> normalised = {0, 0};  // f_g (see above)
   std::vector<double> values;                 // full parameter vector
   bool converged = false;
+  bool refined = false;  // added by the refinement, not on the uniform sweep
+  // Its distinct point (ParetoFront::distinct) and that point's weights.
+  int distinct = 0;
+  double weight_low = 0.5, weight_high = 0.5;
+  bool labelled = false;  // its label is drawn (labels kept apart on the figure)
+  // "w = 0.2" or "w = 0.000999-0.2" (the distinct point's weight range).
+  std::string Label() const;
 };
 
 struct ParetoFront {
@@ -96,7 +121,10 @@ struct ParetoFront {
   std::string not_computed;               // non-empty: why there is no front
   std::vector<std::string> warnings;
   double wall_seconds = 0.0;
-  long evaluations = 0;  // residual-vector evaluations of the sweep's fits
+  long evaluations = 0;    // residual-vector evaluations of the sweep's fits
+  int distinct = 0;        // distinct points (see above)
+  int refinements = 0;     // fits added by the refinement
+  std::string refinement;  // how the refinement ended, in words ("" when none was needed)
   bool computed() const { return not_computed.empty() && !points.empty(); }
   // Whether C_0 does not increase and C_1 does not decrease with w (each
   // step within `tolerance` of the larger cost).
@@ -109,9 +137,17 @@ ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResul
                                const ResidualGroups& groups, const CeresFitter::Options& ceres,
                                const ParetoOptions& options);
 
+// Sets each point's distinct index and weight range and the front's
+// distinct count (merge_tolerance: see above), and which labels are drawn:
+// one per distinct point, those of the ends, the ordinary fit and the
+// compromise first, then any at least `label_spacing` (in RMS residuals
+// normalised by their range) from every label drawn.
+void MergeDistinctPoints(ParetoFront* front, double merge_tolerance, double label_spacing = 0.08);
+
 // pareto.csv: weight,cost_<g0>,cost_<g1>,rms_<g0>,rms_<g1>,normalised_<g0>,
-// normalised_<g1>,converged,compromise,ordinary,group_0,group_1 (the groups'
-// names on every row, for the figure), then the parameters.
+// normalised_<g1>,converged,compromise,ordinary,distinct,weight_low,
+// weight_high,label,labelled,refined,group_0,group_1 (the groups' names on
+// every row, for the figure), then the parameters.
 std::string ParetoCsv(const ParetoFront& front, const ModelParameters& parameters);
 // The summary's section.
 std::string ParetoText(const ParetoFront& front, const ModelParameters& parameters);

@@ -4,8 +4,11 @@
 # compression and ASBS states — against the critical and extension states;
 # the groups' names from pareto.csv label the axes) over a weighted-sum
 # sweep (pareto.csv), with the ordinary fit (equal weights) and the chosen
-# compromise (the knee) marked. Data written by `granasym calibrate` and
-# `granasym study calibrate` into the plot-data folder.
+# compromise (the knee) marked. Fits that coincide (the same costs within
+# the merging tolerance over a range of weights) are one point labelled with
+# its weight range; labels are drawn where pareto.csv's `labelled` says (kept
+# apart), alternately above and below the front. Data written by `granasym
+# calibrate` and `granasym study calibrate` into the plot-data folder.
 # Usage: gnuplot -e "dir='CONFIG_plots'" plots/calibration_pareto.gp   (writes dir/pareto.png)
 if (!exists("dir")) dir = "."
 set datafile separator ","
@@ -20,7 +23,10 @@ set ylabel "RMS weighted residual, ".group1 noenhanced
 set grid
 set offsets 0, graph 0.1, graph 0.1, 0
 set key top right box opaque
-plot f using 4:5 with linespoints pt 7 ps 1 lw 1.5 lc rgb "#1f77b4" title "front (w from 0.001 to 0.999)", \
-     f using 4:5:(int(column(0)) % 2 == 0 || column("ordinary") == 1 ? sprintf("w = %.3g", column(1)) : "") with labels left rotate by 35 offset 0.5,0.5 font ",8" notitle, \
+stats f using (column("distinct")) nooutput
+distinct = int(STATS_max) + 1
+plot f using 4:5 with linespoints pt 7 ps 1 lw 1.5 lc rgb "#1f77b4" title sprintf("front (%d distinct points)", distinct), \
+     f using 4:5:(column("labelled") == 1 && int(column("distinct")) % 2 == 0 ? strcol("label") : "") with labels left rotate by 30 offset 0.6,0.6 font ",8" notitle, \
+     f using 4:5:(column("labelled") == 1 && int(column("distinct")) % 2 == 1 ? strcol("label") : "") with labels right rotate by 30 offset -0.6,-0.6 font ",8" notitle, \
      f using (column("ordinary") == 1 ? column(4) : NaN):5 with points pt 5 ps 2 lc rgb "black" title "ordinary fit (w = 0.5)", \
      f using (column("compromise") == 1 ? column(4) : NaN):5 with points pt 3 ps 3 lw 2 lc rgb "#d62728" title "compromise (knee)"

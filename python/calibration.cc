@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/calibration_selections.h"
 #include "calibration/calibration_config.h"
 #include "calibration/calibration_report.h"
 #include "calibration/fit_status.h"
@@ -52,6 +53,10 @@ CalibrationResult ReadCalibrationFolder(const std::string& folder) {
   if (fs::exists(folder + "/warnings.txt"))
     result.warnings = ReadTextFile(folder + "/warnings.txt");
   if (fs::exists(folder + "/summary.txt")) result.summary = ReadTextFile(folder + "/summary.txt");
+  if (fs::exists(folder + "/selection.toml")) {
+    result.selection = ConfigTable::ParseFile(folder + "/selection.toml")
+                           .GetChoice("selection", {"all", "quasi_static"}, "");
+  }
   return result;
 }
 
@@ -229,6 +234,9 @@ void BindCalibration(py::module_& module) {
           "the warnings, one 'code: message' each (warnings.txt)")
       .def_readonly("summary", &CalibrationResult::summary, "the readable summary (summary.txt)")
       .def_readonly("folder", &CalibrationResult::folder, "where its files are ('' when none)")
+      .def_readonly("selection", &CalibrationResult::selection,
+                    "the study calibration's selection, 'all' or 'quasi_static' "
+                    "(selection.toml; '' when the folder has none)")
       .def("__repr__", [](const CalibrationResult& r) {
         return "<granasym.Calibration " + r.model + ": " + calibration::ToString(r.outcome.status) +
                ">";
@@ -237,6 +245,34 @@ void BindCalibration(py::module_& module) {
   module.def("read_calibration", &ReadCalibrationFolder, py::arg("folder"),
              "A calibration's folder (DIR/calibration/<model>/ of `granasym study calibrate`, or "
              "the `out` of calibrate()): status, reason, parameters, warnings and summary.");
+
+  module.def(
+      "read_study_calibrations",
+      [](const std::string& directory) {
+        if (!fs::is_directory(directory)) {
+          throw InputError(directory + ": not a folder (a study folder of `granasym study run`)");
+        }
+        py::dict out;
+        for (analysis::CalibrationSelection selection :
+             {analysis::CalibrationSelection::kAll, analysis::CalibrationSelection::kQuasiStatic}) {
+          py::dict models;
+          for (const char* model : {"hypoplastic_clay", "modified_cam_clay", "hypoplastic_sand"}) {
+            const std::string folder =
+                (fs::path(directory) / analysis::SelectionFolder(directory, model, selection))
+                    .string();
+            if (fs::exists(folder + "/" + calibration::kFitStatusFile)) {
+              models[model] = ReadCalibrationFolder(folder);
+            }
+          }
+          if (!models.empty()) out[analysis::SelectionName(selection)] = models;
+        }
+        return out;
+      },
+      py::arg("directory"),
+      "A study's calibrations by selection: {'all': {model: Calibration}, 'quasi_static': "
+      "{...}}, each selection's folder as `study calibrate` writes it (DIR/calibration/<model>/ "
+      "for the study's default selection, DIR/calibration/<selection>/<model>/ for the other); "
+      "a selection without calibrations is absent.");
 
   module.def(
       "calibrate", &Calibrate, py::arg("model"), py::arg("states") = py::none(), py::kw_only(),

@@ -18,6 +18,9 @@ struct CalibrationResult {
   std::string warnings;        // warnings.txt
   std::string summary;         // summary.txt
   std::string folder;          // where its files are; "" when none were kept
+  // selection.toml's selection ("all" or "quasi_static") of a study
+  // calibration's folder; "" for a folder without one.
+  std::string selection;
 };
 
 // DIR/calibration/<model>/ of `study calibrate`, or the `out` folder of

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "analysis/calibration_selections.h"
 #include "analysis/quasi_static_selection.h"
 #include "analysis/rate_files.h"
 #include "analysis/report_images.h"
@@ -644,6 +645,56 @@ TEST(StudyReport, CalibrationShowsProfileFlagsAndTheParetoFigure) {
   EXPECT_NE(std::find(summary.absent.begin(), summary.absent.end(),
                       "calibration/hypoplastic_clay/plot_data/profiles.png"),
             summary.absent.end());
+}
+
+// Two selections of one model (issue 36 §2): the paper-rate calibration in
+// calibration/<model>/ and the quasi-static one in
+// calibration/quasi_static/<model>/ each get a section, and the default's
+// opens with both side by side: value [interval] and verdict per selection,
+// "undetermined (profile flat)" where the profile is flat; the model counts
+// once; parameters_by_selection.csv holds the same.
+TEST(StudyReport, BothSelectionsOfAModelSideBySide) {
+  const fs::path dir = FullStudy("selections");
+  const fs::path paper = dir / "calibration/modified_cam_clay";
+  const fs::path quasi = dir / "calibration/quasi_static/modified_cam_clay";
+  Write(paper / "parameters.csv",
+        "parameter,value,std_error,ci95_low,ci95_high,status,profile_low,profile_high,profile,"
+        "units\n"
+        "phi_c_deg,25.1,0.3,24.5,25.7,fitted,24.6,25.6,determined,deg\n"
+        "poisson_ratio,0.3,,,,undetermined,,,flat,1\n");
+  Write(paper / "fit_status.toml", "status = \"converged\"\nreason = \"converged\"\n");
+  Write(quasi / "parameters.csv",
+        "parameter,value,std_error,ci95_low,ci95_high,status,profile_low,profile_high,profile,"
+        "units\n"
+        "phi_c_deg,19.9,0.3,19.3,20.5,fitted,19.4,20.4,determined,deg\n"
+        "poisson_ratio,0.25,0.01,0.23,0.27,fitted,0.22,0.28,determined,1\n");
+  Write(quasi / "fit_status.toml", "status = \"at_bound\"\nreason = \"at a bound\"\n");
+  EXPECT_EQ(WriteParametersBySelection(dir.string(), {"modified_cam_clay", "hypoplastic_clay"}),
+            (dir / kParametersBySelectionFile).string());
+  const std::string csv = ReadTextFile((dir / kParametersBySelectionFile).string());
+  EXPECT_NE(csv.find("modified_cam_clay,phi_c_deg,deg,25.1,24.6,25.6,profile,fitted,determined,"
+                     "fitted,19.9,19.4,20.4,profile,fitted,determined,fitted,converged,at_bound\n"),
+            std::string::npos)
+      << csv;
+  EXPECT_NE(csv.find("modified_cam_clay,poisson_ratio,1,0.3,,,,undetermined,flat,undetermined "
+                     "(profile flat),0.25,0.22,0.28,profile,fitted,determined,fitted,"),
+            std::string::npos)
+      << csv;
+  const ReportSummary summary = WriteReport(dir.string());
+  const std::string html = ReadTextFile(summary.html_path);
+  for (const char* text :
+       {"<th>paper rate (all detected states): value [95 % interval]</th>",
+        "<th>quasi-static: value [95 % interval]</th>", "<th>unit</th>",
+        "<td class=\"num\">25.1 [24.6, 25.6]</td>", "<td class=\"num\">19.9 [19.4, 20.4]</td>",
+        "undetermined (profile flat)</td>", "id=\"calibration-modified_cam_clay-quasi-static\"",
+        "Calibration: modified_cam_clay (quasi-static)", "A paper uses"}) {
+    EXPECT_NE(html.find(text), std::string::npos) << text;
+  }
+  // The side-by-side table comes before the default's own table.
+  const size_t section = html.find("id=\"calibration-modified_cam_clay\"");
+  ASSERT_NE(section, std::string::npos);
+  EXPECT_LT(html.find("quasi-static: value [95 % interval]", section),
+            html.find("<th>standard error</th>", section));
 }
 
 TEST(StudyReport, RunTimesCountEachCaseOwnStepsAndTotal) {

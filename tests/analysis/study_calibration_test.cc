@@ -127,7 +127,9 @@ TEST(StudyCalibration, ARateStudyIsFittedToItsQuasiStaticSetWithBothFitters) {
 TEST(StudyCalibration, AQuasiStaticSelectionBoundsTheInertialNumber) {
   const fs::path dir = fs::path(::testing::TempDir()) / "study_calibration" / "bounded";
   fs::create_directories(dir);
-  const std::string origin = (dir / "calibration/modified_cam_clay/calibration.toml").string();
+  // Not the study's default selection: its own folder (calibration_selections.h).
+  const std::string origin =
+      (dir / "calibration/quasi_static/modified_cam_clay/calibration.toml").string();
   const calibration::CalibrationConfig built = StudyCalibrationConfig(
       dir.string(), ModelKind::kModifiedCamClay, nullptr, kQuasiStaticInertialNumber);
   ASSERT_EQ(built.datasets.size(), 1u);

@@ -354,11 +354,11 @@ TEST(CalibrationConfig, RunsAWholeCalibrationAndWritesItsRecord) {
   EXPECT_TRUE(std::filesystem::exists(config.plot_data_dir + "/pareto.csv"));
   const std::string parameters = ParametersCsv(run, run.fits[0]);
   EXPECT_EQ(parameters.rfind("parameter,value,std_error,ci95_low,ci95_high,status,profile_low,"
-                             "profile_high,profile\n",
+                             "profile_high,profile,units\n",
                              0),
             0u)
       << parameters;
-  EXPECT_NE(parameters.find(",determined\n"), std::string::npos) << parameters;
+  EXPECT_NE(parameters.find(",determined,"), std::string::npos) << parameters;
   std::filesystem::remove_all(dir);
 }
 

@@ -3,6 +3,7 @@
 // model is nearly linear; a parameter the data do not act on is flagged
 // flat with the range it stays flat over; the front over two conflicting
 // groups of states is monotone, and its compromise is the knee.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -205,7 +206,9 @@ TEST(ParetoFront, IsMonotoneOnConflictingDataWithTheKneeAsCompromise) {
   EXPECT_EQ(groups.Residuals(problem, 0) + groups.Residuals(problem, 1), problem.num_residuals());
   const ParetoFront front = ComputeParetoFront(problem, fit, groups, ceres, ParetoOptions());
   ASSERT_TRUE(front.computed()) << front.not_computed;
-  ASSERT_EQ(front.points.size(), 11u);
+  // The uniform sweep's 11 points, and more where they were fewer than 10 distinct ones.
+  ASSERT_GE(front.points.size(), 11u);
+  EXPECT_GE(front.distinct, 10) << ParetoText(front, problem.parameters());
   EXPECT_TRUE(front.warnings.empty()) << front.warnings.front();
   EXPECT_TRUE(front.trade_off);
   EXPECT_TRUE(front.Monotone(1e-6)) << ParetoText(front, problem.parameters());
@@ -216,9 +219,11 @@ TEST(ParetoFront, IsMonotoneOnConflictingDataWithTheKneeAsCompromise) {
   EXPECT_LT(last.cost[0], 0.5 * first.cost[0]);
   EXPECT_LT(first.cost[1], 0.5 * last.cost[1]);
   // The ordinary fit is the middle point; the compromise is the knee.
-  EXPECT_EQ(front.ordinary, 5);
-  EXPECT_DOUBLE_EQ(front.points[5].weight, 0.5);
-  EXPECT_NEAR(front.points[5].cost[0] + front.points[5].cost[1], fit.summary.final_cost,
+  ASSERT_GE(front.ordinary, 0);
+  const ParetoPoint& ordinary = front.points[front.ordinary];
+  EXPECT_DOUBLE_EQ(ordinary.weight, 0.5);
+  EXPECT_FALSE(ordinary.refined);
+  EXPECT_NEAR(ordinary.cost[0] + ordinary.cost[1], fit.summary.final_cost,
               1e-9 * fit.summary.final_cost);
   ASSERT_GE(front.compromise, 0);
   const auto distance = [](const ParetoPoint& p) {
@@ -234,8 +239,78 @@ TEST(ParetoFront, IsMonotoneOnConflictingDataWithTheKneeAsCompromise) {
   EXPECT_NE(front.rule.find("knee"), std::string::npos);
   const std::string csv = ParetoCsv(front, problem.parameters());
   EXPECT_EQ(csv.rfind("weight,cost_ncl_compression,cost_csl_extension,", 0), 0u) << csv;
-  EXPECT_NE(csv.find(",ordinary,group_0,group_1,phi_c_deg,"), std::string::npos) << csv;
-  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 12);
+  EXPECT_NE(csv.find(",ordinary,distinct,weight_low,weight_high,label,labelled,refined,group_0,"
+                     "group_1,phi_c_deg,"),
+            std::string::npos)
+      << csv;
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), static_cast<long>(front.points.size()) + 1);
+}
+
+// A uniform grid out to w/(1 − w) = 1e±8 returns the groups' own optima at
+// several weights of each end: those are merged into one point labelled
+// with their weight range, and the front is refined where it moves (bisecting
+// between neighbouring distinct points) until it has 10 distinct points,
+// still monotone; one label per distinct point at most, none drawn on top of
+// another.
+TEST(ParetoFront, MergesDuplicatesOfAUniformGridAndRefinesToTenDistinctPoints) {
+  const std::vector<double> truth = testing::LondonClay();
+  const CalibrationProblem problem(
+      {ConflictingData()}, StartNear(ModelKind::kHypoplasticClay, truth), PredictorOptions());
+  const CeresFitter::Options ceres;
+  const FitResult fit = CeresFitter(ceres).Fit(problem);
+  ASSERT_TRUE(fit.summary.success()) << fit.summary.Report();
+  const ResidualGroups groups = DefaultResidualGroups(problem);
+  ParetoOptions options;
+  options.max_weight_ratio = 1e8;
+  options.min_distinct = 0;  // the uniform grid alone
+  const ParetoFront uniform = ComputeParetoFront(problem, fit, groups, ceres, options);
+  ASSERT_TRUE(uniform.computed()) << uniform.not_computed;
+  ASSERT_EQ(uniform.points.size(), 11u);
+  EXPECT_EQ(uniform.refinements, 0);
+  EXPECT_LT(uniform.distinct, 10) << ParetoText(uniform, problem.parameters());
+  // The first point stands for a range of weights, labelled so.
+  const ParetoPoint& end = uniform.points.front();
+  EXPECT_LT(end.weight_low, end.weight_high);
+  EXPECT_EQ(end.Label().find("w = 1e-08 to "), 0u) << end.Label();
+  EXPECT_EQ(uniform.points[1].distinct, 0);
+  EXPECT_FALSE(uniform.points[1].labelled);
+
+  options.min_distinct = 10;
+  const ParetoFront front = ComputeParetoFront(problem, fit, groups, ceres, options);
+  const std::string text = ParetoText(front, problem.parameters());
+  ASSERT_TRUE(front.computed()) << front.not_computed;
+  EXPECT_GE(front.distinct, 10) << text;
+  EXPECT_GT(front.refinements, 0);
+  EXPECT_LE(front.refinements, options.max_refinements);
+  EXPECT_EQ(front.points.size(), 11u + static_cast<size_t>(front.refinements));
+  EXPECT_TRUE(front.Monotone(1e-6)) << text;
+  for (size_t j = 1; j < front.points.size(); ++j) {
+    EXPECT_LT(front.points[j - 1].weight, front.points[j].weight);
+    EXPECT_GE(front.points[j].distinct, front.points[j - 1].distinct);
+  }
+  EXPECT_EQ(front.points.back().distinct, front.distinct - 1);
+  // One label at most per distinct point, the compromise's and the ends' drawn.
+  std::vector<int> labels(static_cast<size_t>(front.distinct), 0);
+  for (const ParetoPoint& p : front.points) labels[p.distinct] += p.labelled ? 1 : 0;
+  for (int count : labels) EXPECT_LE(count, 1);
+  EXPECT_EQ(labels.front(), 1);
+  EXPECT_EQ(labels.back(), 1);
+  EXPECT_EQ(labels[front.points[front.compromise].distinct], 1);
+  EXPECT_NE(
+      text.find(fmt::format("distinct points: {} of {}", front.distinct, front.points.size())),
+      std::string::npos)
+      << text;
+  EXPECT_NE(text.find("refinement: the uniform sweep gave fewer than 10 distinct points"),
+            std::string::npos)
+      << text;
+  // The same front whatever the threads: two refinements at a time, each from
+  // its own start.
+  const ParetoFront again = ComputeParetoFront(problem, fit, groups, ceres, options);
+  ASSERT_EQ(again.points.size(), front.points.size());
+  for (size_t j = 0; j < front.points.size(); ++j) {
+    EXPECT_EQ(again.points[j].weight, front.points[j].weight);
+    EXPECT_EQ(again.points[j].cost, front.points[j].cost);
+  }
 }
 
 TEST(ParetoFront, SaysWhyWithoutASecondGroup) {

@@ -502,7 +502,7 @@ void ExpectRecovered(ModelKind kind, const std::vector<double>& truth,
   // parameters.csv has one row per parameter with its status.
   const std::string csv = ParametersCsv(run, fit);
   EXPECT_EQ(csv.rfind("parameter,value,std_error,ci95_low,ci95_high,status,profile_low,"
-                      "profile_high,profile\n",
+                      "profile_high,profile,units\n",
                       0),
             0u);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 6);

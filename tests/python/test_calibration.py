@@ -85,3 +85,32 @@ def test_whole_paths_of_dem_results_as_datasets(scene_run, monkeypatch):
     with pytest.raises(granasym.InputError, match="path dataset 'ncl_path'.*p > 0"):
         granasym.calibrate("hypoplastic_clay", synthetic_states(), parameters=KAPPA_FIXED,
                            fitter=FAST, datasets=[dict(path, name="ncl_path", stages=["ncl"])])
+
+
+def test_a_studys_two_selections_read_from_their_own_folders(tmp_path):
+    """study calibrate keeps each selection in its own folder (issue 36 §2):
+    DIR/calibration/<model>/ for the default (all, at a paper-rate study) and
+    DIR/calibration/quasi_static/<model>/ for the other."""
+    study = tmp_path / "study"
+    states = synthetic_states()
+    for folder, selection, rows in (("calibration/hypoplastic_clay", "all", states),
+                                    ("calibration/quasi_static/hypoplastic_clay", "quasi_static",
+                                     states.iloc[::2])):
+        granasym.calibrate("hypoplastic_clay", rows, parameters=KAPPA_FIXED, fitter=FAST,
+                           out=str(study / folder))
+        (study / folder / "selection.toml").write_text(
+            f'selection = "{selection}"\ndescription = "test"\n')
+    both = granasym.read_study_calibrations(str(study))
+    assert set(both) == {"all", "quasi_static"}
+    assert set(both["all"]) == {"hypoplastic_clay"}
+    assert both["all"]["hypoplastic_clay"].selection == "all"
+    assert both["quasi_static"]["hypoplastic_clay"].selection == "quasi_static"
+    assert both["quasi_static"]["hypoplastic_clay"].folder.endswith(
+        "calibration/quasi_static/hypoplastic_clay")
+    assert both["quasi_static"]["hypoplastic_clay"].status == "converged"
+    # Only the default selection: the other is absent, not empty.
+    import shutil
+    shutil.rmtree(study / "calibration/quasi_static")
+    assert set(granasym.read_study_calibrations(str(study))) == {"all"}
+    with pytest.raises(granasym.InputError, match="not a folder"):
+        granasym.read_study_calibrations(str(tmp_path / "absent"))

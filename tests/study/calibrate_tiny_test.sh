@@ -57,7 +57,7 @@ for model in hypoplastic_clay modified_cam_clay hypoplastic_sand; do
   for file in calibration.toml calibration.h5 summary.txt parameters.csv warnings.txt model.toml; do
     [ -f "$dir/$file" ] || { echo "FAIL: $dir/$file is missing"; exit 1; }
   done
-  head -1 "$dir/parameters.csv" | grep -q "^parameter,value,std_error,ci95_low,ci95_high,status,profile_low,profile_high,profile$" ||
+  head -1 "$dir/parameters.csv" | grep -q "^parameter,value,std_error,ci95_low,ci95_high,status,profile_low,profile_high,profile,units$" ||
     { echo "FAIL: $dir/parameters.csv has another header"; exit 1; }
   [ "$(tail -n +2 "$dir/parameters.csv" | wc -l)" -ge 4 ] ||
     { echo "FAIL: $dir/parameters.csv has fewer than 4 parameters"; exit 1; }
@@ -75,8 +75,9 @@ for model in hypoplastic_clay modified_cam_clay hypoplastic_sand; do
     [ "$rerun" -eq "$(code_of "$status")" ] &&
       cmp -s "$dir/fit_status.toml" "$work/$model.rerun_status.toml" ||
       { cat "$work/$model.calibrate.txt"; echo "FAIL: $dir/calibration.toml reruns to status $rerun"; exit 1; }
-    # The same text but for the header line and the wall times.
-    tail -n +2 "$dir/summary.txt" | sed -E 's/[0-9.]+(e[-+]?[0-9]+)? s([ )]|$)/T s\2/g' > "$work/a.txt"
+    # The same text but for the header line, the wall times and the study's
+    # selection line (study calibrate's own).
+    tail -n +2 "$dir/summary.txt" | grep -v '^selection: ' | sed -E 's/[0-9.]+(e[-+]?[0-9]+)? s([ )]|$)/T s\2/g' > "$work/a.txt"
     tail -n +2 "$work/$model.rerun.txt" | sed -E 's/[0-9.]+(e[-+]?[0-9]+)? s([ )]|$)/T s\2/g' > "$work/b.txt"
     diff "$work/a.txt" "$work/b.txt" ||
       { echo "FAIL: $dir/calibration.toml reruns to another fit than study calibrate's"; exit 1; }
@@ -94,6 +95,44 @@ done
 "$granasym" study report "$out" | tee "$work/report.txt"
 grep -q "3 of 3 models calibrated" "$work/report.txt" ||
   { echo "FAIL: the report does not count the three calibrations"; exit 1; }
+
+# Two selections, two folders (issue 36 §2): a quasi-static calibration (here
+# every state with I(d_max) below 1, on the fastest model) goes to
+# calibration/quasi_static/<model>/ and leaves the paper-rate one in
+# calibration/<model>/; both side by side in parameters_by_selection.csv and
+# in the report.
+default="$out/calibration/modified_cam_clay" quasi="$out/calibration/quasi_static/modified_cam_clay"
+cp "$default/parameters.csv" "$work/paper_rate_parameters.csv"
+grep -q '^selection = "all"$' "$default/selection.toml" ||
+  { echo "FAIL: $default/selection.toml does not say all"; exit 1; }
+rc=0
+"$granasym" study calibrate "$out" --models modified_cam_clay --select quasi_static \
+  --max-inertial-number 1 > "$work/quasi_static.txt" 2>&1 || rc=$?
+case "$rc" in 0 | 5 | 6 | 7) ;; *) cat "$work/quasi_static.txt"; echo "FAIL: --select quasi_static exited $rc"; exit 1 ;; esac
+[ -s "$quasi/parameters.csv" ] && grep -q '^selection = "quasi_static"$' "$quasi/selection.toml" ||
+  { cat "$work/quasi_static.txt"; echo "FAIL: no quasi-static calibration in $quasi"; exit 1; }
+cmp -s "$work/paper_rate_parameters.csv" "$default/parameters.csv" ||
+  { echo "FAIL: the quasi-static calibration overwrote $default/parameters.csv"; exit 1; }
+sed -n 4p "$quasi/summary.txt" | grep -q "^selection: quasi_static .*A paper uses" ||
+  { sed -n 1,5p "$quasi/summary.txt"; echo "FAIL: $quasi/summary.txt does not say its selection"; exit 1; }
+by_selection="$out/calibration/parameters_by_selection.csv"
+head -1 "$by_selection" | grep -q "^model,parameter,units,all_value,all_low,all_high,all_interval,all_status,all_profile,all_verdict,quasi_static_value," ||
+  { echo "FAIL: $by_selection has another header"; exit 1; }
+[ "$(grep -c '^modified_cam_clay,' "$by_selection")" -eq "$(tail -n +2 "$default/parameters.csv" | wc -l)" ] ||
+  { cat "$by_selection"; echo "FAIL: $by_selection lacks Cam clay's parameters"; exit 1; }
+# Every row holds both values (the 4th and the 11th column).
+awk -F, 'NR > 1 && ($4 == "" || $11 == "") { bad = 1 } END { exit bad }' "$by_selection" ||
+  { cat "$by_selection"; echo "FAIL: $by_selection has a row without both values"; exit 1; }
+grep -q "both selections side by side: " "$work/quasi_static.txt" ||
+  { echo "FAIL: study calibrate does not name $by_selection"; exit 1; }
+"$granasym" study report "$out" > "$work/report_both.txt"
+for text in "paper rate (all detected states): value \[95 % interval\]" \
+            "quasi-static: value \[95 % interval\]" 'id="calibration-modified_cam_clay-quasi-static"'; do
+  grep -q "$text" "$out/index.html" ||
+    { echo "FAIL: the report does not show '$text'"; exit 1; }
+done
+grep -q "3 of 3 models calibrated" "$work/report_both.txt" ||
+  { echo "FAIL: the report counts a model's second selection as another model"; exit 1; }
 
 # Inertial numbers that select nothing are refused (status 2) naming the
 # flag; --inertial-number on a study without rate cases names what selects
@@ -122,4 +161,4 @@ rc=0
 "$granasym" study calibrate "$unwritable" --models hypoplastic_clay > "$work/unwritable.txt" 2>&1 || rc=$?
 [ "$rc" -eq 1 ] && grep -q "^failure: " "$work/unwritable.txt" ||
   { cat "$work/unwritable.txt"; echo "FAIL: an unwritable output exited $rc, expected 1"; exit 1; }
-echo "PASS: three models calibrated, their Fig. 5 paths drawn and reported; bad inertial numbers and an unwritable output refused"
+echo "PASS: three models calibrated, their Fig. 5 paths drawn and reported; a quasi-static selection beside them; bad inertial numbers and an unwritable output refused"
