@@ -32,6 +32,9 @@ do for [b = 0:n - 1] {
   set yrange [*:*]
   stats points using (strcol(1) eq name ? column("value") : NaN) nooutput
   pad = is_log > 0.5 ? (STATS_max / STATS_min) ** 0.04 : 0.04 * (STATS_max - STATS_min)
+  # A profile of one point (its first step already failed or left the bounds): a range about it.
+  if (is_log > 0.5 && pad <= 1) { pad = 1.1 }
+  if (is_log <= 0.5 && pad <= 0) { pad = STATS_max != 0 ? 0.04 * abs(STATS_max) : 0.04 }
   if (is_log > 0.5) {
     set xrange [STATS_min / pad:STATS_max * pad]
     # Four labelled tics evenly in ln x (a narrow log range has no decade to label).
