@@ -13,6 +13,8 @@
 
 #include "analysis/estimate.h"
 #include "analysis/figure_context.h"
+#include "analysis/quasi_static_selection.h"
+#include "analysis/rate_files.h"
 #include "common/state_measures.h"
 #include "common/statistics.h"
 #include "common/text_file.h"
@@ -657,50 +659,97 @@ Finding LimitD(const Study& study) {
   return f;
 }
 
-// The normalised states: p/p_e* = 1/OCR, q/p_e* = (q/p)/OCR.
+// A drained triaxial state at the critical state: its measured ψ_ε within
+// this of 90° (the critical state under stress control).
+constexpr double kDrainedCriticalPsiTolerance = 1.5;
+
+// The normalised states: p/p_e* = 1/OCR, q/p_e* = (q/p)/OCR. In a rate
+// study, the states of its quasi-static set only (the section of one rate),
+// whose critical states may come from drained tests alone.
 Finding AsbsShape(const Study& study) {
   Finding f = Make("asbs_shape", "Fig. 17, Sec. 4.5",
                    "Constant-e cross-sections of the ASBS change shape with e, and the critical "
                    "state lies far to the left of their apex (unlike in the models).",
-                   "p/p_e* (1/OCR) of the detected critical states: left of the apex if below "
-                   "0.7 of the apex's p/p_e* (the detected state of largest q/p_e*, of those "
-                   "with OCR ≥ 1); shape "
+                   "p/p_e* (1/OCR) of the detected critical states (ψ_ε = 90°; without them, "
+                   "drained triaxial states at ψ_ε = 90 ± 1.5°): left of the apex if below "
+                   "0.7 of the apex's p/p_e* (the other detected state of largest q/p_e*, of "
+                   "those with OCR ≥ 1; none when a critical state reaches higher); shape "
                    "changing with e if ln OCR of the critical states has a slope against "
-                   "ln(1+e) beyond its 95 % interval; reproduced if both, partly if one");
-  std::vector<State> all;
-  for (const State& s : study.main()) {
-    if (s.row->status == TableStatus::kDetected && s.row->ocr > 0) all.push_back(s);
+                   "ln(1+e) beyond its 95 % interval; reproduced if both, partly if one; in a "
+                   "rate study, the states of its quasi-static set only");
+  std::optional<QuasiStaticSelection> quasi_static;
+  if (const std::optional<RateStudy> rate = ReadRateStudy(study.ctx().directory)) {
+    QuasiStaticSelection selection = SelectQuasiStatic(*rate);
+    if (selection.valid()) quasi_static = std::move(selection);
   }
+  std::set<std::string> set_cases;
+  if (quasi_static) {
+    for (const std::string& name : quasi_static->AllCases()) set_cases.insert(name);
+  }
+  std::vector<State> all;
+  bool isochoric = false;
+  for (const State& s : study.main()) {
+    if (quasi_static && !set_cases.count(s.row->case_name)) continue;
+    if (s.row->status == TableStatus::kDetected && s.row->ocr > 0) {
+      all.push_back(s);
+      isochoric = isochoric || s.row->kind == TableKind::kCsl;
+    }
+  }
+  // The critical states: the isochoric ones; without them, the drained ones.
+  const auto critical = [isochoric](const StateRow& row) {
+    if (isochoric) return row.kind == TableKind::kCsl;
+    return row.kind == TableKind::kTriaxial &&
+           std::abs(row.psi_epsilon_deg - 90) <= kDrainedCriticalPsiTolerance;
+  };
   int denser_than_ncl = 0;  // OCR < 1: outside the NCL's reach, not on the ASBS
   std::vector<double> csl_ratio, csl_lnv, csl_lnocr;
+  // The apex: the other states' largest q/p_e*, unless a critical state
+  // reaches higher (then the critical states are the apex).
+  const auto q_over_pe = [](const StateRow& row) { return row.q_over_p / row.ocr; };
   const StateRow* apex = nullptr;
+  double critical_q_over_pe = -std::numeric_limits<double>::infinity();
   for (const State& s : all) {
     if (s.row->ocr < 1) {
       ++denser_than_ncl;
       continue;
     }
-    if (!apex || s.row->q_over_p / s.row->ocr > apex->q_over_p / apex->ocr) apex = s.row;
-    if (s.row->kind == TableKind::kCsl) {
+    if (critical(*s.row)) {
       csl_ratio.push_back(1 / s.row->ocr);
       csl_lnv.push_back(s.row->ln_1_plus_e);
       csl_lnocr.push_back(std::log(s.row->ocr));
+      critical_q_over_pe = std::max(critical_q_over_pe, q_over_pe(*s.row));
+    } else if (!apex || q_over_pe(*s.row) > q_over_pe(*apex)) {
+      apex = s.row;
     }
   }
-  if (csl_ratio.size() < 3 || !apex)
-    return NotTested(f, fmt::format("{} critical states with an OCR", csl_ratio.size()));
+  if (csl_ratio.size() < 3 || !apex) {
+    return NotTested(
+        f, fmt::format(
+               "{} {}critical states with an OCR{}", csl_ratio.size(), isochoric ? "" : "drained ",
+               quasi_static ? "; the quasi-static set: " + SelectionText(*quasi_static) : ""));
+  }
   const Estimate ratio = Estimate::Of(csl_ratio);
   const Estimate slope = SlopeOf(FitLine(csl_lnv, csl_lnocr));
-  const bool left = ratio.mean < 0.7 / apex->ocr;
+  const bool critical_apex = critical_q_over_pe >= q_over_pe(*apex);
+  const bool left = !critical_apex && ratio.mean < 0.7 / apex->ocr;
   const bool changes = slope.has_interval() && std::abs(slope.mean) > slope.half_width;
   f.verdict = left && changes   ? Verdict::kReproduced
               : left || changes ? Verdict::kPartly
                                 : Verdict::kNotReproduced;
   f.numbers = fmt::format(
-      "critical states p/p_e* = {} (range {}–{}); apex at ψ_ε = {}° with p/p_e* = {}, "
-      "q/p_e* = {}; d ln OCR(CSL) / d ln(1+e) = {}; {} detected state(s) with OCR < 1 left out",
-      WithInterval(ratio), Num(*std::min_element(csl_ratio.begin(), csl_ratio.end())),
-      Num(*std::max_element(csl_ratio.begin(), csl_ratio.end())), Num(apex->psi_epsilon_deg),
-      Num(1 / apex->ocr), Num(apex->q_over_p / apex->ocr), WithInterval(slope), denser_than_ncl);
+      "{}critical states p/p_e* = {} (range {}–{}); {} at ψ_ε = {}° ({}) with p/p_e* = {}, "
+      "q/p_e* = {}; d ln OCR(CSL) / d ln(1+e) = {}; {} detected state(s) with OCR < 1 left "
+      "out{}",
+      isochoric ? "" : "drained ", WithInterval(ratio),
+      Num(*std::min_element(csl_ratio.begin(), csl_ratio.end())),
+      Num(*std::max_element(csl_ratio.begin(), csl_ratio.end())),
+      critical_apex ? fmt::format("the critical states are the apex (q/p_e* up to {}); the "
+                                  "other states' largest q/p_e* is",
+                                  Num(critical_q_over_pe))
+                    : "apex",
+      Num(apex->psi_epsilon_deg), ToString(apex->kind), Num(1 / apex->ocr), Num(q_over_pe(*apex)),
+      WithInterval(slope), denser_than_ncl,
+      quasi_static ? "; the quasi-static set: " + SelectionText(*quasi_static) : "");
   return f;
 }
 

@@ -10,11 +10,10 @@ namespace granasym::analysis {
 
 std::string WriteStudyTables(const std::string& directory) {
   std::string text = study::WriteStateTable(directory).Text();
+  // The rate study's files first: the findings read its quasi-static set.
+  const std::optional<RateStudy> rate = WriteRateStudy(directory, study::ReadStateTable(directory));
   text += FindingsLine(WriteStudyFindings(directory));
-  if (const std::optional<RateStudy> rate =
-          WriteRateStudy(directory, study::ReadStateTable(directory))) {
-    text += rate->Text();
-  }
+  if (rate) text += rate->Text();
   return text;
 }
 

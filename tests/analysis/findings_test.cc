@@ -195,6 +195,37 @@ TEST(Findings, ExtensionStatesWithRisingOcrOnJoinedLinesAreNormalExtensionLines)
   EXPECT_EQ(d.verdict, Verdict::kNotReproduced) << d.numbers;
 }
 
+// Without isochoric critical states (a quasi-static set whose CSL comes from
+// drained tests), the drained states at ψ_ε ≈ 90° are the critical states;
+// when they reach the largest q/p_e* they are the apex, and the critical
+// state is not "left of the apex" however far left the mean sits.
+TEST(Findings, DrainedCriticalStatesThatReachTheLargestStressAreTheApex) {
+  Context ctx = Study();
+  for (double p : {100.0, 200.0, 500.0}) {
+    const std::string name = "nc" + std::to_string(static_cast<int>(p)) + "_drained";
+    const double ln_v = kN - std::log(3.0) * kLambda - kLambda * std::log(p);  // OCR 3
+    ctx.states.push_back(Row(name, TableKind::kTriaxial, 90.4, p, ln_v, 20));
+    ctx.cases.push_back(Case(name));
+    const std::string extension = "nc" + std::to_string(static_cast<int>(p)) + "_psi95";
+    const double ext_v = kN - std::log(8.0) * kLambda - kLambda * std::log(p);  // OCR 8
+    ctx.states.push_back(Row(extension, TableKind::kExtension, 95, p, ext_v, 15));
+    ctx.cases.push_back(Case(extension));
+  }
+  Finding f = Find(ComputeFindings(Classified(ctx)), "asbs_shape");
+  EXPECT_NE(f.verdict, Verdict::kReproduced) << f.numbers;
+  EXPECT_NE(f.numbers.find("drained critical states p/p_e* = 0.333"), std::string::npos)
+      << f.numbers;
+  EXPECT_NE(f.numbers.find("the critical states are the apex"), std::string::npos) << f.numbers;
+  // An extension state of larger q/p_e* near the NCL: the apex, the critical
+  // states left of it.
+  const double near_v = kN - std::log(1.1) * kLambda - kLambda * std::log(50.0);
+  ctx.states.push_back(Row("nc50_psi110", TableKind::kExtension, 110, 50, near_v, 40));
+  ctx.cases.push_back(Case("nc50_psi110"));
+  f = Find(ComputeFindings(Classified(ctx)), "asbs_shape");
+  EXPECT_NE(f.verdict, Verdict::kNotReproduced) << f.numbers;
+  EXPECT_NE(f.numbers.find("apex at ψ_ε = 110° (extension)"), std::string::npos) << f.numbers;
+}
+
 TEST(Findings, TheCsvNamesEveryFindingWithItsVerdict) {
   const fs::path dir =
       fs::temp_directory_path() / ("granasym_findings_" + std::to_string(getpid()));
