@@ -195,14 +195,21 @@ StateDataset ConflictingData() {
   return data;
 }
 
+// The conflicting data fitted from near London clay, with its two default
+// residual groups.
+struct ConflictingFit {
+  CalibrationProblem problem{{ConflictingData()},
+                             StartNear(ModelKind::kHypoplasticClay, testing::LondonClay()),
+                             PredictorOptions()};
+  CeresFitter::Options ceres;
+  FitResult fit = CeresFitter(ceres).Fit(problem);
+  ResidualGroups groups = DefaultResidualGroups(problem);
+};
+
 TEST(ParetoFront, IsMonotoneOnConflictingDataWithTheKneeAsCompromise) {
-  const std::vector<double> truth = testing::LondonClay();
-  const CalibrationProblem problem(
-      {ConflictingData()}, StartNear(ModelKind::kHypoplasticClay, truth), PredictorOptions());
-  const CeresFitter::Options ceres;
-  const FitResult fit = CeresFitter(ceres).Fit(problem);
+  const ConflictingFit conflicting;
+  const auto& [problem, ceres, fit, groups] = conflicting;
   ASSERT_TRUE(fit.summary.success()) << fit.summary.Report();
-  const ResidualGroups groups = DefaultResidualGroups(problem);
   EXPECT_EQ(groups.Residuals(problem, 0) + groups.Residuals(problem, 1), problem.num_residuals());
   const ParetoFront front = ComputeParetoFront(problem, fit, groups, ceres, ParetoOptions());
   ASSERT_TRUE(front.computed()) << front.not_computed;
@@ -253,13 +260,9 @@ TEST(ParetoFront, IsMonotoneOnConflictingDataWithTheKneeAsCompromise) {
 // still monotone; one label per distinct point at most, none drawn on top of
 // another.
 TEST(ParetoFront, MergesDuplicatesOfAUniformGridAndRefinesToTenDistinctPoints) {
-  const std::vector<double> truth = testing::LondonClay();
-  const CalibrationProblem problem(
-      {ConflictingData()}, StartNear(ModelKind::kHypoplasticClay, truth), PredictorOptions());
-  const CeresFitter::Options ceres;
-  const FitResult fit = CeresFitter(ceres).Fit(problem);
+  const ConflictingFit conflicting;
+  const auto& [problem, ceres, fit, groups] = conflicting;
   ASSERT_TRUE(fit.summary.success()) << fit.summary.Report();
-  const ResidualGroups groups = DefaultResidualGroups(problem);
   ParetoOptions options;
   options.max_weight_ratio = 1e8;
   options.min_distinct = 0;  // the uniform grid alone
