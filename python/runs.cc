@@ -41,6 +41,36 @@ py::dict SummaryDict(const dem::RunSummary& summary);  // python/results.cc
 
 namespace {
 
+// What a progress callback gets: a scene's state, and a study's.
+py::dict ProgressDict(const dem::RunProgress& state) {
+  py::dict d;
+  d["stage"] = state.stage;
+  d["stages"] = state.stages;
+  d["stage_name"] = state.stage_name;
+  d["step"] = state.step;
+  d["steps_per_second"] = state.steps_per_second;
+  d["eta_s"] = state.eta_seconds;
+  d["p_kpa"] = state.mean_stress_kpa;
+  d["e"] = state.void_ratio;
+  d["psi_sigma_deg"] = state.psi_sigma_deg;
+  d["line"] = state.OneLine();
+  return d;
+}
+
+py::dict ProgressDict(const study::StudyProgress& state) {
+  py::dict d;
+  d["total"] = state.total;
+  d["done"] = state.done;
+  d["running"] = state.running;
+  d["left"] = state.left;
+  d["failed"] = state.failed;
+  d["cached"] = state.cached;
+  d["particle_steps_per_second"] = state.particle_steps_per_second;
+  d["eta_s"] = state.eta_seconds;
+  d["line"] = state.OneLine();
+  return d;
+}
+
 // The Python side of a run: its callbacks, the first exception one raised
 // (or a pending Ctrl-C), and the stop request that follows it. Callbacks
 // come from the C++ threads with the GIL released; each takes the GIL.
@@ -56,6 +86,15 @@ class Callbacks {
   }
 
   bool stop() const { return stop_.load(); }
+
+  // Hands `options`' progress (as ProgressDict) and log lines to the callables.
+  template <typename State, typename Options>
+  void Connect(Options* options) {
+    options->progress = [this](const State& state) {
+      Progress([&state] { return ProgressDict(state); });
+    };
+    options->log = [this](const std::string& line) { Log(line); };
+  }
 
   // Calls `make_argument` and the progress callable with it; checks for Ctrl-C.
   template <typename MakeArgument>
@@ -112,23 +151,7 @@ py::dict RunSceneFile(const std::string& scene_path, const std::string& out, int
   options.keep_checkpoint = keep_checkpoint;
   Callbacks callbacks(progress, log);
   options.stop_requested = [&callbacks](int64_t) { return callbacks.stop(); };
-  options.progress = [&callbacks](const dem::RunProgress& state) {
-    callbacks.Progress([&state] {
-      py::dict d;
-      d["stage"] = state.stage;
-      d["stages"] = state.stages;
-      d["stage_name"] = state.stage_name;
-      d["step"] = state.step;
-      d["steps_per_second"] = state.steps_per_second;
-      d["eta_s"] = state.eta_seconds;
-      d["p_kpa"] = state.mean_stress_kpa;
-      d["e"] = state.void_ratio;
-      d["psi_sigma_deg"] = state.psi_sigma_deg;
-      d["line"] = state.OneLine();
-      return d;
-    });
-  };
-  options.log = [&callbacks](const std::string& line) { callbacks.Log(line); };
+  callbacks.Connect<dem::RunProgress>(&options);
   dem::RunSummary summary;
   {
     py::gil_scoped_release release;
@@ -157,22 +180,7 @@ py::dict RunProgramme(const std::string& programme_path, const std::string& scal
   const study::Plan plan = study::Plan::Make(programme, parallelism.threads, out);
   Callbacks callbacks(progress, log);
   options.stop_requested = [&callbacks] { return callbacks.stop(); };
-  options.progress = [&callbacks](const study::StudyProgress& state) {
-    callbacks.Progress([&state] {
-      py::dict d;
-      d["total"] = state.total;
-      d["done"] = state.done;
-      d["running"] = state.running;
-      d["left"] = state.left;
-      d["failed"] = state.failed;
-      d["cached"] = state.cached;
-      d["particle_steps_per_second"] = state.particle_steps_per_second;
-      d["eta_s"] = state.eta_seconds;
-      d["line"] = state.OneLine();
-      return d;
-    });
-  };
-  options.log = [&callbacks](const std::string& line) { callbacks.Log(line); };
+  callbacks.Connect<study::StudyProgress>(&options);
   study::StudyOutcome outcome;
   std::string tables;
   {

@@ -158,12 +158,9 @@ StateDataset ClayStates(ModelKind kind, const std::vector<double>& truth) {
   options.ln_volume_noise = 1e-4;
   options.psi_epsilons_deg = {0, 45, 90, 110};
   options.pressures_kpa = {50, 200, 800};
-  StateDataset data = testing::MakeSyntheticDataset(kind, truth, options);
-  for (AsymptoticStatePoint& point : data.points) {
-    point.psi_sigma_uncertainty = 0.5 * kDegree;
-    point.ln_volume_uncertainty = 0.002;
-  }
-  return data;
+  options.stated_psi_sigma_deg = 0.5;
+  options.stated_ln_volume = 0.002;
+  return testing::MakeSyntheticDataset(kind, truth, options);
 }
 
 ModelParameters StartFrom(ModelKind kind, const std::vector<double>& values) {

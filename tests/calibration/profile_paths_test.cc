@@ -34,12 +34,9 @@ StateDataset NclCslStates(ModelKind kind, const std::vector<double>& truth) {
   options.ln_volume_noise = 5e-4;
   options.psi_epsilons_deg = {0, 90};
   options.pressures_kpa = {50, 200, 800};
-  StateDataset data = testing::MakeSyntheticDataset(kind, truth, options);
-  for (AsymptoticStatePoint& point : data.points) {
-    point.psi_sigma_uncertainty = 0.5 * kDegree;
-    point.ln_volume_uncertainty = 0.002;
-  }
-  return data;
+  options.stated_psi_sigma_deg = 0.5;
+  options.stated_ln_volume = 0.002;
+  return testing::MakeSyntheticDataset(kind, truth, options);
 }
 
 // κ* of the hypoplastic clay from the unload–reload cycles only: its profile

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct SyntheticOptions {
   double psi_sigma_noise_deg = 0.3;  // standard deviation
   double ln_volume_noise = 0.002;
   unsigned seed = 7;
+  // The uncertainties the points state (by default the noise's own), e.g.
+  // the DEM's 0.5° and 0.002 on data made nearly without noise.
+  std::optional<double> stated_psi_sigma_deg, stated_ln_volume;
 };
 
 inline StateDataset MakeSyntheticDataset(ModelKind kind, const std::vector<double>& truth,
@@ -62,8 +66,9 @@ inline StateDataset MakeSyntheticDataset(ModelKind kind, const std::vector<doubl
                           options.ln_volume_noise * normal(random);
       point.void_ratio = std::exp(ln_v) - 1.0;
       point.psi_sigma = psi_sigma + options.psi_sigma_noise_deg * kDegree * normal(random);
-      point.psi_sigma_uncertainty = options.psi_sigma_noise_deg * kDegree;
-      point.ln_volume_uncertainty = options.ln_volume_noise;
+      point.psi_sigma_uncertainty =
+          options.stated_psi_sigma_deg.value_or(options.psi_sigma_noise_deg) * kDegree;
+      point.ln_volume_uncertainty = options.stated_ln_volume.value_or(options.ln_volume_noise);
       point.source = "synthetic";
       dataset.points.push_back(point);
     }
