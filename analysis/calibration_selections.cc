@@ -3,10 +3,10 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 
 #include "analysis/rate_files.h"
+#include "analysis/report_tables.h"
 #include "common/config.h"
 #include "common/csv_table.h"
 #include "common/error.h"
@@ -16,12 +16,10 @@ namespace granasym::analysis {
 namespace fs = std::filesystem;
 namespace {
 
+// A finite number of a CSV field (report_tables.h's Number), else none.
 std::optional<double> NumberOf(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != '\0' || !std::isfinite(v)) return std::nullopt;
-  return v;
+  const std::optional<double> v = report::Number(text);
+  return v && std::isfinite(*v) ? v : std::nullopt;
 }
 
 std::string Number(const std::optional<double>& v) {
@@ -110,12 +108,8 @@ std::string SelectionAdvice(const std::string& directory) {
 }
 
 std::string SelectionToml(CalibrationSelection selection, const std::string& description) {
-  std::string text = fmt::format("selection = \"{}\"\ndescription = \"", SelectionName(selection));
-  for (char c : description) {
-    if (c == '"' || c == '\\') text += '\\';
-    text += c == '\n' ? ' ' : c;
-  }
-  return text + "\"\n";
+  return fmt::format("selection = \"{}\"\ndescription = {}\n", SelectionName(selection),
+                     TomlQuoted(description));
 }
 
 std::vector<SelectionCalibration> CalibratedSelections(const std::string& directory,
