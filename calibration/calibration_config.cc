@@ -249,6 +249,8 @@ void ReadFitter(const ConfigTable& f, CalibrationConfig* config) {
   config->fix_undetermined = f.GetBool("fix_undetermined", config->fix_undetermined);
   config->ceres.max_iterations = static_cast<int>(
       f.GetInt("max_iterations", config->ceres.max_iterations, Range::Closed(1, 1e6)));
+  config->ceres.stall_deviance =
+      f.GetDouble("stall_deviance", config->ceres.stall_deviance, Range::Closed(0, 10));
   config->ceres.uncertainty.scale_by_residual_variance =
       f.GetBool("scale_by_residual_variance", config->ceres.uncertainty.scale_by_residual_variance);
   config->profiles.enabled = f.GetBool("profiles", config->profiles.enabled);
@@ -410,6 +412,9 @@ const KeyTable& CalibrationKeys() {
                  "fix parameters the data do not determine, and refit"),
         NumberKey("fitter", "max_iterations", KeyType::kInteger, "", Range::Closed(1, 1e6), "200",
                   "Ceres iterations"),
+        NumberKey("fitter", "stall_deviance", KeyType::kNumber, "", Range::Closed(0, 10), "0.01",
+                  "converged when the deviance 2 cost/s^2 falls by less than this over 10 "
+                  "successful Ceres steps (0: off)"),
         OtherKey("fitter", "scale_by_residual_variance", KeyType::kBool, "true or false", "true",
                  "scale the covariance by the residual variance (uncertainties as weights)"),
         OtherKey("fitter", "profiles", KeyType::kBool, "true or false", "true",
@@ -604,10 +609,11 @@ std::string CalibrationConfigText(const CalibrationConfig& config, const std::st
   }
   s += fmt::format(
       "\n[fitter]\nmethod = {}\nfix_undetermined = {}\nmax_iterations = {}\n"
-      "scale_by_residual_variance = {}\nprofiles = {}\nprofile_points_per_side = {}\n"
+      "stall_deviance = {}\nscale_by_residual_variance = {}\nprofiles = "
+      "{}\nprofile_points_per_side = {}\n"
       "profile_restarts = {}\nfast_refits = {}\npareto = {}\npareto_points = {}\n",
       TomlQuoted(ToString(config.method)), config.fix_undetermined ? "true" : "false",
-      config.ceres.max_iterations,
+      config.ceres.max_iterations, TomlFloat(config.ceres.stall_deviance),
       config.ceres.uncertainty.scale_by_residual_variance ? "true" : "false",
       config.profiles.enabled ? "true" : "false", config.profiles.points_per_side,
       config.profiles.max_restarts, config.profiles.fast_refits ? "true" : "false",

@@ -78,6 +78,9 @@
 //   method = "ceres"              # ceres | nlopt | both (then the two are compared)
 //   fix_undetermined = true       # fix parameters the data do not determine, refit
 //   max_iterations = 200          # ceres
+//   stall_deviance = 0.01         # ceres: converged when the deviance
+//                                 #   2 cost/s^2 falls by less than this over
+//                                 #   10 successful steps (0: off)
 //   scale_by_residual_variance = true
 //   profiles = true               # profile-likelihood intervals of every fitted
 //                                 #   and undetermined parameter (profile_likelihood.h)

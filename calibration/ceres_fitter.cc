@@ -51,7 +51,41 @@ class HistoryCallback : public ceres::IterationCallback {
   std::vector<HistoryPoint>* history_;
 };
 
+// Ends a solve as converged when it has stalled (Options::stall_deviance).
+class StallCallback : public ceres::IterationCallback {
+ public:
+  explicit StallCallback(StallDetector* detector) : detector_(detector) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    if (summary.iteration > 0 && !summary.step_is_successful) return ceres::SOLVER_CONTINUE;
+    return detector_->Stalled(summary.cost) ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+                                            : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  StallDetector* detector_;
+};
+
 }  // namespace
+
+StallDetector::StallDetector(const CeresFitter::Options& options, int degrees_of_freedom)
+    : stall_deviance_(options.stall_deviance),
+      stall_steps_(options.stall_steps),
+      scaled_(options.uncertainty.scale_by_residual_variance),
+      degrees_of_freedom_(std::max(1, degrees_of_freedom)) {}
+
+bool StallDetector::Stalled(double cost) {
+  costs_.push_back(cost);
+  if (stall_deviance_ <= 0 || static_cast<int>(costs_.size()) <= stall_steps_) return false;
+  const double variance = scaled_ ? 2.0 * cost / degrees_of_freedom_ : 1.0;
+  const double before = costs_[costs_.size() - 1 - static_cast<size_t>(stall_steps_)];
+  const double fall = 2.0 * (before - cost) / variance;
+  if (!(variance > 0) || !(fall < stall_deviance_)) return false;
+  why_ = fmt::format(
+      "Stalled: the deviance 2 cost/s^2 fell by {:.3g} over the last {} successful steps (< "
+      "{:g}), far below what a profile resolves",
+      fall, stall_steps_, stall_deviance_);
+  return true;
+}
 
 bool CeresFitter::Options::IsValid(std::string* why) const {
   if (max_iterations < 1) {
@@ -60,6 +94,11 @@ bool CeresFitter::Options::IsValid(std::string* why) const {
   }
   if (!(function_tolerance > 0 && parameter_tolerance > 0 && gradient_tolerance > 0)) {
     *why = "function_tolerance, parameter_tolerance and gradient_tolerance must be > 0";
+    return false;
+  }
+  if (!(stall_deviance >= 0) || stall_steps < 1) {
+    *why = fmt::format("stall_deviance = {} must be >= 0 and stall_steps = {} >= 1", stall_deviance,
+                       stall_steps);
     return false;
   }
   if (!(relative_step > 0 && relative_step < 1e-2)) {
@@ -136,15 +175,19 @@ FitResult CeresFitter::Fit(const CalibrationProblem& problem,
   solver.logging_type = ceres::SILENT;
   HistoryCallback callback(problem, &result.history);
   solver.callbacks.push_back(&callback);
+  StallDetector detector(options_, problem.num_residuals() - problem.num_free());
+  StallCallback stall(&detector);
+  solver.callbacks.push_back(&stall);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, &ceres_problem, &summary);
 
   result.values = problem.parameters().WithFree(x);
   result.summary.iterations = static_cast<int>(summary.iterations.size());
   result.summary.final_cost = summary.final_cost;
-  result.summary.message = summary.message;
+  result.summary.message = detector.why().empty() ? summary.message : detector.why();
   switch (summary.termination_type) {
     case ceres::CONVERGENCE:
+    case ceres::USER_SUCCESS:
       result.summary.termination = FitTermination::kConverged;
       break;
     case ceres::NO_CONVERGENCE:

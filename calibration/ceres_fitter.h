@@ -18,6 +18,14 @@ class CeresFitter {
     double function_tolerance = 1e-12;   // relative change of the cost
     double parameter_tolerance = 1e-12;  // relative step
     double gradient_tolerance = 1e-14;
+    // Converged when stalled: the deviance D = 2 cost / s² (s² the residual
+    // variance where the uncertainties are scaled by it, else 1) fell by
+    // less than stall_deviance over the last stall_steps successful steps,
+    // far below what a profile resolves (D < 3.84 for 95 %). A fit creeping
+    // along a flat valley of the cost then ends where the creep starts, and
+    // the profiles show what it leaves undetermined. 0: off.
+    double stall_deviance = 0.01;
+    int stall_steps = 10;
     // Central-difference step, relative to the parameter value.
     double relative_step = 1e-6;
     // Forward differences instead of central ones: half the residual
@@ -48,6 +56,25 @@ class CeresFitter {
 
  private:
   Options options_;
+};
+
+// Whether a solve has stalled (CeresFitter::Options::stall_deviance): fed
+// the cost at the start and after each successful step, it answers true once
+// the deviance fell by less than stall_deviance over the last stall_steps
+// steps, and why() says so.
+class StallDetector {
+ public:
+  StallDetector(const CeresFitter::Options& options, int degrees_of_freedom);
+  bool Stalled(double cost);
+  const std::string& why() const { return why_; }
+
+ private:
+  double stall_deviance_;
+  int stall_steps_;
+  bool scaled_;
+  int degrees_of_freedom_;
+  std::vector<double> costs_;
+  std::string why_;
 };
 
 }  // namespace granasym::calibration

@@ -274,8 +274,12 @@ ParetoFront ComputeParetoFront(const CalibrationProblem& problem, const FitResul
     front.not_computed = "no successful fit to start the sweep from";
     return front;
   }
-  const CeresFitter::Options refit_options =
-      CeresFitter::CostRefitOptions(ceres, options.fast_refits);
+  // The sweep's fits run to Ceres's tolerances, not to a stall
+  // (CeresFitter::Options::stall_deviance): the front's points are compared
+  // with one another (duplicates merged, monotone costs) far more finely
+  // than a profile's threshold.
+  CeresFitter::Options refit_options = CeresFitter::CostRefitOptions(ceres, options.fast_refits);
+  refit_options.stall_deviance = 0;
   const int n = options.points, mid = n / 2;
   const double span = std::log10(options.max_weight_ratio);
   front.points.resize(static_cast<size_t>(n));

@@ -22,6 +22,9 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kChiSquare1 = 1.959963984540054 * 1.959963984540054;
 // A side ends once the statistic passes this multiple of the threshold.
 constexpr double kStopFactor = 4.0;
+// Where a step fails (the model undefined), the side's end is located by
+// this many bisections: within 1/64 of the failed step.
+constexpr int kDomainBisections = 6;
 
 // The profile of one parameter.
 class Profiler {
@@ -114,27 +117,49 @@ class Profiler {
     }
     std::vector<double> warm = fit_.values;
     bool crossed = false, failed = false;
-    for (size_t j = 0; j < distances.size(); ++j) {
-      // Beyond the grid only while the profile has not crossed the threshold.
-      if (j >= grid && crossed) break;
+    // A point of the side at `distance`, refitted from the last point (else
+    // from the fit); false, with the failure recorded, where the model is
+    // undefined there or the refit fails.
+    const auto step = [&](double distance, bool exact_bound) {
       ProfilePoint point;
-      point.value = X(log_scale, u0 + sign * distances[j]);
-      if (j + 1 == distances.size() && !decade_limited && distances[j] == reach_max) {
-        point.value = sign < 0 ? spec.lower : spec.upper;  // exactly the bound
-      }
+      point.value =
+          exact_bound ? (sign < 0 ? spec.lower : spec.upper) : X(log_scale, u0 + sign * distance);
       std::string why;
       ++profile->refits;
       if (!Refit(parameter, point.value, warm, &point, &why) &&
           (warm == fit_.values || !Refit(parameter, point.value, fit_.values, &point, &why))) {
-        failed = true;
         profile->failure = fmt::format("{} = {:.6g}: {}", spec.name, point.value, why);
-        break;
+        return false;
       }
       profile->evaluations += point.evaluations;
       warm = point.values;
       points->push_back(point);
       const double statistic = 2.0 * (point.cost - fit_.summary.final_cost) / residual_variance_;
       crossed = crossed || statistic >= threshold_;
+      return true;
+    };
+    for (size_t j = 0; j < distances.size(); ++j) {
+      // Beyond the grid only while the profile has not crossed the threshold.
+      if (j >= grid && crossed) break;
+      const bool exact_bound =
+          j + 1 == distances.size() && !decade_limited && distances[j] == reach_max;
+      if (!step(distances[j], exact_bound)) {
+        failed = true;
+        // The model's domain ends between the last good distance and this
+        // one (an ordering constraint such as e_d0 < e_c0, or f_b > 0):
+        // bisect towards it, so that the side ends at the edge, or crosses
+        // the threshold before it, rather than where a coarse grid step
+        // happened to jump over it.
+        double good = j == 0 ? 0.0 : distances[j - 1], bad = distances[j];
+        for (int h = 0; h < kDomainBisections && !crossed; ++h) {
+          const double middle = 0.5 * (good + bad);
+          (step(middle, false) ? good : bad) = middle;
+        }
+        if (crossed) failed = false;
+        break;
+      }
+      const double statistic =
+          2.0 * (points->back().cost - fit_.summary.final_cost) / residual_variance_;
       if (statistic >= kStopFactor * threshold_) break;
     }
     if (failed) {

@@ -20,7 +20,11 @@
 // standard errors (where the fit reports one), else out to a decade (log
 // scale) or the bound; a side that has not crossed the threshold at its last
 // point is extended by doubling steps up to a decade or the bound. A side
-// ends where the statistic passes 4 × threshold.
+// ends where the statistic passes 4 × threshold, or where the model is
+// undefined (an ordering constraint such as e_d0 < e_c0): a step that fails
+// is bisected six times towards the last good point, so the side ends within
+// 1/64 of that step from the domain's edge, or crosses the threshold before
+// it.
 //
 // A parameter is `flat` (not determined) when its profile stays below the
 // threshold up to a bound of the fit, up to where the model is undefined or

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "calibration/calibration_problem.h"
+#include "calibration/calibration_report.h"
 #include "calibration/nlopt_fitter.h"
 #include "calibration/starting_values.h"
 #include "common/error.h"
@@ -216,5 +217,69 @@ TEST(CeresFitter, WarnsAboutANearSingularCovariance) {
   EXPECT_TRUE(std::isfinite(flat.standard_errors[kLambdaStar]));
 }
 
+// The stall test on costs as a solve reports them: a fall of the deviance
+// D = 2 cost/s² by less than 0.01 over ten steps ends it, with s² = 2 cost /
+// dof where the uncertainties are scaled by it and 1 where they are not.
+TEST(StallDetector, EndsACreepButNotASteadyFall) {
+  CeresFitter::Options options;  // stall_deviance 0.01 over 10 steps
+  // dof 100, cost 1000: s² = 20, a fall of 0.01 in D is 0.1 in cost.
+  StallDetector creep(options, 100);
+  int steps = 0;
+  double cost = 1000.0;
+  while (!creep.Stalled(cost) && steps < 1000) {
+    cost -= 0.02 * std::pow(0.5, steps / 5.0);  // ever smaller steps
+    ++steps;
+  }
+  EXPECT_LT(steps, 1000);
+  EXPECT_NE(creep.why().find("Stalled"), std::string::npos) << creep.why();
+  StallDetector steady(options, 100);
+  cost = 1000.0;
+  for (int k = 0; k < 200; ++k, cost -= 0.011) EXPECT_FALSE(steady.Stalled(cost)) << k;
+  EXPECT_TRUE(steady.why().empty());
+  // Unscaled (s² = 1): the same 0.011-per-step fall is 0.22 in D over ten steps.
+  options.uncertainty.scale_by_residual_variance = false;
+  StallDetector unscaled(options, 100);
+  cost = 1000.0;
+  for (int k = 0; k < 50; ++k, cost -= 0.011) EXPECT_FALSE(unscaled.Stalled(cost)) << k;
+  StallDetector flat(options, 100);
+  for (int k = 0; k < 10; ++k) EXPECT_FALSE(flat.Stalled(5.0)) << k;  // not ten steps yet
+  EXPECT_TRUE(flat.Stalled(5.0));
+  options.stall_deviance = 0;  // off
+  StallDetector off(options, 100);
+  for (int k = 0; k < 50; ++k) EXPECT_FALSE(off.Stalled(5.0)) << k;
+}
+
+// The sand model on states of a clay: a slow approach to its optimum, with
+// alpha and beta at their bounds. The fit that ends as stalled ends where the
+// one that runs to Ceres's tolerance does, to far less than its standard
+// errors, in fewer iterations.
+TEST(CeresFitter, AStalledFitEndsWhereTheFullyConvergedOneDoes) {
+  testing::SyntheticOptions data;
+  data.psi_epsilons_deg = {0, 30, 60, 90};
+  const StateDataset clay =
+      testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, testing::LondonClay(), data);
+  const ModelParameters sand =
+      ChooseParameters(ModelKind::kHypoplasticSand, {}, EstimateStartingValues({clay}), {clay});
+  CalibrationProblem problem({clay}, sand, PredictorOptions());
+  CeresFitter::Options full;
+  full.stall_deviance = 0;
+  const FitResult converged = CeresFitter(full).Fit(problem);
+  const FitResult stalled = CeresFitter(CeresFitter::Options()).Fit(problem);
+  ASSERT_EQ(converged.summary.termination, FitTermination::kConverged)
+      << converged.summary.Report();
+  ASSERT_EQ(stalled.summary.termination, FitTermination::kConverged) << stalled.summary.Report();
+  EXPECT_NE(stalled.summary.message.find("Stalled"), std::string::npos) << stalled.summary.Report();
+  EXPECT_LT(stalled.summary.iterations, converged.summary.iterations);
+  EXPECT_LT(
+      2 * (stalled.summary.final_cost - converged.summary.final_cost) / converged.residual_variance,
+      0.01);
+  ASSERT_EQ(converged.standard_errors.size(), converged.free_indices.size());
+  for (size_t k = 0; k < converged.free_indices.size(); ++k) {
+    const int i = converged.free_indices[k];
+    if (!converged.Reported(k)) continue;  // at a bound
+    EXPECT_LT(std::abs(stalled.values[i] - converged.values[i]), 0.1 * converged.standard_errors[k])
+        << sand.specs()[i].name;
+  }
+}
 }  // namespace
 }  // namespace granasym::calibration

@@ -9,9 +9,12 @@
 #include <cmath>
 
 #include "calibration/calibration_problem.h"
+#include "calibration/calibration_report.h"
 #include "calibration/ceres_fitter.h"
 #include "calibration/pareto.h"
 #include "calibration/profile_likelihood.h"
+#include "common/state_measures.h"
+#include "constitutive/hypoplastic_sand.h"
 #include "synthetic_data.h"
 
 namespace granasym::calibration {
@@ -146,6 +149,138 @@ TEST(ProfileLikelihood, FlagsAParameterTheDataDoNotActOnAsFlat) {
   const ProfileSet serial =
       ProfileLikelihood(problem, fit, {kShearParameter}, ceres, profile_options);
   EXPECT_EQ(ProfilesCsv(serial), ProfilesCsv(set));
+}
+
+// The sand's NCL (e_i) and CSL (e_c) do not depend on e_d0: the profile of
+// e_d0 (fixed) stays flat upwards until the model is undefined just below
+// e_c0 (e_d0 < e_c0, f_b > 0). The grid's first step, an eighth of the way to
+// the bound 3, jumps past e_c0; bisected, the side ends within 1/64 of that
+// step from the edge instead of at the fitted value.
+TEST(ProfileLikelihood, ASideThatRunsIntoTheModelsDomainEndsAtItsEdge) {
+  const std::vector<double> truth = {24.0, 1.7e5, 0.38, 0.46, 0.77, 0.83, 0.15, 1.0};
+  std::string why;
+  const auto model = MakeModel(ModelKind::kHypoplasticSand, truth, &why);
+  ASSERT_TRUE(model) << why;
+  const auto& sand = static_cast<const HypoplasticSand&>(*model);
+  StateDataset axes;
+  axes.name = "sand";
+  axes.origin = "synthetic";
+  for (double p : {50.0, 150.0, 450.0, 1000.0}) {
+    for (const bool critical : {false, true}) {
+      AsymptoticStatePoint point;
+      point.kind = critical ? StateKind::kCsl : StateKind::kNcl;
+      point.psi_epsilon = critical ? 0.5 * kPi : 0.0;
+      point.mean_stress = p;
+      point.void_ratio =
+          critical ? sand.LimitVoidRatiosAt(p).critical : sand.LimitVoidRatiosAt(p).loosest;
+      point.psi_sigma =
+          critical ? std::atan(std::sqrt(2.0) / 3.0 * CriticalStateRatio(truth[0] * kDegree)) : 0;
+      point.psi_sigma_uncertainty = 0.3 * kDegree;
+      point.ln_volume_uncertainty = 0.002;
+      point.source = "made";
+      axes.points.push_back(point);
+    }
+  }
+  ModelParameters parameters = ModelParameters::Defaults(ModelKind::kHypoplasticSand);
+  for (size_t i = 0; i < truth.size(); ++i) {
+    parameters.mutable_specs()[i].value = truth[i];
+    parameters.mutable_specs()[i].free =
+        i != kSandDensestVoidRatio && i != kSandPyknotropyExponent && i != kSandStiffnessExponent;
+  }
+  const CalibrationProblem problem({axes}, parameters, PredictorOptions());
+  const CeresFitter::Options ceres;
+  const FitResult fit = CeresFitter(ceres).Fit(problem);
+  ASSERT_TRUE(fit.summary.success()) << fit.summary.Report();
+  ProfileOptions profile_options;
+  profile_options.threads = 1;
+  const ProfileSet set =
+      ProfileLikelihood(problem, fit, {kSandDensestVoidRatio}, ceres, profile_options);
+  ASSERT_EQ(set.profiles.size(), 6u);  // the 5 fitted and e_d0, in parameter order
+  const ParameterProfile& e_d0 = set.profiles[kSandDensestVoidRatio];
+  ASSERT_EQ(e_d0.parameter, kSandDensestVoidRatio);
+  EXPECT_FALSE(e_d0.fitted);
+  EXPECT_TRUE(e_d0.flat()) << e_d0.Text();
+  EXPECT_EQ(e_d0.upper_end, ProfileEnd::kDomain) << e_d0.Text();
+  EXPECT_NE(e_d0.failure.find("e_d0"), std::string::npos) << e_d0.failure;
+  const ProfilePoint& last = e_d0.points.back();
+  const double e_c0 = last.values[kSandCriticalVoidRatio];
+  EXPECT_LT(last.value, e_c0);
+  const double step = (3.0 - 0.46) / profile_options.points_per_side;
+  EXPECT_GT(last.value, e_c0 - step / 64 - 1e-3) << e_d0.Text() << "; e_c0 " << e_c0;
+  EXPECT_DOUBLE_EQ(e_d0.flat_high, last.value);
+}
+
+// r fixed as undetermined at 0.02, far from the data's 0.4: its profile at
+// the fit rejects that value, so RunCalibration's last step frees it, refits
+// from the profile's least cost and profiles again. With states on the axes
+// only, the problem refuses a free r: it stays fixed, said so.
+TEST(ProfileLikelihood, AFixedValueTheProfileRejectsIsFreedAndRefitted) {
+  const std::vector<double> truth = testing::LondonClay();
+  ModelParameters parameters = StartNear(ModelKind::kHypoplasticClay, truth);
+  parameters.mutable_specs()[kShearParameter].free = false;
+  parameters.mutable_specs()[kShearParameter].value = 0.02;
+  const std::vector<StateDataset> datasets = {
+      testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, {})};
+  CalibrationConfig config;
+  config.model = ModelKind::kHypoplasticClay;
+  config.profiles.threads = 2;
+  CalibrationRun run;
+  run.problem = std::make_unique<CalibrationProblem>(datasets, parameters, PredictorOptions());
+  run.fits.push_back(CeresFitter(config.ceres).Fit(*run.problem));
+  run.kept = 0;
+  ASSERT_TRUE(run.fits[0].summary.success()) << run.fits[0].summary.Report();
+  const double fixed_cost = run.fits[0].summary.final_cost;
+  run.profiles = ProfileLikelihood(*run.problem, run.fits[0], {kShearParameter}, config.ceres,
+                                   config.profiles);
+  run.undetermined = {"r fixed at its start value 0.02: the data do not determine it (...)"};
+  std::vector<bool> undetermined(parameters.specs().size(), false);
+  undetermined[kShearParameter] = true;
+  FreeRejectedFixedValues(config, datasets, {}, &parameters, &undetermined, &run);
+  ASSERT_EQ(run.freed.size(), 1u);
+  EXPECT_EQ(run.freed[0].find("r: fixed at 0.02 as undetermined"), 0u) << run.freed[0];
+  EXPECT_TRUE(run.undetermined.empty());
+  EXPECT_FALSE(undetermined[kShearParameter]);
+  EXPECT_TRUE(run.problem->parameters().specs()[kShearParameter].free);
+  const FitResult& refit = *run.kept_fit();
+  ASSERT_TRUE(refit.summary.success()) << refit.summary.Report();
+  // A significant fall.
+  EXPECT_GT(2 * (fixed_cost - refit.summary.final_cost) / run.profiles.residual_variance,
+            run.profiles.threshold);
+  EXPECT_GT(refit.values[kShearParameter], 0.2);
+  EXPECT_LT(refit.values[kShearParameter], 0.8);
+  // The profiles are of the refit, r among the fitted ones.
+  EXPECT_DOUBLE_EQ(run.profiles.fit_cost, refit.summary.final_cost);
+  const ParameterProfile& r = run.profiles.profiles.back();
+  EXPECT_EQ(r.name, "r");
+  EXPECT_TRUE(r.fitted);
+  // Nothing left to free: a second call changes nothing.
+  FreeRejectedFixedValues(config, datasets, {}, &parameters, &undetermined, &run);
+  EXPECT_EQ(run.freed.size(), 1u);
+
+  testing::SyntheticOptions axes;
+  axes.psi_epsilons_deg = {0, 90};
+  const std::vector<StateDataset> on_axes = {
+      testing::MakeSyntheticDataset(ModelKind::kHypoplasticClay, truth, axes)};
+  ModelParameters fixed = StartNear(ModelKind::kHypoplasticClay, truth);
+  fixed.mutable_specs()[kShearParameter].free = false;
+  fixed.mutable_specs()[kShearParameter].value = 0.02;
+  fixed.mutable_specs()[kKappaStar].free = false;
+  CalibrationRun refused;
+  refused.problem = std::make_unique<CalibrationProblem>(on_axes, fixed, PredictorOptions());
+  refused.fits.push_back(CeresFitter(config.ceres).Fit(*refused.problem));
+  refused.kept = 0;
+  refused.profiles = ProfileLikelihood(*refused.problem, refused.fits[0], {kShearParameter},
+                                       config.ceres, config.profiles);
+  refused.undetermined = {"r fixed at its start value 0.02: the data do not determine it (...)"};
+  undetermined.assign(fixed.specs().size(), false);
+  undetermined[kShearParameter] = true;
+  FreeRejectedFixedValues(config, on_axes, {}, &fixed, &undetermined, &refused);
+  ASSERT_EQ(refused.freed.size(), 1u);
+  EXPECT_NE(refused.freed[0].find("r stays fixed at 0.02"), std::string::npos) << refused.freed[0];
+  EXPECT_NE(refused.freed[0].find("cannot be identified"), std::string::npos) << refused.freed[0];
+  EXPECT_TRUE(undetermined[kShearParameter]);
+  EXPECT_FALSE(fixed.specs()[kShearParameter].free);
+  EXPECT_EQ(refused.undetermined.size(), 1u);
 }
 
 // κ* acts on neither the NCL nor the hypoplastic CSL (OCR 2 whatever κ*): the
