@@ -151,20 +151,6 @@ ModelParameters ChooseParameters(ModelKind kind, const std::vector<ParameterChoi
 // repeats (at most five parameters) before the configured fitters run.
 CalibrationRun RunCalibration(const CalibrationConfig& config);
 
-// RunCalibration's step after the profiles: the search for undetermined
-// parameters judges each at its probe's optimum, and a profile's refit may
-// move the fit to another basin where a parameter fixed there is determined
-// after all. Where the profile of a parameter in `*undetermined` (fixed in
-// `*parameters` and `run->problem`) rejects its fixed value at the kept fit
-// (D above the 95 % threshold), it is freed, the problem refitted from the
-// profile's point of least cost and profiled again (ProfileAndRefit), up to
-// five times; run->freed says what happened (a parameter whose refit does not
-// lower the cost stays fixed, said so). Needs run->profiles of the kept fit.
-void FreeRejectedFixedValues(const CalibrationConfig& config,
-                             const std::vector<StateDataset>& datasets,
-                             const std::vector<PathDataset>& paths, ModelParameters* parameters,
-                             std::vector<bool>* undetermined, CalibrationRun* run);
-
 // The admissibility checks on a fit (warnings, never errors; * marks the
 // checks of the fitted model itself, Finding::inadmissible):
 //   invalid_model*          the fitted parameters make no model;

@@ -9,8 +9,8 @@
 #include <cmath>
 
 #include "calibration/calibration_problem.h"
-#include "calibration/calibration_report.h"
 #include "calibration/ceres_fitter.h"
+#include "calibration/identifiability.h"
 #include "calibration/pareto.h"
 #include "calibration/profile_likelihood.h"
 #include "common/state_measures.h"
