@@ -3,7 +3,8 @@
 # (profiles.csv), its 95 % threshold (dashed), the fitted value (dotted) and
 # the 95 % interval where D crosses the threshold (shaded); a parameter whose
 # profile stays below the threshold to a bound or over a decade is "flat: not
-# determined" (profile_parameters.csv). Data written by `granasym calibrate`
+# determined", with the side that crosses ("at most 0.0508, flat below")
+# where only one does (profile_parameters.csv). Data written by `granasym calibrate`
 # and `granasym study calibrate` into the plot-data folder.
 # Usage: gnuplot -e "dir='CONFIG_plots'" plots/calibration_profiles.gp   (writes dir/profiles.png)
 if (!exists("dir")) dir = "."
@@ -23,10 +24,17 @@ set ylabel "D"
 set key off
 do for [b = 0:n - 1] {
   stats table every ::b::b using (name = strcol(1), is_log = column(2), opt = column(3), \
-    thr = column(4), flat = column(5), low = column(6), high = column(7), 0) nooutput
+    thr = column(4), flat = column(5), low = column(6), high = column(7), \
+    low_crossed = column(8), high_crossed = column(9), 0) nooutput
   if (is_log > 0.5) { set logscale x; set format x "%.2g" } else { unset logscale x; set format x "% g" }
   set xlabel name noenhanced
-  set title (flat > 0.5 ? "flat: not determined" : sprintf("[%.4g, %.4g]", low, high)) \
+  # Flat on one side only (to a bound, a decade or the model's domain): the
+  # side that crosses still bounds the parameter.
+  one_sided = flat > 0.5 && (low_crossed > 0.5) != (high_crossed > 0.5)
+  set title (flat <= 0.5 ? sprintf("[%.4g, %.4g]", low, high) : \
+             !one_sided ? "flat: not determined" : \
+             low_crossed > 0.5 ? sprintf("at least %.4g, flat above: not determined", low) : \
+             sprintf("at most %.4g, flat below: not determined", high)) \
     textcolor rgb (flat > 0.5 ? "#d62728" : "black")
   set xrange [*:*]
   set yrange [*:*]
