@@ -1,5 +1,8 @@
-// Wall-clock time of a piece of work (timing fields of summaries and progress).
+// Wall-clock time of a piece of work (timing fields of summaries and
+// progress), and a thread's processor time.
 #pragma once
+
+#include <time.h>
 
 #include <chrono>
 
@@ -16,5 +19,14 @@ class Stopwatch {
  private:
   std::chrono::steady_clock::time_point start_;
 };
+
+// Processor seconds the calling thread has used (CLOCK_THREAD_CPUTIME_ID):
+// the work of a case run on one thread, whatever else shares the machine or
+// however long the process was stopped.
+inline double ThreadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 }  // namespace granasym

@@ -9,11 +9,13 @@ Run it from the folder the programme's relative paths (its GSD) resolve
 from, as `study run` was. The actual figures of a case come from its folder:
 its own steps from run.log (the steps of each stage of its last run, not
 done.toml's `steps`, which counts from the first step of the sample, parent
-cases included) and done.toml's wall_seconds. Cases of the folder that the
-programme does not plan, and planned cases without a done.toml, are left
-out (and counted). A folder computed on a shared machine has wall seconds
-longer than the machine alone would take (what the plan estimates): give
-the run's processor seconds (`/usr/bin/time`'s user + system) with
+cases included) and done.toml's cpu_seconds (the processor seconds of a
+case run on one thread, which a shared or paused machine does not
+inflate), else its wall_seconds. Cases of the folder that the programme does
+not plan, and planned cases without a done.toml, are left out (and
+counted). An older folder has wall seconds only, longer on a shared machine
+than the machine alone would take (what the plan estimates): give the run's
+processor seconds (`/usr/bin/time`'s user + system) with
 --cpu-seconds to compare the study's total against them too, or --rerun:
 each compared case's scene runs again (`granasym dem run`, into a temporary
 folder) and its processor seconds replace the wall seconds (a study of
@@ -81,9 +83,13 @@ def actual_case(folder):
                     reason = m.group(4).split(" (")[0].split(":")[0]
                     stages[int(m.group(1))] = (m.group(2), int(m.group(3)), reason)
     steps = sum(s[1] for s in stages.values())
+    # A case run on one thread records its own processor seconds, which a
+    # shared or paused machine does not inflate; else its wall seconds.
+    cpu = "cpu_seconds" in values
     return {
         "steps": steps,
-        "seconds": float(values["wall_seconds"]),
+        "seconds": float(values["cpu_seconds" if cpu else "wall_seconds"]),
+        "cpu": cpu,
         "stages": list(stages.values()),
     }
 
@@ -116,11 +122,12 @@ def main():
     args = parser.parse_args()
     cases = planned_cases(args.granasym, args.programme, args.scale, args.jobs)
     width = max(len(k) for k in cases)
-    kind = "cpu s" if args.rerun else "wall s"
+    kind = "cpu s" if args.rerun else "s"
     print(f"{'case':<{width}}  {'plan steps':>11}  {'steps':>9}  {'ratio':>5}  "
           f"{'plan s':>7}  {kind:>7}  {'ratio':>5}  stops")
     groups = {"all": [0.0] * 4 + [0], "predicted": [0.0] * 4 + [0], "at most": [0.0] * 4 + [0]}
     missing = 0
+    wall_only = 0  # cases compared by their wall seconds (no cpu_seconds)
     for case_id, plan in cases.items():
         actual = actual_case(os.path.join(args.study, "cases", case_id))
         if actual is None or actual["steps"] == 0:
@@ -129,6 +136,8 @@ def main():
         if args.rerun:
             scene = os.path.join(args.study, "cases", case_id, "scene.toml")
             actual["seconds"] = processor_seconds(args.granasym, scene)
+            actual["cpu"] = True
+        wall_only += 0 if actual["cpu"] else 1
         for name in ("all", "at most" if plan["bound"] else "predicted"):
             g = groups[name]
             g[0] += plan["steps"]
@@ -140,18 +149,19 @@ def main():
         stops = ", ".join(sorted({s[2] for s in actual["stages"]}))
         print(f"{case_id:<{width}}  {bound}{plan['steps']:9.3g}  {actual['steps']:9d}  "
               f"{ratio(plan['steps'], actual['steps']):5.2f}  {plan['seconds']:7.1f}  "
-              f"{actual['seconds']:7.1f}  {ratio(plan['seconds'], actual['seconds']):5.2f}  "
-              f"{stops}")
+              f"{actual['seconds']:7.1f}{'' if actual['cpu'] else 'w'} "
+              f"{ratio(plan['seconds'], actual['seconds']):5.2f}  {stops}")
         if args.stages:
             for name, steps, reason in actual["stages"]:
                 print(f"    {name}: {steps} steps, {reason}")
     print(f"\n{len(cases) - missing} cases compared ({missing} planned cases not finished in "
-          "the folder); planned / actual:")
+          "the folder); actual seconds: each case's processor seconds, or its wall seconds "
+          f"where it has none (marked w: {wall_only} cases); planned / actual:")
     for name, g in groups.items():
         if g[4] == 0:
             continue
         print(f"  {name:>9} ({g[4]:3d} cases): steps {g[0]:.3g} / {g[1]:.3g} = "
-              f"{ratio(g[0], g[1]):.2f}; case seconds {g[2]:.0f} / {g[3]:.0f} ({kind}) = "
+              f"{ratio(g[0], g[1]):.2f}; case seconds {g[2]:.0f} / {g[3]:.0f} = "
               f"{ratio(g[2], g[3]):.2f}")
     if args.cpu_seconds > 0:
         total = groups["all"][2]

@@ -395,6 +395,7 @@ CaseOutcome Scheduler::Execute(int k) {
   CaseOutcome outcome;
   outcome.id = c.id;
   const Stopwatch clock;
+  const double cpu0 = ThreadCpuSeconds();
   const std::function<bool()> stop = [this] { return StopRequested(); };
   fs::create_directories(c.directory);
   FileLock lock(c.directory + "/.lock", stop);
@@ -487,8 +488,11 @@ CaseOutcome Scheduler::Execute(int k) {
     outcome.status = CaseStatus::kInterrupted;
     return outcome;
   }
+  // On one thread the case's processor time is the thread's (the DEM runs
+  // on it); with more, the workers' time is not counted: not recorded.
   WriteDone(c.directory, {c.key, c.inputs, summary.termination, summary.message, summary.steps,
-                          summary.particles, outcome.wall_seconds});
+                          summary.particles, outcome.wall_seconds,
+                          plan_.threads == 1 ? ThreadCpuSeconds() - cpu0 : -1.0});
   fs::remove(running_path);
   outcome.status = summary.termination == dem::Termination::kCompleted ? CaseStatus::kComputed
                                                                        : CaseStatus::kFailed;

@@ -75,6 +75,9 @@ std::optional<DoneRecord> ReadDone(const std::string& directory) {
   done.steps = table.GetInt("steps", 0, Range::NonNegative());
   done.particles = table.GetInt("particles", 0, Range::NonNegative());
   done.wall_seconds = table.GetDouble("wall_seconds", 0.0, Range::NonNegative());
+  if (table.Has("cpu_seconds")) {
+    done.cpu_seconds = table.GetDouble("cpu_seconds", 0.0, Range::NonNegative());
+  }
   done.inputs.scene_sha256 = table.GetString("scene_sha256", "");
   done.inputs.parent_key = table.GetString("parent_key", "");
   done.inputs.results = table.GetString("results", "");
@@ -154,11 +157,14 @@ void WriteDone(const std::string& directory, const DoneRecord& done) {
   }
   WriteTextFileAtomically(
       directory + "/done.toml",
-      fmt::format("# written when the case ended; its key names the inputs it was computed for\n"
-                  "key = {}\ntermination = {}\nmessage = {}\nsteps = {}\nparticles = {}\n"
-                  "wall_seconds = {:.3f}\n{}",
-                  TomlQuoted(done.key), TomlQuoted(ToString(done.termination)),
-                  TomlQuoted(done.message), done.steps, done.particles, done.wall_seconds, inputs));
+      fmt::format(
+          "# written when the case ended; its key names the inputs it was computed for\n"
+          "key = {}\ntermination = {}\nmessage = {}\nsteps = {}\nparticles = {}\n"
+          "wall_seconds = {:.3f}\n{}{}",
+          TomlQuoted(done.key), TomlQuoted(ToString(done.termination)), TomlQuoted(done.message),
+          done.steps, done.particles, done.wall_seconds,
+          done.cpu_seconds >= 0 ? fmt::format("cpu_seconds = {:.3f}\n", done.cpu_seconds) : "",
+          inputs));
 }
 
 std::optional<std::string> StudyNclCase(const std::string& directory) {

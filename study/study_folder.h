@@ -52,6 +52,10 @@ struct DoneRecord {
   int64_t steps = 0;  // engine steps at the end, the parent's included
   int64_t particles = 0;
   double wall_seconds = 0;
+  // The case's own processor seconds where it ran on one thread (the
+  // thread's CPU time: what a plan estimates, on a shared or paused machine
+  // too); < 0 where not measured (threads > 1, an older done.toml).
+  double cpu_seconds = -1;
 };
 std::optional<DoneRecord> ReadDone(const std::string& directory);
 void WriteDone(const std::string& directory, const DoneRecord& done);

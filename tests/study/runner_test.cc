@@ -130,6 +130,14 @@ TEST(StudyRunner, SecondRunComputesNothingAndAChangeRerunsItsDescendantsOnly) {
   const StudyOutcome first = RunProgramme(kProgramme, dir);
   ASSERT_EQ(first.Count(CaseStatus::kComputed), 5) << first.OneLine();
   EXPECT_TRUE(fs::exists(dir + "/samples/r1/packing.txt"));
+  // On one thread each case records its own processor seconds: some, and no
+  // more than its wall time.
+  for (const char* id : {"ncl", "nc20_psi90", "nc50_psi90", "nc50_psi60", "after60"}) {
+    const std::optional<DoneRecord> done = ReadDone(dir + "/cases/r1/" + id);
+    ASSERT_TRUE(done) << id;
+    EXPECT_GT(done->cpu_seconds, 0.0) << id;
+    EXPECT_LE(done->cpu_seconds, done->wall_seconds + 0.01) << id;
+  }
 
   const StudyOutcome second = RunProgramme(kProgramme, dir);
   EXPECT_EQ(second.Count(CaseStatus::kCached), 5) << second.OneLine();
@@ -146,6 +154,10 @@ TEST(StudyRunner, SecondRunComputesNothingAndAChangeRerunsItsDescendantsOnly) {
   // Another thread count is another key: everything runs again.
   const StudyOutcome threads = RunProgramme(changed, dir, {}, 2);
   EXPECT_EQ(threads.Count(CaseStatus::kComputed), 5) << threads.OneLine();
+  // On two threads the workers' time would be missing: not recorded.
+  EXPECT_LT(ReadDone(dir + "/cases/r1/after60")->cpu_seconds, 0.0);
+  EXPECT_EQ(ReadTextFile(dir + "/cases/r1/after60/done.toml").find("cpu_seconds"),
+            std::string::npos);
 }
 
 // A case's own steps start where it forked: the end of a parent's stage
