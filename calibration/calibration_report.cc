@@ -298,27 +298,7 @@ CalibrationRun RunCalibration(const CalibrationConfig& config) {
   }
   run.kept = KeptFitIndex(run.fits);
   if (run.kept_fit() && run.kept_fit()->summary.success() && config.profiles.enabled) {
-    std::vector<int> also;
-    for (size_t i = 0; i < undetermined.size(); ++i) {
-      if (undetermined[i]) also.push_back(static_cast<int>(i));
-    }
-    RefittedProfiles profiled =
-        ProfileAndRefit(*run.problem, *run.kept_fit(), also, config.ceres, config.profiles);
-    run.profiles = std::move(profiled.profiles);
-    run.restarts = std::move(profiled.restarts);
-    if (!run.restarts.empty() && run.restarts.front().kept) {
-      // A profile found a better minimum: its refit (Ceres) replaces the
-      // kept fit, named apart where that was another fitter's (the record
-      // keeps one group per fitter name).
-      if (run.fits[run.kept].summary.fitter != profiled.fit.summary.fitter) {
-        profiled.fit.summary.fitter += "_refit";
-      }
-      run.fits[run.kept] = std::move(profiled.fit);
-      if (run.fits.size() == 2) {
-        run.agreement_in_standard_errors =
-            FitAgreementInStandardErrors(run.fits[0], run.fits[1], &run.agreement_not_compared);
-      }
-    }
+    ProfileTheKeptFit(config, undetermined, /*compare_fits=*/true, &run);
     FreeRejectedFixedValues(config, datasets, paths, &parameters, &undetermined, &run);
   }
   const std::vector<ParameterSpec>& specs = run.problem->parameters().specs();

@@ -65,6 +65,30 @@ std::pair<const ParameterProfile*, const ProfilePoint*> RejectedFixedValue(const
 
 }  // namespace
 
+void ProfileTheKeptFit(const CalibrationConfig& config, const std::vector<bool>& undetermined,
+                       bool compare_fits, CalibrationRun* run) {
+  std::vector<int> also;
+  for (size_t i = 0; i < undetermined.size(); ++i) {
+    if (undetermined[i]) also.push_back(static_cast<int>(i));
+  }
+  RefittedProfiles profiled =
+      ProfileAndRefit(*run->problem, *run->kept_fit(), also, config.ceres, config.profiles);
+  run->profiles = std::move(profiled.profiles);
+  run->restarts.insert(run->restarts.end(), profiled.restarts.begin(), profiled.restarts.end());
+  if (profiled.restarts.empty() || !profiled.restarts.front().kept) return;
+  // A profile found a better minimum: its refit (Ceres) replaces the kept
+  // fit, named apart where that was another fitter's (the record keeps one
+  // group per fitter name).
+  if (run->fits[run->kept].summary.fitter != profiled.fit.summary.fitter) {
+    profiled.fit.summary.fitter += "_refit";
+  }
+  run->fits[run->kept] = std::move(profiled.fit);
+  if (compare_fits && run->fits.size() == 2) {
+    run->agreement_in_standard_errors =
+        FitAgreementInStandardErrors(run->fits[0], run->fits[1], &run->agreement_not_compared);
+  }
+}
+
 void FreeRejectedFixedValues(const CalibrationConfig& config,
                              const std::vector<StateDataset>& datasets,
                              const std::vector<PathDataset>& paths, ModelParameters* parameters,
@@ -131,18 +155,8 @@ void FreeRejectedFixedValues(const CalibrationConfig& config,
       run->agreement_not_compared = fmt::format(
           "the other fit is of the problem with {} fixed, freed after the profiles", spec.name);
     }
-    std::vector<int> also;
-    for (size_t i = 0; i < undetermined->size(); ++i) {
-      if ((*undetermined)[i]) also.push_back(static_cast<int>(i));
-    }
-    RefittedProfiles profiled =
-        ProfileAndRefit(*run->problem, *run->kept_fit(), also, config.ceres, config.profiles);
-    run->profiles = std::move(profiled.profiles);
-    for (ProfileRestart& restart : profiled.restarts) run->restarts.push_back(restart);
-    if (!profiled.restarts.empty() && profiled.restarts.front().kept) {
-      profiled.fit.summary.fitter = run->fits[run->kept].summary.fitter;
-      run->fits[run->kept] = std::move(profiled.fit);
-    }
+    // The other fit (method both) is of the problem with the parameter fixed.
+    ProfileTheKeptFit(config, *undetermined, /*compare_fits=*/false, run);
   }
 }
 

@@ -21,6 +21,14 @@ constexpr int kMaxUndeterminedRounds = 5;
 std::pair<int, std::string> LeastDetermined(const CalibrationProblem& problem,
                                             const FitResult& fit);
 
+// The profiles of the kept fit and of the parameters `undetermined` marks
+// (ProfileAndRefit), into run->profiles; its restarts are appended to
+// run->restarts, and a kept restart replaces the kept fit (named
+// "<fitter>_refit" where it was another fitter's), the two fits compared
+// again with `compare_fits`.
+void ProfileTheKeptFit(const CalibrationConfig& config, const std::vector<bool>& undetermined,
+                       bool compare_fits, CalibrationRun* run);
+
 // RunCalibration's step after the profiles: the search for undetermined
 // parameters judges each at its probe's optimum, and a profile's refit may
 // move the fit to another basin where a parameter fixed there is determined
