@@ -193,7 +193,8 @@ void RegisterStudyCommands(CLI::App& app) {
       "--tsv", plan_tsv,
       "print only the cases as tab-separated values with a header (id, depth, "
       "time step, steps, loose (still) and stress-summing steps, particle-steps, "
-      "seconds, at_most) for scripts");
+      "seconds, at_most, and where at_most the low end of the range: earliest_steps, "
+      "earliest_seconds) for scripts");
   plan_command->callback([] {
     const study::Programme programme = study::Programme::Load(plan_programme, plan_scale);
     const int64_t spheres = programme.At(plan_scale).count;
@@ -219,13 +220,14 @@ void RegisterStudyCommands(CLI::App& app) {
       const study::PlanCost cost = study::EstimateCost(plan, rate, parallelism.jobs, 0);
       std::printf(
           "case\tdepth\ttime_step_s\tsteps\tloose_steps\tstill_steps\tstress_steps\t"
-          "particle_steps\tseconds\tat_most\n");
+          "particle_steps\tseconds\tat_most\tearliest_steps\tearliest_seconds\n");
       for (const study::CaseCost& c : cost.cases) {
         const study::PlannedCase& planned = plan.cases[static_cast<size_t>(c.index)];
-        std::printf("%s\t%d\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%d\n", planned.id.c_str(),
-                    c.depth, planned.time_step, c.steps, planned.estimated_loose_steps,
-                    planned.estimated_still_steps, planned.estimated_stress_steps, c.particle_steps,
-                    c.seconds, c.at_most ? 1 : 0);
+        std::printf("%s\t%d\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%d\t%.6g\t%.6g\n",
+                    planned.id.c_str(), c.depth, planned.time_step, c.steps,
+                    planned.estimated_loose_steps, planned.estimated_still_steps,
+                    planned.estimated_stress_steps, c.particle_steps, c.seconds, c.at_most ? 1 : 0,
+                    c.earliest_steps, c.earliest_seconds);
       }
       return;
     }
@@ -252,15 +254,22 @@ void RegisterStudyCommands(CLI::App& app) {
       const study::PlannedCase& planned = plan.cases[static_cast<size_t>(c.index)];
       std::printf("%-*s  %5d  %10.3g  %10.3g  %14.3g  %10s%s\n", static_cast<int>(width),
                   planned.id.c_str(), c.depth, planned.time_step, c.steps, c.particle_steps,
-                  study::DurationText(c.seconds).c_str(), c.at_most ? "  at most" : "");
+                  study::DurationText(c.seconds).c_str(),
+                  c.at_most
+                      ? ("  at most (from " + study::DurationText(c.earliest_seconds) + ")").c_str()
+                      : "");
       if (plan_stages) {
         for (size_t k = 0; k < planned.stage_steps.size(); ++k) {
           const study::StageSteps& stage = planned.stage_steps[k];
-          std::printf("    stage %zu: strain %.3g, %.3g steps%s: %s\n", k + 1, stage.strain,
+          std::printf("    stage %zu: strain %.3g, %.3g steps%s%s: %s\n", k + 1, stage.strain,
                       stage.steps,
                       stage.loose_steps > 0
                           ? fmt::format(" ({:.3g} before it jams)", stage.loose_steps).c_str()
                           : "",
+                      stage.at_most ? fmt::format(" (from strain {:.3g}, {:.3g} steps)",
+                                                  stage.earliest.strain, stage.earliest.steps)
+                                          .c_str()
+                                    : "",
                       stage.reason.c_str());
         }
       }
@@ -279,15 +288,21 @@ void RegisterStudyCommands(CLI::App& app) {
     if (cost.at_most_cases > 0) {
       std::printf(
           "  %d case(s) marked 'at most' may end earlier (a stage that stops when the sample "
-          "liquefies, which the model does not predict: it is bounded by the stage's strain cap, "
+          "liquefies, where the model cannot tell: it is bounded by the stage's strain cap, "
           "under the inertial rule at its floor of p): %s of the case time is such a bound, %s "
-          "the rest\n",
+          "the rest; if each such stage liquefies as early as the model allows (its gas window "
+          "after an unloading to the gas floor, or at once on an isochoric path under the "
+          "inertial rule), %s in all\n",
           cost.at_most_cases, study::DurationText(cost.at_most_seconds).c_str(),
-          study::DurationText(cost.case_seconds - cost.at_most_seconds).c_str());
+          study::DurationText(cost.case_seconds - cost.at_most_seconds).c_str(),
+          study::DurationText(cost.earliest_case_seconds).c_str());
     }
     std::printf(
-        "wall time on this machine: %s with %d jobs x %d thread(s) (the longest chain of "
+        "wall time on this machine: %s%s with %d jobs x %d thread(s) (the longest chain of "
         "cases: %s)\n",
+        cost.at_most_cases > 0
+            ? ("between " + study::DurationText(cost.earliest_wall_seconds) + " and ").c_str()
+            : "",
         study::DurationText(cost.wall_seconds).c_str(), parallelism.jobs, parallelism.threads,
         study::DurationText(cost.critical_seconds).c_str());
     std::printf("peak memory: ~%.3g GB (%d case(s) at once of %lld spheres, %.0f B/sphere)\n",
@@ -301,10 +316,13 @@ void RegisterStudyCommands(CLI::App& app) {
           "rate:\n",
           plan_shards, parallelism.jobs, parallelism.threads);
       for (const study::ShardCost& shard : cost.shards) {
-        std::printf("  shard %d/%d: %d cases, %s\n", shard.index, plan_shards, shard.cases,
+        std::printf("  shard %d/%d: %d cases, %s%s\n", shard.index, plan_shards, shard.cases,
+                    cost.at_most_cases > 0
+                        ? (study::DurationText(shard.earliest_seconds) + " to ").c_str()
+                        : "",
                     study::DurationText(shard.seconds).c_str());
       }
-      std::printf("time limit per array task: --time=%s (%.1f x the longest shard)\n",
+      std::printf("time limit per array task: --time=%s (%.1f x the longest shard at its bound)\n",
                   study::SlurmTime(cost.shard_time_limit_seconds).c_str(), study::kTimeLimitMargin);
     } else {
       std::printf("(Slurm: --shards N gives each array task's time and a time limit)\n");

@@ -46,11 +46,16 @@ def planned_cases(granasym, programme, scale, jobs):
     cases = OrderedDict()
     for line in lines[1:]:
         row = dict(zip(header, line.split("\t")))
-        cases[row["case"]] = {
+        case = {
             "steps": float(row["steps"]),
             "seconds": float(row["seconds"]),
             "bound": row["at_most"] == "1",
         }
+        # The low end of a bound's range (a plan of an older granasym has
+        # none: the bound then).
+        case["earliest_steps"] = float(row.get("earliest_steps", case["steps"]))
+        case["earliest_seconds"] = float(row.get("earliest_seconds", case["seconds"]))
+        cases[row["case"]] = case
     return cases
 
 
@@ -125,7 +130,9 @@ def main():
     kind = "cpu s" if args.rerun else "s"
     print(f"{'case':<{width}}  {'plan steps':>11}  {'steps':>9}  {'ratio':>5}  "
           f"{'plan s':>7}  {kind:>7}  {'ratio':>5}  stops")
-    groups = {"all": [0.0] * 4 + [0], "predicted": [0.0] * 4 + [0], "at most": [0.0] * 4 + [0]}
+    # Per group: planned steps, actual steps, planned seconds, actual
+    # seconds, cases, and the planned steps and seconds at the low end.
+    groups = {name: [0.0] * 4 + [0] + [0.0] * 2 for name in ("all", "predicted", "at most")}
     missing = 0
     wall_only = 0  # cases compared by their wall seconds (no cpu_seconds)
     for case_id, plan in cases.items():
@@ -145,12 +152,17 @@ def main():
             g[2] += plan["seconds"]
             g[3] += actual["seconds"]
             g[4] += 1
+            g[5] += plan["earliest_steps"]
+            g[6] += plan["earliest_seconds"]
         bound = "<=" if plan["bound"] else "  "
         stops = ", ".join(sorted({s[2] for s in actual["stages"]}))
         print(f"{case_id:<{width}}  {bound}{plan['steps']:9.3g}  {actual['steps']:9d}  "
               f"{ratio(plan['steps'], actual['steps']):5.2f}  {plan['seconds']:7.1f}  "
               f"{actual['seconds']:7.1f}{'' if actual['cpu'] else 'w'} "
-              f"{ratio(plan['seconds'], actual['seconds']):5.2f}  {stops}")
+              f"{ratio(plan['seconds'], actual['seconds']):5.2f}  {stops}"
+              + (f"  (low end: {plan['earliest_steps']:.3g} steps, "
+                 f"{ratio(plan['earliest_seconds'], actual['seconds']):.2f} of the seconds)"
+                 if plan["bound"] else ""))
         if args.stages:
             for name, steps, reason in actual["stages"]:
                 print(f"    {name}: {steps} steps, {reason}")
@@ -163,6 +175,11 @@ def main():
         print(f"  {name:>9} ({g[4]:3d} cases): steps {g[0]:.3g} / {g[1]:.3g} = "
               f"{ratio(g[0], g[1]):.2f}; case seconds {g[2]:.0f} / {g[3]:.0f} = "
               f"{ratio(g[2], g[3]):.2f}")
+        if g[5] != g[0] or g[6] != g[2]:
+            print(f"  {'':>9}  at the low end (each stage that may liquefy liquefying as early "
+                  f"as the model allows): steps {g[5]:.3g} / {g[1]:.3g} = "
+                  f"{ratio(g[5], g[1]):.2f}; case seconds {g[6]:.0f} / {g[3]:.0f} = "
+                  f"{ratio(g[6], g[3]):.2f}")
     if args.cpu_seconds > 0:
         total = groups["all"][2]
         print(f"processor seconds of the run: {args.cpu_seconds:.0f}; planned case seconds / "

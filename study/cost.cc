@@ -277,12 +277,12 @@ namespace {
 // The runner's schedule (study/runner.cc, Scheduler) replayed with estimated
 // times: `jobs` workers, a case ready when its parent (if selected) is done,
 // the ready case with the most work below it first. Returns the makespan.
-double Schedule(const Plan& plan, const std::vector<CaseCost>& costs,
+double Schedule(const Plan& plan, const std::vector<double>& seconds,
                 const std::vector<int>& selected, int jobs) {
   const std::set<int> in(selected.begin(), selected.end());
   std::map<int, double> below;
   for (auto it = selected.rbegin(); it != selected.rend(); ++it) {
-    double total = costs[static_cast<size_t>(*it)].seconds;
+    double total = seconds[static_cast<size_t>(*it)];
     for (int child : plan.cases[static_cast<size_t>(*it)].children) {
       if (in.count(child)) total += below[child];
     }
@@ -303,7 +303,7 @@ double Schedule(const Plan& plan, const std::vector<CaseCost>& costs,
                                    [&](int a, int b) { return below[a] < below[b]; });
       const int k = *best;
       ready.erase(best);
-      running.emplace(now + costs[static_cast<size_t>(k)].seconds, k);
+      running.emplace(now + seconds[static_cast<size_t>(k)], k);
     }
     GRANASYM_CHECK(!running.empty()) << "no case can run: the plan orders parents first";
     const auto first = running.begin();
@@ -351,6 +351,11 @@ PlanCost EstimateCost(const Plan& plan, const MeasuredRate& rate, int jobs, int 
                             planned.estimated_loose_steps, planned.estimated_still_steps,
                             planned.estimated_stress_steps);
     c.at_most = planned.steps_at_most;
+    const PlannedCase::Earliest& first = planned.estimated_earliest;
+    c.earliest_steps = first.steps;
+    c.earliest_seconds = CaseSeconds(rate, static_cast<double>(planned.particles), first.steps,
+                                     first.loose_steps, first.still_steps, first.stress_steps);
+    cost.earliest_case_seconds += c.earliest_seconds;
     if (c.at_most) {
       cost.at_most_seconds += c.seconds;
       ++cost.at_most_cases;
@@ -363,8 +368,14 @@ PlanCost EstimateCost(const Plan& plan, const MeasuredRate& rate, int jobs, int 
   }
   cost.generation_seconds = rate.generation_seconds * static_cast<double>(plan.samples.size());
   std::vector<int> all(plan.cases.size());
-  for (size_t k = 0; k < all.size(); ++k) all[k] = static_cast<int>(k);
-  cost.wall_seconds = cost.generation_seconds + Schedule(plan, cost.cases, all, jobs);
+  std::vector<double> seconds, earliest;
+  for (size_t k = 0; k < all.size(); ++k) {
+    all[k] = static_cast<int>(k);
+    seconds.push_back(cost.cases[k].seconds);
+    earliest.push_back(cost.cases[k].earliest_seconds);
+  }
+  cost.wall_seconds = cost.generation_seconds + Schedule(plan, seconds, all, jobs);
+  cost.earliest_wall_seconds = cost.generation_seconds + Schedule(plan, earliest, all, jobs);
   const int64_t spheres = plan.cases.empty() ? 0 : plan.cases.front().particles;
   cost.peak_memory_bytes = kCaseBytesPerSphere * static_cast<double>(spheres) *
                            std::min<double>(jobs, std::max<size_t>(plan.cases.size(), 1));
@@ -377,7 +388,9 @@ PlanCost EstimateCost(const Plan& plan, const MeasuredRate& rate, int jobs, int 
     for (int k : selected) replicates.insert(plan.cases[static_cast<size_t>(k)].replicate);
     shard.cases = static_cast<int>(selected.size());
     shard.seconds = rate.generation_seconds * static_cast<double>(replicates.size()) +
-                    Schedule(plan, cost.cases, selected, jobs);
+                    Schedule(plan, seconds, selected, jobs);
+    shard.earliest_seconds = rate.generation_seconds * static_cast<double>(replicates.size()) +
+                             Schedule(plan, earliest, selected, jobs);
     longest = std::max(longest, shard.seconds);
     cost.shards.push_back(shard);
   }

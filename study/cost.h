@@ -78,12 +78,17 @@ struct CaseCost {
   double particle_steps = 0;
   double seconds = 0;
   bool at_most = false;  // a bound: a stage may end earlier (PlannedCase::steps_at_most)
+  // If its stages that may liquefy do so as early as the model allows
+  // (PlannedCase::estimated_earliest; the same as steps, seconds otherwise).
+  double earliest_steps = 0;
+  double earliest_seconds = 0;
 };
 
 struct ShardCost {
   int index = 1;  // 1-based, as `study run --shard K/N`
   int cases = 0;  // its cases, the ancestors it may compute included
   double seconds = 0;
+  double earliest_seconds = 0;  // its cases at CaseCost::earliest_seconds
 };
 
 struct PlanCost {
@@ -92,6 +97,10 @@ struct PlanCost {
   double case_seconds = 0;      // the cases' times added up
   double at_most_seconds = 0;   // of them, those of cases whose figure is a bound
   int at_most_cases = 0;
+  // The low end of the range: every stage that may liquefy does so as early
+  // as the model allows (CaseCost::earliest_seconds).
+  double earliest_case_seconds = 0;
+  double earliest_wall_seconds = 0;
   double generation_seconds = 0;
   int jobs = 1;
   double wall_seconds = 0;       // with `jobs` cases at once, samples first

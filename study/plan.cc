@@ -177,6 +177,13 @@ Plan Plan::Make(const Programme& programme, int threads, const std::string& dire
         c.estimated_still_steps += steps.still_steps;
         if (steps.stress_every_step) c.estimated_stress_steps += steps.steps - steps.loose_steps;
         c.steps_at_most = c.steps_at_most || steps.at_most;
+        PlannedCase::Earliest& first = c.estimated_earliest;
+        first.steps += steps.earliest.steps;
+        first.loose_steps += steps.earliest.loose_steps;
+        first.still_steps += steps.earliest.still_steps;
+        if (steps.stress_every_step) {
+          first.stress_steps += steps.earliest.steps - steps.earliest.loose_steps;
+        }
         c.stage_steps.push_back(steps);
         p_kpa = steps.end_p_kpa;
         ends.push_back(p_kpa);

@@ -63,6 +63,11 @@ struct PlannedCase {
   double estimated_still_steps = 0;  // of the loose ones, those whose grains do not collide
   double estimated_stress_steps = 0;
   bool steps_at_most = false;
+  // The same if each stage that may liquefy does so as early as the model
+  // allows (StageSteps::earliest): the low end of a bound's range.
+  struct Earliest {
+    double steps = 0, loose_steps = 0, still_steps = 0, stress_steps = 0;
+  } estimated_earliest;
   std::vector<StageSteps> stage_steps;  // per stage, in order
   std::string result_path() const { return directory + "/result.h5"; }
 };

@@ -8,6 +8,7 @@
 #include "common/state_measures.h"
 #include "dem/packing.h"
 #include "dem/rest_stage.h"
+#include "dem/stage_validity.h"
 #include "dem/strain_path_stage.h"
 #include "dem/triaxial_stage.h"
 
@@ -252,35 +253,67 @@ StageSteps EstimateStageSteps(const dem::Stage& stage, const StageSampleScales& 
     }
     Consider(s, "asymptote", &end, &reason);
   }
+  // The earliest end of a stage that may liquefy: its gas window after the
+  // strain at which it may first be a gas.
+  double earliest = end;
   if (stop.liquefied) {
     // Liquefaction may end the stage anywhere before: the rest is a bound,
     // with p at the inertial rule's floor (the slowest rate) throughout.
     result.at_most = true;
     if (cap < kInfinity) end = std::min(end, cap);
+    double gas = kInfinity;
+    if (path && stress.volumetric < 0) {
+      const bool extension = stage.asymptote.kind == dem::PathKind::kExtension;
+      const double floor_kpa =
+          extension ? stage.asymptote.floor_kpa : dem::kValidityLimits.gas_mean_stress_kpa;
+      gas = p0 <= floor_kpa ? 0 : stress.StrainTo(floor_kpa);
+    } else if (path && stress.volumetric == 0 && inertial) {
+      gas = 0;
+    }
+    const double window = stop.liquefied_strain.value_or(stage.asymptote.window_strain);
+    earliest = std::min(end, gas + window);
   }
   if (!(end < kInfinity)) {
     end = kFallbackStrain;
+    earliest = end;
     reason = "no stop predicted: 0.3 of strain assumed";
   }
   result.strain = end;
 
-  // The steps to strain `end`: before the generated sample jams at the
-  // rate of p = 0 (the rule's floor), then over the modelled p.
+  // The steps to strain `to`: before the generated sample jams at the rate
+  // of p = 0 (the rule's floor), then over the modelled p; their loose and
+  // still shares; and whether the stage's step or time cap ends it first.
   const double floor_rate = stress.speed(0);
-  const double jam = p0 <= 0 ? std::min(stress.jam_strain, end) : 0.0;
-  const Integral after = Integrate(stress, jam, end, inertial && stop.liquefied, floor_rate);
-  double loose = jam / (floor_rate * dt) + after.loose_seconds / dt;
   const double still_share = 1 - std::min(1.0, floor_rate / kCollisionalStrainRate);
-  double steps = jam / (floor_rate * dt) + after.seconds / dt;
-  if (steps > step_cap) {
-    steps = step_cap;
-    loose = std::min(loose, step_cap);
+  struct Count {
+    double steps = 0, loose = 0, still = 0, end_p_kpa = 0;
+    bool capped = false;
+  };
+  auto count = [&](double to) {
+    const double jam = p0 <= 0 ? std::min(stress.jam_strain, to) : 0.0;
+    const Integral after = Integrate(stress, jam, to, inertial && stop.liquefied, floor_rate);
+    Count c;
+    c.loose = jam / (floor_rate * dt) + after.loose_seconds / dt;
+    c.steps = jam / (floor_rate * dt) + after.seconds / dt;
+    c.end_p_kpa = after.end_p_kpa;
+    if (c.steps > step_cap) {
+      c.steps = step_cap;
+      c.loose = std::min(c.loose, step_cap);
+      c.capped = true;
+    }
+    c.still = c.loose * still_share;
+    return c;
+  };
+  const Count bound = count(end);
+  if (bound.capped) {
     reason = stop.steps && static_cast<double>(*stop.steps) == step_cap ? "steps" : "time_s";
   }
-  result.steps = steps;
-  result.loose_steps = loose;
-  result.still_steps = loose * still_share;
-  result.end_p_kpa = after.end_p_kpa;
+  result.steps = bound.steps;
+  result.loose_steps = bound.loose;
+  result.still_steps = bound.still;
+  const Count first = earliest < end ? count(earliest) : bound;
+  result.earliest = {first.steps, first.loose, first.still, std::min(earliest, end)};
+  result.end_p_kpa = bound.end_p_kpa;
   if (triaxial) result.end_p_kpa = triaxial->radial_stress_kpa;
   if (stop.mean_stress_kpa && reason == "mean_stress_kpa") result.end_p_kpa = *stop.mean_stress_kpa;
   result.reason = reason + (result.at_most ? " (at most: it may liquefy earlier)" : "");

@@ -32,8 +32,17 @@
 //    transient of ψ_σ) and its window in ln p (window_lnp, at most
 //    window_strain); an extension path's
 //    asymptote is not predicted (p falls towards the floor);
-//  - liquefied: not predicted. A stage that may liquefy ends at the latest
-//    at its other stops, and its steps are a bound ("at most").
+//  - liquefied: a stage that may liquefy ends at the latest at its other
+//    stops, and its steps are a bound ("at most"). The earliest it can end
+//    is its gas window (stop.liquefied_strain, else the detector's
+//    window_strain) after it first becomes a gas: on an unloading path where
+//    the elastic unloading takes p below the gas floor (the detector's
+//    floor_kpa on an extension path, else the validity's gas stress), on an
+//    isochoric path under the inertial rule at once (a packing on the NCL
+//    sheared at constant volume falls towards its critical state at the same
+//    void ratio, far below for stiff grains, and at slow rates liquefies
+//    within the first rows: the rate study's ψ_ε = 90° paths at I* <= 1e-3),
+//    never on a loading or stress-controlled one (StageSteps::earliest);
 //
 // The steps follow from s and the rate: a constant ‖D‖ gives s/(‖D‖Δt);
 // the inertial rule ‖D‖ = I* sqrt(p/(2ρ_s))/d (dem/strain_path_stage.h,
@@ -94,6 +103,12 @@ struct StageSteps {
   // stress-controlled type): MeasuredRate::controlled_particle_steps_per_second.
   bool stress_every_step = false;
   bool at_most = false;  // a bound: the stage may end earlier (liquefaction, p below the model)
+  // The stage's figures if it liquefies as early as the model allows (an
+  // `at_most` stage; the same as the bound's otherwise): the range's low end.
+  struct Earliest {
+    double steps = 0, loose_steps = 0, still_steps = 0;
+    double strain = 0;
+  } earliest;
   double strain = 0;     // the strain norm s at its end
   double end_p_kpa = 0;  // the modelled p at its end (NaN: unknown)
   std::string reason;    // which stop ends it, e.g. "mean_stress_kpa", "strain_norm (at most)"

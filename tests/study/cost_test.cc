@@ -40,7 +40,7 @@ TEST(StudyCost, TinyPaperPlanListsEveryCaseWithDepthAndStepsAndTheTotalsAddUp) {
   const MeasuredRate rate = SomeRate();
   const PlanCost cost = EstimateCost(plan, rate, 1, 0);
   ASSERT_EQ(cost.cases.size(), plan.cases.size());
-  double particle_steps = 0, seconds = 0;
+  double particle_steps = 0, seconds = 0, earliest_seconds = 0;
   for (size_t k = 0; k < cost.cases.size(); ++k) {
     const CaseCost& c = cost.cases[k];
     const PlannedCase& planned = plan.cases[k];
@@ -67,6 +67,15 @@ TEST(StudyCost, TinyPaperPlanListsEveryCaseWithDepthAndStepsAndTheTotalsAddUp) {
               planned.estimated_steps * (1 + 1e-12))
         << planned.id;
     EXPECT_EQ(c.at_most, planned.steps_at_most) << planned.id;
+    // The low end of a bound's range: no more than the bound, the same
+    // where the case cannot liquefy.
+    EXPECT_LE(c.earliest_steps, c.steps * (1 + 1e-12)) << planned.id;
+    EXPECT_LE(c.earliest_seconds, c.seconds * (1 + 1e-12)) << planned.id;
+    if (!c.at_most) {
+      EXPECT_DOUBLE_EQ(c.earliest_steps, c.steps) << planned.id;
+      EXPECT_DOUBLE_EQ(c.earliest_seconds, c.seconds) << planned.id;
+    }
+    earliest_seconds += c.earliest_seconds;
     if (planned.id == "r1/ncl") {
       EXPECT_GT(planned.estimated_loose_steps, 0);
     }
@@ -95,8 +104,12 @@ TEST(StudyCost, TinyPaperPlanListsEveryCaseWithDepthAndStepsAndTheTotalsAddUp) {
   EXPECT_LT(cost.at_most_seconds, cost.case_seconds);
   EXPECT_DOUBLE_EQ(cost.generation_seconds,
                    rate.generation_seconds * static_cast<double>(plan.samples.size()));
+  EXPECT_NEAR(cost.earliest_case_seconds, earliest_seconds, 1e-9 * earliest_seconds);
+  EXPECT_LT(cost.earliest_case_seconds, cost.case_seconds);  // the extension paths liquefy
   // One job runs the cases one after another.
   EXPECT_NEAR(cost.wall_seconds, cost.generation_seconds + seconds, 1e-9 * seconds);
+  EXPECT_NEAR(cost.earliest_wall_seconds, cost.generation_seconds + earliest_seconds,
+              1e-9 * earliest_seconds);
   EXPECT_LE(cost.critical_seconds, seconds * (1 + 1e-12));
   EXPECT_DOUBLE_EQ(cost.peak_memory_bytes,
                    kCaseBytesPerSphere * static_cast<double>(programme.Current().count));
@@ -125,6 +138,8 @@ TEST(StudyCost, ShardsCoverEveryCaseAndTheTimeLimitCoversTheLongestShard) {
   for (const ShardCost& shard : cost.shards) {
     EXPECT_GT(shard.cases, 0);
     EXPECT_GT(shard.seconds, 0);
+    EXPECT_GT(shard.earliest_seconds, 0);
+    EXPECT_LE(shard.earliest_seconds, shard.seconds * (1 + 1e-12));
     longest = std::max(longest, shard.seconds);
     cases += shard.cases;
   }

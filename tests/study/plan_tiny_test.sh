@@ -38,18 +38,28 @@ grep -qE '^time limit per array task: --time=[0-9]+-[0-9]{2}:[0-9]{2}:00 ' "$wor
   fail "no Slurm time limit"
 
 # The paper's extension paths stop when they liquefy: bounds, marked and counted.
-grep -qE '^r1/nc100_psi120 .*  at most$' "$work/first.txt" || fail "no 'at most' on a liquefying case"
-grep -qE "^  [0-9]+ case\(s\) marked 'at most'" "$work/first.txt" || fail "no count of the bounds"
+# Each with the low end of its range (it liquefies as early as the model
+# allows), and the wall time a range.
+grep -qE '^r1/nc100_psi120 .*  at most \(from [0-9.]+ (s|min|h)\)$' "$work/first.txt" ||
+  fail "no 'at most (from ...)' on a liquefying case"
+grep -qE "^  [0-9]+ case\(s\) marked 'at most'.*, [0-9.]+ (s|min|h) in all$" "$work/first.txt" ||
+  fail "no count of the bounds and the low end of the total"
+grep -qE '^wall time on this machine: between [0-9.]+ (s|min|h) and [0-9.]+ (s|min|h) ' "$work/first.txt" ||
+  fail "the wall time is not a range"
 
 # --stages: every stage's estimate under its case; --tsv: the cases for scripts.
 "$granasym" study plan "$programme" --scale tiny --jobs 1 --threads 1 --stages > "$work/stages.txt"
 grep -qE '^    stage 1: strain [0-9.e+-]+, [0-9.e+-]+ steps .*: mean_stress_kpa$' "$work/stages.txt" ||
   fail "no stage estimates with --stages"
+grep -qE '^    stage 1: strain [0-9.e+-]+, [0-9.e+-]+ steps .*\(from strain [0-9.e+-]+, [0-9.e+-]+ steps\): .*at most' "$work/stages.txt" ||
+  fail "no earliest end of a stage that may liquefy with --stages"
 "$granasym" study plan "$programme" --scale tiny --jobs 1 --threads 1 --tsv > "$work/plan.tsv"
-head -1 "$work/plan.tsv" | grep -qP '^case\tdepth\ttime_step_s\tsteps\tloose_steps\tstill_steps\tstress_steps\tparticle_steps\tseconds\tat_most$' ||
+head -1 "$work/plan.tsv" | grep -qP '^case\tdepth\ttime_step_s\tsteps\tloose_steps\tstill_steps\tstress_steps\tparticle_steps\tseconds\tat_most\tearliest_steps\tearliest_seconds$' ||
   fail "no TSV header"
 [ "$(tail -n +2 "$work/plan.tsv" | wc -l)" = "$cases" ] || fail "TSV rows are not the $cases cases"
-awk -F'\t' 'NR > 1 && !($4 > 0 && $9 > 0 && $6 <= $5 && $5 + $7 <= $4 * 1.000001) { print "FAIL: TSV row " $0; bad = 1 }
+awk -F'\t' 'NR > 1 && !($4 > 0 && $9 > 0 && $6 <= $5 && $5 + $7 <= $4 * 1.000001 &&
+                        $11 > 0 && $11 <= $4 * 1.000001 && $12 <= $9 * 1.000001 &&
+                        ($10 == 1 || $11 == $4)) { print "FAIL: TSV row " $0; bad = 1 }
              END { exit bad }' "$work/plan.tsv"
 
 "$granasym" study plan "$programme" --scale tiny --jobs 1 --threads 1 > "$work/second.txt"

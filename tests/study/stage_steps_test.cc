@@ -187,6 +187,58 @@ TEST(StageSteps, AStageThatMayLiquefyIsBoundedByItsCapAtTheFloorRate) {
   EXPECT_TRUE(constant.at_most);
 }
 
+TEST(StageSteps, AStageThatMayLiquefyEndsAtTheEarliestItsGasWindowAfterTheFirstGas) {
+  const double floor_rate = 1e-3 * std::sqrt(1e3 / (2 * 2650.0)) / 1e-3;
+  dem::StopConditions stop;
+  stop.strain_norm = 1.0;
+  stop.asymptote = true;
+  stop.liquefied = true;
+  stop.liquefied_strain = 0.02;
+  // A dilating path unloads elastically (linear contacts: K = Z φ_J E/(6π))
+  // to the extension detector's floor of p, a gas from there.
+  const dem::Stage dilating = PathStage(95, 5000, stop, 1e-3);
+  const StageSteps extension = EstimateStageSteps(dilating, Scales(), 2000);
+  const double modulus = kIsostaticCoordination * kJammedSolidFraction * 500e6 / (6 * kPi);
+  const double unloading = -std::sqrt(3.0) * std::cos(95 * kPi / 180);  // |ε̇_v|/‖D‖
+  const double gas = (2000e3 - dilating.asymptote.floor_kpa * 1e3) / (modulus * unloading);
+  EXPECT_TRUE(extension.at_most);
+  EXPECT_NEAR(extension.earliest.strain, gas + 0.02, 1e-9);
+  EXPECT_NEAR(extension.earliest.steps, (gas + 0.02) / (floor_rate * kDt),
+              1e-3 * extension.earliest.steps);
+  EXPECT_LT(extension.earliest.steps, extension.steps);
+  // From below the floor: a gas at once.
+  const StageSteps loose = EstimateStageSteps(dilating, Scales(), 0.2);
+  EXPECT_NEAR(loose.earliest.strain, 0.02, 1e-12);
+
+  // An isochoric path under the inertial rule may liquefy at once: its
+  // window (the detector's, without liquefied_strain) at the floor's rate.
+  stop.liquefied_strain.reset();
+  const dem::Stage isochoric = PathStage(90, 5000, stop, 1e-3);
+  const StageSteps shear = EstimateStageSteps(isochoric, Scales(), 100);
+  EXPECT_NEAR(shear.strain, kShearTransientStrain + isochoric.asymptote.window_strain, 1e-12);
+  EXPECT_NEAR(shear.earliest.strain, isochoric.asymptote.window_strain, 1e-12);
+  EXPECT_NEAR(shear.earliest.steps, isochoric.asymptote.window_strain / (floor_rate * kDt),
+              1e-3 * shear.earliest.steps);
+  // At a constant rate nothing says that p collapses, and a loading path
+  // never becomes a gas: the earliest end is the bound's.
+  for (const dem::Stage& stage : {PathStage(90, 167, stop), PathStage(0, 5000, stop, 1e-3)}) {
+    const StageSteps steps = EstimateStageSteps(stage, Scales(), 100);
+    EXPECT_TRUE(steps.at_most);
+    EXPECT_DOUBLE_EQ(steps.earliest.strain, steps.strain);
+    EXPECT_DOUBLE_EQ(steps.earliest.steps, steps.steps);
+    EXPECT_DOUBLE_EQ(steps.earliest.loose_steps, steps.loose_steps);
+  }
+  // A stage that cannot liquefy: the same figures.
+  const StageSteps plain = EstimateStageSteps(PathStage(90, 167, dem::StopConditions{[] {
+                                                          dem::StopConditions s;
+                                                          s.strain_norm = 0.5;
+                                                          return s;
+                                                        }()}),
+                                              Scales(), 100);
+  EXPECT_FALSE(plain.at_most);
+  EXPECT_DOUBLE_EQ(plain.earliest.steps, plain.steps);
+}
+
 TEST(StageSteps, AnIsochoricAsymptoteComesAfterTheTransientAndTheWindow) {
   dem::StopConditions stop;
   stop.strain_norm = 0.8;
