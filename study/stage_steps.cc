@@ -254,14 +254,14 @@ StageSteps EstimateStageSteps(const dem::Stage& stage, const StageSampleScales& 
     Consider(s, "asymptote", &end, &reason);
   }
   // The earliest end of a stage that may liquefy: its gas window after the
-  // strain at which it may first be a gas.
+  // strain `gas` at which it may first be a gas.
   double earliest = end;
+  double gas = kInfinity;
   if (stop.liquefied) {
     // Liquefaction may end the stage anywhere before: the rest is a bound,
     // with p at the inertial rule's floor (the slowest rate) throughout.
     result.at_most = true;
     if (cap < kInfinity) end = std::min(end, cap);
-    double gas = kInfinity;
     if (path && stress.volumetric < 0) {
       const bool extension = stage.asymptote.kind == dem::PathKind::kExtension;
       const double floor_kpa =
@@ -281,21 +281,26 @@ StageSteps EstimateStageSteps(const dem::Stage& stage, const StageSampleScales& 
   result.strain = end;
 
   // The steps to strain `to`: before the generated sample jams at the rate
-  // of p = 0 (the rule's floor), then over the modelled p; their loose and
-  // still shares; and whether the stage's step or time cap ends it first.
+  // of p = 0 (the rule's floor), then over the modelled p (of a stage that
+  // may liquefy under the inertial rule: at the floor, from strain
+  // `modelled_until` on); their loose and still shares; and whether the
+  // stage's step or time cap ends it first.
   const double floor_rate = stress.speed(0);
   const double still_share = 1 - std::min(1.0, floor_rate / kCollisionalStrainRate);
   struct Count {
     double steps = 0, loose = 0, still = 0, end_p_kpa = 0;
     bool capped = false;
   };
-  auto count = [&](double to) {
+  auto count = [&](double to, double modelled_until) {
     const double jam = p0 <= 0 ? std::min(stress.jam_strain, to) : 0.0;
-    const Integral after = Integrate(stress, jam, to, inertial && stop.liquefied, floor_rate);
+    const bool at_floor = inertial && stop.liquefied;
+    const double split = at_floor ? std::clamp(modelled_until, jam, to) : to;
+    const Integral modelled = Integrate(stress, jam, split, false, floor_rate);
+    const Integral after = Integrate(stress, split, to, at_floor, floor_rate);
     Count c;
-    c.loose = jam / (floor_rate * dt) + after.loose_seconds / dt;
-    c.steps = jam / (floor_rate * dt) + after.seconds / dt;
-    c.end_p_kpa = after.end_p_kpa;
+    c.loose = (jam / floor_rate + modelled.loose_seconds + after.loose_seconds) / dt;
+    c.steps = (jam / floor_rate + modelled.seconds + after.seconds) / dt;
+    c.end_p_kpa = split < to ? after.end_p_kpa : modelled.end_p_kpa;
     if (c.steps > step_cap) {
       c.steps = step_cap;
       c.loose = std::min(c.loose, step_cap);
@@ -304,14 +309,16 @@ StageSteps EstimateStageSteps(const dem::Stage& stage, const StageSampleScales& 
     c.still = c.loose * still_share;
     return c;
   };
-  const Count bound = count(end);
+  const Count bound = count(end, 0);
   if (bound.capped) {
     reason = stop.steps && static_cast<double>(*stop.steps) == step_cap ? "steps" : "time_s";
   }
   result.steps = bound.steps;
   result.loose_steps = bound.loose;
   result.still_steps = bound.still;
-  const Count first = earliest < end ? count(earliest) : bound;
+  // The low end: the modelled p up to the first gas (at its own, faster
+  // rate), then the floor.
+  const Count first = earliest < end ? count(earliest, gas) : bound;
   result.earliest = {first.steps, first.loose, first.still, std::min(earliest, end)};
   result.end_p_kpa = bound.end_p_kpa;
   if (triaxial) result.end_p_kpa = triaxial->radial_stress_kpa;

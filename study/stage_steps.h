@@ -42,7 +42,8 @@
 //    sheared at constant volume falls towards its critical state at the same
 //    void ratio, far below for stiff grains, and at slow rates liquefies
 //    within the first rows: the rate study's ψ_ε = 90° paths at I* <= 1e-3),
-//    never on a loading or stress-controlled one (StageSteps::earliest);
+//    never on a loading or stress-controlled one (StageSteps::earliest: the
+//    modelled p up to the first gas, at its own rate, then the floor's);
 //
 // The steps follow from s and the rate: a constant ‖D‖ gives s/(‖D‖Δt);
 // the inertial rule ‖D‖ = I* sqrt(p/(2ρ_s))/d (dem/strain_path_stage.h,

@@ -203,8 +203,14 @@ TEST(StageSteps, AStageThatMayLiquefyEndsAtTheEarliestItsGasWindowAfterTheFirstG
   const double gas = (2000e3 - dilating.asymptote.floor_kpa * 1e3) / (modulus * unloading);
   EXPECT_TRUE(extension.at_most);
   EXPECT_NEAR(extension.earliest.strain, gas + 0.02, 1e-9);
-  EXPECT_NEAR(extension.earliest.steps, (gas + 0.02) / (floor_rate * kDt),
-              1e-3 * extension.earliest.steps);
+  // Up to the gas at the rate of the modelled p, p = p0 − K|v|s, ‖D‖ = c √p
+  // (c = floor_rate/√(1 kPa)): ∫ds/(c√p) = 2(√p0 − √p1)/(c K|v|); then the
+  // window at the floor's rate.
+  const double c = floor_rate / std::sqrt(1e3);
+  const double unloading_seconds =
+      2 * (std::sqrt(2000e3) - std::sqrt(0.5e3)) / (c * modulus * unloading);
+  const double expected = unloading_seconds / kDt + 0.02 / (floor_rate * kDt);
+  EXPECT_NEAR(extension.earliest.steps, expected, 1e-3 * expected);
   EXPECT_LT(extension.earliest.steps, extension.steps);
   // From below the floor: a gas at once.
   const StageSteps loose = EstimateStageSteps(dilating, Scales(), 0.2);
