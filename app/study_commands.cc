@@ -297,14 +297,16 @@ void RegisterStudyCommands(CLI::App& app) {
           study::DurationText(cost.case_seconds - cost.at_most_seconds).c_str(),
           study::DurationText(cost.earliest_case_seconds).c_str());
     }
+    // A time, or the range from its low end where the two read differently.
+    auto range = [](double low, double high) {
+      const std::string from = study::DurationText(low), to = study::DurationText(high);
+      return from == to ? to : "between " + from + " and " + to;
+    };
     std::printf(
-        "wall time on this machine: %s%s with %d jobs x %d thread(s) (the longest chain of "
+        "wall time on this machine: %s with %d jobs x %d thread(s) (the longest chain of "
         "cases: %s)\n",
-        cost.at_most_cases > 0
-            ? ("between " + study::DurationText(cost.earliest_wall_seconds) + " and ").c_str()
-            : "",
-        study::DurationText(cost.wall_seconds).c_str(), parallelism.jobs, parallelism.threads,
-        study::DurationText(cost.critical_seconds).c_str());
+        range(cost.earliest_wall_seconds, cost.wall_seconds).c_str(), parallelism.jobs,
+        parallelism.threads, study::DurationText(cost.critical_seconds).c_str());
     std::printf("peak memory: ~%.3g GB (%d case(s) at once of %lld spheres, %.0f B/sphere)\n",
                 cost.peak_memory_bytes / 1e9, parallelism.jobs, static_cast<long long>(spheres),
                 study::kCaseBytesPerSphere);
@@ -316,11 +318,8 @@ void RegisterStudyCommands(CLI::App& app) {
           "rate:\n",
           plan_shards, parallelism.jobs, parallelism.threads);
       for (const study::ShardCost& shard : cost.shards) {
-        std::printf("  shard %d/%d: %d cases, %s%s\n", shard.index, plan_shards, shard.cases,
-                    cost.at_most_cases > 0
-                        ? (study::DurationText(shard.earliest_seconds) + " to ").c_str()
-                        : "",
-                    study::DurationText(shard.seconds).c_str());
+        std::printf("  shard %d/%d: %d cases, %s\n", shard.index, plan_shards, shard.cases,
+                    range(shard.earliest_seconds, shard.seconds).c_str());
       }
       std::printf("time limit per array task: --time=%s (%.1f x the longest shard at its bound)\n",
                   study::SlurmTime(cost.shard_time_limit_seconds).c_str(), study::kTimeLimitMargin);
