@@ -236,6 +236,7 @@ StageSteps EstimateStageSteps(const dem::Stage& stage, const StageSampleScales& 
   target(stop.volumetric_strain, triaxial ? 0 : volumetric, "volumetric_strain");
   target(stop.shear_strain, shear, "shear_strain");
   const double cap = end;  // the caps alone
+  const std::string cap_reason = reason;
   if (stop.mean_stress_kpa && !triaxial) {
     Consider(stress.StrainTo(*stop.mean_stress_kpa), "mean_stress_kpa", &end, &reason);
   }
@@ -258,10 +259,16 @@ StageSteps EstimateStageSteps(const dem::Stage& stage, const StageSampleScales& 
   double earliest = end;
   double gas = kInfinity;
   if (stop.liquefied) {
-    // Liquefaction may end the stage anywhere before: the rest is a bound,
-    // with p at the inertial rule's floor (the slowest rate) throughout.
+    // Liquefaction may end the stage anywhere, and a sample that has been a
+    // gas for a while reaches its asymptote later than the model says: only
+    // the caps bound it, with p at the inertial rule's floor (the slowest
+    // rate) throughout. The stops the model predicts are the low end's.
     result.at_most = true;
-    if (cap < kInfinity) end = std::min(end, cap);
+    const double predicted = end;
+    if (cap < kInfinity) {
+      end = cap;
+      reason = cap_reason;
+    }
     if (path && stress.volumetric < 0) {
       const bool extension = stage.asymptote.kind == dem::PathKind::kExtension;
       const double floor_kpa =
@@ -271,7 +278,7 @@ StageSteps EstimateStageSteps(const dem::Stage& stage, const StageSampleScales& 
       gas = 0;
     }
     const double window = stop.liquefied_strain.value_or(stage.asymptote.window_strain);
-    earliest = std::min(end, gas + window);
+    earliest = std::min(predicted, gas + window);
   }
   if (!(end < kInfinity)) {
     end = kFallbackStrain;
