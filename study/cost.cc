@@ -387,10 +387,9 @@ PlanCost EstimateCost(const Plan& plan, const MeasuredRate& rate, int jobs, int 
     std::set<int> replicates;
     for (int k : selected) replicates.insert(plan.cases[static_cast<size_t>(k)].replicate);
     shard.cases = static_cast<int>(selected.size());
-    shard.seconds = rate.generation_seconds * static_cast<double>(replicates.size()) +
-                    Schedule(plan, seconds, selected, jobs);
-    shard.earliest_seconds = rate.generation_seconds * static_cast<double>(replicates.size()) +
-                             Schedule(plan, earliest, selected, jobs);
+    const double generation = rate.generation_seconds * static_cast<double>(replicates.size());
+    shard.seconds = generation + Schedule(plan, seconds, selected, jobs);
+    shard.earliest_seconds = generation + Schedule(plan, earliest, selected, jobs);
     longest = std::max(longest, shard.seconds);
     cost.shards.push_back(shard);
   }

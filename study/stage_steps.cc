@@ -326,7 +326,7 @@ StageSteps EstimateStageSteps(const dem::Stage& stage, const StageSampleScales& 
   // The low end: the modelled p up to the first gas (at its own, faster
   // rate), then the floor.
   const Count first = earliest < end ? count(earliest, gas) : bound;
-  result.earliest = {first.steps, first.loose, first.still, std::min(earliest, end)};
+  result.earliest = {first.steps, first.loose, first.still, earliest};  // earliest <= end
   result.end_p_kpa = bound.end_p_kpa;
   if (triaxial) result.end_p_kpa = triaxial->radial_stress_kpa;
   if (stop.mean_stress_kpa && reason == "mean_stress_kpa") result.end_p_kpa = *stop.mean_stress_kpa;

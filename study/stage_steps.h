@@ -32,20 +32,22 @@
 //    transient of ψ_σ) and its window in ln p (window_lnp, at most
 //    window_strain); an extension path's
 //    asymptote is not predicted (p falls towards the floor);
-//  - liquefied: a stage that may liquefy ends at the latest at its caps
-//    (a sample that has been a gas for a while reaches its asymptote later
+//  - liquefied: a stage that may liquefy ends at the latest at its caps (a
+//    sample that has been a gas for a while reaches its asymptote later
 //    than the model says: the rate study's isochoric paths at 167 1/s took
 //    up to 1.8 times the predicted strain), and its steps are a bound ("at
-//    most"). The earliest it can end is its other predicted stops, or its gas window
-//    (stop.liquefied_strain, else the detector's window_strain) after it first becomes a gas: on an
-//    unloading path where the elastic unloading takes p below the gas floor (the detector's
-//    floor_kpa on an extension path, else the validity's gas stress), on an
-//    isochoric path under the inertial rule at once (a packing on the NCL
-//    sheared at constant volume falls towards its critical state at the same
-//    void ratio, far below for stiff grains, and at slow rates liquefies
-//    within the first rows: the rate study's ψ_ε = 90° paths at I* <= 1e-3),
-//    never on a loading or stress-controlled one (StageSteps::earliest: the
-//    modelled p up to the first gas, at its own rate, then the floor's);
+//    most"). The earliest it can end (StageSteps::earliest) is its other
+//    predicted stops, or its gas window (stop.liquefied_strain, else the
+//    detector's window_strain) after it first becomes a gas: on an
+//    unloading path once the elastic unloading takes p below the gas floor
+//    (the detector's floor_kpa on an extension path, else the validity's
+//    gas stress), on an isochoric path under the inertial rule at once (a
+//    packing on the NCL sheared at constant volume falls towards its
+//    critical state at the same void ratio, far below for stiff grains, and
+//    at slow rates liquefies within the first rows: the rate study's
+//    ψ_ε = 90° paths at I* <= 1e-3), never on a loading or
+//    stress-controlled one; at the modelled p's own rate up to the first
+//    gas, at the floor's after it;
 //
 // The steps follow from s and the rate: a constant ‖D‖ gives s/(‖D‖Δt);
 // the inertial rule ‖D‖ = I* sqrt(p/(2ρ_s))/d (dem/strain_path_stage.h,
